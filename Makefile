@@ -1,0 +1,136 @@
+# gikiosk — one entry point (DESIGN §1). `make` builds build/gikiosk.
+# Targets: all run test bench references scenes deps install asan fuzz clean
+
+PREFIX  ?= /usr/local
+DESTDIR ?=
+BUILD   ?= build
+CC      ?= cc
+CXX     ?= c++
+
+# Debian packages (DESIGN §2); `make deps` installs the missing ones.
+DEB_PACKAGES := build-essential pkg-config libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri \
+	libdrm-dev libgbm-dev libgpiod-dev libtinygltf-dev libopenimageio-dev openimageio-tools \
+	libinih-dev libcmocka-dev glslang-tools gnuplot-nox fonts-dejavu-core libstb-dev \
+	clang libclang-rt-14-dev
+
+PKGS := egl glesv2 gbm libdrm libgpiod tinygltf OpenImageIO inih stb
+PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
+PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
+
+# libgpiod v1 (Debian 12) or v2 (backports, Debian 13), chosen by the library's version.
+GPIOD_MAJOR = $(firstword $(subst ., ,$(shell pkg-config --modversion libgpiod 2>/dev/null)))
+
+WERROR   := $(if $(CI),-Werror,)
+OPT      ?= -O2
+COMMON   := $(OPT) -g -Wall -Wextra $(WERROR) -Iapp -I. -D_GNU_SOURCE -DGK_GPIOD_MAJOR=$(or $(GPIOD_MAJOR),1) \
+	-DGK_VERSION=\"$(shell cat VERSION 2>/dev/null || echo 0.1.0)\"
+CFLAGS_ALL   = -std=c11 $(COMMON) $(PKG_CFLAGS) $(SANITIZE) $(CFLAGS)
+CXXFLAGS_ALL = -std=c++17 $(COMMON) $(PKG_CFLAGS) $(SANITIZE) $(CXXFLAGS)
+LIBS = $(PKG_LIBS) -lstdc++ -lpthread -lm $(SANITIZE) $(LDFLAGS)
+
+# The program's sources: everything under app/ and platform/ except main.c, plus the embedded
+# shaders. gpiod_v1.c / gpiod_v2.c: only the one matching the installed libgpiod is built.
+GPIOD_SKIP := $(if $(filter 2,$(GPIOD_MAJOR)),platform/gpiod_v1.c,platform/gpiod_v2.c)
+C_SRCS   := $(filter-out app/main.c $(GPIOD_SKIP),$(shell find app platform -name '*.c' | LC_ALL=C sort))
+CXX_SRCS := $(shell find app platform -name '*.cpp' | LC_ALL=C sort)
+SHADERS  := $(shell find shaders_gles -type f 2>/dev/null | LC_ALL=C sort)
+GEN_SHADERS := $(BUILD)/gen/shaders_embedded.c
+
+OBJS := $(C_SRCS:%.c=$(BUILD)/obj/%.o) $(CXX_SRCS:%.cpp=$(BUILD)/obj/%.o) $(BUILD)/obj/gen/shaders_embedded.o
+LIB  := $(BUILD)/libgikiosk.a
+BIN  := $(BUILD)/gikiosk
+
+# Tests: tests/unit/test_*.c link the link-level fakes in tests/fakes/ (libdrm, GBM, libgpiod,
+# evdev); tests/gpu/test_*.c run on the real Mesa (llvmpipe) without fakes.
+UNIT_SRCS := $(shell find tests/unit -name 'test_*.c' 2>/dev/null | LC_ALL=C sort)
+GPU_SRCS  := $(shell find tests/gpu -name 'test_*.c' 2>/dev/null | LC_ALL=C sort)
+FAKE_SRCS := $(shell find tests/fakes -name '*.c' 2>/dev/null | LC_ALL=C sort)
+TESTLIB_SRCS := $(shell find tests/common -name '*.c' 2>/dev/null | LC_ALL=C sort)
+UNIT_BINS := $(UNIT_SRCS:tests/%.c=$(BUILD)/tests/%)
+GPU_BINS  := $(GPU_SRCS:tests/%.c=$(BUILD)/tests/%)
+FAKE_OBJS := $(FAKE_SRCS:%.c=$(BUILD)/obj/%.o)
+TESTLIB_OBJS := $(TESTLIB_SRCS:%.c=$(BUILD)/obj/%.o)
+
+.PHONY: all run test test-only bench references scenes deps install asan fuzz clean shaders-check
+all: $(BIN)
+
+$(BUILD)/obj/%.o: %.c
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_ALL) -MMD -MP -c $< -o $@
+
+$(BUILD)/obj/%.o: %.cpp
+	@mkdir -p $(dir $@)
+	$(CXX) $(CXXFLAGS_ALL) -MMD -MP -c $< -o $@
+
+$(GEN_SHADERS): $(SHADERS) tools/embed_shaders.sh
+	@mkdir -p $(dir $@)
+	sh tools/embed_shaders.sh shaders_gles $@
+
+$(BUILD)/obj/gen/shaders_embedded.o: $(GEN_SHADERS)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_ALL) -c $< -o $@
+
+$(LIB): $(OBJS)
+	@rm -f $@
+	ar rcs $@ $^
+
+$(BIN): $(BUILD)/obj/app/main.o $(LIB)
+	$(CC) $^ -o $@ $(LIBS)
+
+$(BUILD)/tests/unit/%: tests/unit/%.c $(LIB) $(FAKE_OBJS) $(TESTLIB_OBJS)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_ALL) -Itests $< $(FAKE_OBJS) $(TESTLIB_OBJS) $(LIB) -o $@ $(LIBS) -lcmocka
+
+$(BUILD)/tests/gpu/%: tests/gpu/%.c $(LIB) $(TESTLIB_OBJS)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_ALL) -Itests $< $(TESTLIB_OBJS) $(LIB) -o $@ $(LIBS) -lcmocka
+
+# The glTF loader fuzz target (libFuzzer, clang). Built and run briefly by `make test`.
+FUZZ_BIN := $(BUILD)/fuzz/fuzz_gltf
+$(FUZZ_BIN): tests/fuzz/fuzz_gltf.c $(C_SRCS) $(CXX_SRCS) $(GEN_SHADERS)
+	@mkdir -p $(dir $@)
+	$(MAKE) --no-print-directory BUILD=$(BUILD)/fuzzobj CC=clang CXX=clang++ OPT=-O1 \
+		SANITIZE="-fsanitize=fuzzer-no-link,address,undefined" $(BUILD)/fuzzobj/libgikiosk.a
+	clang $(filter-out -Werror,$(CFLAGS_ALL)) -fsanitize=fuzzer,address,undefined tests/fuzz/fuzz_gltf.c \
+		$(BUILD)/fuzzobj/libgikiosk.a -o $@ $(PKG_LIBS) -lstdc++ -lpthread -lm
+fuzz: $(FUZZ_BIN)
+
+# ---------------------------------------------------------------------------------------------
+deps:
+	@sh tools/deps.sh $(DEB_PACKAGES)
+
+run: deps $(BIN)
+	sh tools/showcase.sh $(BIN)
+
+test: deps
+	@$(MAKE) --no-print-directory test-only
+
+test-only: $(BIN) $(UNIT_BINS) $(GPU_BINS) $(if $(NO_FUZZ),,$(FUZZ_BIN))
+	@sh tests/run.sh $(BUILD)
+
+asan: deps
+	@$(MAKE) --no-print-directory BUILD=build-asan OPT=-O1 NO_FUZZ=1 \
+		SANITIZE="-fsanitize=address,undefined -fno-omit-frame-pointer" test-only
+
+bench: deps $(BIN)
+	sh tools/bench.sh $(BIN)
+
+references: deps $(BIN)
+	sh tools/references.sh $(BIN)
+
+scenes: deps $(BIN)
+	$(BIN) build-scenes config/scenes
+
+install: $(BIN)
+	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/share/gikiosk/scenes $(DESTDIR)/etc/gikiosk \
+		$(DESTDIR)/lib/systemd/system $(DESTDIR)/lib/udev/rules.d
+	install -m 755 $(BIN) $(DESTDIR)$(PREFIX)/bin/gikiosk
+	install -m 644 config/scenes/* $(DESTDIR)$(PREFIX)/share/gikiosk/scenes/
+	install -m 644 config/kiosk.ini $(DESTDIR)/etc/gikiosk/kiosk.ini
+	install -m 644 board/gikiosk.service $(DESTDIR)/lib/systemd/system/gikiosk.service
+	install -m 644 board/99-gikiosk.rules $(DESTDIR)/lib/udev/rules.d/99-gikiosk.rules
+
+clean:
+	rm -rf build build-asan out
+
+-include $(shell find $(BUILD)/obj -name '*.d' 2>/dev/null)

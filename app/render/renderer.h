@@ -1,0 +1,63 @@
+/* The real-time renderer: deferred GLES 3.1 pipeline (shadow maps -> G-buffer -> direct light ->
+ * GI method -> compose/tonemap), owned HDR image, captures. The kiosk creates one per platform,
+ * gives it a scene, and asks for frames. GL context must be current (the platform's). */
+#ifndef GK_RENDERER_H
+#define GK_RENDERER_H
+
+#include <stdbool.h>
+
+#include "../core/err.h"
+#include "../scene/scene.h"
+#include "../sched/budget.h"
+
+#define GK_MAX_PASSES 16
+
+/* Per-pass timings of one frame, in milliseconds (CPU time around a fence on llvmpipe, GPU timer
+ * queries where trustworthy). Pass names are stable: they become `PASS_ms` CSV columns. */
+typedef struct gk_pass_times {
+    int n;
+    const char *name[GK_MAX_PASSES];
+    double ms[GK_MAX_PASSES];
+} gk_pass_times;
+
+typedef struct gk_render_opts {
+    int width, height;        /* output (panel or --size) */
+    int gles_version;         /* 31 forces the portable path; 32 allows capability-checked 3.2 paths */
+    const char *shader_dir;   /* NULL: the shaders embedded in the binary */
+    bool gpu_timer_queries;   /* false on llvmpipe (meaningless there) */
+} gk_render_opts;
+
+typedef struct gk_frame_params {
+    double time_s;            /* animation time */
+    const char *method;       /* GI method: "none", "vct", ... */
+    const gk_budget *budget;  /* current knob levels */
+    bool show_hud;
+    const char *hud_lines[8]; /* text the kiosk wants on the HUD (NULL-terminated) */
+    const float *frame_ms_history; int n_history; /* for the frame-time graph */
+    float target_ms;
+} gk_frame_params;
+
+typedef struct gk_renderer gk_renderer;
+
+gk_renderer *gk_renderer_create(const gk_render_opts *opts, gk_err *e);
+void gk_renderer_destroy(gk_renderer *r);
+
+/* Declares the renderer's knobs (render_scale, shadow method, shadow map size, ...) and those of
+ * every GI method into b. */
+void gk_renderer_declare_knobs(gk_renderer *r, gk_budget *b);
+
+/* Uploads a scene (meshes, textures, materials). The renderer keeps a pointer; the scene outlives
+ * it or the next set_scene. Errors are GK_ERUNTIME (GPU). */
+int gk_renderer_set_scene(gk_renderer *r, gk_scene *s, gk_err *e);
+
+/* Names of the GI methods that apply to the current scene, "none" first. */
+int gk_renderer_methods(const gk_renderer *r, const char **names, int max);
+
+/* Renders one frame into target_fbo (the platform's framebuffer), fills times. */
+int gk_renderer_draw(gk_renderer *r, const gk_frame_params *fp, unsigned target_fbo, gk_pass_times *times, gk_err *e);
+
+/* Writes the last frame: png_path display-referred (tonemapped, as shown), exr_path linear scene
+ * radiance before exposure (either may be NULL). */
+int gk_renderer_capture(gk_renderer *r, const char *png_path, const char *exr_path, gk_err *e);
+
+#endif

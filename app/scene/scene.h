@@ -1,0 +1,154 @@
+/* The scene model: plain C structs that both the real-time renderer and the reference path tracer
+ * read, so their images are comparable pixel for pixel (DESIGN §1). Units are glTF's: metres,
+ * candela for point/spot lights, lux for directional lights, nits (cd/m²) for emission.
+ *
+ * Area lights (DESIGN §4): a punctual light may carry a size in its extras:
+ *   "extras": {"gikiosk": {"radius": R}}       point -> sphere of radius R;
+ *                                               spot  -> disc of radius R facing the node's -Z,
+ *                                                        masked by the spot cone;
+ *                                               directional -> sun disc of angular radius R (radians)
+ *   "extras": {"gikiosk": {"size": [W, H]}}    point or spot -> one-sided Lambertian rectangle in the
+ *                                               node's local XY plane, emitting towards -Z.
+ * The intensity I (cd) is the intensity along the emitter's axis, so the emitted radiance is
+ * I / (pi R^2) for a sphere or disc and I / (W H) for a rectangle; the power is the same as the
+ * punctual light's, so a scene keeps its brightness whichever way a renderer treats the light.
+ *
+ * A mesh whose material has "extras": {"gikiosk": {"light_proxy": true}} is the visible face of an
+ * area light (the Cornell ceiling quad): it is drawn with its emission by the rasterizer, but the
+ * path tracer does not intersect it, because the area light's own geometry stands in its place. */
+#ifndef GK_SCENE_H
+#define GK_SCENE_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "../core/err.h"
+#include "../core/vecmath.h"
+
+enum gk_light_type { GK_LIGHT_POINT, GK_LIGHT_SPOT, GK_LIGHT_DIRECTIONAL };
+enum gk_light_shape { GK_SHAPE_POINT, GK_SHAPE_SPHERE, GK_SHAPE_DISC, GK_SHAPE_RECT };
+
+typedef struct gk_texture {
+    char uri[256];
+    int width, height;
+    float *rgba;      /* width*height*4 floats, linear (sRGB decoded for colour textures) */
+} gk_texture;
+
+typedef struct gk_material {
+    char name[64];
+    float base_color[4];      /* linear RGBA factor */
+    int base_color_tex;       /* index into scene.textures, -1 if none */
+    float metallic, roughness;
+    int metallic_roughness_tex; /* G = roughness, B = metallic (glTF), -1 if none */
+    float emissive[3];        /* emissiveFactor * KHR_materials_emissive_strength, in nits */
+    float transmission;       /* KHR_materials_transmission: 0 opaque .. 1 clear glass/water */
+    float ior;                /* KHR_materials_ior, 1.5 by default */
+    bool double_sided;
+    bool light_proxy;         /* see the header comment */
+} gk_material;
+
+typedef struct gk_mesh {       /* one glTF primitive, triangles only, in object space */
+    float *positions;          /* n_vertices * 3 */
+    float *normals;            /* n_vertices * 3 (generated flat if the file has none) */
+    float *uvs;                /* n_vertices * 2, or NULL */
+    uint32_t *indices;         /* n_triangles * 3 */
+    uint32_t n_vertices, n_triangles;
+    int material;              /* index into scene.materials (a default material is always there) */
+    vec3 bmin, bmax;           /* object-space bounds */
+} gk_mesh;
+
+typedef struct gk_light {
+    char name[64];
+    enum gk_light_type type;
+    enum gk_light_shape shape;
+    float color[3];            /* linear RGB, multiplied by intensity */
+    float intensity;           /* cd (point, spot) or lux (directional) */
+    float range;               /* 0 = infinite */
+    float inner_cone, outer_cone; /* spot, radians */
+    float radius;              /* sphere/disc radius (m) or sun angular radius (rad) */
+    float size[2];             /* rectangle W, H (m) */
+} gk_light;
+
+typedef struct gk_camera {
+    float yfov;                /* radians */
+    float aspect;              /* 0: use the viewport's */
+    float znear, zfar;         /* zfar 0 = infinite */
+} gk_camera;
+
+typedef struct gk_node {
+    char name[64];
+    int parent;                /* -1 for roots */
+    vec3 translation;
+    quat rotation;
+    vec3 scale;
+    int mesh_first, mesh_count; /* range of scene.meshes drawn by this node (count 0 = none) */
+    int light;                 /* index into scene.lights or -1 */
+    int camera;                /* index into scene.cameras or -1 */
+    mat4 world;                /* filled by gk_scene_evaluate() */
+    bool animated;             /* it or an ancestor is targeted by an animation channel */
+} gk_node;
+
+enum gk_anim_path { GK_ANIM_TRANSLATION, GK_ANIM_ROTATION, GK_ANIM_SCALE };
+enum gk_anim_interp { GK_INTERP_LINEAR, GK_INTERP_STEP };
+
+typedef struct gk_anim_channel {
+    int node;
+    enum gk_anim_path path;
+    enum gk_anim_interp interp;
+    uint32_t n_keys;
+    float *times;              /* n_keys, increasing */
+    float *values;             /* n_keys * 3 (T, S) or * 4 (R, xyzw) */
+} gk_anim_channel;
+
+/* What a scene contains, derived from its content at load time; the kiosk offers only the GI
+ * methods a scene needs ("model no more than a scene needs"). */
+typedef struct gk_scene_features {
+    bool has_area_lights;
+    bool has_emissive;
+    bool has_specular;         /* mirrors/smooth metals (roughness < 0.2, metallic > 0.5) */
+    bool has_transmission;     /* glass, water */
+    bool has_caustics;         /* specular/transmissive surfaces lit by point/spot lights */
+    bool has_animation;
+    bool is_closed;            /* every edge shared by two triangles (furnace-type scenes) */
+} gk_scene_features;
+
+typedef struct gk_scene {
+    char name[64];             /* file stem: "cornell" */
+    char path[512];            /* file it was loaded from */
+    char description[512];     /* scene extras "gikiosk": {"description": ...} */
+    char methods[256];         /* scene extras "gikiosk": {"methods": "vct,vpl"}; "" = derive */
+    gk_mesh *meshes;       int n_meshes;
+    gk_material *materials; int n_materials;
+    gk_texture *textures;  int n_textures;
+    gk_light *lights;      int n_lights;
+    gk_camera *cameras;    int n_cameras;
+    gk_node *nodes;        int n_nodes;
+    gk_anim_channel *channels; int n_channels;
+    float anim_duration;       /* seconds, 0 if static; animations loop */
+    int camera_node;           /* first node with a camera, -1: a default camera framing the bounds */
+    vec3 bmin, bmax;           /* world bounds at t = 0 */
+    uint32_t n_triangles;      /* total drawn */
+    uint32_t n_degenerate_dropped;
+    gk_scene_features features;
+} gk_scene;
+
+/* Loads .gltf/.glb; validates everything (indices, accessors, NaN/Inf, textures). On error returns
+ * NULL with e->code GK_EINPUT and a message naming the file and what is wrong. */
+gk_scene *gk_scene_load(const char *path, gk_err *e);
+void gk_scene_free(gk_scene *s);
+
+/* Evaluates animations at time t (seconds, looped) and fills every node's world matrix. */
+void gk_scene_evaluate(gk_scene *s, float t);
+
+/* The view camera after gk_scene_evaluate: view and projection for the given aspect ratio, plus
+ * the eye position. Both renderers call this, so they see exactly the same camera. */
+void gk_scene_camera(const gk_scene *s, float aspect, mat4 *view, mat4 *proj, vec3 *eye);
+
+/* World-space emitter frame of a light after gk_scene_evaluate: position, direction (-Z of the
+ * node), and the rectangle's axes (node X and Y, unit length). */
+void gk_scene_light_frame(const gk_scene *s, int light_node, vec3 *pos, vec3 *dir, vec3 *axis_u, vec3 *axis_v);
+
+/* Looks up the scene file for a name ("cornell") in dir (config/scenes): dir/NAME.gltf or .glb. */
+int gk_scene_find(const char *dir, const char *name, char *path_out, int path_len);
+
+#endif

@@ -1,0 +1,135 @@
+#include "budget.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+void gk_budget_init(gk_budget *b) { memset(b, 0, sizeof *b); }
+
+int gk_budget_find(const gk_budget *b, const char *name)
+{
+    for (int i = 0; i < b->n; i++)
+        if (strcmp(b->def[i]->name, name) == 0)
+            return i;
+    return -1;
+}
+
+int gk_budget_add(gk_budget *b, const gk_knob_def *def)
+{
+    int i = gk_budget_find(b, def->name);
+    if (i >= 0)
+        return i;
+    if (b->n >= GK_MAX_KNOBS)
+        return -1;
+    i = b->n++;
+    b->def[i] = def;
+    b->level[i] = def->default_level;
+    b->pinned[i] = false;
+    b->min_level[i] = 0;
+    b->max_level[i] = def->n_values - 1;
+    return i;
+}
+
+const char *gk_budget_value(const gk_budget *b, const char *name)
+{
+    int i = gk_budget_find(b, name);
+    return i < 0 ? NULL : b->def[i]->values[b->level[i]];
+}
+
+float gk_budget_float(const gk_budget *b, const char *name, float fallback)
+{
+    const char *v = gk_budget_value(b, name);
+    return v ? (float)atof(v) : fallback;
+}
+
+static int value_index(const gk_knob_def *d, const char *value)
+{
+    for (int k = 0; k < d->n_values; k++)
+        if (strcmp(d->values[k], value) == 0)
+            return k;
+    return -1;
+}
+
+static void list_values(const gk_knob_def *d, char *out, int len)
+{
+    out[0] = '\0';
+    for (int k = 0; k < d->n_values; k++) {
+        int used = (int)strlen(out);
+        snprintf(out + used, (size_t)(len - used), "%s%s", k ? ", " : "", d->values[k]);
+    }
+}
+
+static void list_knobs(const gk_budget *b, char *out, int len)
+{
+    out[0] = '\0';
+    for (int i = 0; i < b->n; i++) {
+        int used = (int)strlen(out);
+        snprintf(out + used, (size_t)(len - used), "%s%s", i ? ", " : "", b->def[i]->name);
+    }
+}
+
+int gk_budget_pin_list(gk_budget *b, const char *list, gk_err *e)
+{
+    char buf[1024];
+    snprintf(buf, sizeof buf, "%s", list);
+    char *save = NULL;
+    for (char *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
+        char *eq = strchr(tok, '=');
+        if (!eq || eq == tok || !eq[1])
+            return gk_fail(e, GK_EINPUT, "--budget: '%s' is not KNOB=VALUE", tok);
+        *eq = '\0';
+        int i = gk_budget_find(b, tok);
+        if (i < 0) {
+            char known[512];
+            list_knobs(b, known, sizeof known);
+            return gk_fail(e, GK_EINPUT, "--budget: unknown knob '%s' (known: %s)", tok, known);
+        }
+        int k = value_index(b->def[i], eq + 1);
+        if (k < 0) {
+            char vals[256];
+            list_values(b->def[i], vals, sizeof vals);
+            return gk_fail(e, GK_EINPUT, "--budget: knob '%s' has no value '%s' (allowed: %s)", tok, eq + 1, vals);
+        }
+        b->level[i] = k;
+        b->pinned[i] = true;
+    }
+    return 0;
+}
+
+int gk_budget_set_range(gk_budget *b, const char *name, const char *min_value, const char *max_value, gk_err *e)
+{
+    int i = gk_budget_find(b, name);
+    if (i < 0) {
+        char known[512];
+        list_knobs(b, known, sizeof known);
+        return gk_fail(e, GK_EINPUT, "unknown budget knob '%s' (known: %s)", name, known);
+    }
+    int lo = value_index(b->def[i], min_value), hi = value_index(b->def[i], max_value);
+    if (lo < 0 || hi < 0) {
+        char vals[256];
+        list_values(b->def[i], vals, sizeof vals);
+        return gk_fail(e, GK_EINPUT, "budget '%s': '%s' is not an allowed value (allowed: %s)", name,
+                       lo < 0 ? min_value : max_value, vals);
+    }
+    if (lo > hi)
+        return gk_fail(e, GK_EINPUT, "budget '%s': minimum %s is richer than maximum %s", name, min_value, max_value);
+    b->min_level[i] = lo;
+    b->max_level[i] = hi;
+    if (b->level[i] < lo)
+        b->level[i] = lo;
+    if (b->level[i] > hi)
+        b->level[i] = hi;
+    return 0;
+}
+
+void gk_budget_format(const gk_budget *b, char *out, int out_len)
+{
+    out[0] = '\0';
+    for (int i = 0; i < b->n; i++) {
+        int used = (int)strlen(out);
+        if (used >= out_len - 1)
+            break;
+        snprintf(out + used, (size_t)(out_len - used), "%s%s=%s", i ? "," : "", b->def[i]->name,
+                 b->def[i]->values[b->level[i]]);
+    }
+}

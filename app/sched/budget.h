@@ -1,0 +1,47 @@
+/* Budget knobs (DESIGN §5–6). Every module that has something to trade declares its knobs: a name,
+ * ordered values from cheap to rich, and a cost prior (how cost grows with the value). The
+ * scheduler moves knob levels; `--budget KNOB=VALUE` pins one so the scheduler leaves it alone. */
+#ifndef GK_BUDGET_H
+#define GK_BUDGET_H
+
+#include <stdbool.h>
+
+#include "../core/err.h"
+
+#define GK_MAX_KNOBS 32
+#define GK_MAX_KNOB_VALUES 8
+
+typedef struct gk_knob_def {
+    const char *name;                         /* "shadow_map", "render_scale", "vct_res" */
+    const char *owner;                        /* "render", "vct", ... */
+    int n_values;
+    const char *values[GK_MAX_KNOB_VALUES];   /* cheap -> rich, as written on the command line */
+    float cost[GK_MAX_KNOB_VALUES];           /* cost prior: relative cost of each value (cheapest = 1) */
+    int default_level;
+} gk_knob_def;
+
+typedef struct gk_budget {
+    int n;
+    const gk_knob_def *def[GK_MAX_KNOBS];
+    int level[GK_MAX_KNOBS];                  /* index into def->values */
+    bool pinned[GK_MAX_KNOBS];
+    int min_level[GK_MAX_KNOBS], max_level[GK_MAX_KNOBS]; /* from [budgets] in the config */
+} gk_budget;
+
+void gk_budget_init(gk_budget *b);
+/* Adds a knob at its default level (no-op if already there). Returns its index or -1 if full. */
+int gk_budget_add(gk_budget *b, const gk_knob_def *def);
+int gk_budget_find(const gk_budget *b, const char *name);
+/* Current value string of a knob ("1024"), or NULL if the knob is unknown. */
+const char *gk_budget_value(const gk_budget *b, const char *name);
+/* Numeric convenience: atof of the value, or fallback when the knob is unknown. */
+float gk_budget_float(const gk_budget *b, const char *name, float fallback);
+/* Parses "KNOB=VALUE[,KNOB=VALUE...]" and pins each; unknown knobs or values are GK_EINPUT errors
+ * that list what is allowed. */
+int gk_budget_pin_list(gk_budget *b, const char *list, gk_err *e);
+/* Sets a knob's allowed range by value strings (config [budgets] NAME = MIN..MAX). */
+int gk_budget_set_range(gk_budget *b, const char *name, const char *min_value, const char *max_value, gk_err *e);
+/* "shadow_map=1024,render_scale=1" into out. */
+void gk_budget_format(const gk_budget *b, char *out, int out_len);
+
+#endif

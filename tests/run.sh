@@ -1,0 +1,52 @@
+#!/bin/sh
+# Runs every test and prints one closing line: "N passed, N failed".
+# Each test program speaks TAP ("ok ..." / "not ok ..."): the cmocka binaries through
+# CMOCKA_MESSAGE_OUTPUT=TAP, the e2e shell tests through tests/e2e/lib.sh. A program that dies
+# without reporting counts as one failure, so a crash can never pass silently.
+set -u
+BUILD=${1:-build}
+export CMOCKA_MESSAGE_OUTPUT=TAP
+export GIKIOSK=$BUILD/gikiosk
+export BUILD
+export EGL_PLATFORM=surfaceless
+passed=0
+failed=0
+log=$BUILD/test-logs
+mkdir -p "$log"
+
+run_one() { # name, command...
+    name=$1; shift
+    out=$log/$(echo "$name" | tr '/' '_').log
+    "$@" >"$out" 2>&1
+    rc=$?
+    p=$(grep -c '^ok ' "$out")
+    f=$(grep -c '^not ok ' "$out")
+    if [ "$rc" -ne 0 ] && [ "$f" -eq 0 ]; then
+        f=1   # died (or exited non-zero) without saying which case failed
+        echo "not ok - $name exited $rc without a failed case" >>"$out"
+    fi
+    if [ "$p" -eq 0 ] && [ "$f" -eq 0 ]; then
+        f=1
+        echo "not ok - $name reported no test" >>"$out"
+    fi
+    passed=$((passed + p))
+    failed=$((failed + f))
+    if [ "$f" -gt 0 ]; then
+        echo "FAIL $name ($p passed, $f failed) — log: $out"
+        grep -E '^not ok|\[  ERROR   \]|error|Error' "$out" | head -20 | sed 's/^/    /'
+    else
+        echo "ok   $name ($p)"
+    fi
+}
+
+for t in $(find "$BUILD/tests/unit" "$BUILD/tests/gpu" -type f -perm -u+x 2>/dev/null | LC_ALL=C sort); do
+    run_one "${t#"$BUILD"/tests/}" "$t"
+done
+for t in $(find tests/e2e -name '*.sh' ! -name 'lib.sh' 2>/dev/null | LC_ALL=C sort); do
+    run_one "$t" sh "$t"
+done
+if [ -x "$BUILD/fuzz/fuzz_gltf" ]; then
+    run_one fuzz/gltf sh tests/fuzz/run_fuzz.sh "$BUILD/fuzz/fuzz_gltf"
+fi
+echo "$passed passed, $failed failed"
+[ "$failed" -eq 0 ]

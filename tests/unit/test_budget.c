@@ -1,0 +1,73 @@
+/* Budget knobs: pinning from the command line and ranges from the config, with clear errors. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+#include <string.h>
+
+#include "sched/budget.h"
+
+static const gk_knob_def shadow_map = {
+    .name = "shadow_map", .owner = "render", .n_values = 4,
+    .values = {"256", "512", "1024", "2048"}, .cost = {1, 4, 16, 64}, .default_level = 2,
+};
+static const gk_knob_def scale = {
+    .name = "render_scale", .owner = "render", .n_values = 3,
+    .values = {"0.5", "0.75", "1"}, .cost = {1, 2.25f, 4}, .default_level = 2,
+};
+
+static void pin_sets_level_and_pins(void **state)
+{
+    (void)state;
+    gk_budget b;
+    gk_budget_init(&b);
+    gk_budget_add(&b, &shadow_map);
+    gk_budget_add(&b, &scale);
+    gk_err e = {0};
+    assert_int_equal(gk_budget_pin_list(&b, "shadow_map=512,render_scale=0.5", &e), 0);
+    assert_string_equal(gk_budget_value(&b, "shadow_map"), "512");
+    assert_true(b.pinned[gk_budget_find(&b, "render_scale")]);
+    assert_true(gk_budget_float(&b, "render_scale", 9) == 0.5f);
+    char out[128];
+    gk_budget_format(&b, out, sizeof out);
+    assert_string_equal(out, "shadow_map=512,render_scale=0.5");
+}
+
+static void pin_rejects_unknown_knob_and_value(void **state)
+{
+    (void)state;
+    gk_budget b;
+    gk_budget_init(&b);
+    gk_budget_add(&b, &shadow_map);
+    gk_err e = {0};
+    assert_int_equal(gk_budget_pin_list(&b, "shadowmap=512", &e), -1);
+    assert_int_equal(e.code, GK_EINPUT);
+    assert_non_null(strstr(e.msg, "unknown knob 'shadowmap'"));
+    assert_int_equal(gk_budget_pin_list(&b, "shadow_map=300", &e), -1);
+    assert_non_null(strstr(e.msg, "allowed: 256, 512, 1024, 2048"));
+    assert_int_equal(gk_budget_pin_list(&b, "shadow_map", &e), -1);
+    assert_non_null(strstr(e.msg, "KNOB=VALUE"));
+}
+
+static void range_clamps_and_rejects_inverted(void **state)
+{
+    (void)state;
+    gk_budget b;
+    gk_budget_init(&b);
+    gk_budget_add(&b, &shadow_map);
+    gk_err e = {0};
+    assert_int_equal(gk_budget_set_range(&b, "shadow_map", "256", "512", &e), 0);
+    assert_string_equal(gk_budget_value(&b, "shadow_map"), "512");
+    assert_int_equal(gk_budget_set_range(&b, "shadow_map", "2048", "256", &e), -1);
+    assert_non_null(strstr(e.msg, "richer"));
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(pin_sets_level_and_pins),
+        cmocka_unit_test(pin_rejects_unknown_knob_and_value),
+        cmocka_unit_test(range_clamps_and_rejects_inverted),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
