@@ -6,7 +6,7 @@
 int gk_cmd_run(int argc, char **argv);          /* app/kiosk/cmd_run.c */
 int gk_cmd_reference(int argc, char **argv);    /* app/ref/cmd_reference.c */
 int gk_cmd_compare(int argc, char **argv);      /* app/metrics/cmd_compare.c */
-int gk_cmd_bench(int argc, char **argv);        /* app/metrics/cmd_bench.c */
+int gk_cmd_bench(int argc, char **argv);        /* app/bench/cmd_bench.c */
 int gk_cmd_scenes(int argc, char **argv);       /* app/scene/cmd_scenes.c */
 int gk_cmd_build_scenes(int argc, char **argv); /* app/scene/cmd_build_scenes.c (make scenes) */
 

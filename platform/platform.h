@@ -50,6 +50,8 @@ typedef struct gk_platform_desc {
     char script_path[512];          /* mock: button script, "" = none */
     double frame_period_s;          /* mock: virtual clock step per present (default 1/60) */
     bool debug;                     /* EGL/GL debug output */
+    bool quit_at_script_end;        /* mock: poll reports GK_INPUT_QUIT once the script's last
+                                     * event is delivered and every button is up (default false) */
 } gk_platform_desc;
 
 typedef struct gk_platform gk_platform;

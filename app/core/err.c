@@ -26,7 +26,11 @@ int gk_fail_prefix(gk_err *e, const char *fmt, ...)
     vsnprintf(prefix, sizeof prefix, fmt, ap);
     va_end(ap);
     memcpy(old, e->msg, sizeof old);
-    snprintf(e->msg, sizeof e->msg, "%s%s", prefix, old);
+    /* Build into a buffer large enough for both, then truncate into e->msg: keeps the compiler's
+       format-truncation check quiet without hiding real truncation elsewhere. */
+    char combined[sizeof prefix + sizeof old];
+    snprintf(combined, sizeof combined, "%s%s", prefix, old);
+    snprintf(e->msg, sizeof e->msg, "%.*s", (int)sizeof e->msg - 1, combined);
     return -1;
 }
 

@@ -1,11 +1,168 @@
-/* PLACEHOLDER: replaced by the module that owns this command. */
+/* gikiosk compare REFERENCE TEST [--json] [--exposure X]: error metrics of a test image against a
+ * reference (definitions in metrics/metrics.h), as aligned text or one JSON object. */
+#include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 
 #include "commands.h"
+#include "metrics/metrics.h"
+
+static void usage(FILE *f)
+{
+    fputs("usage: gikiosk compare REFERENCE TEST [--json] [--exposure X]\n"
+          "\n"
+          "Error metrics of TEST against REFERENCE (any format OpenImageIO reads; linear EXR expected).\n"
+          "Both images must have the same size and channel count.\n"
+          "\n"
+          "  --json        print one JSON object instead of aligned text\n"
+          "  --exposure X  scale factor applied before the tonemap for psnr and ssim\n"
+          "                (default 0.18 / mean luminance of REFERENCE, 1 when that is 0)\n"
+          "\n"
+          "metrics (colour channels: RGB, or grey for 1-2 channel images; alpha ignored):\n"
+          "  rel_rmse    sqrt(mean (t-r)^2) / mean r          linear\n"
+          "  rel_mse     mean (t-r)^2 / (r^2 + 0.01)          linear\n"
+          "  rmse        sqrt(mean (t-r)^2)                   linear\n"
+          "  psnr        dB, peak 1, on tonemapped images; identical: inf (999 in JSON)\n"
+          "  ssim        on tonemapped luminance, Gaussian 11x11 window, sigma 1.5\n"
+          "  mean_ratio  mean t / mean r (energy ratio)\n"
+          "  max_error   largest |t - r|, at max_error_at [x, y] (x from left, y from top)\n"
+          "In JSON, other non-finite values (a NaN pixel, a ratio over a zero mean) are null.\n",
+          f);
+}
+
+/* JSON has no inf/NaN. psnr is capped at 999 dB (identical images; real differences stay far
+ * below: one 8-bit step everywhere is 48 dB); anything else non-finite prints as null. */
+static void json_number(const char *key, double v)
+{
+    if (isfinite(v))
+        printf("\"%s\": %.9g", key, v);
+    else
+        printf("\"%s\": null", key);
+}
+
+static void json_string(const char *key, const char *s)
+{
+    printf("\"%s\": \"", key);
+    for (const unsigned char *c = (const unsigned char *)s; *c; c++) {
+        if (*c == '"' || *c == '\\')
+            printf("\\%c", *c);
+        else if (*c < 0x20)
+            printf("\\u%04x", *c);
+        else
+            putchar(*c);
+    }
+    putchar('"');
+}
+
+static void print_json(const char *ref_path, const char *test_path, const gk_image *ref, const gk_metrics *m)
+{
+    double psnr = (m->psnr > 999.0) ? 999.0 : m->psnr; /* +inf and > 999 both cap */
+    putchar('{');
+    json_string("reference", ref_path);
+    fputs(", ", stdout);
+    json_string("test", test_path);
+    printf(", \"width\": %d, \"height\": %d, \"channels\": %d, ", ref->width, ref->height, ref->channels);
+    json_number("rel_rmse", m->rel_rmse);
+    fputs(", ", stdout);
+    json_number("rel_mse", m->rel_mse);
+    fputs(", ", stdout);
+    json_number("rmse", m->rmse);
+    fputs(", ", stdout);
+    json_number("psnr", psnr);
+    fputs(", ", stdout);
+    json_number("ssim", m->ssim);
+    fputs(", ", stdout);
+    json_number("mean_ratio", m->mean_ratio);
+    fputs(", ", stdout);
+    json_number("max_error", m->max_error);
+    printf(", \"max_error_at\": [%d, %d], ", m->max_error_at[0], m->max_error_at[1]);
+    json_number("exposure", m->exposure);
+    fputs(", ", stdout);
+    json_number("ref_mean", m->ref_mean);
+    fputs(", ", stdout);
+    json_number("test_mean", m->test_mean);
+    printf(", \"nonfinite\": %ld}\n", m->nonfinite);
+}
+
+static void print_text(const char *ref_path, const char *test_path, const gk_image *ref, const gk_metrics *m)
+{
+    printf("%-11s %s (%dx%d, %d channels)\n", "reference", ref_path, ref->width, ref->height, ref->channels);
+    printf("%-11s %s\n", "test", test_path);
+    printf("%-11s %.6g\n", "rel_rmse", m->rel_rmse);
+    printf("%-11s %.6g\n", "rel_mse", m->rel_mse);
+    printf("%-11s %.6g\n", "rmse", m->rmse);
+    printf("%-11s %.4f dB\n", "psnr", m->psnr); /* prints "inf dB" for identical images */
+    printf("%-11s %.6f\n", "ssim", m->ssim);
+    printf("%-11s %.6f\n", "mean_ratio", m->mean_ratio);
+    printf("%-11s %.6g at [%d, %d]\n", "max_error", m->max_error, m->max_error_at[0], m->max_error_at[1]);
+    printf("%-11s %.6g (ref mean %.6g, test mean %.6g)\n", "exposure", m->exposure, m->ref_mean, m->test_mean);
+    if (m->nonfinite)
+        printf("%-11s %ld NaN/inf values in the test image\n", "nonfinite", m->nonfinite);
+}
+
+static int bad_usage(const char *fmt, const char *arg)
+{
+    fputs("gikiosk compare: ", stderr);
+    fprintf(stderr, fmt, arg);
+    fputc('\n', stderr);
+    usage(stderr);
+    return 2;
+}
+
+static int parse_exposure(const char *s, double *out)
+{
+    char *end;
+    double v = strtod(s, &end);
+    if (end == s || *end != '\0' || !(v > 0.0) || !isfinite(v))
+        return -1;
+    *out = v;
+    return 0;
+}
 
 int gk_cmd_compare(int argc, char **argv)
 {
-    (void)argc;
-    fprintf(stderr, "gikiosk: %s: not implemented yet\n", argv[0]);
-    return 1;
+    const char *paths[2] = {NULL, NULL};
+    int n_paths = 0, json = 0;
+    double exposure = 0.0; /* auto */
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+            usage(stdout);
+            return 0;
+        } else if (!strcmp(a, "--json")) {
+            json = 1;
+        } else if (!strcmp(a, "--exposure") || !strncmp(a, "--exposure=", 11)) {
+            const char *v = a[10] == '=' ? a + 11 : (i + 1 < argc ? argv[++i] : NULL);
+            if (!v)
+                return bad_usage("--exposure needs a value%s", "");
+            if (parse_exposure(v, &exposure) != 0)
+                return bad_usage("--exposure: '%s' is not a positive number", v);
+        } else if (a[0] == '-' && a[1] != '\0') {
+            return bad_usage("unknown option '%s'", a);
+        } else if (n_paths < 2) {
+            paths[n_paths++] = a;
+        } else {
+            return bad_usage("unexpected argument '%s' (give exactly REFERENCE and TEST)", a);
+        }
+    }
+    if (n_paths != 2)
+        return bad_usage("needs REFERENCE and TEST images%s", "");
+
+    gk_image ref = {0}, test = {0};
+    gk_metrics m;
+    gk_err e = {0};
+    int rc = 0;
+    if (gk_image_read(paths[0], &ref, &e) != 0 || gk_image_read(paths[1], &test, &e) != 0 ||
+        gk_metrics_compute(&ref, &test, exposure, &m, &e) != 0) {
+        fprintf(stderr, "gikiosk compare: %s\n", e.msg);
+        rc = e.code ? e.code : 1;
+    } else if (json) {
+        print_json(paths[0], paths[1], &ref, &m);
+    } else {
+        print_text(paths[0], paths[1], &ref, &m);
+    }
+    gk_image_free(&ref);
+    gk_image_free(&test);
+    return rc;
 }

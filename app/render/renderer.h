@@ -31,11 +31,8 @@ typedef struct gk_frame_params {
     double time_s;            /* animation time */
     const char *method;       /* GI method: "none", "vct", ... */
     const gk_budget *budget;  /* current knob levels */
-    bool show_hud;
-    const char *hud_lines[8]; /* text the kiosk wants on the HUD (NULL-terminated) */
-    const float *frame_ms_history; int n_history; /* for the frame-time graph */
-    float target_ms;
 } gk_frame_params;
+/* The HUD is not the renderer's: the kiosk draws it over target_fbo after gk_renderer_draw. */
 
 typedef struct gk_renderer gk_renderer;
 
@@ -59,5 +56,12 @@ int gk_renderer_draw(gk_renderer *r, const gk_frame_params *fp, unsigned target_
 /* Writes the last frame: png_path display-referred (tonemapped, as shown), exr_path linear scene
  * radiance before exposure (either may be NULL). */
 int gk_renderer_capture(gk_renderer *r, const char *png_path, const char *exr_path, gk_err *e);
+
+/* Added by the renderer: the last frame's linear image (RGBA float, output size, top row first,
+ * before exposure) without writing a file -- for tests and in-process metrics. */
+struct gk_image;
+int gk_renderer_read_linear(gk_renderer *r, struct gk_image *img, gk_err *e);
+/* The display exposure in use (a scale factor, tonemap.h); fixed per scene. */
+float gk_renderer_exposure(const gk_renderer *r);
 
 #endif

@@ -1,11 +1,188 @@
-/* PLACEHOLDER: replaced by the module that owns this command. */
+/* `gikiosk scenes [--dir DIR]`: a table of the scenes with what they contain and the GI methods
+ * that apply; `gikiosk scenes --check FILE` loads one file and prints its summary (exit 2 and the
+ * loader's message if it is broken). */
+#include <dirent.h>
+#include <limits.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "commands.h"
+#include "scene/scene.h"
+
+#ifndef GK_SHARE_SCENES
+#define GK_SHARE_SCENES "/usr/local/share/gikiosk/scenes"
+#endif
+
+static void usage(FILE *f)
+{
+    fputs("usage: gikiosk scenes [--dir DIR]\n"
+          "       gikiosk scenes --check FILE\n"
+          "Lists the scenes in DIR (default config/scenes, else the installed share/gikiosk/scenes): name,\n"
+          "triangles, lights, features, the GI methods that apply, description. --check loads one scene\n"
+          "file, validates it and prints its summary.\n",
+          f);
+}
+
+static bool is_dir(const char *p)
+{
+    struct stat st;
+    return stat(p, &st) == 0 && S_ISDIR(st.st_mode);
+}
+
+/* config/scenes when run from a checkout, else next to the installed binary, else PREFIX's. */
+static const char *default_dir(char *buf, size_t cap)
+{
+    if (is_dir("config/scenes"))
+        return "config/scenes";
+    char exe[PATH_MAX];
+    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    if (n > 0) {
+        exe[n] = '\0';
+        char *slash = strrchr(exe, '/');
+        if (slash) {
+            *slash = '\0';
+            snprintf(buf, cap, "%s/../share/gikiosk/scenes", exe);
+            if (is_dir(buf))
+                return buf;
+        }
+    }
+    return GK_SHARE_SCENES;
+}
+
+static void methods_string(const gk_scene *s, char *out, size_t cap)
+{
+    const char *names[8];
+    int n = gk_scene_methods(s, names, 8), len = 0;
+    out[0] = '\0';
+    for (int i = 0; i < n && (size_t)len < cap; i++)
+        len += snprintf(out + len, cap - (size_t)len, "%s%s", i ? "," : "", names[i]);
+}
+
+static const char *light_kind(const gk_light *l)
+{
+    static const char *const type[] = {"point", "spot", "directional"};
+    static const char *const shape[] = {"", " sphere", " disc", " rect"};
+    static char buf[32];
+    snprintf(buf, sizeof buf, "%s%s", type[l->type], shape[l->shape]);
+    return buf;
+}
+
+static int check(const char *path)
+{
+    gk_err e = {0};
+    gk_scene *s = gk_scene_load(path, &e);
+    if (!s) {
+        fprintf(stderr, "gikiosk scenes: %s\n", e.msg);
+        return e.code ? e.code : 1;
+    }
+    char feat[128], meth[128];
+    gk_scene_features_string(&s->features, feat, sizeof feat);
+    methods_string(s, meth, sizeof meth);
+    printf("scene:       %s (%s)\n", s->name, s->path);
+    printf("triangles:   %u drawn, %u degenerate dropped, %d meshes\n", s->n_triangles, s->n_degenerate_dropped,
+           s->n_meshes);
+    printf("materials:   %d (with the default), textures: %d\n", s->n_materials, s->n_textures);
+    printf("lights:      %d\n", s->n_lights);
+    for (int i = 0; i < s->n_lights; i++)
+        printf("  %-16s %-18s intensity %g %s\n", s->lights[i].name, light_kind(&s->lights[i]), s->lights[i].intensity,
+               s->lights[i].type == GK_LIGHT_DIRECTIONAL ? "lux" : "cd");
+    printf("camera:      %s\n", s->camera_node >= 0 ? s->nodes[s->camera_node].name : "default (framing the bounds)");
+    printf("bounds:      (%.3f, %.3f, %.3f) .. (%.3f, %.3f, %.3f) m\n", s->bmin.x, s->bmin.y, s->bmin.z, s->bmax.x,
+           s->bmax.y, s->bmax.z);
+    printf("animation:   %s", s->anim_duration > 0 ? "" : "none\n");
+    if (s->anim_duration > 0)
+        printf("%d channels, %.3f s loop\n", s->n_channels, s->anim_duration);
+    if (s->has_exposure)
+        printf("exposure:    %+.2f EV\n", s->exposure_ev);
+    printf("features:    %s\n", feat);
+    printf("methods:     %s\n", meth);
+    printf("description: %s\n", s->description[0] ? s->description : "-");
+    gk_scene_free(s);
+    return 0;
+}
+
+static int cmp_str(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
+
+static int list(const char *dir)
+{
+    DIR *dp = opendir(dir);
+    if (!dp) {
+        fprintf(stderr, "gikiosk scenes: %s: cannot open the scene folder\n", dir);
+        return 2;
+    }
+    char *files[256];
+    int n = 0;
+    for (struct dirent *de; (de = readdir(dp)) && n < 256;) {
+        size_t len = strlen(de->d_name);
+        if ((len > 5 && !strcmp(de->d_name + len - 5, ".gltf")) || (len > 4 && !strcmp(de->d_name + len - 4, ".glb")))
+            files[n++] = strdup(de->d_name);
+    }
+    closedir(dp);
+    qsort(files, (size_t)n, sizeof files[0], cmp_str);
+    int rc = 0;
+    printf("%-22s %7s %6s  %-30s %-36s %s\n", "NAME", "TRIS", "LIGHTS", "FEATURES", "METHODS", "DESCRIPTION");
+    for (int i = 0; i < n; i++) {
+        char path[PATH_MAX];
+        if (snprintf(path, sizeof path, "%s/%s", dir, files[i]) >= (int)sizeof path) {
+            fprintf(stderr, "gikiosk scenes: %s/%s: path too long\n", dir, files[i]);
+            rc = 2;
+            free(files[i]);
+            continue;
+        }
+        gk_err e = {0};
+        gk_scene *s = gk_scene_load(path, &e);
+        if (!s) {
+            fprintf(stderr, "gikiosk scenes: %s\n", e.msg);
+            rc = e.code ? e.code : 1;
+        } else {
+            char feat[128], meth[128], desc[96];
+            gk_scene_features_string(&s->features, feat, sizeof feat);
+            methods_string(s, meth, sizeof meth);
+            /* the description's first sentence keeps the table to one line a scene */
+            const char *src = s->description[0] ? s->description : "-";
+            size_t dl = strnlen(src, sizeof desc - 1);
+            memcpy(desc, src, dl);
+            desc[dl] = '\0';
+            static const char *const cuts[] = {": ", ". ", " ("};
+            for (int c = 0; c < 3; c++) {
+                char *at = strstr(desc, cuts[c]);
+                if (at)
+                    *at = '\0';
+            }
+            if (strlen(desc) > 60)
+                memcpy(desc + 57, "...", 4);
+            printf("%-22s %7u %6d  %-30s %-36s %s\n", s->name, s->n_triangles, s->n_lights, feat, meth, desc);
+            gk_scene_free(s);
+        }
+        free(files[i]);
+    }
+    if (n == 0)
+        fprintf(stderr, "gikiosk scenes: %s: no .gltf or .glb files\n", dir);
+    return rc;
+}
 
 int gk_cmd_scenes(int argc, char **argv)
 {
-    (void)argc;
-    fprintf(stderr, "gikiosk: %s: not implemented yet\n", argv[0]);
-    return 1;
+    const char *dir = NULL, *file = NULL;
+    for (int i = 1; i < argc; i++) {
+        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+            usage(stdout);
+            return 0;
+        } else if (!strcmp(argv[i], "--dir") && i + 1 < argc) {
+            dir = argv[++i];
+        } else if (!strcmp(argv[i], "--check") && i + 1 < argc) {
+            file = argv[++i];
+        } else {
+            fprintf(stderr, "gikiosk scenes: unknown or incomplete option '%s'\n", argv[i]);
+            usage(stderr);
+            return 2;
+        }
+    }
+    if (file)
+        return check(file);
+    char buf[PATH_MAX + 64];
+    return list(dir ? dir : default_dir(buf, sizeof buf));
 }

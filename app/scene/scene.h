@@ -20,6 +20,7 @@
 #define GK_SCENE_H
 
 #include <stdbool.h>
+#include <stddef.h>
 #include <stdint.h>
 
 #include "../core/err.h"
@@ -122,7 +123,7 @@ typedef struct gk_scene {
     gk_texture *textures;  int n_textures;
     gk_light *lights;      int n_lights;
     gk_camera *cameras;    int n_cameras;
-    gk_node *nodes;        int n_nodes;
+    gk_node *nodes;        int n_nodes;   /* ordered parents first (world matrices in one pass) */
     gk_anim_channel *channels; int n_channels;
     float anim_duration;       /* seconds, 0 if static; animations loop */
     int camera_node;           /* first node with a camera, -1: a default camera framing the bounds */
@@ -130,10 +131,19 @@ typedef struct gk_scene {
     uint32_t n_triangles;      /* total drawn */
     uint32_t n_degenerate_dropped;
     gk_scene_features features;
+    float exposure_ev;         /* scene extras "gikiosk": {"exposure": EV}: exposure 2^EV */
+    bool has_exposure;
+    /* Scene extras "gikiosk": {"params": {"key": number or [numbers]}}: named numbers a scene
+     * hands to tests (shadow-planes: light size, occluder size, heights). Read with gk_scene_param. */
+    struct { char key[32]; float v[4]; int n; } params[16];
+    int n_params;
 } gk_scene;
 
 /* Loads .gltf/.glb; validates everything (indices, accessors, NaN/Inf, textures). On error returns
- * NULL with e->code GK_EINPUT and a message naming the file and what is wrong. */
+ * NULL with e->code GK_EINPUT and a message naming the file and what is wrong. Degenerate (zero-area)
+ * triangles are dropped and counted. CUBICSPLINE animations are converted to LINEAR through their
+ * key values (tangents dropped, logged); skins and morph weights are ignored (logged); images must
+ * be files next to the scene (embedded images are an error); sparse accessors are an error. */
 gk_scene *gk_scene_load(const char *path, gk_err *e);
 void gk_scene_free(gk_scene *s);
 
@@ -147,6 +157,30 @@ void gk_scene_camera(const gk_scene *s, float aspect, mat4 *view, mat4 *proj, ve
 /* World-space emitter frame of a light after gk_scene_evaluate: position, direction (-Z of the
  * node), and the rectangle's axes (node X and Y, unit length). */
 void gk_scene_light_frame(const gk_scene *s, int light_node, vec3 *pos, vec3 *dir, vec3 *axis_u, vec3 *axis_v);
+
+/* Loads a glTF (JSON) or GLB document from memory; `path` is only used in messages and for the
+ * scene's name, external buffers and images resolve against base_dir (NULL: none may be read).
+ * Same validation as gk_scene_load. Used by the fuzz target and the tests. */
+gk_scene *gk_scene_load_memory(const void *data, size_t size, const char *path, const char *base_dir,
+                               gk_err *e);
+
+/* The GI methods (DESIGN §5 names) that apply to a scene, written to names[0..max), returns the
+ * count. The rule (model no more than a scene needs), see features.c:
+ *   "none" always, first;
+ *   "vct" and "vpl" when light can bounce between diffuse surfaces (a light or emitter and a
+ *   non-black, non-metallic surface that is not a light proxy);
+ *   "ispm" and "lgv" when features.has_caustics;
+ *   "lightmap" when the scene is static (no animation);
+ *   "volcaustics" only with a participating medium (no scene has one yet, so never).
+ * The scene's extras "methods" list, when given, replaces the derived list ("none" stays first). */
+int gk_scene_methods(const gk_scene *s, const char **names, int max);
+
+/* A named number (or up to 4) from the scene's extras params: returns how many values were copied
+ * to out (at most max), or -1 if the scene has no such key. */
+int gk_scene_param(const gk_scene *s, const char *key, float *out, int max);
+
+/* "area,emissive,specular,..." (or "-" for none) for listings. */
+void gk_scene_features_string(const gk_scene_features *f, char *out, int out_len);
 
 /* Looks up the scene file for a name ("cornell") in dir (config/scenes): dir/NAME.gltf or .glb. */
 int gk_scene_find(const char *dir, const char *name, char *path_out, int path_len);

@@ -1,0 +1,74 @@
+/* `gikiosk bench` (DESIGN §3-4): sweeps scenes x methods x knob values on the mock platform,
+ * measures frame time and error against the path-traced references, writes DIR/bench.csv and one
+ * speed-against-accuracy chart per scene (DIR/speed-accuracy-SCENE.png/.svg, Pareto front marked).
+ * On a CPU-only machine the frame times are llvmpipe CPU times: compare them as ratios only. */
+#ifndef GK_BENCH_H
+#define GK_BENCH_H
+
+#include <stdbool.h>
+
+#include "../core/err.h"
+#include "../render/renderer.h"
+#include "../sched/budget.h"
+
+#define GK_BENCH_MAX_AXES 6
+#define GK_BENCH_MAX_ROWS 512
+
+/* One sweep: the cartesian product of each axis's values. */
+typedef struct gk_bench_sweep {
+    int n_axes;
+    char knob[GK_BENCH_MAX_AXES][32];
+    int n_values[GK_BENCH_MAX_AXES];
+    char values[GK_BENCH_MAX_AXES][GK_MAX_KNOB_VALUES][24];
+} gk_bench_sweep;
+
+typedef struct gk_bench_opts {
+    char scenes[512];          /* comma list; "" = cornell,shadow-planes */
+    char methods[256];         /* comma list; "" = every method that applies */
+    char sweep[1024];          /* "KNOB=V1,V2;KNOB=V1,V2" (cartesian); "" = the default per method */
+    int width, height;         /* 0 = the reference's size */
+    int frames, warmup;        /* timed frames per configuration, untimed frames before them */
+    char out_dir[512];
+    char scenes_dir[512];
+    char refs_dir[512];
+    int gles_version;
+    const char *shader_dir;
+} gk_bench_opts;
+
+typedef struct gk_bench_row {
+    char scene[64], method[32];
+    int level[GK_MAX_KNOBS];   /* knob levels, in the budget's knob order */
+    double frame_ms_median, frame_ms_p95;
+    double rel_rmse, ssim, psnr, mean_ratio;  /* NaN without a reference */
+    double pass_ms[GK_MAX_PASSES];            /* medians, in the order of pass_names */
+    bool pareto;
+} gk_bench_row;
+
+typedef struct gk_bench_result {
+    gk_budget budget;          /* the knob set (names, values) the levels refer to */
+    int n_passes;
+    char pass_names[GK_MAX_PASSES][24];
+    int n_rows;
+    gk_bench_row rows[GK_BENCH_MAX_ROWS];
+} gk_bench_result;
+
+/* Parses a sweep; knobs and values are checked against b (GK_EINPUT naming what is unknown). */
+int gk_bench_sweep_parse(const char *text, const gk_budget *b, gk_bench_sweep *s, gk_err *e);
+/* The default sweep of a method: for "none" shadow x shadow_map, else each knob the method owns,
+ * one at a time (the others at their defaults) — returned as several sweeps. */
+int gk_bench_default_sweeps(const gk_budget *b, const char *method, gk_bench_sweep *out, int max);
+/* Number of combinations of a sweep, and the pin list ("K=V,K=V") of combination i. */
+int gk_bench_sweep_count(const gk_bench_sweep *s);
+void gk_bench_sweep_pins(const gk_bench_sweep *s, int index, char *out, int out_len);
+
+/* Marks rows[i].pareto for the rows of one scene: on the front when no other row of that scene is
+ * both at least as fast and strictly more accurate (rel_rmse), or strictly faster and as accurate. */
+void gk_bench_mark_pareto(gk_bench_row *rows, int n);
+
+/* Runs everything and writes the outputs. Allocates the result (free()). */
+int gk_bench_run(const gk_bench_opts *o, gk_bench_result **out, gk_err *e);
+int gk_bench_write_csv(const gk_bench_result *r, const char *path, gk_err *e);
+/* Writes DIR/speed-accuracy-SCENE.{dat,gp,png,svg}; without gnuplot logs and skips the images. */
+int gk_bench_write_charts(const gk_bench_result *r, const char *dir, gk_err *e);
+
+#endif

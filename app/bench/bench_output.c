@@ -1,0 +1,170 @@
+/* The bench's outputs: bench.csv and the speed-against-accuracy charts (gnuplot). */
+#include "bench.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../core/log.h"
+
+static void put_num(FILE *f, double v)
+{
+    if (isnan(v))
+        fputs(",", f);
+    else if (isinf(v))
+        fputs(",inf", f);
+    else
+        fprintf(f, ",%.6g", v);
+}
+
+int gk_bench_write_csv(const gk_bench_result *r, const char *path, gk_err *e)
+{
+    FILE *f = fopen(path, "w");
+    if (!f)
+        return gk_fail(e, GK_ERUNTIME, "%s: %s", path, strerror(errno));
+    fputs("scene,method", f);
+    for (int k = 0; k < r->budget.n; k++)
+        fprintf(f, ",%s", r->budget.def[k]->name);
+    fputs(",frame_ms_median,frame_ms_p95,rel_rmse,ssim,psnr,mean_ratio,pareto", f);
+    for (int p = 0; p < r->n_passes; p++)
+        fprintf(f, ",%s_ms", r->pass_names[p]);
+    fputc('\n', f);
+    for (int i = 0; i < r->n_rows; i++) {
+        const gk_bench_row *row = &r->rows[i];
+        fprintf(f, "%s,%s", row->scene, row->method);
+        for (int k = 0; k < r->budget.n; k++)
+            fprintf(f, ",%s", r->budget.def[k]->values[row->level[k]]);
+        put_num(f, row->frame_ms_median);
+        put_num(f, row->frame_ms_p95);
+        put_num(f, row->rel_rmse);
+        put_num(f, row->ssim);
+        put_num(f, row->psnr);
+        put_num(f, row->mean_ratio);
+        fprintf(f, ",%d", row->pareto ? 1 : 0);
+        for (int p = 0; p < r->n_passes; p++)
+            put_num(f, row->pass_ms[p]);
+        fputc('\n', f);
+    }
+    if (fclose(f) != 0)
+        return gk_fail(e, GK_ERUNTIME, "%s: %s", path, strerror(errno));
+    return 0;
+}
+
+/* A label for a row: the knobs that differ between the rows of its scene and method. */
+static void row_label(const gk_bench_result *r, int i, char *out, int len)
+{
+    out[0] = '\0';
+    const gk_bench_row *row = &r->rows[i];
+    for (int k = 0; k < r->budget.n; k++) {
+        bool varies = false;
+        for (int j = 0; j < r->n_rows && !varies; j++)
+            varies = !strcmp(r->rows[j].scene, row->scene) && !strcmp(r->rows[j].method, row->method) &&
+                     r->rows[j].level[k] != row->level[k];
+        if (!varies)
+            continue;
+        int used = (int)strlen(out);
+        snprintf(out + used, (size_t)(len - used), "%s%s", used ? "/" : "", r->budget.def[k]->values[row->level[k]]);
+    }
+    if (!out[0])
+        snprintf(out, (size_t)len, "%s", row->method);
+}
+
+static int write_scene_chart(const gk_bench_result *r, const char *dir, const char *scene, gk_err *e)
+{
+    char dat[1024], gp[1024];
+    snprintf(dat, sizeof dat, "%s/speed-accuracy-%s.dat", dir, scene);
+    snprintf(gp, sizeof gp, "%s/speed-accuracy-%s.gp", dir, scene);
+    FILE *f = fopen(dat, "w");
+    if (!f)
+        return gk_fail(e, GK_ERUNTIME, "%s: %s", dat, strerror(errno));
+    /* One gnuplot data block per method (separated by two blank lines), then the Pareto front
+       sorted by time. */
+    const char *methods[32];
+    int n_methods = 0;
+    for (int i = 0; i < r->n_rows; i++) {
+        if (strcmp(r->rows[i].scene, scene) || isnan(r->rows[i].rel_rmse))
+            continue;
+        bool seen = false;
+        for (int m = 0; m < n_methods; m++)
+            seen |= !strcmp(methods[m], r->rows[i].method);
+        if (!seen && n_methods < 32)
+            methods[n_methods++] = r->rows[i].method;
+    }
+    for (int m = 0; m < n_methods; m++) {
+        fprintf(f, "# method %s\n", methods[m]);
+        for (int i = 0; i < r->n_rows; i++) {
+            const gk_bench_row *row = &r->rows[i];
+            if (strcmp(row->scene, scene) || strcmp(row->method, methods[m]) || isnan(row->rel_rmse))
+                continue;
+            char label[128];
+            row_label(r, i, label, sizeof label);
+            fprintf(f, "%.6g %.6g \"%s\"\n", row->frame_ms_median, row->rel_rmse, label);
+        }
+        fputs("\n\n", f);
+    }
+    fputs("# pareto front\n", f);
+    int idx[GK_BENCH_MAX_ROWS], n = 0;
+    for (int i = 0; i < r->n_rows; i++)
+        if (!strcmp(r->rows[i].scene, scene) && r->rows[i].pareto)
+            idx[n++] = i;
+    for (int a = 1; a < n; a++) /* insertion sort by time: a handful of points */
+        for (int b = a; b > 0 && r->rows[idx[b]].frame_ms_median < r->rows[idx[b - 1]].frame_ms_median; b--) {
+            int t = idx[b];
+            idx[b] = idx[b - 1];
+            idx[b - 1] = t;
+        }
+    for (int a = 0; a < n; a++)
+        fprintf(f, "%.6g %.6g\n", r->rows[idx[a]].frame_ms_median, r->rows[idx[a]].rel_rmse);
+    fclose(f);
+    if (n_methods == 0) {
+        gk_log("bench: %s has no measured error (no reference): no chart", scene);
+        return 0;
+    }
+
+    f = fopen(gp, "w");
+    if (!f)
+        return gk_fail(e, GK_ERUNTIME, "%s: %s", gp, strerror(errno));
+    fprintf(f, "# Speed against accuracy for %s: regenerate with `gnuplot %s`.\n", scene, gp);
+    fprintf(f, "set title \"%s: error against frame time (llvmpipe CPU times: compare as ratios)\"\n", scene);
+    fputs("set xlabel \"frame time, median (ms)\"\nset ylabel \"relative RMSE vs path-traced reference\"\n"
+          "set logscale y\nset grid\nset key outside right top\nset offsets graph 0.05, graph 0.05, graph 0.05, graph 0.05\n",
+          f);
+    for (int pass = 0; pass < 2; pass++) {
+        if (pass == 0)
+            fprintf(f, "set terminal pngcairo size 1000,640 font \"DejaVu Sans,10\"\nset output \"%s/speed-accuracy-%s.png\"\n", dir, scene);
+        else
+            fprintf(f, "set terminal svg size 1000,640 font \"DejaVu Sans,10\"\nset output \"%s/speed-accuracy-%s.svg\"\n", dir, scene);
+        fputs("plot ", f);
+        for (int m = 0; m < n_methods; m++)
+            fprintf(f, "\"%s\" index %d using 1:2 with points pt 7 ps 1.2 title \"%s\", \"%s\" index %d using 1:2:3 with labels offset 0,0.8 font \",7\" notitle, ",
+                    dat, m, methods[m], dat, m);
+        fprintf(f, "\"%s\" index %d using 1:2 with linespoints lw 2 dt 2 pt 6 ps 2 lc rgb \"black\" title \"Pareto front\"\n", dat, n_methods);
+    }
+    fclose(f);
+    char cmd[2200];
+    snprintf(cmd, sizeof cmd, "gnuplot '%s' 2>&1", gp);
+    FILE *p = popen(cmd, "r");
+    if (!p)
+        return gk_fail(e, GK_ERUNTIME, "bench: cannot run gnuplot: %s", strerror(errno));
+    char line[512];
+    while (fgets(line, sizeof line, p))
+        gk_log("gnuplot: %s", strtok(line, "\n"));
+    int status = pclose(p);
+    if (status != 0)
+        gk_log("bench: gnuplot failed on %s (charts skipped; bench.csv is complete)", gp);
+    return 0;
+}
+
+int gk_bench_write_charts(const gk_bench_result *r, const char *dir, gk_err *e)
+{
+    for (int i = 0; i < r->n_rows; i++) {
+        bool first = true;
+        for (int j = 0; j < i && first; j++)
+            first = strcmp(r->rows[j].scene, r->rows[i].scene) != 0;
+        if (first && write_scene_chart(r, dir, r->rows[i].scene, e) < 0)
+            return -1;
+    }
+    return 0;
+}

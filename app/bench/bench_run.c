@@ -1,0 +1,305 @@
+/* The bench's measuring half: renders each configuration on the mock platform, times it and
+ * compares its linear HDR image with the scene's path-traced reference. */
+#include "bench.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "../core/log.h"
+#include "../io/image_io.h"
+#include "../metrics/metrics.h"
+#include "../render/gl.h"
+#include "../scene/scene.h"
+#include "platform/platform.h"
+
+static double now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Percentile by nearest rank on a copy (n is small). */
+static double percentile(const double *v, int n, double p)
+{
+    if (n <= 0)
+        return NAN;
+    double *s = malloc(sizeof *s * (size_t)n);
+    if (!s)
+        return NAN;
+    memcpy(s, v, sizeof *s * (size_t)n);
+    qsort(s, (size_t)n, sizeof *s, cmp_double);
+    int k = (int)ceil(p * n) - 1;
+    double r = s[k < 0 ? 0 : (k >= n ? n - 1 : k)];
+    free(s);
+    return r;
+}
+
+static int pass_column(gk_bench_result *r, const char *name)
+{
+    for (int i = 0; i < r->n_passes; i++)
+        if (strcmp(r->pass_names[i], name) == 0)
+            return i;
+    if (r->n_passes >= GK_MAX_PASSES)
+        return -1;
+    snprintf(r->pass_names[r->n_passes], sizeof r->pass_names[0], "%s", name);
+    return r->n_passes++;
+}
+
+static bool tty_progress(void) { return isatty(2); }
+
+typedef struct bench_run {
+    const gk_bench_opts *o;
+    gk_bench_result *r;
+    gk_platform *platform;
+    gk_renderer *renderer;
+    gk_scene *scene;
+    gk_image reference;        /* empty when the scene has none */
+    int width, height;
+} bench_run;
+
+/* Renders one configuration and appends its row. */
+static int measure(bench_run *b, const char *method, const char *pins, gk_err *e)
+{
+    gk_bench_result *r = b->r;
+    if (r->n_rows >= GK_BENCH_MAX_ROWS)
+        return gk_fail(e, GK_EINPUT, "bench: more than %d configurations", GK_BENCH_MAX_ROWS);
+    gk_budget budget;
+    gk_budget_init(&budget);
+    gk_renderer_declare_knobs(b->renderer, &budget);
+    if (pins[0] && gk_budget_pin_list(&budget, pins, e) < 0)
+        return -1;
+
+    int frames = b->o->frames, total = b->o->warmup + frames;
+    double *frame_ms = calloc((size_t)frames, sizeof *frame_ms);
+    double *pass_ms = calloc((size_t)frames * GK_MAX_PASSES, sizeof *pass_ms);
+    if (!frame_ms || !pass_ms) {
+        free(frame_ms);
+        free(pass_ms);
+        return gk_fail(e, GK_ERUNTIME, "bench: out of memory");
+    }
+    gk_bench_row *row = &r->rows[r->n_rows];
+    memset(row, 0, sizeof *row);
+    int rc = 0;
+    for (int f = 0; f < total && rc == 0; f++) {
+        gk_frame_params fp = {.time_s = 0.0, .method = method, .budget = &budget};
+        gk_pass_times times = {0};
+        double t0 = now_ms();
+        rc = gk_renderer_draw(b->renderer, &fp, gk_platform_framebuffer(b->platform), &times, e);
+        glFinish();
+        double t1 = now_ms();
+        if (rc == 0)
+            rc = gk_platform_present(b->platform, e);
+        if (rc == 0 && f >= b->o->warmup) {
+            int k = f - b->o->warmup;
+            frame_ms[k] = t1 - t0;
+            for (int p = 0; p < times.n; p++) {
+                int col = pass_column(r, times.name[p]);
+                if (col >= 0)
+                    pass_ms[(size_t)k * GK_MAX_PASSES + (size_t)col] = times.ms[p];
+            }
+        }
+    }
+    if (rc == 0) {
+        snprintf(row->scene, sizeof row->scene, "%s", b->scene->name);
+        snprintf(row->method, sizeof row->method, "%s", method);
+        for (int k = 0; k < budget.n; k++) {
+            int col = gk_budget_find(&r->budget, budget.def[k]->name);
+            if (col < 0)
+                col = gk_budget_add(&r->budget, budget.def[k]);
+            if (col >= 0)
+                row->level[col] = budget.level[k];
+        }
+        row->frame_ms_median = percentile(frame_ms, frames, 0.5);
+        row->frame_ms_p95 = percentile(frame_ms, frames, 0.95);
+        double col_vals[64];
+        for (int p = 0; p < r->n_passes; p++) {
+            for (int k = 0; k < frames && k < 64; k++)
+                col_vals[k] = pass_ms[(size_t)k * GK_MAX_PASSES + (size_t)p];
+            row->pass_ms[p] = percentile(col_vals, frames < 64 ? frames : 64, 0.5);
+        }
+        row->rel_rmse = row->ssim = row->psnr = row->mean_ratio = NAN;
+        /* The image that is compared: the linear HDR capture, written where the user can look. */
+        char exr[1024];
+        snprintf(exr, sizeof exr, "%s/captures/%s-%s-%03d.exr", b->o->out_dir, b->scene->name, method, r->n_rows);
+        rc = gk_renderer_capture(b->renderer, NULL, exr, e);
+        if (rc == 0 && b->reference.pixels) {
+            gk_image test = {0};
+            gk_metrics m;
+            rc = gk_image_read(exr, &test, e);
+            if (rc == 0)
+                rc = gk_metrics_compute(&b->reference, &test, 0.0, &m, e);
+            if (rc == 0) {
+                row->rel_rmse = m.rel_rmse;
+                row->ssim = m.ssim;
+                row->psnr = m.psnr;
+                row->mean_ratio = m.mean_ratio;
+            }
+            gk_image_free(&test);
+        }
+        if (rc == 0)
+            r->n_rows++;
+    }
+    free(frame_ms);
+    free(pass_ms);
+    return rc;
+}
+
+static int bench_scene(bench_run *b, const char *name, gk_err *e)
+{
+    char path[1024];
+    if (gk_scene_find(b->o->scenes_dir, name, path, sizeof path) < 0)
+        return gk_fail(e, GK_EINPUT, "bench: no scene '%s' in %s", name, b->o->scenes_dir);
+    b->scene = gk_scene_load(path, e);
+    if (!b->scene)
+        return -1;
+    char ref[1024];
+    snprintf(ref, sizeof ref, "%s/%s.exr", b->o->refs_dir, name);
+    memset(&b->reference, 0, sizeof b->reference);
+    if (access(ref, R_OK) == 0) {
+        if (gk_image_read(ref, &b->reference, e) < 0)
+            return -1;
+        if (b->reference.width != b->width || b->reference.height != b->height) {
+            gk_log("bench: %s is %dx%d, the bench renders %dx%d: no error for this scene", ref,
+                   b->reference.width, b->reference.height, b->width, b->height);
+            gk_image_free(&b->reference);
+        }
+    } else {
+        gk_log("bench: no reference %s (make references): timing only", ref);
+    }
+    int rc = gk_renderer_set_scene(b->renderer, b->scene, e);
+    const char *applies[16];
+    int n_applies = rc == 0 ? gk_renderer_methods(b->renderer, applies, 16) : 0;
+
+    /* The methods to run: the requested ones that apply, or every one that applies. */
+    const char *run[16];
+    int n_run = 0;
+    for (int i = 0; i < n_applies; i++) {
+        if (b->o->methods[0]) {
+            char list[sizeof b->o->methods + 2];
+            snprintf(list, sizeof list, ",%s,", b->o->methods);
+            char needle[48];
+            snprintf(needle, sizeof needle, ",%s,", applies[i]);
+            if (!strstr(list, needle))
+                continue;
+        }
+        run[n_run++] = applies[i];
+    }
+    if (rc == 0 && n_run == 0)
+        gk_log("bench: none of the methods '%s' applies to %s", b->o->methods, name);
+
+    gk_budget knobs;
+    gk_budget_init(&knobs);
+    if (rc == 0)
+        gk_renderer_declare_knobs(b->renderer, &knobs);
+    for (int mi = 0; rc == 0 && mi < n_run; mi++) {
+        gk_bench_sweep sweeps[GK_MAX_KNOBS];
+        int n_sweeps;
+        if (b->o->sweep[0]) {
+            rc = gk_bench_sweep_parse(b->o->sweep, &knobs, &sweeps[0], e);
+            n_sweeps = 1;
+        } else {
+            n_sweeps = gk_bench_default_sweeps(&knobs, run[mi], sweeps, GK_MAX_KNOBS);
+        }
+        if (rc == 0 && n_sweeps == 0)
+            rc = measure(b, run[mi], "", e);
+        for (int s = 0; rc == 0 && s < n_sweeps; s++) {
+            int count = gk_bench_sweep_count(&sweeps[s]);
+            for (int c = 0; rc == 0 && c < count; c++) {
+                char pins[512];
+                gk_bench_sweep_pins(&sweeps[s], c, pins, sizeof pins);
+                if (tty_progress())
+                    fprintf(stderr, "\rbench: %s %s %-60s", name, run[mi], pins);
+                rc = measure(b, run[mi], pins, e);
+            }
+        }
+    }
+    if (tty_progress())
+        fputc('\n', stderr);
+    gk_image_free(&b->reference);
+    gk_scene_free(b->scene);
+    b->scene = NULL;
+    return rc;
+}
+
+static int make_dir(const char *path, gk_err *e)
+{
+    if (mkdir(path, 0755) < 0 && errno != EEXIST)
+        return gk_fail(e, GK_ERUNTIME, "bench: cannot create %s: %s", path, strerror(errno));
+    return 0;
+}
+
+int gk_bench_run(const gk_bench_opts *o, gk_bench_result **out, gk_err *e)
+{
+    *out = NULL;
+    bench_run b = {.o = o, .width = o->width, .height = o->height};
+    b.r = calloc(1, sizeof *b.r);
+    if (!b.r)
+        return gk_fail(e, GK_ERUNTIME, "bench: out of memory");
+    gk_budget_init(&b.r->budget);
+
+    const char *scenes = o->scenes[0] ? o->scenes : "cornell,shadow-planes";
+    if (b.width <= 0 || b.height <= 0) {
+        /* The size of the first scene's reference, so errors can be measured; else a small default. */
+        char first[64], ref[1024];
+        snprintf(first, sizeof first, "%.*s", (int)strcspn(scenes, ","), scenes);
+        snprintf(ref, sizeof ref, "%s/%s.exr", o->refs_dir, first);
+        gk_image img = {0};
+        gk_err ignore = {0};
+        if (gk_image_read(ref, &img, &ignore) == 0) {
+            b.width = img.width;
+            b.height = img.height;
+        } else {
+            b.width = 128;
+            b.height = 128;
+        }
+        gk_image_free(&img);
+    }
+    char captures[1024];
+    snprintf(captures, sizeof captures, "%s/captures", o->out_dir);
+    if (make_dir(o->out_dir, e) < 0 || make_dir(captures, e) < 0) {
+        free(b.r);
+        return -1;
+    }
+    gk_platform_desc desc;
+    gk_platform_desc_defaults(&desc);
+    desc.kind = GK_PLATFORM_MOCK;
+    desc.width = b.width;
+    desc.height = b.height;
+    b.platform = gk_platform_open(&desc, e);
+    if (!b.platform) {
+        free(b.r);
+        return -1;
+    }
+    gk_render_opts ro = {.width = b.width, .height = b.height, .gles_version = o->gles_version,
+                         .shader_dir = o->shader_dir, .gpu_timer_queries = false};
+    b.renderer = gk_renderer_create(&ro, e);
+    int rc = b.renderer ? 0 : -1;
+    char list[512];
+    snprintf(list, sizeof list, "%s", scenes);
+    char *save = NULL;
+    for (char *name = strtok_r(list, ",", &save); rc == 0 && name; name = strtok_r(NULL, ",", &save))
+        rc = bench_scene(&b, name, e);
+    if (b.renderer)
+        gk_renderer_destroy(b.renderer);
+    gk_platform_close(b.platform);
+    if (rc < 0) {
+        free(b.r);
+        return -1;
+    }
+    gk_bench_mark_pareto(b.r->rows, b.r->n_rows);
+    *out = b.r;
+    return 0;
+}

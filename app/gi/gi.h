@@ -1,0 +1,84 @@
+/* One interface for every GI method (DESIGN §5). A method adds indirect light on top of the
+ * renderer's direct light; it reads the G-buffer, the shadow maps and the scene through the
+ * renderer and never calls another method. The scheduler sees a method only through its knobs and
+ * its measured pass times.
+ *
+ * Life cycle: applies() -> create() -> set_scene() -> [render() per frame]* -> destroy().
+ * Budgets change between frames: render() reads the knob values it needs from frame->budget each
+ * frame and reallocates lazily when a size knob changed. */
+#ifndef GK_GI_H
+#define GK_GI_H
+
+#include <stdbool.h>
+
+#include "../core/err.h"
+#include "../core/vecmath.h"
+#include "../render/renderer.h"
+#include "../scene/scene.h"
+#include "../sched/budget.h"
+
+typedef struct gk_program_cache gk_program_cache; /* app/render/gl_program.h */
+
+/* What the renderer lends a method for its whole life. */
+typedef struct gk_gi_context {
+    gk_program_cache *programs;  /* load shaders by path under shaders_gles/ */
+    int gles_version;            /* 31: portable path only; 32: capability-checked fast paths allowed */
+} gk_gi_context;
+
+/* One light as the renderer sees it this frame, with its shadow map (for light injection,
+ * reflective shadow maps and visibility). */
+typedef struct gk_gi_light {
+    int scene_light;             /* index into scene->lights */
+    int node;                    /* node carrying the light */
+    vec3 position, direction;    /* world; direction = emission axis (-Z of the node) */
+    vec3 axis_u, axis_v;         /* rectangle axes (unit) */
+    vec3 radiant;                /* colour * intensity */
+    unsigned shadow_depth_tex;   /* depth texture (2D) of the light's shadow map, 0 if none */
+    mat4 shadow_view_proj;       /* world -> shadow clip space for shadow_depth_tex */
+    bool shadow_is_perspective;
+    float shadow_near, shadow_far;
+} gk_gi_light;
+
+/* Everything a method needs for one frame. Textures are GL names; sizes in pixels. */
+typedef struct gk_gi_frame {
+    const gk_scene *scene;       /* evaluated at time_s (node world matrices valid) */
+    double time_s;
+    bool scene_changed;          /* first frame of a new scene or geometry moved (dirty regions) */
+    int width, height;           /* internal render size (after render_scale) */
+    mat4 view, proj, view_proj, inv_view_proj;
+    vec3 eye;
+    unsigned gbuf_depth;         /* DEPTH_COMPONENT32F / 24 */
+    unsigned gbuf_normal;        /* RGBA16F: world normal xyz */
+    unsigned gbuf_albedo;        /* RGBA8: base colour rgb, a = unused */
+    unsigned gbuf_material;      /* RGBA8: r = metallic, g = roughness */
+    unsigned gbuf_position;      /* RGBA16F/32F world position (0 if the renderer reconstructs from depth) */
+    unsigned direct_tex;         /* RGBA16F: direct light (linear, before exposure) */
+    unsigned hdr_fbo;            /* FBO whose colour attachment 0 is the HDR image the method adds to
+                                    (additive blending is the method's job: glBlendFunc(ONE, ONE)) */
+    int n_lights;
+    const gk_gi_light *lights;
+    const gk_budget *budget;
+    /* Draws every mesh of the scene with `program` bound; sets the uniform `u_model` (mat4) per
+       node and, if present, `u_base_color` (vec4), `u_emissive` (vec3), `u_metallic_roughness` (vec2)
+       per material. Attribute locations: 0 position, 1 normal, 2 uv. */
+    void (*draw_scene)(void *draw_ctx, unsigned program);
+    void *draw_ctx;
+} gk_gi_frame;
+
+typedef struct gk_gi_method {
+    const char *name;                                      /* "vct", "vpl", ... */
+    bool (*applies)(const gk_scene *s);                    /* does this scene need it */
+    void (*declare_knobs)(gk_budget *b);                   /* knobs with cost priors */
+    void *(*create)(const gk_gi_context *ctx, gk_err *e);
+    int (*set_scene)(void *self, const gk_scene *s, gk_err *e);  /* static data (voxelize once...) */
+    int (*render)(void *self, const gk_gi_frame *f, gk_pass_times *times, gk_err *e);
+    /* Bytes of GPU memory held at the current budget (reported and asserted in tests). */
+    long (*memory_bytes)(const void *self);
+    void (*destroy)(void *self);
+} gk_gi_method;
+
+/* The registry of implemented methods (app/gi/gi_registry.c). */
+const gk_gi_method *const *gk_gi_methods(int *count);
+const gk_gi_method *gk_gi_find(const char *name);
+
+#endif

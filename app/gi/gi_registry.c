@@ -1,0 +1,28 @@
+/* The implemented GI methods, in the order the kiosk offers them after "none". A method file
+ * defines `const gk_gi_method gk_gi_NAME;` and is listed here. */
+#include "gi.h"
+
+#include <string.h>
+
+extern const gk_gi_method gk_gi_vct;
+
+static const gk_gi_method *const registry[] = {
+    &gk_gi_vct,
+    NULL, /* sentinel: keeps the array non-empty while no method is registered */
+};
+
+const gk_gi_method *const *gk_gi_methods(int *count)
+{
+    *count = (int)(sizeof registry / sizeof registry[0]) - 1;
+    return registry;
+}
+
+const gk_gi_method *gk_gi_find(const char *name)
+{
+    int n;
+    const gk_gi_method *const *m = gk_gi_methods(&n);
+    for (int i = 0; i < n; i++)
+        if (strcmp(m[i]->name, name) == 0)
+            return m[i];
+    return NULL;
+}

@@ -1,0 +1,333 @@
+/* The vct GI method (gi.h): life cycle, knobs, and the per-frame decision of which passes run.
+ * Model no more than the scene needs: the grid fits the scene's bounds at the budget's resolution;
+ * static geometry is voxelized once, animated nodes are re-voxelized in their dirty region, and
+ * a light that moves re-injects without re-voxelizing. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "../../core/log.h"
+#include "vct_internal.h"
+
+/* Cost priors (summary A.6.3): clear, inject and pre-integration grow with res^3, voxelization with
+ * res^2 x area, tracing only with log(res) for wide cones; at CI sizes the res^3 passes dominate
+ * from 128^3 (P.6), so the prior is between res^2 and res^3. Cones: linear. Step multiplier m:
+ * steps ~ 1/ln(1 + m a) for a ~ 1.1 (1/ln 3.2 = 0.86, 1/ln 2.65 = 1.03, 1/ln 2.1 = 1.35,
+ * 1/ln 1.55 = 2.28, normalised). Trace scale: traced pixels ~ s^2. Mips: six directions vs one
+ * hardware mip chain. */
+static const gk_knob_def knob_res = {"vct_res", "vct", 4, {"32", "64", "128", "256"}, {1, 4, 24, 160}, 1};
+static const gk_knob_def knob_cones = {"vct_cones", "vct", 3, {"4", "6", "9"}, {1, 1.5f, 2.25f}, 1};
+static const gk_knob_def knob_step = {"vct_step", "vct", 4, {"2", "1.5", "1", "0.5"}, {1, 1.2f, 1.57f, 2.65f}, 2};
+static const gk_knob_def knob_scale = {"vct_trace_scale", "vct", 3, {"0.25", "0.5", "1"}, {1, 4, 16}, 1};
+static const gk_knob_def knob_mips = {"vct_mips", "vct", 2, {"iso", "aniso"}, {1, 2}, 1};
+
+void gk_vct_default_options(gk_vct_options *o)
+{
+    memset(o, 0, sizeof *o);
+    o->conservative = true;
+    o->average_cas = false;
+    o->faithful_weights = false;
+    o->axis_weight_sq = false;
+    o->opacity_correction = false;
+    o->directional_injection = true;
+    o->specular = -1;
+    o->apex_offset = 2.5f;
+    o->max_dist = 1.7320508f;
+    o->ao_lambda = 725.0f;
+    o->spec_aperture = 0.158f;
+    o->shadow_ambient = 0.0f;
+}
+
+void gk_vct_thesis_options(gk_vct_options *o)
+{
+    gk_vct_default_options(o);
+    o->conservative = false;
+    o->average_cas = true;
+    o->faithful_weights = true;
+    o->directional_injection = false;
+    o->shadow_ambient = 0.07f;
+}
+
+static bool vct_applies(const gk_scene *s)
+{
+    return s && s->n_triangles > 0 && (s->n_lights > 0 || s->features.has_emissive);
+}
+
+static void vct_declare_knobs(gk_budget *b)
+{
+    gk_budget_add(b, &knob_res);
+    gk_budget_add(b, &knob_cones);
+    gk_budget_add(b, &knob_step);
+    gk_budget_add(b, &knob_scale);
+    gk_budget_add(b, &knob_mips);
+}
+
+static void *vct_create(const gk_gi_context *ctx, gk_err *e)
+{
+    gk_vct *v = calloc(1, sizeof *v);
+    if (!v) {
+        gk_fail(e, GK_ERUNTIME, "vct: out of memory");
+        return NULL;
+    }
+    v->ctx = *ctx;
+    gk_vct_default_options(&v->opt);
+    glGenBuffers(1, &v->tri_ssbo);
+    glGenBuffers(1, &v->counter_ssbo);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, v->counter_ssbo);
+    glBufferData(GL_SHADER_STORAGE_BUFFER, 16, NULL, GL_DYNAMIC_READ);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+    glGenSamplers(1, &v->nearest_sampler);
+    glSamplerParameteri(v->nearest_sampler, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glSamplerParameteri(v->nearest_sampler, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glSamplerParameteri(v->nearest_sampler, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glSamplerParameteri(v->nearest_sampler, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glSamplerParameteri(v->nearest_sampler, GL_TEXTURE_COMPARE_MODE, GL_NONE);
+    glGenVertexArrays(1, &v->vao);
+    if (glGetError() != GL_NO_ERROR) {
+        gk_fail(e, GK_ERUNTIME, "vct: creating GL objects failed (is a GLES 3.1 context current?)");
+        free(v);
+        return NULL;
+    }
+    return v;
+}
+
+static int vct_set_scene(void *self, const gk_scene *s, gk_err *e)
+{
+    (void)e;
+    gk_vct *v = self;
+    v->scene = s;
+    v->allocated = false;     /* grid refits and re-voxelizes on the next frame */
+    v->need_voxelize = v->need_inject = true;
+    vct_tris_free(&v->tris);
+    return 0;
+}
+
+void gk_vct_set_options(void *self, const gk_vct_options *o)
+{
+    gk_vct *v = self;
+    v->opt = *o;
+    v->allocated = false;
+    v->need_voxelize = v->need_inject = true;
+}
+
+static void read_budget(const gk_budget *b, vct_budget *out)
+{
+    out->res = b ? (int)gk_budget_float(b, "vct_res", 64) : 64;
+    out->cones = b ? (int)gk_budget_float(b, "vct_cones", 6) : 6;
+    out->step = b ? gk_budget_float(b, "vct_step", 1.0f) : 1.0f;
+    out->trace_scale = b ? gk_budget_float(b, "vct_trace_scale", 0.5f) : 0.5f;
+    const char *m = b ? gk_budget_value(b, "vct_mips") : NULL;
+    out->aniso = !m || strcmp(m, "iso") != 0;
+    if (out->res < 8)
+        out->res = 64;
+    if (out->cones != 4 && out->cones != 9)
+        out->cones = 6;
+    if (!(out->trace_scale > 0.0f) || out->trace_scale > 1.0f)
+        out->trace_scale = 0.5f;
+    if (!(out->step > 0.0f))
+        out->step = 1.0f;
+}
+
+/* Changes of anything injection depends on: light frames, power, shadow maps. */
+static unsigned long light_hash(const gk_gi_frame *f)
+{
+    unsigned long h = 1469598103934665603UL;
+    const unsigned char *p = (const unsigned char *)f->lights;
+    size_t n = (size_t)f->n_lights * sizeof *f->lights;
+    for (size_t i = 0; i < n; i++)
+        h = (h ^ p[i]) * 1099511628211UL;
+    return h ^ (unsigned long)f->n_lights;
+}
+
+static double now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
+}
+
+/* CPU time around glFinish (llvmpipe; DESIGN §6). Only when the caller asks for timings. */
+static void time_pass(gk_pass_times *t, const char *name, double *t0)
+{
+    if (!t)
+        return;
+    glFinish();
+    double t1 = now_ms();
+    for (int i = 0; i < t->n; i++)
+        if (t->name[i] == name) {
+            t->ms[i] += t1 - *t0;
+            *t0 = t1;
+            return;
+        }
+    if (t->n < GK_MAX_PASSES) {
+        t->name[t->n] = name;
+        t->ms[t->n++] = t1 - *t0;
+    }
+    *t0 = t1;
+}
+
+static void to_voxels(const gk_vct *v, vec3 lo, vec3 hi, int rlo[3], int rhi[3])
+{
+    const float *o = v->origin;
+    float l[3] = {lo.x, lo.y, lo.z}, h[3] = {hi.x, hi.y, hi.z};
+    for (int k = 0; k < 3; k++) {
+        int a = (int)floorf((l[k] - o[k]) / v->voxel) - 1, b = (int)floorf((h[k] - o[k]) / v->voxel) + 1;
+        rlo[k] = a < 0 ? 0 : (a >= v->res ? v->res - 1 : a);
+        rhi[k] = b < 0 ? 0 : (b >= v->res ? v->res - 1 : b);
+    }
+}
+
+static int upload_tris(gk_vct *v, int first, int count)
+{
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, v->tri_ssbo);
+    if (first == 0 && count == v->tris.n)
+        glBufferData(GL_SHADER_STORAGE_BUFFER, (GLsizeiptr)((v->tris.n ? v->tris.n : 1) * VCT_TRI_FLOATS * 4),
+                     v->tris.data, GL_DYNAMIC_DRAW);
+    else
+        glBufferSubData(GL_SHADER_STORAGE_BUFFER, (GLintptr)first * VCT_TRI_FLOATS * 4,
+                        (GLsizeiptr)count * VCT_TRI_FLOATS * 4, v->tris.data + (size_t)first * VCT_TRI_FLOATS);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+    return 0;
+}
+
+static int vct_render(void *self, const gk_gi_frame *f, gk_pass_times *times, gk_err *e)
+{
+    gk_vct *v = self;
+    const gk_scene *s = f->scene ? f->scene : v->scene;
+    if (!s)
+        return gk_fail(e, GK_ERUNTIME, "vct: render without a scene");
+    vct_budget b;
+    read_budget(f->budget, &b);
+    double t0 = now_ms();
+
+    if (!v->tris.data || s != v->scene) {           /* first frame of a scene: node matrices are valid now */
+        v->scene = s;
+        if (vct_tris_build(&v->tris, s, e) != 0)
+            return -1;
+        v->emissive = v->tris.max_emission > 0.0f;
+        v->allocated = false;
+    }
+    v->specular = v->opt.specular < 0 ? s->features.has_specular : v->opt.specular != 0;
+    int max_res = vct_max_res_allowed(gk_vct_channels(v->emissive));
+    if (b.res > max_res) {
+        if (!v->allocated || v->cur.res != max_res)
+            gk_log("vct: vct_res=%d does not fit this GPU's storage-buffer limit, using %d", b.res, max_res);
+        b.res = max_res;
+    }
+    if (!v->allocated || b.res != v->cur.res || b.aniso != v->cur.aniso) {
+        vct_grid_fit(v, s, b.res);
+        if (vct_alloc(v, &b, e) != 0)
+            return -1;
+        upload_tris(v, 0, v->tris.n);
+    }
+    v->cur.cones = b.cones;
+    v->cur.step = b.step;
+    v->cur.trace_scale = b.trace_scale;
+    if (vct_ensure_trace_targets(v, f->width, f->height, b.trace_scale, e) != 0)
+        return -1;
+    v->stats.n_triangles = v->tris.n;
+    v->stats.n_dynamic_triangles = v->tris.n - v->tris.n_static;
+
+    int lo[3] = {0, 0, 0}, hi[3] = {v->res - 1, v->res - 1, v->res - 1};
+    if (v->need_voxelize) {
+        if (vct_pass_voxelize(v, lo, hi, e) != 0)
+            return -1;
+        v->need_voxelize = false;
+        v->need_inject = true;
+        vct_tris_update(&v->tris, s, &(vec3){0}, &(vec3){0}); /* sync the remembered node matrices */
+    } else if (v->tris.n > v->tris.n_static) {
+        vec3 dlo, dhi;
+        if (vct_tris_update(&v->tris, s, &dlo, &dhi)) {
+            upload_tris(v, v->tris.n_static, v->tris.n - v->tris.n_static);
+            to_voxels(v, dlo, dhi, lo, hi);
+            if (vct_pass_voxelize(v, lo, hi, e) != 0)
+                return -1;
+            v->need_inject = true;   /* the moved object's shadows change everywhere */
+        }
+    }
+    time_pass(times, "vct_voxelize", &t0);
+
+    unsigned long lh = light_hash(f);
+    if (lh != v->light_hash)
+        v->need_inject = true;
+    if (v->need_inject) {
+        if (vct_pass_inject(v, f, e) != 0)
+            return -1;
+        time_pass(times, "vct_inject", &t0);
+        if (vct_pass_mips(v, e) != 0)
+            return -1;
+        time_pass(times, "vct_mips", &t0);
+        v->need_inject = false;
+        v->light_hash = lh;
+    } else {
+        time_pass(times, "vct_inject", &t0);
+        time_pass(times, "vct_mips", &t0);
+    }
+    if (vct_pass_trace(v, f, &b, e) != 0)
+        return -1;
+    time_pass(times, "vct_trace", &t0);
+    if (vct_pass_compose(v, f, e) != 0)
+        return -1;
+    time_pass(times, "vct_compose", &t0);
+    GLenum err = glGetError();
+    if (err != GL_NO_ERROR)
+        return gk_fail(e, GK_ERUNTIME, "vct: GL error 0x%x during the frame", err);
+    return 0;
+}
+
+static long vct_memory_bytes(const void *self)
+{
+    const gk_vct *v = self;
+    if (!v->allocated)
+        return 0;
+    return gk_vct_memory_formula(v->cur.res, v->cur.aniso, gk_vct_channels(v->emissive), v->trace_w, v->trace_h,
+                                 v->tris.n);
+}
+
+static void vct_destroy(void *self)
+{
+    gk_vct *v = self;
+    if (!v)
+        return;
+    vct_free_gpu(v);
+    glDeleteBuffers(1, &v->tri_ssbo);
+    glDeleteBuffers(1, &v->counter_ssbo);
+    if (v->trace_diffuse)
+        glDeleteTextures(1, &v->trace_diffuse);
+    if (v->trace_spec)
+        glDeleteTextures(1, &v->trace_spec);
+    glDeleteSamplers(1, &v->nearest_sampler);
+    glDeleteVertexArrays(1, &v->vao);
+    vct_tris_free(&v->tris);
+    free(v);
+}
+
+void gk_vct_get_stats(const void *self, gk_vct_stats *out)
+{
+    const gk_vct *v = self;
+    *out = v->stats;
+    GLuint steps = 0;
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, v->counter_ssbo);
+    const GLuint *p = glMapBufferRange(GL_SHADER_STORAGE_BUFFER, 0, sizeof steps, GL_MAP_READ_BIT);
+    if (p) {
+        steps = *p;
+        glUnmapBuffer(GL_SHADER_STORAGE_BUFFER);
+    }
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+    out->last_trace_steps = steps;
+}
+
+unsigned gk_vct_scratch_buffer(const void *self) { return ((const gk_vct *)self)->scratch_ssbo; }
+unsigned gk_vct_radiance_texture(const void *self) { return ((const gk_vct *)self)->vox0; }
+
+const gk_gi_method gk_gi_vct = {
+    .name = "vct",
+    .applies = vct_applies,
+    .declare_knobs = vct_declare_knobs,
+    .create = vct_create,
+    .set_scene = vct_set_scene,
+    .render = vct_render,
+    .memory_bytes = vct_memory_bytes,
+    .destroy = vct_destroy,
+};

@@ -1,0 +1,73 @@
+/* Voxel cone tracing (DESIGN §5 `vct`; Dinse 2015, seed 003; engineering summary
+ * research/vct-003-grid-photon-002.md Part A). The method itself is `gk_gi_vct` (gi.h); this header
+ * adds what tests and the lead need beyond the interface: the switches between the thesis-faithful
+ * behaviour and the improvements, work counters, and the memory formula.
+ *
+ * Passes per frame (names as in the thesis, timing names in gk_pass_times):
+ *   vct_voxelize  compute voxelizer over the triangle SSBO -> scratch ("voxel G-buffer": albedo,
+ *                 normal, position, emission sums + count). Static geometry once; moving (animated)
+ *                 nodes re-voxelized in their dirty region.
+ *   vct_inject    direct light from the lights (with their shadow maps) -> level 0 radiance RGBA16F.
+ *                 Runs when geometry or lights change.
+ *   vct_mips      six-direction anisotropic pre-integration (eq. 3.1/3.2) or glGenerateMipmap (iso).
+ *   vct_trace     diffuse cones (+AO) and the specular cone at trace_scale resolution.
+ *   vct_compose   joint bilateral upsampling + additive composition into frame->hdr_fbo. */
+#ifndef GK_VCT_H
+#define GK_VCT_H
+
+#include <stdbool.h>
+
+#include "../gi.h"
+
+extern const gk_gi_method gk_gi_vct;
+
+typedef struct gk_vct_options {
+    bool conservative;        /* true (default): 26-separating voxelization; false: thin, as the thesis's rasterizer */
+    bool average_cas;         /* false (default): fixed-point sums, bit-exact; true: thesis CAS moving average */
+    bool faithful_weights;    /* thesis code cone weights (1 / 0.607) and composition (alpha_GI 0.75, AO);
+                                 false (default): calibrated weights W_k/pi, rho/pi composition */
+    bool axis_weight_sq;      /* d^2 axis weights (calibrated) instead of the thesis's |d| */
+    bool opacity_correction;  /* step-length opacity correction (not in the thesis) */
+    bool directional_injection; /* true (default): level-1 views show a voxel's radiance only from the side its
+                                   normal faces (not in the thesis; false = thesis: lit from every side) */
+    bool clip_cones;          /* stop every cone at the volume border (thesis code: only cones < 0.3) */
+    int specular;             /* -1 (default): when the scene has specular materials; 0 off; 1 on */
+    float apex_offset;        /* voxels along the normal, thesis code 2.5 */
+    float max_dist;           /* voxel-space units, thesis code sqrt(3) */
+    float ao_lambda;          /* AO falloff, thesis code 725 */
+    float spec_aperture;      /* thesis code 0.158 (9 degrees) */
+    float shadow_ambient;     /* in-shadow factor during injection: 0 (default), thesis code 0.07 */
+    float grid_offset[3];     /* shift of the grid against the scene, in voxels (flicker tests) */
+} gk_vct_options;
+
+void gk_vct_default_options(gk_vct_options *o);
+/* The thesis as published (code defaults): thin voxelization, CAS moving average, cone weights
+   1 / 0.607 with alpha_GI 0.75 and AO in the composition, |d| axis weights, isotropic radiance in
+   every view, in-shadow factor 0.07. */
+void gk_vct_thesis_options(gk_vct_options *o);
+/* Applies options; the next render re-voxelizes. self: what gk_gi_vct.create returned. */
+void gk_vct_set_options(void *self, const gk_vct_options *o);
+
+typedef struct gk_vct_stats {
+    int voxelize_runs, inject_runs, mip_runs, trace_runs;
+    long last_voxelized_region;     /* voxels in the last voxelized region */
+    unsigned long last_trace_steps; /* cone samples of the last trace pass (all pixels, all cones) */
+    int res;                        /* level-0 resolution in use */
+    float grid_origin[3], grid_size, voxel_size;  /* world */
+    int trace_w, trace_h;
+    int n_triangles, n_dynamic_triangles;
+} gk_vct_stats;
+
+void gk_vct_get_stats(const void *self, gk_vct_stats *s);
+
+/* Scratch channels per voxel: 10 (count, albedo, normal, position) + 3 with emissive surfaces. */
+int gk_vct_channels(bool emissive);
+/* GPU bytes held at a budget: scratch SSBO + level-0 RGBA16F (with its mip chain in iso mode) +
+ * six directional RGBA16F chains from level 1 (aniso) + two RGBA16F trace targets + triangles. */
+long gk_vct_memory_formula(int res, bool aniso, int channels, int trace_w, int trace_h, int n_triangles);
+
+/* GL names for tests that read the voxel data back. */
+unsigned gk_vct_scratch_buffer(const void *self);
+unsigned gk_vct_radiance_texture(const void *self);  /* level-0 radiance (RGBA16F 3D) */
+
+#endif

@@ -1,0 +1,79 @@
+/* Internal state of the vct method, shared by its files (not a contract). */
+#ifndef GK_VCT_INTERNAL_H
+#define GK_VCT_INTERNAL_H
+
+#include "../../render/gl.h"
+#include "../../render/gl_program.h"
+#include "vct.h"
+
+#define VCT_MAX_LIGHTS 4
+#define VCT_MAX_CONES 9
+#define VCT_TRI_FLOATS 20 /* p0, p1, p2, albedo, emission: 5 vec4 */
+
+typedef struct vct_budget {
+    int res;            /* vct_res */
+    int cones;          /* vct_cones */
+    float step;         /* vct_step */
+    float trace_scale;  /* vct_trace_scale */
+    bool aniso;         /* vct_mips */
+} vct_budget;
+
+typedef struct vct_tris {
+    float *data;                 /* n * VCT_TRI_FLOATS, world space */
+    int n, n_static;             /* triangles [n_static, n) belong to animated nodes */
+    int *dyn_node;               /* per dynamic triangle: node index */
+    int *dyn_mesh;               /* per dynamic triangle: mesh index */
+    int *dyn_tri;                /* per dynamic triangle: triangle index in the mesh */
+    float max_emission;          /* largest emission component (nits), 0 if none */
+    vec3 dyn_bmin, dyn_bmax;     /* world bounds of the dynamic triangles at their last upload */
+    float *dyn_world;            /* last world matrices of animated nodes (16 per node, n_nodes) */
+} vct_tris;
+
+typedef struct gk_vct {
+    gk_gi_context ctx;
+    gk_vct_options opt;
+    const gk_scene *scene;
+    vct_budget cur;              /* budget the GPU resources were made for */
+    bool allocated;
+    bool need_voxelize, need_inject;
+    bool emissive, specular;
+    /* grid */
+    float origin[3], size, voxel;
+    int res, levels;
+    /* GL objects */
+    GLuint tri_ssbo, scratch_ssbo, counter_ssbo;
+    GLuint vox0;                 /* level-0 radiance (iso: with its mip chain) */
+    GLuint voxd[6];              /* directional chains from level 1 (aniso) */
+    GLuint trace_diffuse, trace_spec;
+    int trace_w, trace_h, full_w, full_h;
+    GLuint nearest_sampler, vao;
+    vct_tris tris;
+    unsigned long light_hash;
+    gk_vct_stats stats;
+} gk_vct;
+
+/* vct_grid.c */
+void vct_grid_fit(gk_vct *v, const gk_scene *s, int res);
+int vct_alloc(gk_vct *v, const vct_budget *b, gk_err *e);
+void vct_free_gpu(gk_vct *v);
+int vct_ensure_trace_targets(gk_vct *v, int full_w, int full_h, float scale, gk_err *e);
+int vct_max_res_allowed(int channels);
+
+/* vct_tris.c */
+int vct_tris_build(vct_tris *t, const gk_scene *s, gk_err *e);
+void vct_tris_free(vct_tris *t);
+/* Re-transforms dynamic triangles whose node moved; returns true and the world bounds of the
+   region that changed (old and new positions) if anything moved. */
+bool vct_tris_update(vct_tris *t, const gk_scene *s, vec3 *bmin, vec3 *bmax);
+
+/* vct_passes.c */
+int vct_pass_voxelize(gk_vct *v, const int lo[3], const int hi[3], gk_err *e);
+int vct_pass_inject(gk_vct *v, const gk_gi_frame *f, gk_err *e);
+int vct_pass_mips(gk_vct *v, gk_err *e);
+int vct_pass_trace(gk_vct *v, const gk_gi_frame *f, const vct_budget *b, gk_err *e);
+int vct_pass_compose(gk_vct *v, const gk_gi_frame *f, gk_err *e);
+/* The cone set for n cones (4, 6 or 9) in the tangent frame (t, n, b); weights calibrated or the
+   thesis code's. Returns the number of cones. */
+int vct_cone_set(int n, bool faithful, float dir[][3], float aperture[], float weight[]);
+
+#endif

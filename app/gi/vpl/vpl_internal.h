@@ -1,0 +1,63 @@
+/* State shared by the files of the vpl method (not for other modules). */
+#ifndef GK_VPL_INTERNAL_H
+#define GK_VPL_INTERNAL_H
+
+#include "../../render/gl.h"
+#include "../../render/gl_program.h"
+#include "vpl.h"
+#include "vpl_proxy.h"
+
+#define VPL_RSM_RES 128      /* per RSM face; the thesis gives none (dong-001.md §14.3) */
+#define VPL_EXACT_RES 64     /* per-VPL hard shadow maps of the exact-visibility reference */
+
+typedef struct vpl_state {
+    gk_gi_context ctx;
+    gk_program_cache *own_cache;   /* when the renderer lent none */
+    gk_vpl_debug dbg;
+    gk_vpl_stats st;
+    /* budget this frame */
+    int n, m_knob, val_res, block, blur_radius, vis;
+    float res_scale;
+    bool clamp;
+    /* scene */
+    float diam;
+    vpl_proxy proxy;
+    bool have_proxy;
+    /* RSM atlas and VPL generation */
+    GLuint rsm_fbo, rsm_tex[3], rsm_depth;
+    int rsm_w, rsm_h;
+    GLuint gen_fbo, gen_tex[3];
+    int gen_n;
+    GLuint vpl_tex, val_tex;
+    int val_tex_w;
+    /* clustering across frames */
+    gk_val prev_vals[GK_VPL_MAX_M];
+    int prev_m;
+    unsigned frame_index;
+    /* VAL maps (texture arrays) */
+    GLuint map_fbo, basis_fbo, map_depth;
+    GLuint z_arr, bcos, bsin, bzcos, bzsin, bmom;
+    int map_res, map_layers, map_vis;
+    /* indirect buffers */
+    GLuint ind_fbo, ind_tex, pos_tex, nrm_tex;
+    GLuint blur_fbo, blur_tex, out_fbo[2], out_tex[2];
+    int iw, ih, cur;
+    bool have_hist;
+    GLuint empty_vao;
+} vpl_state;
+
+/* vpl_rsm.c: RSM of every light + VPL generation + readback into st.vpl; returns VPL count. */
+int vpl_generate(vpl_state *s, const gk_gi_frame *f, gk_err *e);
+/* vpl_valmap.c: paraboloid maps (+ CSSM/VSM bases and mips) for `count` emitters in val data. */
+int vpl_build_maps(vpl_state *s, const gk_gi_frame *f, const gk_val *emitters, int count, gk_err *e);
+/* Uploads VPLs (with labels) and the emitter table the gather reads. */
+void vpl_upload(vpl_state *s, const gk_val *emitters, int count);
+/* vpl_gather.c: gather + blur + compose into f->hdr_fbo. */
+int vpl_gather(vpl_state *s, const gk_gi_frame *f, float fade, gk_err *e);
+void vpl_free_gpu(vpl_state *s);
+
+/* Emitter geometry shared by the map pass and the gather (centre offset, near radius, far). */
+void vpl_emitter_params(const vpl_state *s, const gk_val *v, bool exact, float out_c[3], float *rnear,
+                        float *far);
+
+#endif

@@ -1,0 +1,270 @@
+/* The `vpl` method behind gi.h: knobs, per-frame orchestration, statistics. The passes live in
+ * vpl_rsm.c, vpl_valmap.c and vpl_gather.c, the clustering in vpl_cluster.c. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "vpl_internal.h"
+
+/* Cost priors (relative frame cost of the method, cheapest = 1), from the thesis's Table 6.2
+ * shares (gather 69%, blur 21%, CSSM 8% at M = 30, the rest 2%; dong-001.md §8.2):
+ *  vpl_n: gather ∝ VPLs/pixel: 0.31 + 0.69·(N/256)            -> 1, 1.69, 3.07
+ *  vpl_m: CSSM share ∝ M: 0.92 + 0.08·M/30, normalised at M=2 -> 1 ... 1.09; adaptive ~ M=16
+ *  vpl_val_map: the CSSM share ∝ texels (64² -> 256² is 16×)  -> 1, 1.02, 1.11 (at M = 8)
+ *  vpl_block: VPLs/pixel = N/B²: 0.31 + 0.69·(4/B)²           -> 1, 3.07, 11.35
+ *  vpl_res: gather + blur ∝ pixels (90%): 0.1 + 0.9·(s/0.25)² -> 1, 3.7, 14.5
+ *  vpl_blur: blur share 21% ∝ (2r+1): 0.79 + 0.21·(2r+1)/5    -> 1, 1.17, 1.50
+ *  vpl_vis: VSM 2 fetches, CSSM 6 (+ basis), exact N hard maps -> 1, 1.3, 20
+ *  vpl_clamp: one max() per VPL                               -> 1, 1 */
+static const gk_knob_def knobs[] = {
+    {"vpl_n", "vpl", 3, {"256", "512", "1024"}, {1.0f, 1.69f, 3.07f}, 0},
+    {"vpl_m", "vpl", 6, {"2", "4", "8", "16", "32", "adaptive"}, {1.0f, 1.006f, 1.018f, 1.041f, 1.086f, 1.05f}, 2},
+    {"vpl_val_map", "vpl", 3, {"64", "128", "256"}, {1.0f, 1.02f, 1.11f}, 0},
+    {"vpl_block", "vpl", 3, {"4", "2", "1"}, {1.0f, 3.07f, 11.35f}, 0},
+    {"vpl_res", "vpl", 3, {"0.25", "0.5", "1"}, {1.0f, 3.7f, 14.5f}, 1},
+    {"vpl_blur", "vpl", 3, {"2", "4", "8"}, {1.0f, 1.17f, 1.5f}, 1},
+    {"vpl_vis", "vpl", 3, {"vsm", "cssm", "exact"}, {1.0f, 1.3f, 20.0f}, 1},
+    {"vpl_clamp", "vpl", 2, {"off", "on"}, {1.0f, 1.0f}, 1},
+};
+
+static void declare_knobs(gk_budget *b)
+{
+    for (size_t i = 0; i < sizeof knobs / sizeof knobs[0]; i++)
+        gk_budget_add(b, &knobs[i]);
+}
+
+static bool applies(const gk_scene *s)
+{
+    /* One bounce between diffuse surfaces from a light an RSM can see (not directional). */
+    bool light = false;
+    for (int i = 0; i < s->n_lights; i++)
+        light |= s->lights[i].type != GK_LIGHT_DIRECTIONAL;
+    bool diffuse = false;
+    for (int i = 0; i < s->n_materials; i++) {
+        const gk_material *m = &s->materials[i];
+        diffuse |= !m->light_proxy && m->metallic < 0.99f && (m->base_color[0] + m->base_color[1] + m->base_color[2]) > 0.0f;
+    }
+    return light && diffuse;
+}
+
+void gk_vpl_default_debug(gk_vpl_debug *d)
+{
+    memset(d, 0, sizeof *d);
+    d->w_pos = 0.7f, d->w_nrm = 0.3f;
+    /* d_min = the mean VPL spacing (dong-001.md §4.5); F13 measured the energy it removes. */
+    d->clamp_scale = 1.0f;
+    d->fade_frames = 4;
+    d->vis_override = -1;
+    /* Doubling M must cut the mean k-means distance by ≥ 35%: splitting a plane further only gains
+       1 − 1/√2 ≈ 29% (measured 29–31%), separating walls gains 66% (test_vpl_cluster: the corner
+       settles at M = 4, a flat patch at M = 2). */
+    d->adaptive_drop = 0.35f;
+}
+
+static void *create(const gk_gi_context *ctx, gk_err *e)
+{
+    vpl_state *s = calloc(1, sizeof *s);
+    if (!s) {
+        gk_fail(e, GK_ERUNTIME, "vpl: out of memory");
+        return NULL;
+    }
+    s->ctx = *ctx;
+    if (!s->ctx.programs) {
+        s->own_cache = gk_program_cache_create(NULL, ctx->gles_version ? ctx->gles_version : 31);
+        s->ctx.programs = s->own_cache;
+    }
+    if (!gk_gl_has_extension("GL_EXT_color_buffer_float")) {
+        gk_fail(e, GK_ERUNTIME, "vpl: needs EXT_color_buffer_float (RGBA32F RSM and VPL targets)");
+        if (s->own_cache)
+            gk_program_cache_destroy(s->own_cache);
+        free(s);
+        return NULL;
+    }
+    gk_vpl_default_debug(&s->dbg);
+    glGenVertexArrays(1, &s->empty_vao);
+    return s;
+}
+
+static int set_scene(void *self, const gk_scene *sc, gk_err *e)
+{
+    vpl_state *s = self;
+    vec3 ext = v3_sub(sc->bmax, sc->bmin);
+    s->diam = v3_len(ext) > 0.0f ? v3_len(ext) : 1.0f;
+    if (s->have_proxy)
+        vpl_proxy_free(&s->proxy);
+    s->have_proxy = false;
+    /* Edges ≤ 1/24 of the diameter keep paraboloid edges within ~1/3 texel at 64² (measured by eye
+       on the F11 scene); 300k triangles caps memory at ~10 MB. */
+    if (vpl_proxy_build(&s->proxy, sc, s->diam / 24.0f, 300000, e))
+        return -1;
+    s->have_proxy = true;
+    s->prev_m = 0;
+    s->have_hist = false;
+    return 0;
+}
+
+static int knob_int(const gk_budget *b, const char *name, int fallback)
+{
+    const char *v = b ? gk_budget_value(b, name) : NULL;
+    return v ? atoi(v) : fallback;
+}
+
+static void read_budget(vpl_state *s, const gk_budget *b)
+{
+    s->n = knob_int(b, "vpl_n", 256);
+    s->n = s->n < 16 ? 16 : (s->n > GK_VPL_MAX_N ? GK_VPL_MAX_N : s->n);
+    s->m_knob = knob_int(b, "vpl_m", 8); /* "adaptive" -> 0 */
+    s->val_res = knob_int(b, "vpl_val_map", 64);
+    s->block = knob_int(b, "vpl_block", 4);
+    s->block = s->block < 1 ? 1 : s->block;
+    s->blur_radius = knob_int(b, "vpl_blur", 4);
+    s->res_scale = b && gk_budget_value(b, "vpl_res") ? gk_budget_float(b, "vpl_res", 0.5f) : 0.5f;
+    const char *vis = b ? gk_budget_value(b, "vpl_vis") : NULL;
+    s->vis = !vis || strcmp(vis, "cssm") == 0 ? GK_VPL_VIS_CSSM
+           : strcmp(vis, "vsm") == 0          ? GK_VPL_VIS_VSM
+                                              : GK_VPL_VIS_EXACT;
+    if (s->dbg.vis_override >= 0)
+        s->vis = s->dbg.vis_override;
+    const char *cl = b ? gk_budget_value(b, "vpl_clamp") : NULL;
+    s->clamp = !cl || strcmp(cl, "on") == 0;
+}
+
+static double now_ms(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
+}
+
+static void pass_time(gk_pass_times *times, const char *name, double *t0)
+{
+    glFinish();
+    double t = now_ms();
+    if (times && times->n < GK_MAX_PASSES) {
+        times->name[times->n] = name;
+        times->ms[times->n++] = t - *t0;
+    }
+    *t0 = t;
+}
+
+static void cluster(vpl_state *s)
+{
+    gk_kmeans_opts o = {s->dbg.w_pos, s->dbg.w_nrm, s->diam, 16, s->dbg.warm_start && s->prev_m > 0};
+    gk_vpl_stats *st = &s->st;
+    gk_kmeans_result r;
+    if (o.warm_start) {
+        memcpy(st->vals, s->prev_vals, sizeof st->vals);
+        r = gk_vpl_kmeans(st->vpl, s->n, s->prev_m, &o, st->labels, st->vals);
+    } else if (s->m_knob <= 0) {
+        r = gk_vpl_kmeans_adaptive(st->vpl, s->n, 2, GK_VPL_MAX_M, s->dbg.adaptive_drop, s->prev_m, &o, st->labels,
+                                   st->vals);
+    } else {
+        r = gk_vpl_kmeans(st->vpl, s->n, s->m_knob, &o, st->labels, st->vals);
+    }
+    if (s->prev_m > 0 && r.m != s->prev_m && !o.warm_start)
+        st->fade_left = s->dbg.fade_frames;
+    st->m = r.m, st->empty = r.empty, st->iters = r.iters, st->cluster_error = r.error;
+    memcpy(s->prev_vals, st->vals, sizeof s->prev_vals);
+    if (!o.warm_start || s->prev_m == 0)
+        s->prev_m = r.m;
+}
+
+static int render(void *self, const gk_gi_frame *f, gk_pass_times *times, gk_err *e)
+{
+    vpl_state *s = self;
+    if (!s->have_proxy && set_scene(s, f->scene, e))
+        return -1;
+    read_budget(s, f->budget);
+    double t0 = now_ms();
+    if (vpl_generate(s, f, e) < 0)
+        return -1;
+    pass_time(times, "vpl_rsm", &t0);
+
+    gk_vpl_stats *st = &s->st;
+    const gk_val *emitters = st->vals;
+    if (s->vis == GK_VPL_VIS_EXACT) {
+        /* Instant radiosity reference: every VPL is its own emitter with a hard map. */
+        gk_val *ev = calloc((size_t)s->n, sizeof *ev);
+        if (!ev)
+            return gk_fail(e, GK_ERUNTIME, "vpl: out of memory");
+        for (int i = 0; i < s->n; i++) {
+            bool ok = st->vpl[i].flux.x + st->vpl[i].flux.y + st->vpl[i].flux.z > 0.0f;
+            st->labels[i] = ok ? i : -1;
+            ev[i].centre = st->vpl[i].pos, ev[i].normal = st->vpl[i].nrm;
+            gk_val_frame_area(st->vpl, s->n, st->labels, i, &ev[i]);
+        }
+        st->m = s->n, st->empty = 0, st->iters = 0, st->cluster_error = 0.0;
+        st->spacing = gk_vpl_mean_spacing(st->vpl, s->n);
+        st->dmin = s->dbg.clamp_scale * st->spacing;
+        pass_time(times, "vpl_cluster", &t0);
+        int rc = vpl_build_maps(s, f, ev, s->n, e);
+        if (!rc)
+            vpl_upload(s, ev, s->n);
+        free(ev);
+        if (rc)
+            return -1;
+    } else {
+        cluster(s);
+        st->spacing = gk_vpl_mean_spacing(st->vpl, s->n);
+        st->dmin = s->dbg.clamp_scale * st->spacing;
+        pass_time(times, "vpl_cluster", &t0);
+        if (vpl_build_maps(s, f, emitters, st->m, e))
+            return -1;
+        vpl_upload(s, emitters, st->m);
+    }
+    pass_time(times, "vpl_valsm", &t0);
+    float fade = 1.0f;
+    if (st->fade_left > 0 && s->dbg.fade_frames > 0) {
+        fade = (float)(s->dbg.fade_frames - st->fade_left + 1) / (float)(s->dbg.fade_frames + 1);
+        st->fade_left--;
+    }
+    if (vpl_gather(s, f, fade, e))
+        return -1;
+    pass_time(times, "vpl_gather", &t0);
+    s->frame_index++;
+    GLenum err = glGetError();
+    if (err != GL_NO_ERROR)
+        return gk_fail(e, GK_ERUNTIME, "vpl: GL error 0x%04x during the frame", err);
+    return 0;
+}
+
+static long memory_bytes(const void *self)
+{
+    const vpl_state *s = self;
+    long b = 0;
+    b += (long)s->rsm_w * s->rsm_h * (16 * 3 + 4);
+    b += (long)s->gen_n * 16 * 3 + (long)s->n * 16 * 3 + (long)s->val_tex_w * 64;
+    long texels = (long)s->map_res * s->map_res * s->map_layers;
+    long per = s->map_vis == GK_VPL_VIS_CSSM ? 2 + 4 + 4 + 8 + 8 : (s->map_vis == GK_VPL_VIS_VSM ? 2 + 8 : 2);
+    b += texels * per * (s->map_vis == GK_VPL_VIS_EXACT ? 3 : 4) / 3; /* mips add ⅓ */
+    b += (long)s->map_res * s->map_res * 4;
+    b += (long)s->iw * s->ih * (16 * 5 + 8);
+    b += s->proxy.bytes;
+    return b;
+}
+
+static void destroy(void *self)
+{
+    vpl_state *s = self;
+    if (!s)
+        return;
+    vpl_free_gpu(s);
+    if (s->own_cache)
+        gk_program_cache_destroy(s->own_cache);
+    free(s);
+}
+
+void gk_vpl_set_debug(void *self, const gk_vpl_debug *d) { ((vpl_state *)self)->dbg = *d; }
+const gk_vpl_stats *gk_vpl_get_stats(const void *self) { return &((const vpl_state *)self)->st; }
+
+const gk_gi_method gk_gi_vpl = {
+    .name = "vpl",
+    .applies = applies,
+    .declare_knobs = declare_knobs,
+    .create = create,
+    .set_scene = set_scene,
+    .render = render,
+    .memory_bytes = memory_bytes,
+    .destroy = destroy,
+};

@@ -1,0 +1,235 @@
+/* Reflective shadow maps and VPL generation (thesis §6.5 steps 2–3). Every light with an RSM gets
+ * an atlas of perspective faces: 1 for a spot (fov = 2·outer cone), 6 for a point light (the cube,
+ * faces side by side), 5 for a rectangular area light (the hemicube around its emission axis: our
+ * "hemispherical map from the centre", free of the paraboloid's straight-edge error on coarse
+ * meshes). Directional lights have no RSM (dong-001.md §4.8) and add no VPL. The N VPLs are shared
+ * evenly between the lights; VPL i of a light samples its atlas at Halton point i. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "vpl_internal.h"
+
+typedef struct face { vec3 dir, up; } face;
+
+static const face cube_faces[6] = {
+    {{0, 0, -1}, {0, 1, 0}}, /* the emission axis first for hemicubes (replaced below) */
+    {{1, 0, 0}, {0, 1, 0}},  {{-1, 0, 0}, {0, 1, 0}}, {{0, 1, 0}, {0, 0, 1}},
+    {{0, -1, 0}, {0, 0, 1}}, {{0, 0, 1}, {0, 1, 0}},
+};
+
+static int ensure_rsm(vpl_state *s, int w, int h, gk_err *e)
+{
+    if (s->rsm_fbo && s->rsm_w == w && s->rsm_h == h)
+        return 0;
+    if (s->rsm_fbo) {
+        glDeleteFramebuffers(1, &s->rsm_fbo);
+        glDeleteTextures(3, s->rsm_tex);
+        glDeleteRenderbuffers(1, &s->rsm_depth);
+    }
+    glGenFramebuffers(1, &s->rsm_fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, s->rsm_fbo);
+    glGenTextures(3, s->rsm_tex);
+    for (int i = 0; i < 3; i++) {
+        glBindTexture(GL_TEXTURE_2D, s->rsm_tex[i]);
+        glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA32F, w, h);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + i, GL_TEXTURE_2D, s->rsm_tex[i], 0);
+    }
+    glGenRenderbuffers(1, &s->rsm_depth);
+    glBindRenderbuffer(GL_RENDERBUFFER, s->rsm_depth);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, w, h);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, s->rsm_depth);
+    s->rsm_w = w, s->rsm_h = h;
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        return gk_fail(e, GK_ERUNTIME, "vpl: RSM framebuffer (3x RGBA32F %dx%d) incomplete; the method needs "
+                                       "EXT_color_buffer_float", w, h);
+    return 0;
+}
+
+static int ensure_gen(vpl_state *s, int n, gk_err *e)
+{
+    if (s->gen_fbo && s->gen_n == n)
+        return 0;
+    if (s->gen_fbo) {
+        glDeleteFramebuffers(1, &s->gen_fbo);
+        glDeleteTextures(3, s->gen_tex);
+    }
+    glGenFramebuffers(1, &s->gen_fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, s->gen_fbo);
+    glGenTextures(3, s->gen_tex);
+    for (int i = 0; i < 3; i++) {
+        glBindTexture(GL_TEXTURE_2D, s->gen_tex[i]);
+        glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA32F, n, 1);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + i, GL_TEXTURE_2D, s->gen_tex[i], 0);
+    }
+    s->gen_n = n;
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        return gk_fail(e, GK_ERUNTIME, "vpl: VPL framebuffer (3x RGBA32F %dx1) incomplete", n);
+    return 0;
+}
+
+static vec3 any_up(vec3 d) { return fabsf(d.y) < 0.99f ? v3(0, 1, 0) : v3(1, 0, 0); }
+
+/* Faces of one light: count, their view directions/ups, the tangent of the half field of view, and
+ * the intensity kind used by rsm.frag. */
+static int light_faces(const gk_gi_light *L, const gk_light *sl, face *out, float *tan_half, int *kind)
+{
+    vec3 d = v3_norm(L->direction);
+    if (sl->type == GK_LIGHT_DIRECTIONAL)
+        return 0;
+    if (sl->shape == GK_SHAPE_RECT) { /* hemicube around the axis; the back face sees nothing */
+        vec3 u = v3_norm(L->axis_u), v = v3_norm(L->axis_v);
+        vec3 dirs[5] = {d, u, v3_scale(u, -1), v, v3_scale(v, -1)};
+        for (int i = 0; i < 5; i++)
+            out[i].dir = dirs[i], out[i].up = i == 0 ? v : (i < 3 ? v : u);
+        *tan_half = 1.0f, *kind = 2;
+        return 5;
+    }
+    if (sl->type == GK_LIGHT_SPOT && sl->outer_cone < 1.3f) { /* up to ~75°: one face */
+        out[0].dir = d, out[0].up = any_up(d);
+        *tan_half = tanf(fmaxf(sl->outer_cone, 0.05f) * 1.02f);
+        *kind = 0;
+        return 1;
+    }
+    for (int i = 0; i < 6; i++)
+        out[i] = cube_faces[i];
+    out[0].dir = v3(0, 0, -1);
+    *tan_half = 1.0f;
+    *kind = sl->type == GK_LIGHT_SPOT ? 0 : 1;
+    return 6;
+}
+
+static int render_light_rsm(vpl_state *s, const gk_gi_frame *f, const gk_gi_light *L, const gk_light *sl,
+                            int first, int count, gk_err *e)
+{
+    face faces[6];
+    float tan_half;
+    int kind;
+    int nf = light_faces(L, sl, faces, &tan_half, &kind);
+    if (nf == 0 || count <= 0)
+        return 0;
+    int R = VPL_RSM_RES;
+    if (ensure_rsm(s, nf * R, R, e))
+        return -1;
+    GLuint prog = gk_program_get(s->ctx.programs, "vpl/rsm.vert", "vpl/rsm.frag", NULL, e);
+    if (!prog)
+        return -1;
+    glBindFramebuffer(GL_FRAMEBUFFER, s->rsm_fbo);
+    const GLenum bufs[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+    glDrawBuffers(3, bufs);
+    glViewport(0, 0, s->rsm_w, s->rsm_h);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glClearColor(0, 0, 0, 0);
+    glClearDepthf(1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glUseProgram(prog);
+    float near = 0.002f * s->diam, far = 2.5f * s->diam;
+    float c_in = cosf(sl->inner_cone), c_out = cosf(sl->outer_cone);
+    gk_uniform_3f(prog, "u_light_pos", L->position.x, L->position.y, L->position.z);
+    vec3 d = v3_norm(L->direction);
+    gk_uniform_3f(prog, "u_light_dir", d.x, d.y, d.z);
+    gk_uniform_3f(prog, "u_radiant", L->radiant.x, L->radiant.y, L->radiant.z);
+    gk_uniform_1i(prog, "u_light_kind", kind);
+    gk_uniform_1f(prog, "u_cos_inner", c_in);
+    gk_uniform_1f(prog, "u_cos_outer", c_out);
+    gk_uniform_1f(prog, "u_face_res", (float)R);
+    gk_uniform_1f(prog, "u_tan_half", tan_half);
+    for (int i = 0; i < nf; i++) {
+        glViewport(i * R, 0, R, R);
+        mat4 view = m4_look_at(L->position, v3_add(L->position, faces[i].dir), faces[i].up);
+        mat4 proj = m4_perspective(2.0f * atanf(tan_half), 1.0f, near, far);
+        mat4 vp = m4_mul(proj, view);
+        gk_uniform_mat4(prog, "u_light_vp", vp.m);
+        gk_uniform_2f(prog, "u_face_origin", (float)(i * R), 0.0f);
+        f->draw_scene(f->draw_ctx, prog);
+    }
+    /* VPL generation over [first, first + count) of the VPL row. */
+    GLuint gen = gk_program_get(s->ctx.programs, "common/fullscreen.vert", "vpl/vpl_gen.frag", NULL, e);
+    if (!gen)
+        return -1;
+    glBindFramebuffer(GL_FRAMEBUFFER, s->gen_fbo);
+    glDrawBuffers(3, bufs);
+    glDisable(GL_DEPTH_TEST);
+    glViewport(first, 0, count, 1);
+    glUseProgram(gen);
+    for (int i = 0; i < 3; i++) {
+        glActiveTexture(GL_TEXTURE0 + i);
+        glBindTexture(GL_TEXTURE_2D, s->rsm_tex[i]);
+    }
+    gk_uniform_1i(gen, "u_rsm_pos", 0);
+    gk_uniform_1i(gen, "u_rsm_nrm", 1);
+    gk_uniform_1i(gen, "u_rsm_flux", 2);
+    GLint loc = glGetUniformLocation(gen, "u_atlas_size");
+    glUniform2i(loc, s->rsm_w, s->rsm_h);
+    loc = glGetUniformLocation(gen, "u_first");
+    glUniform1i(loc, first);
+    gk_uniform_1f(gen, "u_weight", (float)(s->rsm_w * s->rsm_h) / (float)count);
+    float rot[2] = {0, 0};
+    if (s->dbg.random_pattern) { /* per-frame Cranley–Patterson rotation (F8 oracle) */
+        unsigned h = s->frame_index * 2654435761u + 12345u;
+        rot[0] = (float)((h >> 8) & 0xffff) / 65536.0f;
+        h = h * 1103515245u + 12345u;
+        rot[1] = (float)((h >> 8) & 0xffff) / 65536.0f;
+    }
+    gk_uniform_2f(gen, "u_rotation", rot[0], rot[1]);
+    glBindVertexArray(s->empty_vao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    return 0;
+}
+
+int vpl_generate(vpl_state *s, const gk_gi_frame *f, gk_err *e)
+{
+    int n = s->n;
+    if (ensure_gen(s, n, e))
+        return -1;
+    glBindFramebuffer(GL_FRAMEBUFFER, s->gen_fbo);
+    const GLenum bufs[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+    glDrawBuffers(3, bufs);
+    glViewport(0, 0, n, 1);
+    glClearColor(0, 0, 0, 0);
+    glClear(GL_COLOR_BUFFER_BIT);
+    int lit[64], n_lit = 0;
+    for (int i = 0; i < f->n_lights && n_lit < 64; i++) {
+        const gk_light *sl = &f->scene->lights[f->lights[i].scene_light];
+        if (sl->type != GK_LIGHT_DIRECTIONAL)
+            lit[n_lit++] = i;
+    }
+    for (int j = 0; j < n_lit; j++) {
+        int first = n * j / n_lit, count = n * (j + 1) / n_lit - first;
+        const gk_gi_light *L = &f->lights[lit[j]];
+        if (render_light_rsm(s, f, L, &f->scene->lights[L->scene_light], first, count, e))
+            return -1;
+    }
+    float *buf = malloc((size_t)n * 4 * sizeof(float) * 3);
+    if (!buf)
+        return gk_fail(e, GK_ERUNTIME, "vpl: out of memory reading VPLs");
+    glBindFramebuffer(GL_FRAMEBUFFER, s->gen_fbo);
+    for (int i = 0; i < 3; i++) {
+        glReadBuffer(GL_COLOR_ATTACHMENT0 + i);
+        glReadPixels(0, 0, n, 1, GL_RGBA, GL_FLOAT, buf + (size_t)i * n * 4);
+    }
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    int valid = 0;
+    for (int i = 0; i < n; i++) {
+        const float *p = buf + i * 4, *nn = buf + n * 4 + i * 4, *fl = buf + 2 * n * 4 + i * 4;
+        gk_vpl *v = &s->st.vpl[i];
+        v->pos = v3(p[0], p[1], p[2]);
+        v->area = p[3];
+        v->nrm = v3_norm(v3(nn[0], nn[1], nn[2]));
+        v->flux = v3(fmaxf(fl[0], 0), fmaxf(fl[1], 0), fmaxf(fl[2], 0));
+        if (!(v->flux.x + v->flux.y + v->flux.z > 0.0f) || v3_len(v->nrm) < 0.5f)
+            v->flux = v3(0, 0, 0);
+        else
+            valid++;
+    }
+    free(buf);
+    s->st.n = n;
+    s->st.n_valid = valid;
+    return n;
+}

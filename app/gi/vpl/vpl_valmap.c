@@ -1,0 +1,208 @@
+/* One paraboloid shadow map per VAL (thesis §6.3.2, §6.5 steps 7–8): linear radial depth into a
+ * texture array layer (GLES 3.1 has no geometry shader, so one draw per layer), then the CSSM basis
+ * (4 Fourier terms: cos/sin in RGBA8, z·cos/z·sin in RGBA16F, plus z itself) or the two moments,
+ * and mipmaps for the prefiltered lookups. The exact-visibility reference uses the same pass with
+ * one hard map per VPL. Also the tables the gather reads (VPLs with labels, emitters). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "vpl_internal.h"
+
+static void free_maps(vpl_state *s)
+{
+    GLuint tex[6] = {s->z_arr, s->bcos, s->bsin, s->bzcos, s->bzsin, s->bmom};
+    for (int i = 0; i < 6; i++)
+        if (tex[i])
+            glDeleteTextures(1, &tex[i]);
+    s->z_arr = s->bcos = s->bsin = s->bzcos = s->bzsin = s->bmom = 0;
+    if (s->map_depth)
+        glDeleteRenderbuffers(1, &s->map_depth);
+    s->map_depth = 0;
+    s->map_layers = 0;
+}
+
+static GLuint array_tex(GLenum fmt, int res, int layers, bool mips)
+{
+    GLuint t;
+    int levels = 1;
+    if (mips)
+        while ((1 << (levels - 1)) < res)
+            levels++;
+    glGenTextures(1, &t);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, t);
+    glTexStorage3D(GL_TEXTURE_2D_ARRAY, levels, fmt, res, res, layers);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, mips ? GL_LINEAR_MIPMAP_LINEAR : GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, mips ? GL_LINEAR : GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    return t;
+}
+
+static void ensure_maps(vpl_state *s, int res, int layers, int vis)
+{
+    if (s->map_layers >= layers && s->map_res == res && s->map_vis == vis)
+        return;
+    free_maps(s);
+    bool soft = vis == GK_VPL_VIS_CSSM || vis == GK_VPL_VIS_VSM;
+    s->z_arr = array_tex(GL_R16F, res, layers, vis == GK_VPL_VIS_CSSM);
+    if (vis == GK_VPL_VIS_CSSM) {
+        s->bcos = array_tex(GL_RGBA8, res, layers, true);
+        s->bsin = array_tex(GL_RGBA8, res, layers, true);
+        s->bzcos = array_tex(GL_RGBA16F, res, layers, true);
+        s->bzsin = array_tex(GL_RGBA16F, res, layers, true);
+    } else if (vis == GK_VPL_VIS_VSM) {
+        /* (z, z²) cancels catastrophically in fp16 (dong-001.md §7.4): 32-bit where filterable. */
+        bool f32 = gk_gl_has_extension("GL_OES_texture_float_linear");
+        s->bmom = array_tex(f32 ? GL_RG32F : GL_RG16F, res, layers, true);
+    }
+    (void)soft;
+    glGenRenderbuffers(1, &s->map_depth);
+    glBindRenderbuffer(GL_RENDERBUFFER, s->map_depth);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, res, res);
+    if (!s->map_fbo)
+        glGenFramebuffers(1, &s->map_fbo);
+    if (!s->basis_fbo)
+        glGenFramebuffers(1, &s->basis_fbo);
+    s->map_res = res, s->map_layers = layers, s->map_vis = vis;
+}
+
+void vpl_emitter_params(const vpl_state *s, const gk_val *v, bool exact, float out_c[3], float *rnear, float *far)
+{
+    /* The centre is lifted off its surface by 0.5% of the scene diameter so the surface the VPLs
+       lie on falls in the negative half-space (no self-shadowing); geometry within r_near of the
+       centre is ignored as the thesis says, with r_near = ¼ of the VAL size (thesis: unstated). */
+    float lift = 0.005f * s->diam;
+    vec3 base = exact || s->dbg.centroid_origin ? v->centre : v->origin;
+    vec3 c = v3_add(base, v3_scale(v->normal, lift));
+    out_c[0] = c.x, out_c[1] = c.y, out_c[2] = c.z;
+    *rnear = exact ? 0.0f : 0.25f * v->size;
+    *far = 1.1f * s->diam + lift; /* every receiver at d = r/far < 0.91: inside the Fourier period */
+}
+
+int vpl_build_maps(vpl_state *s, const gk_gi_frame *f, const gk_val *em, int count, gk_err *e)
+{
+    if (s->vis == GK_VPL_VIS_NONE || count == 0)
+        return 0;
+    bool exact = s->vis == GK_VPL_VIS_EXACT;
+    int res = exact ? VPL_EXACT_RES : s->val_res;
+    ensure_maps(s, res, exact ? s->n : GK_VPL_MAX_M, s->vis);
+    GLuint prog = gk_program_get(s->ctx.programs, "vpl/val_depth.vert", "vpl/val_depth.frag", NULL, e);
+    if (!prog)
+        return -1;
+    glBindFramebuffer(GL_FRAMEBUFFER, s->map_fbo);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, s->map_depth);
+    const GLenum b1[1] = {GL_COLOR_ATTACHMENT0};
+    glDrawBuffers(1, b1);
+    glViewport(0, 0, res, res);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glUseProgram(prog);
+    for (int k = 0; k < count; k++) {
+        glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, s->z_arr, 0, k);
+        if (k == 0 && glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+            return gk_fail(e, GK_ERUNTIME, "vpl: paraboloid map framebuffer (R16F %d²) incomplete", res);
+        const GLfloat far_z[4] = {1, 1, 1, 1};
+        glClearBufferfv(GL_COLOR, 0, far_z);
+        glClear(GL_DEPTH_BUFFER_BIT);
+        float c[3], rnear, far;
+        vpl_emitter_params(s, &em[k], exact, c, &rnear, &far);
+        gk_uniform_3f(prog, "u_c", c[0], c[1], c[2]);
+        gk_uniform_3f(prog, "u_t", em[k].t.x, em[k].t.y, em[k].t.z);
+        gk_uniform_3f(prog, "u_b", em[k].b.x, em[k].b.y, em[k].b.z);
+        gk_uniform_3f(prog, "u_n", em[k].normal.x, em[k].normal.y, em[k].normal.z);
+        gk_uniform_1f(prog, "u_far", far);
+        gk_uniform_1f(prog, "u_rnear", rnear);
+        vpl_proxy_draw_all(&s->proxy, f->scene, prog);
+    }
+    glDisable(GL_DEPTH_TEST);
+    if (exact)
+        return 0;
+    bool vsm = s->vis == GK_VPL_VIS_VSM;
+    GLuint bp = gk_program_get(s->ctx.programs, "common/fullscreen.vert", "vpl/val_basis.frag",
+                               vsm ? "#define VIS_VSM 1\n" : NULL, e);
+    if (!bp)
+        return -1;
+    glBindFramebuffer(GL_FRAMEBUFFER, s->basis_fbo);
+    const GLenum b4[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3};
+    glDrawBuffers(vsm ? 1 : 4, b4);
+    glUseProgram(bp);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, s->z_arr);
+    gk_uniform_1i(bp, "u_z", 0);
+    glBindVertexArray(s->empty_vao);
+    for (int k = 0; k < count; k++) {
+        if (vsm) {
+            glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, s->bmom, 0, k);
+        } else {
+            GLuint t[4] = {s->bcos, s->bsin, s->bzcos, s->bzsin};
+            for (int i = 0; i < 4; i++)
+                glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + i, t[i], 0, k);
+        }
+        if (k == 0 && glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+            return gk_fail(e, GK_ERUNTIME, "vpl: %s basis framebuffer incomplete (needs RGBA16F/RG32F "
+                                           "colour-renderable)", vsm ? "VSM" : "CSSM");
+        gk_uniform_1i(bp, "u_layer", k);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
+    /* Mips over all layers: unused layers keep stale data but are never sampled. */
+    GLuint mipped[5] = {s->z_arr, s->bcos, s->bsin, s->bzcos, s->bzsin};
+    if (vsm)
+        mipped[0] = s->bmom;
+    for (int i = 0; i < (vsm ? 1 : 5); i++) {
+        glBindTexture(GL_TEXTURE_2D_ARRAY, mipped[i]);
+        glGenerateMipmap(GL_TEXTURE_2D_ARRAY);
+    }
+    return 0;
+}
+
+void vpl_upload(vpl_state *s, const gk_val *em, int count)
+{
+    int n = s->n;
+    float *buf = malloc((size_t)n * 3 * 4 * sizeof(float));
+    if (!buf)
+        return;
+    for (int i = 0; i < n; i++) {
+        const gk_vpl *v = &s->st.vpl[i];
+        float *p = buf + i * 4, *q = buf + (n + i) * 4, *r = buf + (2 * n + i) * 4;
+        p[0] = v->pos.x, p[1] = v->pos.y, p[2] = v->pos.z, p[3] = (float)s->st.labels[i];
+        q[0] = v->nrm.x, q[1] = v->nrm.y, q[2] = v->nrm.z, q[3] = v->area;
+        r[0] = v->flux.x, r[1] = v->flux.y, r[2] = v->flux.z, r[3] = 0.0f;
+    }
+    if (!s->vpl_tex)
+        glGenTextures(1, &s->vpl_tex);
+    glBindTexture(GL_TEXTURE_2D, s->vpl_tex);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, n, 3, 0, GL_RGBA, GL_FLOAT, buf);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    free(buf);
+    int w = count > 0 ? count : 1;
+    float *vb = calloc((size_t)w * 4 * 4, sizeof(float));
+    if (!vb)
+        return;
+    bool exact = s->vis == GK_VPL_VIS_EXACT;
+    float res = (float)(exact ? VPL_EXACT_RES : s->val_res);
+    for (int k = 0; k < count; k++) {
+        float c[3], rnear, far;
+        vpl_emitter_params(s, &em[k], exact, c, &rnear, &far);
+        float *r0 = vb + k * 4, *r1 = vb + (w + k) * 4, *r2 = vb + (2 * w + k) * 4, *r3 = vb + (3 * w + k) * 4;
+        r0[0] = c[0], r0[1] = c[1], r0[2] = c[2], r0[3] = far;
+        r1[0] = em[k].normal.x, r1[1] = em[k].normal.y, r1[2] = em[k].normal.z, r1[3] = em[k].size;
+        r2[0] = em[k].t.x, r2[1] = em[k].t.y, r2[2] = em[k].t.z, r2[3] = rnear;
+        r3[0] = em[k].b.x, r3[1] = em[k].b.y, r3[2] = em[k].b.z, r3[3] = res;
+    }
+    if (!s->val_tex)
+        glGenTextures(1, &s->val_tex);
+    glBindTexture(GL_TEXTURE_2D, s->val_tex);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, w, 4, 0, GL_RGBA, GL_FLOAT, vb);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    s->val_tex_w = w;
+    free(vb);
+}
+
+void vpl_free_maps(vpl_state *s);
+void vpl_free_maps(vpl_state *s) { free_maps(s); }

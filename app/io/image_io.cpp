@@ -1,0 +1,192 @@
+// OpenImageIO shim behind app/io/image_io.h: the only C++ in the image path. Every OIIO call is
+// wrapped so no C++ exception or object escapes into the C code.
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+
+extern "C" {
+#include "io/image_io.h"
+}
+
+namespace {
+
+// Pixels come back exactly as stored: OIIO would otherwise premultiply PNG/TIFF colour by alpha.
+OIIO::ImageSpec read_config()
+{
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    return config;
+}
+
+std::string lower_extension(const char *path)
+{
+    std::string p(path);
+    size_t slash = p.find_last_of('/');
+    size_t dot = p.find_last_of('.');
+    if (dot == std::string::npos || (slash != std::string::npos && dot < slash))
+        return "";
+    std::string ext = p.substr(dot + 1);
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return (char)std::tolower(c); });
+    return ext;
+}
+
+// OIIO error strings can span lines; one line reads better after "file: ".
+std::string one_line(std::string s)
+{
+    while (!s.empty() && (s.back() == '\n' || s.back() == ' '))
+        s.pop_back();
+    std::replace(s.begin(), s.end(), '\n', ' ');
+    return s.empty() ? std::string("unknown error") : s;
+}
+
+enum class PixelStore { uint8, half, float32 };
+
+PixelStore store_for(const std::string &ext, bool exr_float)
+{
+    if (ext == "exr")
+        return exr_float ? PixelStore::float32 : PixelStore::half;
+    if (ext == "hdr" || ext == "tif" || ext == "tiff" || ext == "pfm")
+        return PixelStore::float32;
+    return PixelStore::uint8;
+}
+
+int write_image(const char *path, const gk_image *img, const gk_image_meta *meta, bool exr_float, gk_err *e)
+{
+    if (!img || !img->pixels || img->width <= 0 || img->height <= 0 || img->channels < 1 || img->channels > 4)
+        return gk_fail(e, GK_ERUNTIME, "%s: cannot write an empty or malformed image", path);
+    try {
+        auto out = OIIO::ImageOutput::create(path);
+        if (!out)
+            return gk_fail(e, GK_EINPUT, "%s: no image format for this extension (%s)", path,
+                           one_line(OIIO::geterror()).c_str());
+        std::string ext = lower_extension(path);
+        PixelStore store = store_for(ext, exr_float);
+        OIIO::TypeDesc type = store == PixelStore::uint8 ? OIIO::TypeDesc::UINT8
+                              : store == PixelStore::half ? OIIO::TypeDesc::HALF
+                                                          : OIIO::TypeDesc::FLOAT;
+        OIIO::ImageSpec spec(img->width, img->height, img->channels, type);
+        if (meta)
+            for (int i = 0; i < meta->count && i < 16; i++)
+                if (meta->keys[i] && meta->values[i])
+                    spec.attribute(meta->keys[i], meta->values[i]);
+        if (ext == "exr")
+            spec.attribute("compression", "zip");
+        // Our pixels are stored as given (alpha not premultiplied): tell OIIO not to divide by alpha.
+        spec.attribute("oiio:UnassociatedAlpha", 1);
+
+        size_t n = (size_t)img->width * img->height * img->channels;
+        const float *src = img->pixels;
+        float *clamped = nullptr;
+        if (store == PixelStore::uint8) { // display-referred: clamp, no colour conversion
+            clamped = (float *)malloc(n * sizeof(float));
+            if (!clamped)
+                return gk_fail(e, GK_ERUNTIME, "%s: out of memory", path);
+            for (size_t i = 0; i < n; i++) {
+                float v = src[i];
+                clamped[i] = std::isnan(v) ? 0.0f : std::min(1.0f, std::max(0.0f, v));
+            }
+            src = clamped;
+        }
+        bool ok = out->open(path, spec) && out->write_image(OIIO::TypeDesc::FLOAT, src);
+        std::string err = ok ? "" : one_line(out->geterror());
+        bool closed = out->close();
+        if (ok && !closed)
+            err = one_line(out->geterror());
+        free(clamped);
+        if (!ok || !closed)
+            return gk_fail(e, GK_ERUNTIME, "%s: cannot write image: %s", path, err.c_str());
+        return 0;
+    } catch (const std::exception &ex) {
+        return gk_fail(e, GK_ERUNTIME, "%s: cannot write image: %s", path, ex.what());
+    }
+}
+
+} // namespace
+
+extern "C" int gk_image_alloc(gk_image *img, int width, int height, int channels)
+{
+    img->width = img->height = img->channels = 0;
+    img->pixels = nullptr;
+    if (width <= 0 || height <= 0 || channels < 1 || channels > 4 || (size_t)width * height > (size_t)1 << 28)
+        return -1;
+    img->pixels = (float *)calloc((size_t)width * height * channels, sizeof(float));
+    if (!img->pixels)
+        return -1;
+    img->width = width;
+    img->height = height;
+    img->channels = channels;
+    return 0;
+}
+
+extern "C" void gk_image_free(gk_image *img)
+{
+    if (!img)
+        return;
+    free(img->pixels);
+    img->pixels = nullptr;
+    img->width = img->height = img->channels = 0;
+}
+
+extern "C" int gk_image_read(const char *path, gk_image *img, gk_err *e)
+{
+    img->width = img->height = img->channels = 0;
+    img->pixels = nullptr;
+    try {
+        OIIO::ImageSpec config = read_config();
+        auto in = OIIO::ImageInput::open(path, &config);
+        if (!in)
+            return gk_fail(e, GK_EINPUT, "%s: cannot read image: %s", path, one_line(OIIO::geterror()).c_str());
+        const OIIO::ImageSpec &spec = in->spec();
+        if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || spec.depth > 1)
+            return gk_fail(e, GK_EINPUT, "%s: not a 2D image (%dx%dx%d, %d channels)", path, spec.width,
+                           spec.height, spec.depth, spec.nchannels);
+        int channels = std::min(spec.nchannels, 4);
+        if (gk_image_alloc(img, spec.width, spec.height, channels) != 0)
+            return gk_fail(e, GK_EINPUT, "%s: image too large (%dx%d)", path, spec.width, spec.height);
+        if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, img->pixels)) {
+            std::string err = one_line(in->geterror());
+            gk_image_free(img);
+            return gk_fail(e, GK_EINPUT, "%s: cannot read image: %s", path, err.c_str());
+        }
+        in->close();
+        return 0;
+    } catch (const std::exception &ex) {
+        gk_image_free(img);
+        return gk_fail(e, GK_EINPUT, "%s: cannot read image: %s", path, ex.what());
+    }
+}
+
+extern "C" int gk_image_read_attr(const char *path, const char *key, char *out, int out_len, gk_err *e)
+{
+    if (out && out_len > 0)
+        out[0] = '\0';
+    try {
+        auto in = OIIO::ImageInput::open(path);
+        if (!in)
+            return gk_fail(e, GK_EINPUT, "%s: cannot read image: %s", path, one_line(OIIO::geterror()).c_str());
+        const OIIO::ParamValue *p = in->spec().find_attribute(key, OIIO::TypeDesc::STRING);
+        if (!p)
+            return 1;
+        std::string value = in->spec().get_string_attribute(key);
+        if (out && out_len > 0)
+            snprintf(out, (size_t)out_len, "%s", value.c_str());
+        in->close();
+        return 0;
+    } catch (const std::exception &ex) {
+        return gk_fail(e, GK_EINPUT, "%s: cannot read image: %s", path, ex.what());
+    }
+}
+
+extern "C" int gk_image_write(const char *path, const gk_image *img, const gk_image_meta *meta, gk_err *e)
+{
+    return write_image(path, img, meta, false, e);
+}
+
+extern "C" int gk_image_write_float(const char *path, const gk_image *img, const gk_image_meta *meta, gk_err *e)
+{
+    return write_image(path, img, meta, true, e);
+}

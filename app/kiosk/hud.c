@@ -1,0 +1,294 @@
+/* HUD overlay (see hud.h): one dynamic vertex buffer of quads per frame, one draw call. */
+#include "hud.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../core/log.h"
+#include "../render/gl.h"
+#include "../render/gl_program.h"
+#include "font_atlas.h"
+
+struct gk_hud {
+    int width, height;
+    gk_program_cache *programs;
+    GLuint program, vao, vbo, atlas_tex;
+    gk_font_atlas font;
+    int has_text;
+    float *verts;                  /* x y u v r g b a per vertex */
+    int n_verts, cap_verts;
+};
+
+#define FLOATS_PER_VERT 8
+
+gk_hud *gk_hud_create(int width, int height, const char *shader_dir, int gles, const char *font_path, gk_err *e)
+{
+    gk_hud *h = calloc(1, sizeof *h);
+    if (!h) {
+        gk_fail(e, GK_ERUNTIME, "HUD: out of memory");
+        return NULL;
+    }
+    h->width = width;
+    h->height = height;
+    gk_err fe = {0};
+    const char *path = font_path ? font_path : GK_FONT_DEFAULT_PATH;
+    if (gk_font_atlas_build(&h->font, path, gk_font_px_for_height(height), &fe) == 0) {
+        h->has_text = 1;
+    } else {
+        gk_log("HUD without text: %s", fe.msg);
+        /* A 4x4 atlas with the solid block keeps the graph working. */
+        h->font.width = h->font.height = 4;
+        h->font.pixels = calloc(16, 1);
+        if (h->font.pixels)
+            memset(h->font.pixels, 255, 16);
+        h->font.white_x = h->font.white_y = 1;
+    }
+    h->programs = gk_program_cache_create(shader_dir, gles);
+    if (!h->programs || !(h->program = gk_program_get(h->programs, "hud/hud.vert", "hud/hud.frag", NULL, e))) {
+        if (h->programs && e && !e->msg[0])
+            gk_fail(e, GK_ERUNTIME, "HUD: shader program failed");
+        else if (!h->programs)
+            gk_fail(e, GK_ERUNTIME, "HUD: cannot create the program cache");
+        gk_hud_destroy(h);
+        return NULL;
+    }
+    GLint prev_tex, prev_align;
+    glGetIntegerv(GL_TEXTURE_BINDING_2D, &prev_tex);
+    glGetIntegerv(GL_UNPACK_ALIGNMENT, &prev_align);
+    glGenTextures(1, &h->atlas_tex);
+    glBindTexture(GL_TEXTURE_2D, h->atlas_tex);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_R8, h->font.width, h->font.height, 0, GL_RED, GL_UNSIGNED_BYTE, h->font.pixels);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, prev_align);
+    glBindTexture(GL_TEXTURE_2D, (GLuint)prev_tex);
+
+    GLint prev_vao, prev_buf;
+    glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &prev_vao);
+    glGetIntegerv(GL_ARRAY_BUFFER_BINDING, &prev_buf);
+    glGenVertexArrays(1, &h->vao);
+    glGenBuffers(1, &h->vbo);
+    glBindVertexArray(h->vao);
+    glBindBuffer(GL_ARRAY_BUFFER, h->vbo);
+    const GLsizei stride = FLOATS_PER_VERT * sizeof(float);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, stride, (void *)0);
+    glEnableVertexAttribArray(1);
+    glVertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, stride, (void *)(2 * sizeof(float)));
+    glEnableVertexAttribArray(2);
+    glVertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, stride, (void *)(4 * sizeof(float)));
+    glBindVertexArray((GLuint)prev_vao);
+    glBindBuffer(GL_ARRAY_BUFFER, (GLuint)prev_buf);
+    GLenum err = glGetError();
+    if (err != GL_NO_ERROR) {
+        gk_fail(e, GK_ERUNTIME, "HUD: GL error 0x%x while creating textures and buffers", err);
+        gk_hud_destroy(h);
+        return NULL;
+    }
+    return h;
+}
+
+void gk_hud_destroy(gk_hud *h)
+{
+    if (!h)
+        return;
+    if (h->vbo)
+        glDeleteBuffers(1, &h->vbo);
+    if (h->vao)
+        glDeleteVertexArrays(1, &h->vao);
+    if (h->atlas_tex)
+        glDeleteTextures(1, &h->atlas_tex);
+    if (h->programs)
+        gk_program_cache_destroy(h->programs);
+    gk_font_atlas_free(&h->font);
+    free(h->verts);
+    free(h);
+}
+
+int gk_hud_has_text(const gk_hud *h) { return h && h->has_text; }
+
+/* ---- geometry ------------------------------------------------------------------------------- */
+
+static void quad(gk_hud *h, float x0, float y0, float x1, float y1, float u0, float v0, float u1, float v1,
+                 const float c[4])
+{
+    if (h->n_verts + 6 > h->cap_verts) {
+        int cap = h->cap_verts ? h->cap_verts * 2 : 1536;
+        float *v = realloc(h->verts, (size_t)cap * FLOATS_PER_VERT * sizeof *v);
+        if (!v)
+            return;
+        h->verts = v;
+        h->cap_verts = cap;
+    }
+    const float corners[6][4] = {{x0, y0, u0, v0}, {x1, y0, u1, v0}, {x1, y1, u1, v1},
+                                 {x0, y0, u0, v0}, {x1, y1, u1, v1}, {x0, y1, u0, v1}};
+    for (int i = 0; i < 6; i++) {
+        float *o = h->verts + (size_t)(h->n_verts++) * FLOATS_PER_VERT;
+        memcpy(o, corners[i], 4 * sizeof(float));
+        memcpy(o + 4, c, 4 * sizeof(float));
+    }
+}
+
+static void rect(gk_hud *h, float x0, float y0, float x1, float y1, const float c[4])
+{
+    float u = (h->font.white_x + 1.0f) / (float)h->font.width, v = (h->font.white_y + 1.0f) / (float)h->font.height;
+    quad(h, x0, y0, x1, y1, u, v, u, v, c);
+}
+
+/* Draws s with its baseline at y; returns the pen position after it. */
+static float text(gk_hud *h, float x, float y, const char *s, const float c[4])
+{
+    if (!h->has_text)
+        return x;
+    float iw = 1.0f / (float)h->font.width, ih = 1.0f / (float)h->font.height;
+    for (; *s; s++) {
+        int ch = (unsigned char)*s;
+        if (ch < GK_FONT_FIRST || ch >= GK_FONT_FIRST + GK_FONT_COUNT)
+            ch = '?';
+        const gk_glyph *g = &h->font.glyphs[ch - GK_FONT_FIRST];
+        float gx = (float)(int)(x + g->xoff + 0.5f), gy = (float)(int)(y + g->yoff + 0.5f);
+        if (g->x1 > g->x0)
+            quad(h, gx, gy, gx + (g->x1 - g->x0), gy + (g->y1 - g->y0), g->x0 * iw, g->y0 * ih, g->x1 * iw,
+                 g->y1 * ih, c);
+        x += g->xadvance;
+    }
+    return x;
+}
+
+void gk_hud_draw(gk_hud *h, unsigned fbo, const gk_hud_info *in)
+{
+    static const float white[4] = {1, 1, 1, 1}, grey[4] = {0.75f, 0.75f, 0.75f, 1},
+                       panel[4] = {0, 0, 0, 0.55f}, bar_ok[4] = {0.3f, 0.85f, 0.4f, 0.9f},
+                       bar_over[4] = {0.95f, 0.35f, 0.25f, 0.9f}, target_line[4] = {1, 0.85f, 0.2f, 1};
+    h->n_verts = 0;
+    float px = gk_font_px_for_height(h->height);
+    float pad = px * 0.5f, line = px * 1.25f;
+    float x0 = pad, y0 = pad;
+    float panel_w = (float)h->width * 0.42f;
+    if (panel_w < 20 * px)
+        panel_w = (float)h->width - 2 * pad;
+    float graph_h = 3 * line;
+
+    /* Budget lines wrap at the panel width. */
+    char budget_lines[6][256];
+    int n_budget_lines = 0;
+    budget_lines[0][0] = '\0';
+    if (h->has_text && in->budget) {
+        for (int k = 0; k < in->budget->n; k++) {
+            char item[96];
+            snprintf(item, sizeof item, "%s%s=%s", budget_lines[n_budget_lines][0] ? "  " : "",
+                     in->budget->def[k]->name, in->budget->def[k]->values[in->budget->level[k]]);
+            char trial[352];
+            snprintf(trial, sizeof trial, "%s%s", budget_lines[n_budget_lines], item);
+            if (budget_lines[n_budget_lines][0] && gk_font_text_width(&h->font, trial) > panel_w - 2 * pad) {
+                if (n_budget_lines == 5)
+                    break;
+                n_budget_lines++;
+                snprintf(budget_lines[n_budget_lines], sizeof budget_lines[0], "%s", item + 2);
+            } else {
+                snprintf(budget_lines[n_budget_lines], sizeof budget_lines[0], "%.255s", trial);
+            }
+        }
+        if (budget_lines[n_budget_lines][0])
+            n_budget_lines++;
+    }
+    int text_lines = h->has_text ? 2 + n_budget_lines : 0;
+    float panel_h = pad + text_lines * line + graph_h + pad;
+    rect(h, x0, y0, x0 + panel_w, y0 + panel_h, panel);
+
+    float y = y0 + pad + px; /* first baseline */
+    char buf[256];
+    if (h->has_text) {
+        float x = text(h, x0 + pad, y, in->scene ? in->scene : "-", white);
+        snprintf(buf, sizeof buf, "   method %s", in->method ? in->method : "-");
+        text(h, x, y, buf, grey);
+        y += line;
+        snprintf(buf, sizeof buf, "frame %.1f ms   median %.1f   p95 %.1f   target %.1f", in->frame_ms,
+                 in->median_ms, in->p95_ms, in->target_ms);
+        text(h, x0 + pad, y, buf, white);
+        y += line * 0.5f;
+    }
+    /* Graph: the recent frame times as bars; full height = 2 x target, the target line across. */
+    float gx0 = x0 + pad, gx1 = x0 + panel_w - pad, gy0 = y, gy1 = y + graph_h - line * 0.25f;
+    float scale = in->target_ms > 0 ? (gy1 - gy0) / (float)(2 * in->target_ms) : 0;
+    if (in->recent && in->recent->count > 0) {
+        float bw = (gx1 - gx0) / GK_RECENT_FRAMES;
+        for (int i = 0; i < in->recent->count; i++) {
+            float ms = gk_recent_at(in->recent, i);
+            float hgt = ms * scale;
+            if (hgt > gy1 - gy0)
+                hgt = gy1 - gy0;
+            float bx = gx0 + (float)(GK_RECENT_FRAMES - in->recent->count + i) * bw;
+            rect(h, bx, gy1 - hgt, bx + (bw > 2 ? bw - 1 : bw), gy1, ms > in->target_ms ? bar_over : bar_ok);
+        }
+    }
+    float ty = gy1 - (float)in->target_ms * scale;
+    rect(h, gx0, ty - 1, gx1, ty + 1, target_line);
+    y = gy1 + line * 0.25f + px;
+    for (int i = 0; i < n_budget_lines; i++, y += line)
+        text(h, x0 + pad, y, budget_lines[i], grey);
+
+    /* Draw, saving and restoring the state we touch. */
+    GLint prev_fbo, prev_prog, prev_vao, prev_buf, prev_tex, prev_active, vp[4];
+    GLint bsrc_rgb, bdst_rgb, bsrc_a, bdst_a, beq_rgb, beq_a;
+    GLboolean blend = glIsEnabled(GL_BLEND), depth = glIsEnabled(GL_DEPTH_TEST), cull = glIsEnabled(GL_CULL_FACE),
+              scissor = glIsEnabled(GL_SCISSOR_TEST), stencil = glIsEnabled(GL_STENCIL_TEST);
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &prev_fbo);
+    glGetIntegerv(GL_CURRENT_PROGRAM, &prev_prog);
+    glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &prev_vao);
+    glGetIntegerv(GL_ARRAY_BUFFER_BINDING, &prev_buf);
+    glGetIntegerv(GL_ACTIVE_TEXTURE, &prev_active);
+    glActiveTexture(GL_TEXTURE0);
+    glGetIntegerv(GL_TEXTURE_BINDING_2D, &prev_tex);
+    glGetIntegerv(GL_VIEWPORT, vp);
+    glGetIntegerv(GL_BLEND_SRC_RGB, &bsrc_rgb);
+    glGetIntegerv(GL_BLEND_DST_RGB, &bdst_rgb);
+    glGetIntegerv(GL_BLEND_SRC_ALPHA, &bsrc_a);
+    glGetIntegerv(GL_BLEND_DST_ALPHA, &bdst_a);
+    glGetIntegerv(GL_BLEND_EQUATION_RGB, &beq_rgb);
+    glGetIntegerv(GL_BLEND_EQUATION_ALPHA, &beq_a);
+
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
+    glViewport(0, 0, h->width, h->height);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_SCISSOR_TEST);
+    glDisable(GL_STENCIL_TEST);
+    glEnable(GL_BLEND);
+    glBlendEquation(GL_FUNC_ADD);
+    /* Colour blends over the image; the destination alpha (opaque panel) is kept. */
+    glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
+    glUseProgram(h->program);
+    gk_uniform_2f(h->program, "u_viewport", (float)h->width, (float)h->height);
+    gk_uniform_1i(h->program, "u_atlas", 0);
+    glBindTexture(GL_TEXTURE_2D, h->atlas_tex);
+    glBindVertexArray(h->vao);
+    glBindBuffer(GL_ARRAY_BUFFER, h->vbo);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)((size_t)h->n_verts * FLOATS_PER_VERT * sizeof(float)), h->verts,
+                 GL_STREAM_DRAW);
+    glDrawArrays(GL_TRIANGLES, 0, h->n_verts);
+
+    glBindBuffer(GL_ARRAY_BUFFER, (GLuint)prev_buf);
+    glBindVertexArray((GLuint)prev_vao);
+    glBindTexture(GL_TEXTURE_2D, (GLuint)prev_tex);
+    glActiveTexture((GLenum)prev_active);
+    glUseProgram((GLuint)prev_prog);
+    glBlendEquationSeparate((GLenum)beq_rgb, (GLenum)beq_a);
+    glBlendFuncSeparate((GLenum)bsrc_rgb, (GLenum)bdst_rgb, (GLenum)bsrc_a, (GLenum)bdst_a);
+    if (!blend)
+        glDisable(GL_BLEND);
+    if (depth)
+        glEnable(GL_DEPTH_TEST);
+    if (cull)
+        glEnable(GL_CULL_FACE);
+    if (scissor)
+        glEnable(GL_SCISSOR_TEST);
+    if (stencil)
+        glEnable(GL_STENCIL_TEST);
+    glViewport(vp[0], vp[1], vp[2], vp[3]);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)prev_fbo);
+}

@@ -1,0 +1,31 @@
+/* The kiosk's HUD: scene, method, frame time (current, median, p95) with a frame-time graph against
+ * the target line, and the budget knobs, drawn with alpha blending over the final image after
+ * gk_renderer_draw (so it is never in the renderer's captures). Text comes from a DejaVu Sans atlas
+ * sized for the panel height; without the font the HUD shows the graph only. GL state it changes
+ * is restored. */
+#ifndef GK_KIOSK_HUD_H
+#define GK_KIOSK_HUD_H
+
+#include "../core/err.h"
+#include "../sched/budget.h"
+#include "stats.h"
+
+typedef struct gk_hud gk_hud;
+
+typedef struct gk_hud_info {
+    const char *scene, *method;
+    double frame_ms, median_ms, p95_ms, target_ms;
+    const gk_recent *recent;
+    const gk_budget *budget;
+} gk_hud_info;
+
+/* font_path NULL: DejaVu Sans. A missing font is logged, not an error; a shader or GL failure is
+ * GK_ERUNTIME. */
+gk_hud *gk_hud_create(int width, int height, const char *shader_dir, int gles, const char *font_path, gk_err *e);
+void gk_hud_destroy(gk_hud *h);
+/* Draws into fbo (the platform's framebuffer) of the size given at creation. */
+void gk_hud_draw(gk_hud *h, unsigned fbo, const gk_hud_info *info);
+/* True when the font loaded (text is drawn). */
+int gk_hud_has_text(const gk_hud *h);
+
+#endif

@@ -1,0 +1,61 @@
+/* Frame statistics of the kiosk: the recent frame times the HUD shows (median, p95, graph), the
+ * per-scene summary printed at the end of a run, and the --stats CSV (DESIGN §4):
+ * `frame,time_s,scene,method,frame_ms,` then one PASS_ms column per render pass (the union of the
+ * pass names seen during the run, in order of first appearance), then one column per budget knob
+ * (its value). The pass union is only known at the end, so rows are spooled to FILE.part and the
+ * CSV is written when the run ends. No GL here: unit-tested. */
+#ifndef GK_KIOSK_STATS_H
+#define GK_KIOSK_STATS_H
+
+#include <stdio.h>
+
+#include "../render/renderer.h"
+#include "../sched/budget.h"
+#include "config.h"
+
+#define GK_RECENT_FRAMES 120
+
+typedef struct gk_recent {
+    float ms[GK_RECENT_FRAMES];   /* ring buffer */
+    int count, head;              /* head: next write */
+} gk_recent;
+
+void gk_recent_clear(gk_recent *r);
+void gk_recent_push(gk_recent *r, float ms);
+/* Percentile q in [0, 1] (nearest rank) of the recent frames; 0 when empty. */
+float gk_recent_percentile(const gk_recent *r, float q);
+/* i-th oldest sample (0 = oldest). */
+float gk_recent_at(const gk_recent *r, int i);
+
+/* Percentile of an array (sorted in place), nearest rank. */
+double gk_percentile(double *v, long n, double q);
+
+typedef struct gk_scene_summary {
+    char scene[GK_NAME_LEN];
+    char method[32];              /* method of the scene's last frame */
+    char budgets[512];            /* knob values at the scene's last frame */
+    long frames;
+    double *ms;                   /* every frame time (capped, see stats.c) */
+    long n_ms, cap_ms;
+} gk_scene_summary;
+
+typedef struct gk_summary {
+    int n;
+    gk_scene_summary scenes[GK_MAX_PLAYLIST];
+} gk_summary;
+
+void gk_summary_init(gk_summary *s);
+void gk_summary_add(gk_summary *s, const char *scene, const char *method, double frame_ms, const gk_budget *b);
+/* One line per scene: "scene NAME: N frames, median X ms, p95 Y ms, method M, budgets K=V,...". */
+void gk_summary_print(gk_summary *s, FILE *f);
+void gk_summary_free(gk_summary *s);
+
+typedef struct gk_stats_csv gk_stats_csv;
+
+gk_stats_csv *gk_stats_csv_open(const char *path, gk_err *e);
+int gk_stats_csv_row(gk_stats_csv *c, long frame, double time_s, const char *scene, const char *method,
+                     double frame_ms, const gk_pass_times *passes, const gk_budget *b, gk_err *e);
+/* Writes the CSV from the spool (the knob columns are b's knobs) and removes the spool. */
+int gk_stats_csv_close(gk_stats_csv *c, const gk_budget *b, gk_err *e);
+
+#endif

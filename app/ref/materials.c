@@ -1,0 +1,226 @@
+/* The shared BRDF (brdf_spec.md) and its sampling for the path tracer (see materials.h). */
+#include "materials.h"
+
+#include <math.h>
+
+#include "core/tonemap.h"
+
+static float lum3(vec3 c) { return gk_luminance(c.x, c.y, c.z); }
+static float clamp01(float x) { return x < 0.0f ? 0.0f : (x > 1.0f ? 1.0f : x); }
+
+static vec3 tex_sample(const gk_ref_scene *rs, int tex, float u, float v, int comp_base)
+{
+    (void)comp_base;
+    if (tex < 0 || tex >= rs->n_textures || !rs->textures[tex].rgba)
+        return v3(1, 1, 1);
+    const gk_texture *t = &rs->textures[tex];
+    /* Nearest texel with repeat wrapping (glTF's default sampler wrap). */
+    float fu = u - floorf(u), fv = v - floorf(v);
+    int x = (int)(fu * t->width), y = (int)(fv * t->height);
+    x = x >= t->width ? t->width - 1 : x;
+    y = y >= t->height ? t->height - 1 : y;
+    const float *p = &t->rgba[4 * ((size_t)y * t->width + x)];
+    return v3(p[0], p[1], p[2]);
+}
+
+void gk_surface_init(gk_surface *sf, const gk_ref_scene *rs, const gk_ref_tri *t, float b1, float b2)
+{
+    const gk_material *m = &rs->materials[t->material];
+    float b0 = 1.0f - b1 - b2;
+    float u = b0 * t->uv[0][0] + b1 * t->uv[1][0] + b2 * t->uv[2][0];
+    float v = b0 * t->uv[0][1] + b1 * t->uv[1][1] + b2 * t->uv[2][1];
+    sf->base = v3(m->base_color[0], m->base_color[1], m->base_color[2]);
+    sf->metallic = m->metallic;
+    sf->roughness = m->roughness;
+    if (m->base_color_tex >= 0)
+        sf->base = v3_mul(sf->base, tex_sample(rs, m->base_color_tex, u, v, 0));
+    if (m->metallic_roughness_tex >= 0) {
+        vec3 mr = tex_sample(rs, m->metallic_roughness_tex, u, v, 1);
+        sf->roughness *= mr.y;
+        sf->metallic *= mr.z;
+    }
+    sf->metallic = clamp01(sf->metallic);
+    sf->roughness = clamp01(sf->roughness);
+    float r = fmaxf(sf->roughness, 0.05f);
+    sf->alpha = r * r; /* >= 0.0025 as the spec clamps */
+    sf->transmission = clamp01(m->transmission);
+    sf->ior = m->ior > 1.0f ? m->ior : 1.5f;
+    sf->f0 = v3_lerp(v3(0.04f, 0.04f, 0.04f), sf->base, sf->metallic);
+    if (rs->diffuse_only) {
+        sf->metallic = 0.0f;
+        sf->transmission = 0.0f;
+    }
+    sf->diffuse_only = rs->diffuse_only;
+    sf->mirror = sf->metallic > 0.5f && sf->roughness < 0.05f;
+    sf->p_dielectric = (sf->transmission > 0.0f && sf->roughness < 0.05f) ? sf->transmission : 0.0f;
+    float diffuse = (1.0f - sf->metallic) * lum3(sf->base);
+    sf->p_mirror = sf->mirror ? (diffuse > 0.0f ? 0.5f : 1.0f) : 0.0f;
+    vec3 n = v3_add(v3_add(v3_scale(t->n[0], b0), v3_scale(t->n[1], b1)), v3_scale(t->n[2], b2));
+    sf->ng = t->ng;
+    sf->n = v3_len(n) > 1e-12f ? v3_norm(n) : t->ng;
+    /* Keep the shading normal on the geometric normal's side, so flipping by the geometric side
+       below stays consistent. */
+    if (v3_dot(sf->n, sf->ng) < 0.0f)
+        sf->n = v3_scale(sf->n, -1.0f);
+}
+
+bool gk_surface_has_smooth_part(const gk_surface *sf) { return sf->p_dielectric < 1.0f && sf->p_mirror < 1.0f; }
+
+static vec3 schlick(vec3 f0, float cos_t)
+{
+    float m = powf(clamp01(1.0f - cos_t), 5.0f);
+    return v3_add(f0, v3_scale(v3_sub(v3(1, 1, 1), f0), m));
+}
+
+static float ggx_d(float nh, float a2)
+{
+    float d = nh * nh * (a2 - 1.0f) + 1.0f;
+    return a2 / (GK_PI * d * d);
+}
+
+static float smith_v(float nl, float nv, float a2)
+{
+    float gv = nl * sqrtf(nv * nv * (1.0f - a2) + a2);
+    float gl = nv * sqrtf(nl * nl * (1.0f - a2) + a2);
+    return 0.5f / (gv + gl);
+}
+
+static float smith_g1(float nv, float a2) { return 2.0f * nv / (nv + sqrtf(a2 + (1.0f - a2) * nv * nv)); }
+
+/* Probability of the GGX lobe (vs diffuse) among the non-delta lobes, from the lobes' albedos. */
+static float p_specular(const gk_surface *sf, float nv)
+{
+    if (sf->mirror || sf->diffuse_only)
+        return 0.0f;
+    float spec = lum3(schlick(sf->f0, nv));
+    float diff = (1.0f - sf->metallic) * lum3(sf->base);
+    if (diff <= 0.0f)
+        return 1.0f;
+    float p = spec / (spec + diff);
+    return p < 0.1f ? 0.1f : (p > 0.9f ? 0.9f : p);
+}
+
+/* Normal on wo's side: surfaces scatter on both faces (no back-face culling in the tracer). */
+static vec3 side_normal(const gk_surface *sf, vec3 wo, vec3 *ng)
+{
+    bool back = v3_dot(wo, sf->ng) < 0.0f;
+    *ng = back ? v3_scale(sf->ng, -1.0f) : sf->ng;
+    return back ? v3_scale(sf->n, -1.0f) : sf->n;
+}
+
+vec3 gk_bsdf_eval(const gk_surface *sf, vec3 wo, vec3 wi, float *pdf)
+{
+    *pdf = 0.0f;
+    vec3 ng;
+    vec3 n = side_normal(sf, wo, &ng);
+    float nl = v3_dot(n, wi), nv = v3_dot(n, wo);
+    if (nl <= 0.0f || nv <= 0.0f || v3_dot(ng, wi) <= 0.0f)
+        return v3(0, 0, 0);
+    float opaque = 1.0f - sf->p_dielectric;
+    float smooth_sel = opaque * (1.0f - sf->p_mirror);
+    if (smooth_sel <= 0.0f)
+        return v3(0, 0, 0);
+    vec3 f = v3_scale(sf->base, (1.0f - sf->metallic) / GK_PI);
+    float ps = p_specular(sf, nv);
+    float pdf_spec = 0.0f;
+    if (!sf->mirror && !sf->diffuse_only) {
+        vec3 h = v3_norm(v3_add(wo, wi));
+        float nh = fmaxf(v3_dot(n, h), 0.0f), vh = fmaxf(v3_dot(wo, h), 0.0f);
+        float a2 = sf->alpha * sf->alpha;
+        float d = ggx_d(nh, a2);
+        vec3 F = schlick(sf->f0, vh);
+        f = v3_add(f, v3_scale(F, d * smith_v(nl, nv, a2)));
+        pdf_spec = smith_g1(nv, a2) * d / (4.0f * nv);
+    }
+    *pdf = smooth_sel * ((1.0f - ps) * nl / GK_PI + ps * pdf_spec);
+    return v3_scale(f, opaque);
+}
+
+/* Heitz 2018, "Sampling the GGX Distribution of Visible Normals", isotropic; local frame z = n. */
+static vec3 sample_vndf(vec3 wo, float alpha, float u1, float u2)
+{
+    vec3 vh = v3_norm(v3(alpha * wo.x, alpha * wo.y, wo.z));
+    float lensq = vh.x * vh.x + vh.y * vh.y;
+    vec3 t1 = lensq > 0.0f ? v3_scale(v3(-vh.y, vh.x, 0.0f), 1.0f / sqrtf(lensq)) : v3(1, 0, 0);
+    vec3 t2 = v3_cross(vh, t1);
+    float r = sqrtf(u1), phi = 2.0f * GK_PI * u2;
+    float p1 = r * cosf(phi), p2 = r * sinf(phi);
+    float s = 0.5f * (1.0f + vh.z);
+    p2 = (1.0f - s) * sqrtf(fmaxf(0.0f, 1.0f - p1 * p1)) + s * p2;
+    vec3 nh = v3_add(v3_add(v3_scale(t1, p1), v3_scale(t2, p2)), v3_scale(vh, sqrtf(fmaxf(0.0f, 1.0f - p1 * p1 - p2 * p2))));
+    return v3_norm(v3(alpha * nh.x, alpha * nh.y, fmaxf(1e-6f, nh.z)));
+}
+
+static float fresnel_dielectric(float cos_i, float eta) /* eta = eta_t / eta_i, cos_i > 0 */
+{
+    float sin2_t = (1.0f - cos_i * cos_i) / (eta * eta);
+    if (sin2_t >= 1.0f)
+        return 1.0f;
+    float cos_t = sqrtf(1.0f - sin2_t);
+    float rs = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
+    float rp = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
+    return 0.5f * (rs * rs + rp * rp);
+}
+
+static vec3 reflect_about(vec3 wo, vec3 n) { return v3_sub(v3_scale(n, 2.0f * v3_dot(wo, n)), wo); }
+
+bool gk_bsdf_sample_dir(const gk_surface *sf, vec3 wo, bool radiance_mode, gk_rng *rng, gk_bsdf_sample *out)
+{
+    float u0 = gk_rng_float(rng), u1 = gk_rng_float(rng), u2 = gk_rng_float(rng);
+    vec3 ng;
+    vec3 n = side_normal(sf, wo, &ng);
+    float nv = v3_dot(n, wo);
+    if (u0 < sf->p_dielectric) {
+        /* Smooth dielectric: entering when wo is on the front face (by winding). */
+        bool entering = v3_dot(wo, sf->ng) > 0.0f;
+        float eta = entering ? sf->ior : 1.0f / sf->ior; /* eta_t / eta_i */
+        float cos_i = fabsf(v3_dot(wo, n));
+        float fr = fresnel_dielectric(cos_i, eta);
+        out->delta = true;
+        out->pdf = 0.0f;
+        if (u1 < fr) {
+            out->wi = reflect_about(wo, n);
+            out->weight = v3(1, 1, 1);
+        } else {
+            float sin2_t = (1.0f - cos_i * cos_i) / (eta * eta);
+            float cos_t = sqrtf(fmaxf(0.0f, 1.0f - sin2_t));
+            out->wi = v3_norm(v3_sub(v3_scale(v3_scale(wo, -1.0f), 1.0f / eta), v3_scale(n, cos_t - cos_i / eta)));
+            float scale = radiance_mode ? 1.0f / (eta * eta) : 1.0f;
+            out->weight = v3_scale(sf->base, scale);
+        }
+        return true;
+    }
+    if (nv <= 0.0f)
+        return false;
+    float u_opaque = (u0 - sf->p_dielectric) / (1.0f - sf->p_dielectric); /* reuse u0, rescaled */
+    if (u_opaque < sf->p_mirror) {
+        out->delta = true;
+        out->pdf = 0.0f;
+        out->wi = reflect_about(wo, n);
+        if (v3_dot(out->wi, ng) <= 0.0f)
+            return false;
+        out->weight = v3_scale(schlick(sf->f0, nv), 1.0f / sf->p_mirror);
+        return true;
+    }
+    float ps = p_specular(sf, nv);
+    float u_lobe = (u_opaque - sf->p_mirror) / (1.0f - sf->p_mirror);
+    vec3 t, b;
+    gk_onb(n, &t, &b);
+    vec3 wi;
+    if (u_lobe < ps) {
+        vec3 wol = gk_to_local(wo, t, b, n);
+        vec3 h = gk_to_world(sample_vndf(wol, sf->alpha, u1, u2), t, b, n);
+        wi = reflect_about(wo, h);
+    } else {
+        wi = gk_to_world(gk_sample_cosine_hemisphere(u1, u2), t, b, n);
+    }
+    float pdf;
+    vec3 f = gk_bsdf_eval(sf, wo, wi, &pdf);
+    if (pdf <= 0.0f || (f.x <= 0.0f && f.y <= 0.0f && f.z <= 0.0f))
+        return false;
+    out->wi = wi;
+    out->delta = false;
+    out->pdf = pdf;
+    out->weight = v3_scale(f, v3_dot(n, wi) / pdf);
+    return true;
+}

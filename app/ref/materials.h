@@ -1,0 +1,48 @@
+/* The BRDF of app/core/brdf_spec.md for the path tracer: Lambert + GGX (height-correlated Smith,
+ * Schlick Fresnel, glTF's simple mix), sampled by one-sample mixture of cosine-weighted diffuse and
+ * GGX visible normals (Heitz 2018); delta mirror (metallic > 0.5, roughness < 0.05) with reflectance
+ * F(F0, cos); smooth dielectric (transmission > 0, roughness < 0.05) weighted by `transmission`,
+ * Fresnel-chosen reflection or refraction, refraction tinted by base colour.
+ * Known simplification: rough transmission (roughness >= 0.05) is rendered as the opaque BRDF. */
+#ifndef GK_REF_MATERIALS_H
+#define GK_REF_MATERIALS_H
+
+#include <stdbool.h>
+
+#include "ref_scene.h"
+#include "sample.h"
+
+typedef struct gk_surface {
+    vec3 base;             /* linear base colour (factor x texture) */
+    float metallic, roughness, alpha;
+    float transmission, ior;
+    vec3 f0;
+    bool mirror;           /* the specular lobe is a delta mirror */
+    bool diffuse_only;     /* gk_ref_scene.diffuse_only: no GGX lobe */
+    float p_dielectric;    /* probability of the delta dielectric lobe (= transmission if smooth) */
+    float p_mirror;        /* within the opaque part: probability of the delta mirror */
+    vec3 n;                /* shading normal, unit, as stored (front face by the mesh) */
+    vec3 ng;               /* geometric normal, unit, front face by winding */
+} gk_surface;
+
+typedef struct gk_bsdf_sample {
+    vec3 wi;               /* unit, away from the surface */
+    vec3 weight;           /* f cos / pdf, including lobe choice */
+    float pdf;             /* non-delta: solid-angle pdf of the whole non-delta part (for MIS) */
+    bool delta;
+} gk_bsdf_sample;
+
+void gk_surface_init(gk_surface *sf, const gk_ref_scene *rs, const gk_ref_tri *t, float b1, float b2);
+
+/* True when the surface has a non-delta part (light sampling and camera connections apply). */
+bool gk_surface_has_smooth_part(const gk_surface *sf);
+
+/* Non-delta part: f(wo, wi) (without the cosine) and, in *pdf, the probability density with which
+ * gk_bsdf_sample would pick wi through its non-delta lobes. Reflection only. */
+vec3 gk_bsdf_eval(const gk_surface *sf, vec3 wo, vec3 wi, float *pdf);
+
+/* Samples the full BSDF. radiance_mode: eye paths (radiance is scaled by (eta_t/eta_i)^2 across
+ * refraction); false for light paths (flux is not). Returns false when the path ends. */
+bool gk_bsdf_sample_dir(const gk_surface *sf, vec3 wo, bool radiance_mode, gk_rng *rng, gk_bsdf_sample *out);
+
+#endif

@@ -1,0 +1,285 @@
+/* Threaded, deterministic rendering of reference images (see render.h). */
+#include "render.h"
+
+#include <math.h>
+#include <pthread.h>
+#include <stdatomic.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#define TILE 16
+#define LIGHT_CHUNKS 16  /* fixed, so the sum order does not depend on the thread count; even, so
+                            chunks [0, 8) hold exactly the first half of the samples */
+
+typedef struct job {
+    const gk_ref_scene *rs;
+    const gk_ref_options *o;
+    int n1;                  /* samples in the first half */
+    int tiles_x, n_tiles, n_items;
+    double *sum_h1, *sum_all; /* eye pass: per pixel RGB sums of the first half and of all samples */
+    float **chunk;           /* light pass: one splat image per chunk */
+    atomic_int next, done;
+    atomic_ullong rays;
+    pthread_mutex_t progress_lock;
+    int last_percent;
+    bool light_pass;
+    int failed;
+} job;
+
+void gk_ref_options_default(gk_ref_options *o)
+{
+    memset(o, 0, sizeof *o);
+    o->spp = 64;
+    o->threads = 1;
+    o->max_depth = 32;
+    o->rr_depth = 4;
+    o->seed = 1;
+    o->paths = GK_PATH_ALL;
+}
+
+int gk_ref_paths_parse(const char *s)
+{
+    if (!strcmp(s, "all"))
+        return GK_PATH_ALL;
+    if (!strcmp(s, "direct"))
+        return GK_PATH_DIRECT;
+    if (!strcmp(s, "indirect"))
+        return GK_PATH_INDIRECT;
+    if (!strcmp(s, "caustics"))
+        return GK_PATH_CAUSTICS;
+    return -1;
+}
+
+const char *gk_ref_paths_name(unsigned mask)
+{
+    switch (mask) {
+    case GK_PATH_ALL: return "all";
+    case GK_PATH_DIRECT: return "direct";
+    case GK_PATH_INDIRECT: return "indirect";
+    case GK_PATH_CAUSTICS: return "caustics";
+    default: return "mixed";
+    }
+}
+
+static void render_tile(job *j, int tile, gk_trace_stats *st)
+{
+    const gk_ref_scene *rs = j->rs;
+    int x0 = (tile % j->tiles_x) * TILE, y0 = (tile / j->tiles_x) * TILE;
+    for (int y = y0; y < y0 + TILE && y < rs->height; y++)
+        for (int x = x0; x < x0 + TILE && x < rs->width; x++) {
+            size_t pix = (size_t)y * rs->width + x;
+            vec3 d = gk_ref_camera_dir(rs, x + 0.5f, y + 0.5f);
+            double acc[3] = {0, 0, 0};
+            for (int s = 0; s < j->o->spp; s++) {
+                if (s == j->n1)
+                    for (int c = 0; c < 3; c++)
+                        j->sum_h1[3 * pix + c] = acc[c];
+                gk_rng rng;
+                gk_rng_seed(&rng, j->o->seed, pix, (uint64_t)s, 0);
+                vec3 l = gk_trace_eye(rs, rs->eye, d, j->o->paths, j->o->max_depth, j->o->rr_depth, &rng, st);
+                /* A NaN or Inf sample would poison the pixel: drop it (counted as black). */
+                if (isfinite(l.x) && isfinite(l.y) && isfinite(l.z)) {
+                    acc[0] += l.x;
+                    acc[1] += l.y;
+                    acc[2] += l.z;
+                }
+            }
+            if (j->n1 >= j->o->spp)
+                for (int c = 0; c < 3; c++)
+                    j->sum_h1[3 * pix + c] = acc[c];
+            for (int c = 0; c < 3; c++)
+                j->sum_all[3 * pix + c] = acc[c];
+        }
+}
+
+typedef struct splat_ctx { float *img; int width; } splat_ctx;
+
+static void splat_into(void *ctx, int px, int py, vec3 v)
+{
+    splat_ctx *c = ctx;
+    if (!(isfinite(v.x) && isfinite(v.y) && isfinite(v.z)))
+        return;
+    float *p = &c->img[3 * ((size_t)py * c->width + px)];
+    p[0] += v.x;
+    p[1] += v.y;
+    p[2] += v.z;
+}
+
+static int chunk_first_sample(int chunk, int spp) { return (int)((int64_t)chunk * spp / LIGHT_CHUNKS); }
+
+static void render_chunk(job *j, int chunk, gk_trace_stats *st)
+{
+    const gk_ref_scene *rs = j->rs;
+    size_t npix = (size_t)rs->width * rs->height;
+    float *img = calloc(npix * 3, sizeof(float));
+    if (!img) {
+        j->failed = 1;
+        return;
+    }
+    splat_ctx c = {img, rs->width};
+    for (int s = chunk_first_sample(chunk, j->o->spp); s < chunk_first_sample(chunk + 1, j->o->spp); s++)
+        for (size_t p = 0; p < npix; p++) {
+            gk_rng rng;
+            gk_rng_seed(&rng, j->o->seed, p, (uint64_t)s, 1);
+            gk_trace_light(rs, j->o->max_depth, &rng, splat_into, &c, st);
+        }
+    j->chunk[chunk] = img;
+}
+
+static void show_progress(job *j)
+{
+    int done = atomic_fetch_add(&j->done, 1) + 1;
+    if (!j->o->progress)
+        return;
+    int percent = (int)(100.0 * done / j->n_items);
+    pthread_mutex_lock(&j->progress_lock);
+    if (percent != j->last_percent) {
+        j->last_percent = percent;
+        int bar = percent / 4;
+        fprintf(stderr, "\rreference [%.*s%*s] %3d%%", bar, "=========================", 25 - bar, "", percent);
+        if (done == j->n_items)
+            fputc('\n', stderr);
+        fflush(stderr);
+    }
+    pthread_mutex_unlock(&j->progress_lock);
+}
+
+static void *worker(void *arg)
+{
+    job *j = arg;
+    gk_trace_stats st = {0};
+    for (;;) {
+        int item = atomic_fetch_add(&j->next, 1);
+        if (item >= j->n_items)
+            break;
+        if (item < j->n_tiles)
+            render_tile(j, item, &st);
+        else
+            render_chunk(j, item - j->n_tiles, &st);
+        show_progress(j);
+    }
+    atomic_fetch_add(&j->rays, st.rays);
+    return NULL;
+}
+
+double gk_ref_rel_rmse(const float *t, const float *r, size_t n)
+{
+    double se = 0.0, sr = 0.0;
+    for (size_t i = 0; i < n; i++) {
+        double d = (double)t[i] - (double)r[i];
+        se += d * d;
+        sr += r[i];
+    }
+    if (n == 0 || sr == 0.0)
+        return NAN;
+    return sqrt(se / (double)n) / (sr / (double)n);
+}
+
+int gk_ref_render(const gk_ref_scene *rs, const gk_ref_options *o, gk_ref_result *r, gk_err *e)
+{
+    memset(r, 0, sizeof *r);
+    if (rs->width <= 0 || rs->height <= 0 || o->spp <= 0 || o->threads <= 0)
+        return gk_fail(e, GK_EINPUT, "reference: size, spp and threads must be positive");
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    size_t npix = (size_t)rs->width * rs->height;
+    job j;
+    memset(&j, 0, sizeof j);
+    j.rs = rs;
+    j.o = o;
+    j.n1 = o->spp / 2;
+    j.tiles_x = (rs->width + TILE - 1) / TILE;
+    j.n_tiles = j.tiles_x * ((rs->height + TILE - 1) / TILE);
+    j.light_pass = (o->paths & GK_PATH_CAUSTICS) && rs->n_lights > 0 && rs->has_delta_surfaces;
+    j.n_items = j.n_tiles + (j.light_pass ? LIGHT_CHUNKS : 0);
+    j.last_percent = -1;
+    j.sum_h1 = calloc(npix * 3, sizeof(double));
+    j.sum_all = calloc(npix * 3, sizeof(double));
+    j.chunk = calloc(LIGHT_CHUNKS, sizeof(float *));
+    r->rgb = malloc(npix * 3 * sizeof(float));
+    float *h1 = malloc(npix * 3 * sizeof(float)), *h2 = malloc(npix * 3 * sizeof(float));
+    if (!j.sum_h1 || !j.sum_all || !j.chunk || !r->rgb || !h1 || !h2) {
+        gk_fail(e, GK_ERUNTIME, "reference: out of memory for a %dx%d image", rs->width, rs->height);
+        goto fail;
+    }
+    atomic_init(&j.next, 0);
+    atomic_init(&j.done, 0);
+    atomic_init(&j.rays, 0);
+    pthread_mutex_init(&j.progress_lock, NULL);
+    pthread_t *th = calloc((size_t)o->threads, sizeof *th);
+    int started = 0;
+    if (th)
+        for (int i = 1; i < o->threads; i++, started++)
+            if (pthread_create(&th[i], NULL, worker, &j))
+                break;
+    worker(&j); /* the calling thread works too */
+    for (int i = 1; i <= started; i++)
+        pthread_join(th[i], NULL);
+    free(th);
+    pthread_mutex_destroy(&j.progress_lock);
+    if (j.failed) {
+        gk_fail(e, GK_ERUNTIME, "reference: out of memory for the light-tracing buffers");
+        goto fail;
+    }
+
+    /* Eye pass + light pass, each half normalised by its own sample count. Light paths: one per
+       pixel per sample, so a sample's light image is divided by (spp * pixels). */
+    int n1 = j.n1, n2 = o->spp - j.n1;
+    double inv_all = 1.0 / o->spp, inv_light = 1.0 / ((double)o->spp * (double)npix);
+    for (size_t i = 0; i < npix * 3; i++) {
+        double l1 = 0.0, l2 = 0.0;
+        if (j.light_pass)
+            for (int c = 0; c < LIGHT_CHUNKS; c++)
+                *(c < LIGHT_CHUNKS / 2 ? &l1 : &l2) += j.chunk[c][i];
+        double a1 = j.sum_h1[i], a2 = j.sum_all[i] - j.sum_h1[i];
+        r->rgb[i] = (float)((j.sum_all[i]) * inv_all + (l1 + l2) * inv_light);
+        if (n1 > 0 && n2 > 0) {
+            h1[i] = (float)(a1 / n1 + l1 / ((double)n1 * npix));
+            h2[i] = (float)(a2 / n2 + l2 / ((double)n2 * npix));
+        }
+    }
+    r->noise_floor = NAN;
+    if (n1 > 0 && n2 > 0) {
+        double se = 0.0, sum = 0.0;
+        for (size_t i = 0; i < npix * 3; i++) {
+            double d = (double)h1[i] - (double)h2[i];
+            se += d * d;
+            sum += r->rgb[i];
+        }
+        if (sum > 0.0)
+            r->noise_floor = sqrt(se / (double)(npix * 3)) / (sum / (double)(npix * 3)) /
+                             sqrt((double)o->spp * (1.0 / n1 + 1.0 / n2));
+    }
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    r->seconds = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
+    r->rays = atomic_load(&j.rays);
+    r->samples = (uint64_t)npix * (uint64_t)o->spp;
+    r->light_paths = j.light_pass ? r->samples : 0;
+    for (int c = 0; c < LIGHT_CHUNKS; c++)
+        free(j.chunk[c]);
+    free(j.chunk);
+    free(j.sum_h1);
+    free(j.sum_all);
+    free(h1);
+    free(h2);
+    return 0;
+fail:
+    if (j.chunk)
+        for (int c = 0; c < LIGHT_CHUNKS; c++)
+            free(j.chunk[c]);
+    free(j.chunk);
+    free(j.sum_h1);
+    free(j.sum_all);
+    free(h1);
+    free(h2);
+    gk_ref_result_free(r);
+    return -1;
+}
+
+void gk_ref_result_free(gk_ref_result *r)
+{
+    free(r->rgb);
+    r->rgb = NULL;
+}

@@ -1,0 +1,51 @@
+/* Rendering a reference image: pthreads over a tile work queue (eye paths) and light-path chunks
+ * (caustics seen directly), deterministic for a seed whatever the thread count: every pixel sample
+ * and every light path has its own random stream, seeded from (seed, pixel or path, sample), and
+ * the light-path chunks are fixed (not per thread) and summed in a fixed order.
+ *
+ * Noise floor: the samples are split into two independent halves (samples [0, S/2) and [S/2, S));
+ * with the halves' images h1 and h2, rel RMSE(h1, h2) = sigma sqrt(1/n1 + 1/n2) / mean, so the
+ * floor of the full S-sample image is rel RMSE(h1, h2) / sqrt(S (1/n1 + 1/n2)) (= /2 for equal
+ * halves) — statistically the same as two renders with different seeds divided by sqrt(2), scaled
+ * to S samples, at no extra cost. Rel RMSE (binding definition, shared with the metrics):
+ *   sqrt(mean over pixels and RGB of (t - r)^2) / (mean over pixels and RGB of r). */
+#ifndef GK_REF_RENDER_H
+#define GK_REF_RENDER_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "ref_scene.h"
+#include "trace.h"
+
+typedef struct gk_ref_options {
+    int spp;             /* samples per pixel (and light paths per pixel for caustics) */
+    int threads;         /* >= 1 */
+    int max_depth;       /* path vertices after the camera; 32 by default */
+    int rr_depth;        /* Russian roulette from this vertex on (4 by default; > max_depth: never) */
+    uint64_t seed;
+    unsigned paths;      /* GK_PATH_* mask */
+    bool progress;       /* draw a progress bar on stderr */
+} gk_ref_options;
+
+typedef struct gk_ref_result {
+    float *rgb;          /* width * height * 3, linear radiance, top row first */
+    double noise_floor;  /* relative RMSE floor of this image (NAN when spp < 2 or the image is black) */
+    double seconds;
+    uint64_t rays;
+    uint64_t samples;    /* camera samples (pixels x spp) */
+    uint64_t light_paths;
+} gk_ref_result;
+
+void gk_ref_options_default(gk_ref_options *o);
+int gk_ref_render(const gk_ref_scene *rs, const gk_ref_options *o, gk_ref_result *r, gk_err *e);
+void gk_ref_result_free(gk_ref_result *r);
+
+/* Relative RMSE of t against r (n floats each), as defined above; NAN if mean(r) is 0. */
+double gk_ref_rel_rmse(const float *t, const float *r, size_t n);
+
+/* "all", "direct", "indirect", "caustics" <-> mask; -1 if unknown. */
+int gk_ref_paths_parse(const char *s);
+const char *gk_ref_paths_name(unsigned mask);
+
+#endif

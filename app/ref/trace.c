@@ -1,0 +1,157 @@
+/* Eye-path integrator with NEE + MIS and the scene intersection helpers (see trace.h). */
+#include "trace.h"
+
+#include <float.h>
+#include <math.h>
+
+#include "lights.h"
+#include "materials.h"
+
+/* Offsets for spawning rays off surfaces, relative to the scene size: large enough to escape the
+   float error of the hit point, small enough not to skip thin geometry. */
+#define EPS_REL 1e-5f
+
+bool gk_scene_intersect(const gk_ref_scene *rs, vec3 o, vec3 d, float tmax, gk_scene_hit *h)
+{
+    gk_bvh_hit bh;
+    float tmin = 0.0f;
+    h->tri = -1;
+    h->light = -1;
+    h->t = tmax;
+    if (gk_bvh_intersect(&rs->bvh, o, d, tmin, tmax, &bh)) {
+        h->t = bh.t;
+        h->tri = (int)bh.tri;
+        h->b1 = bh.u;
+        h->b2 = bh.v;
+    }
+    float tl;
+    int li = gk_area_lights_intersect(rs, o, d, h->t, &tl);
+    if (li >= 0) {
+        h->t = tl;
+        h->light = li;
+        h->tri = -1;
+    }
+    return h->tri >= 0 || h->light >= 0;
+}
+
+bool gk_scene_occluded(const gk_ref_scene *rs, vec3 o, vec3 d, float tmax)
+{
+    return gk_bvh_occluded(&rs->bvh, o, d, 0.0f, tmax) || gk_area_lights_occlude(rs, o, d, tmax);
+}
+
+/* The class of a path ending at a light now; 0 for directly seen caustics (E D S+ L), which the
+   light pass renders. */
+static unsigned classify(int n_diffuse, bool specular_after_diffuse, bool specular_before_diffuse)
+{
+    if (n_diffuse >= 2)
+        return GK_PATH_INDIRECT;
+    if (n_diffuse == 1 && specular_after_diffuse)
+        return specular_before_diffuse ? GK_PATH_CAUSTICS : 0;
+    return GK_PATH_DIRECT;
+}
+
+static vec3 offset_point(const gk_ref_scene *rs, vec3 p, vec3 ng, vec3 dir)
+{
+    float eps = EPS_REL * (rs->radius + fmaxf(fabsf(p.x), fmaxf(fabsf(p.y), fabsf(p.z))));
+    return v3_add(p, v3_scale(ng, v3_dot(dir, ng) > 0.0f ? eps : -eps));
+}
+
+vec3 gk_trace_eye(const gk_ref_scene *rs, vec3 o, vec3 d, unsigned mask, int max_depth, int rr_depth,
+                  gk_rng *rng, gk_trace_stats *st)
+{
+    vec3 radiance = v3(0, 0, 0), beta = v3(1, 1, 1);
+    int n_diffuse = 0;
+    bool spec_after_diffuse = false, spec_before_diffuse = false;
+    bool prev_delta = true; /* the camera ray counts as a delta step: no MIS for what it sees */
+    float prev_pdf = 0.0f;
+    vec3 prev_p = o;
+    for (int depth = 0; depth <= max_depth; depth++) {
+        gk_scene_hit h;
+        st->rays++;
+        if (!gk_scene_intersect(rs, o, d, INFINITY, &h)) {
+            int sun;
+            vec3 le = gk_sky_emission(rs, d, &sun);
+            if (sun >= 0 && (mask & classify(n_diffuse, spec_after_diffuse, spec_before_diffuse))) {
+                float w = prev_delta ? 1.0f : gk_power_heuristic(prev_pdf, gk_light_pdf(rs, sun, -1, prev_p, prev_p, d));
+                radiance = v3_add(radiance, v3_mul(beta, v3_scale(le, w)));
+            }
+            break;
+        }
+        vec3 x = v3_add(o, v3_scale(d, h.t));
+        if (h.light >= 0) {
+            vec3 le = gk_area_light_emission(rs, h.light, d);
+            if (mask & classify(n_diffuse, spec_after_diffuse, spec_before_diffuse)) {
+                float w = prev_delta ? 1.0f : gk_power_heuristic(prev_pdf, gk_light_pdf(rs, h.light, -1, prev_p, x, d));
+                radiance = v3_add(radiance, v3_mul(beta, v3_scale(le, w)));
+            }
+            break; /* light geometry is black apart from its emission */
+        }
+        const gk_ref_tri *tri = &rs->tris[h.tri];
+        if (tri->emissive >= 0 && (mask & classify(n_diffuse, spec_after_diffuse, spec_before_diffuse))) {
+            vec3 le = gk_tri_emission(rs, tri, d);
+            float w = prev_delta ? 1.0f
+                                 : gk_power_heuristic(prev_pdf, gk_light_pdf(rs, rs->mesh_light, h.tri, prev_p, x, d));
+            radiance = v3_add(radiance, v3_mul(beta, v3_scale(le, w)));
+        }
+        if (depth == max_depth)
+            break;
+        gk_surface sf;
+        gk_surface_init(&sf, rs, tri, h.b1, h.b2);
+        vec3 wo = v3_scale(d, -1.0f);
+
+        /* Next-event estimation: this vertex becomes a D vertex next to the light. */
+        if (gk_surface_has_smooth_part(&sf) && (mask & classify(n_diffuse + 1, false, false))) {
+            gk_light_sample ls;
+            if (gk_light_sample_from(rs, x, rng, &ls)) {
+                float pdf_b;
+                vec3 f = gk_bsdf_eval(&sf, wo, ls.wi, &pdf_b);
+                float cos_s = fabsf(v3_dot(sf.n, ls.wi));
+                if (f.x > 0.0f || f.y > 0.0f || f.z > 0.0f) {
+                    vec3 so = offset_point(rs, x, sf.ng, ls.wi);
+                    float tmax = isinf(ls.dist) ? INFINITY : ls.dist * (1.0f - 1e-4f);
+                    st->rays++;
+                    if (!gk_scene_occluded(rs, so, ls.wi, tmax)) {
+                        float w = ls.delta ? 1.0f : gk_power_heuristic(ls.pdf, pdf_b);
+                        vec3 c = v3_scale(v3_mul(f, ls.li), cos_s * w / ls.pdf);
+                        radiance = v3_add(radiance, v3_mul(beta, c));
+                    }
+                }
+            }
+        } else if (gk_surface_has_smooth_part(&sf)) {
+            /* Keep the random stream aligned whatever the mask, so that renders of the separate
+               classes with one seed add up to the full render sample by sample. */
+            gk_light_sample ls;
+            gk_light_sample_from(rs, x, rng, &ls);
+        }
+
+        gk_bsdf_sample bs;
+        if (!gk_bsdf_sample_dir(&sf, wo, true, rng, &bs))
+            break;
+        if (bs.delta) {
+            if (n_diffuse >= 1)
+                spec_after_diffuse = true;
+            else
+                spec_before_diffuse = true;
+        } else {
+            n_diffuse++;
+            spec_after_diffuse = false;
+        }
+        beta = v3_mul(beta, bs.weight);
+        prev_delta = bs.delta;
+        prev_pdf = bs.pdf;
+        prev_p = x;
+        o = offset_point(rs, x, sf.ng, bs.wi);
+        d = bs.wi;
+        /* Paths that can no longer reach a wanted class end early (same stream use either way
+           is not needed past this point: nothing further is accumulated). */
+        if (n_diffuse >= 2 && !(mask & GK_PATH_INDIRECT))
+            break;
+        if (depth + 1 >= rr_depth) {
+            float q = fminf(0.95f, v3_maxc(beta));
+            if (gk_rng_float(rng) >= q)
+                break;
+            beta = v3_scale(beta, 1.0f / q);
+        }
+    }
+    return radiance;
+}

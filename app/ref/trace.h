@@ -1,0 +1,57 @@
+/* Path integrators of the reference path tracer.
+ *
+ * Light paths are split by Heckbert's notation (E eye, L light, D diffuse or glossy vertex, S delta
+ * specular vertex), reading from the light:
+ *   direct    = L D S* E  +  L S* E   (direct lighting, and emission seen directly or via mirrors)
+ *   caustics  = L S+ D S* E           (light focused by mirrors or glass onto one diffuse vertex)
+ *   indirect  = every path with two or more D vertices
+ * The three classes partition all paths, so direct + indirect + caustics = all.
+ *
+ * Eye paths (gk_trace_eye) use next-event estimation with multiple importance sampling (power
+ * heuristic) between light sampling and BSDF sampling, Russian roulette (unbiased) after a few
+ * bounces, and classify each contribution by the D and S vertices seen so far.
+ * Caustics seen directly, L S+ D E, come from light tracing (gk_trace_light) for every light type:
+ * photons from the lights (chosen by power) through specular chains to the first diffuse hit,
+ * connected to the pinhole camera. Eye paths cannot find them for delta lights (no BSDF sample hits
+ * a point, no light sample leaves a delta vertex) and find them only with huge variance for small
+ * area lights. So the eye pass drops every caustic path whose first vertex from the eye is D
+ * (E D S+ L) and keeps the caustics seen through a mirror or glass (E S+ D S+ L) — nothing is
+ * counted twice. Not rendered (known bias, usually tiny): caustics of delta lights seen through a
+ * mirror or glass, L_delta S+ D S+ E, which neither pass can connect. */
+#ifndef GK_REF_TRACE_H
+#define GK_REF_TRACE_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "ref_scene.h"
+#include "sample.h"
+
+enum { GK_PATH_DIRECT = 1, GK_PATH_INDIRECT = 2, GK_PATH_CAUSTICS = 4, GK_PATH_ALL = 7 };
+
+typedef struct gk_trace_stats {
+    uint64_t rays;   /* closest-hit and shadow rays */
+} gk_trace_stats;
+
+typedef struct gk_scene_hit {
+    float t;
+    int tri;         /* triangle index, or -1 */
+    int light;       /* area-light index when the ray hit a light's geometry, else -1 */
+    float b1, b2;
+} gk_scene_hit;
+
+bool gk_scene_intersect(const gk_ref_scene *rs, vec3 o, vec3 d, float tmax, gk_scene_hit *h);
+bool gk_scene_occluded(const gk_ref_scene *rs, vec3 o, vec3 d, float tmax);
+
+/* Radiance along one camera ray, restricted to the path classes in mask. Russian roulette
+ * (survival min(0.95, max throughput)) applies from path vertex rr_depth on. */
+vec3 gk_trace_eye(const gk_ref_scene *rs, vec3 o, vec3 d, unsigned mask, int max_depth, int rr_depth,
+                  gk_rng *rng, gk_trace_stats *st);
+
+/* One light path; its camera connections are passed to splat(ctx, px, py, rgb)
+ * as image-plane measurement contributions (to be divided by the number of light paths). */
+typedef void (*gk_splat_fn)(void *ctx, int px, int py, vec3 value);
+void gk_trace_light(const gk_ref_scene *rs, int max_depth, gk_rng *rng, gk_splat_fn splat, void *ctx,
+                    gk_trace_stats *st);
+
+#endif

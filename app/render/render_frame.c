@@ -1,0 +1,283 @@
+/* One frame: shadow maps -> G-buffer -> direct light (emission, then one additive full-screen
+ * pass per light) -> GI (none yet) -> compose/tonemap into the caller's framebuffer. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../core/log.h"
+#include "../core/tonemap.h"
+#include "renderer_internal.h"
+
+static int ensure_targets(gk_renderer *r, int w, int h, gk_err *e)
+{
+    if (r->gbuf.fbo && r->gbuf.width == w && r->gbuf.height == h)
+        return 0;
+    gk_target_destroy(&r->gbuf);
+    gk_target_destroy(&r->hdr);
+    const GLenum gfmt[3] = {GL_RGBA8, GL_RGBA16F, GL_RGBA16F};
+    if (gk_target_create(&r->gbuf, "gbuffer", w, h, 3, gfmt, GL_NEAREST, true, e) != 0)
+        return -1;
+    const GLenum hfmt[1] = {GL_RGBA16F};
+    if (gk_target_create(&r->hdr, "hdr", w, h, 1, hfmt, GL_LINEAR, false, e) != 0)
+        return -1;
+    r->render_w = w;
+    r->render_h = h;
+    r->have_frame = false;
+    return 0;
+}
+
+static int method_index(const gk_shadow_method *m)
+{
+    for (int i = 0; i < GK_MAX_SHADOW_METHODS && gk_shadow_methods[i]; i++)
+        if (gk_shadow_methods[i] == m)
+            return i;
+    return -1;
+}
+
+/* One shadowed light of this frame. */
+typedef struct frame_light {
+    int node;
+    bool shadowed;
+    gk_shadow_view view;
+} frame_light;
+
+static int pass_shadows(gk_renderer *r, const gk_shadow_method *m, int map_size, frame_light *fl, int n, gk_err *e)
+{
+    if (!m)
+        return 0;
+    int mi = method_index(m);
+    if (!r->shadow_state[mi] && !(r->shadow_state[mi] = m->create()))
+        return gk_fail(e, GK_ERUNTIME, "shadow method %s: out of memory", m->name);
+    gk_shadow_ctx ctx = {.progs = r->progs, .scene = r->scene, .gpu = &r->gpu, .caps = &r->caps};
+    int slot = 0;
+    for (int i = 0; i < n && slot < GK_SHADOW_MAX_LIGHTS; i++) {
+        int size = map_size;
+        const gk_light *l = &r->scene->lights[r->scene->nodes[fl[i].node].light];
+        if (l->type != GK_LIGHT_DIRECTIONAL && (l->shape == GK_SHAPE_POINT || l->shape == GK_SHAPE_SPHERE) && size > 1024)
+            size = 1024; /* six faces: 2048^2 x 6 x 4 B = 96 MB is past a board's budget */
+        if (!gk_shadow_view_for_light(r->scene, fl[i].node, size, &fl[i].view))
+            continue;
+        if (m->render(r->shadow_state[mi], &ctx, slot, &fl[i].view, e) != 0)
+            return -1;
+        fl[i].shadowed = true;
+        slot++;
+    }
+    return 0;
+}
+
+static int pass_gbuffer(gk_renderer *r, const mat4 *viewproj, vec3 eye, gk_err *e)
+{
+    GLuint prog = gk_program_get(r->progs, "gbuffer/gbuffer.vert", "gbuffer/gbuffer.frag", NULL, e);
+    if (!prog)
+        return -1;
+    glBindFramebuffer(GL_FRAMEBUFFER, r->gbuf.fbo);
+    glViewport(0, 0, r->render_w, r->render_h);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+    const float zero[4] = {0, 0, 0, 0};
+    glClearBufferfv(GL_COLOR, 0, zero);
+    glClearBufferfv(GL_COLOR, 1, zero);
+    glClearBufferfv(GL_COLOR, 2, zero);
+    glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
+    glClear(GL_DEPTH_BUFFER_BIT);
+    glUseProgram(prog);
+    gk_uniform_mat4(prog, "u_viewproj", viewproj->m);
+    gk_uniform_3f(prog, "u_eye", eye.x, eye.y, eye.z);
+    gk_scene_gpu_draw(&r->gpu, r->scene, prog, GK_DRAW_MATERIALS);
+    return 0;
+}
+
+static void bind_gbuffer(gk_renderer *r, GLuint prog, const mat4 *inv_viewproj, vec3 eye)
+{
+    const GLuint tex[4] = {r->gbuf.color[0], r->gbuf.color[1], r->gbuf.color[2], r->gbuf.depth};
+    const char *names[4] = {"u_gb_albedo", "u_gb_normal", "u_gb_emission", "u_gb_depth"};
+    for (int i = 0; i < 4; i++) {
+        glActiveTexture(GL_TEXTURE0 + UNIT_ALBEDO + (GLenum)i);
+        glBindTexture(GL_TEXTURE_2D, tex[i]);
+        gk_uniform_1i(prog, names[i], UNIT_ALBEDO + i);
+    }
+    gk_uniform_mat4(prog, "u_inv_viewproj", inv_viewproj->m);
+    gk_uniform_3f(prog, "u_eye", eye.x, eye.y, eye.z);
+    gk_uniform_2f(prog, "u_viewport", (float)r->render_w, (float)r->render_h);
+}
+
+static void set_light_uniforms(GLuint prog, const gk_light *l, vec3 pos, vec3 dir, vec3 u, vec3 v)
+{
+    gk_uniform_3f(prog, "u_light_pos", pos.x, pos.y, pos.z);
+    gk_uniform_3f(prog, "u_light_dir", dir.x, dir.y, dir.z);
+    gk_uniform_3f(prog, "u_light_u", u.x, u.y, u.z);
+    gk_uniform_3f(prog, "u_light_v", v.x, v.y, v.z);
+    gk_uniform_3f(prog, "u_light_color", l->color[0] * l->intensity, l->color[1] * l->intensity,
+                  l->color[2] * l->intensity);
+    gk_uniform_1f(prog, "u_light_range", l->range);
+    gk_uniform_2f(prog, "u_light_cone", cosf(l->outer_cone), cosf(l->inner_cone));
+    gk_uniform_1f(prog, "u_light_radius", l->radius);
+    gk_uniform_2f(prog, "u_light_size", l->size[0], l->size[1]);
+}
+
+static int pass_direct(gk_renderer *r, const gk_shadow_method *m, const frame_light *fl, int n,
+                       const mat4 *inv_viewproj, vec3 eye, gk_err *e)
+{
+    glBindFramebuffer(GL_FRAMEBUFFER, r->hdr.fbo);
+    glViewport(0, 0, r->render_w, r->render_h);
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    glDisable(GL_BLEND);
+    GLuint prog = gk_program_get(r->progs, "common/fullscreen.vert", "direct/emission.frag", NULL, e);
+    if (!prog)
+        return -1;
+    glUseProgram(prog);
+    bind_gbuffer(r, prog, inv_viewproj, eye);
+    gk_render_fullscreen(r);
+
+    glEnable(GL_BLEND);
+    glBlendEquation(GL_FUNC_ADD);
+    glBlendFunc(GL_ONE, GL_ONE);
+    int mi = m ? method_index(m) : -1;
+    int slot = 0;
+    for (int i = 0; i < n; i++) {
+        const gk_scene *s = r->scene;
+        const gk_light *l = &s->lights[s->nodes[fl[i].node].light];
+        char defines[256];
+        snprintf(defines, sizeof defines, "#define GK_LIGHT_KIND %d\n%s%s", gk_render_light_kind(l),
+                 l->type == GK_LIGHT_SPOT ? "#define GK_LIGHT_SPOT 1\n" : "",
+                 fl[i].shadowed ? m->glsl_define : "");
+        prog = gk_program_get(r->progs, "common/fullscreen.vert", "direct/light.frag", defines, e);
+        if (!prog) {
+            glDisable(GL_BLEND);
+            return -1;
+        }
+        glUseProgram(prog);
+        bind_gbuffer(r, prog, inv_viewproj, eye);
+        vec3 pos, dir, u, v;
+        gk_scene_light_frame(s, fl[i].node, &pos, &dir, &u, &v);
+        set_light_uniforms(prog, l, pos, dir, u, v);
+        if (fl[i].shadowed)
+            m->bind(r->shadow_state[mi], slot++, &fl[i].view, prog, UNIT_SHADOW);
+        gk_render_fullscreen(r);
+    }
+    glDisable(GL_BLEND);
+    return 0;
+}
+
+int gk_render_compose(gk_renderer *r, GLuint fbo, int w, int h, bool linear_out, gk_err *e)
+{
+    GLuint prog = gk_program_get(r->progs, "common/fullscreen.vert", "compose/compose.frag",
+                                 linear_out ? "#define GK_LINEAR_OUT 1\n" : NULL, e);
+    if (!prog)
+        return -1;
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glViewport(0, 0, w, h);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_BLEND);
+    glUseProgram(prog);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, r->hdr.color[0]);
+    gk_uniform_1i(prog, "u_hdr", 0);
+    gk_uniform_1f(prog, "u_exposure", r->exposure);
+    gk_render_fullscreen(r);
+    return 0;
+}
+
+/* Exposure (tonemap.h): key 0.18 over the mean luminance of the first frame of a scene, then
+ * fixed, so the display does not pump as lights move. */
+static void measure_exposure(gk_renderer *r)
+{
+    int w = r->render_w, h = r->render_h;
+    float *px = malloc(sizeof(float) * 4 * (size_t)w * (size_t)h);
+    r->exposure = 1.0f;
+    r->exposure_known = true;
+    if (!px)
+        return;
+    glBindFramebuffer(GL_FRAMEBUFFER, r->hdr.fbo);
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    glReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, px);
+    double sum = 0.0;
+    for (long i = 0; i < (long)w * h; i++) {
+        float y = gk_luminance(px[4 * i], px[4 * i + 1], px[4 * i + 2]);
+        if (isfinite(y))
+            sum += y;
+    }
+    free(px);
+    double mean = sum / ((double)w * h);
+    if (mean > 1e-8)
+        r->exposure = (float)(0.18 / mean);
+}
+
+int gk_renderer_draw(gk_renderer *r, const gk_frame_params *fp, unsigned target_fbo, gk_pass_times *times, gk_err *e)
+{
+    if (times)
+        memset(times, 0, sizeof *times);
+    if (!r->scene)
+        return gk_fail(e, GK_ERUNTIME, "renderer: draw without a scene");
+    const gk_budget *b = fp ? fp->budget : NULL;
+    float scale = b ? gk_budget_float(b, "render_scale", 1.0f) : 1.0f;
+    const char *shadow_name = b ? gk_budget_value(b, "shadow") : NULL;
+    int map_size = b ? (int)gk_budget_float(b, "shadow_map", 1024.0f) : 1024;
+    const gk_shadow_method *m = gk_shadow_method_find(shadow_name ? shadow_name : "pcss");
+    if (scale <= 0.0f || scale > 1.0f)
+        scale = 1.0f;
+    int w = (int)lroundf((float)r->opts.width * scale), h = (int)lroundf((float)r->opts.height * scale);
+    if (w < 1) w = 1;
+    if (h < 1) h = 1;
+    if (ensure_targets(r, w, h, e) != 0)
+        return -1;
+
+    gk_scene *s = r->scene;
+    gk_scene_evaluate(s, fp ? (float)fp->time_s : 0.0f);
+    mat4 view, proj;
+    vec3 eye;
+    gk_scene_camera(s, (float)r->opts.width / (float)r->opts.height, &view, &proj, &eye);
+    mat4 viewproj = m4_mul(proj, view);
+    mat4 inv_viewproj = m4_inverse(viewproj);
+
+    frame_light fl[64];
+    int n = 0;
+    for (int i = 0; i < s->n_nodes && n < 64; i++)
+        if (s->nodes[i].light >= 0 && s->nodes[i].light < s->n_lights)
+            fl[n++] = (frame_light){.node = i};
+
+    while (glGetError() != GL_NO_ERROR) {
+    }
+    gk_timer_frame_begin(r->timer);
+    gk_timer_pass_begin(r->timer, "shadow");
+    int rc = pass_shadows(r, m, map_size, fl, n, e);
+    gk_timer_pass_end(r->timer);
+    if (rc == 0) {
+        gk_timer_pass_begin(r->timer, "gbuffer");
+        rc = pass_gbuffer(r, &viewproj, eye, e);
+        gk_timer_pass_end(r->timer);
+    }
+    if (rc == 0) {
+        gk_timer_pass_begin(r->timer, "direct");
+        rc = pass_direct(r, m, fl, n, &inv_viewproj, eye, e);
+        gk_timer_pass_end(r->timer);
+    }
+    if (rc == 0) {
+        /* GI methods render here ("gi" pass); method "none" adds nothing. */
+        gk_timer_pass_begin(r->timer, "gi");
+        gk_timer_pass_end(r->timer);
+        if (!r->exposure_known)
+            measure_exposure(r);
+        gk_timer_pass_begin(r->timer, "compose");
+        rc = gk_render_compose(r, target_fbo, r->opts.width, r->opts.height, false, e);
+        gk_timer_pass_end(r->timer);
+    }
+    gk_pass_times t;
+    gk_timer_frame_end(r->timer, &t);
+    if (times)
+        *times = t;
+    glUseProgram(0);
+    glBindFramebuffer(GL_FRAMEBUFFER, target_fbo);
+    if (rc != 0)
+        return -1;
+    GLenum err = glGetError();
+    if (err != GL_NO_ERROR)
+        return gk_fail(e, GK_ERUNTIME, "renderer: GL error %s during the frame", gk_gl_error_name(err));
+    r->have_frame = true;
+    return 0;
+}

@@ -1,0 +1,126 @@
+/* Renderer lifetime, scene upload and the GI method list. The passes are in render_frame.c. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../core/log.h"
+#include "renderer_internal.h"
+
+gk_renderer *gk_renderer_create(const gk_render_opts *opts, gk_err *e)
+{
+    if (!opts || opts->width <= 0 || opts->height <= 0) {
+        gk_fail(e, GK_EINPUT, "renderer: bad output size %dx%d", opts ? opts->width : 0, opts ? opts->height : 0);
+        return NULL;
+    }
+    gk_renderer *r = calloc(1, sizeof *r);
+    if (!r) {
+        gk_fail(e, GK_ERUNTIME, "renderer: out of memory");
+        return NULL;
+    }
+    r->opts = *opts;
+    if (opts->shader_dir) {
+        r->shader_dir = strdup(opts->shader_dir);
+        r->opts.shader_dir = r->shader_dir;
+    }
+    gk_gl_caps_query(&r->caps, opts->gles_version);
+    if (!r->caps.color_buffer_half) {
+        gk_fail(e, GK_ERUNTIME,
+                "renderer: RGBA16F is not colour-renderable (needs GLES 3.2, EXT_color_buffer_half_float or "
+                "EXT_color_buffer_float)");
+        free(r->shader_dir);
+        free(r);
+        return NULL;
+    }
+    r->progs = gk_program_cache_create(r->shader_dir, r->caps.gles >= 32 ? 32 : 31);
+    r->timer = gk_timer_create(opts->gpu_timer_queries && r->caps.timer_query);
+    glGenVertexArrays(1, &r->empty_vao);
+    if (!r->progs || !r->timer) {
+        gk_renderer_destroy(r);
+        gk_fail(e, GK_ERUNTIME, "renderer: out of memory");
+        return NULL;
+    }
+    /* Compile the always-used programs now, so a broken shader fails at start, not mid-show. */
+    static const char *const vf[][2] = {
+        {"gbuffer/gbuffer.vert", "gbuffer/gbuffer.frag"},
+        {"common/fullscreen.vert", "direct/emission.frag"},
+        {"common/fullscreen.vert", "compose/compose.frag"},
+        {"shadow/depth.vert", "shadow/depth.frag"},
+    };
+    for (size_t i = 0; i < sizeof vf / sizeof vf[0]; i++)
+        if (!gk_program_get(r->progs, vf[i][0], vf[i][1], NULL, e)) {
+            gk_renderer_destroy(r);
+            return NULL;
+        }
+    return r;
+}
+
+void gk_renderer_destroy(gk_renderer *r)
+{
+    if (!r)
+        return;
+    if (r->have_gpu)
+        gk_scene_gpu_free(&r->gpu);
+    gk_target_destroy(&r->gbuf);
+    gk_target_destroy(&r->hdr);
+    for (int i = 0; i < GK_MAX_SHADOW_METHODS && gk_shadow_methods[i]; i++)
+        if (r->shadow_state[i])
+            gk_shadow_methods[i]->destroy(r->shadow_state[i]);
+    if (r->empty_vao)
+        glDeleteVertexArrays(1, &r->empty_vao);
+    gk_timer_destroy(r->timer);
+    gk_program_cache_destroy(r->progs);
+    free(r->shader_dir);
+    free(r);
+}
+
+int gk_renderer_set_scene(gk_renderer *r, gk_scene *s, gk_err *e)
+{
+    if (r->have_gpu)
+        gk_scene_gpu_free(&r->gpu);
+    r->have_gpu = false;
+    r->scene = NULL;
+    r->have_frame = false;
+    r->exposure_known = false;
+    if (!s)
+        return 0;
+    if (gk_scene_gpu_upload(&r->gpu, s, e) != 0)
+        return -1;
+    r->have_gpu = true;
+    r->scene = s;
+    if (s->has_exposure) { /* the scene's own exposure (EV) wins over the measured key */
+        r->exposure = exp2f(s->exposure_ev);
+        r->exposure_known = true;
+    }
+    return 0;
+}
+
+int gk_renderer_methods(const gk_renderer *r, const char **names, int max)
+{
+    (void)r;
+    int n = 0;
+    if (n < max)
+        names[n++] = "none";
+    /* GI methods are listed here when implemented and applicable to r->scene (none yet). */
+    return n;
+}
+
+int gk_render_light_kind(const gk_light *l)
+{
+    if (l->type == GK_LIGHT_DIRECTIONAL)
+        return 2;
+    switch (l->shape) {
+    case GK_SHAPE_SPHERE: return 3;
+    case GK_SHAPE_DISC: return 4;
+    case GK_SHAPE_RECT: return 5;
+    default: return l->type == GK_LIGHT_SPOT ? 1 : 0;
+    }
+}
+
+void gk_render_fullscreen(gk_renderer *r)
+{
+    glBindVertexArray(r->empty_vao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindVertexArray(0);
+}
+
+float gk_renderer_exposure(const gk_renderer *r) { return r->exposure; }

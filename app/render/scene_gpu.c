@@ -1,0 +1,155 @@
+#include "scene_gpu.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "gl_program.h"
+#include "gl_target.h"
+
+int gk_scene_gpu_upload(gk_scene_gpu *g, const gk_scene *s, gk_err *e)
+{
+    memset(g, 0, sizeof *g);
+    while (glGetError() != GL_NO_ERROR) {
+    }
+    g->n_meshes = s->n_meshes;
+    g->vao = calloc((size_t)s->n_meshes + 1, sizeof *g->vao);
+    g->vbo = calloc((size_t)s->n_meshes * 3 + 1, sizeof *g->vbo);
+    g->ibo = calloc((size_t)s->n_meshes + 1, sizeof *g->ibo);
+    g->index_count = calloc((size_t)s->n_meshes + 1, sizeof *g->index_count);
+    g->tex = calloc((size_t)s->n_textures + 1, sizeof *g->tex);
+    if (!g->vao || !g->vbo || !g->ibo || !g->index_count || !g->tex) {
+        gk_scene_gpu_free(g);
+        return gk_fail(e, GK_ERUNTIME, "%s: out of memory uploading the scene", s->path);
+    }
+    if (s->n_meshes) {
+        glGenVertexArrays(s->n_meshes, g->vao);
+        glGenBuffers(s->n_meshes * 3, g->vbo);
+        glGenBuffers(s->n_meshes, g->ibo);
+    }
+    for (int i = 0; i < s->n_meshes; i++) {
+        const gk_mesh *m = &s->meshes[i];
+        glBindVertexArray(g->vao[i]);
+        const float *data[3] = {m->positions, m->normals, m->uvs};
+        const int comps[3] = {3, 3, 2};
+        for (int a = 0; a < 3; a++) {
+            if (!data[a]) {
+                glDisableVertexAttribArray((GLuint)a);
+                glVertexAttrib4f((GLuint)a, 0, 0, 1, 0);
+                continue;
+            }
+            glBindBuffer(GL_ARRAY_BUFFER, g->vbo[i * 3 + a]);
+            glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(sizeof(float) * comps[a] * m->n_vertices), data[a], GL_STATIC_DRAW);
+            glEnableVertexAttribArray((GLuint)a);
+            glVertexAttribPointer((GLuint)a, comps[a], GL_FLOAT, GL_FALSE, 0, NULL);
+        }
+        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, g->ibo[i]);
+        glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(sizeof(uint32_t) * 3 * m->n_triangles), m->indices,
+                     GL_STATIC_DRAW);
+        g->index_count[i] = (GLsizei)(3 * m->n_triangles);
+        glBindVertexArray(0);
+    }
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    /* Textures: linear float RGBA from the loader, kept as RGBA16F (filterable in GLES 3.0 core).
+       No mipmaps: generating them needs a renderable RGBA16F, and the path tracer samples
+       bilinearly without them, so the two renderers see the same texels. */
+    g->n_textures = s->n_textures;
+    for (int i = 0; i < s->n_textures; i++) {
+        const gk_texture *t = &s->textures[i];
+        glGenTextures(1, &g->tex[i]);
+        glBindTexture(GL_TEXTURE_2D, g->tex[i]);
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA16F, t->width, t->height, 0, GL_RGBA, GL_FLOAT, t->rgba);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    }
+    const float white[4] = {1, 1, 1, 1};
+    glGenTextures(1, &g->white_tex);
+    glBindTexture(GL_TEXTURE_2D, g->white_tex);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA16F, 1, 1, 0, GL_RGBA, GL_FLOAT, white);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    GLenum err = glGetError();
+    if (err != GL_NO_ERROR) {
+        gk_scene_gpu_free(g);
+        return gk_fail(e, GK_ERUNTIME, "%s: uploading the scene to the GPU failed: %s", s->path, gk_gl_error_name(err));
+    }
+    return 0;
+}
+
+void gk_scene_gpu_free(gk_scene_gpu *g)
+{
+    if (g->n_meshes && g->vao) {
+        glDeleteVertexArrays(g->n_meshes, g->vao);
+        glDeleteBuffers(g->n_meshes * 3, g->vbo);
+        glDeleteBuffers(g->n_meshes, g->ibo);
+    }
+    if (g->n_textures && g->tex)
+        glDeleteTextures(g->n_textures, g->tex);
+    if (g->white_tex)
+        glDeleteTextures(1, &g->white_tex);
+    free(g->vao);
+    free(g->vbo);
+    free(g->ibo);
+    free(g->index_count);
+    free(g->tex);
+    memset(g, 0, sizeof *g);
+}
+
+static void set_material(const gk_scene_gpu *g, const gk_scene *s, GLuint prog, const gk_material *m)
+{
+    int flags = 0;
+    GLuint base = g->white_tex, mr = g->white_tex;
+    if (m->base_color_tex >= 0 && m->base_color_tex < s->n_textures) {
+        base = g->tex[m->base_color_tex];
+        flags |= GK_MAT_BASE_TEX;
+    }
+    if (m->metallic_roughness_tex >= 0 && m->metallic_roughness_tex < s->n_textures) {
+        mr = g->tex[m->metallic_roughness_tex];
+        flags |= GK_MAT_MR_TEX;
+    }
+    if (m->light_proxy)
+        flags |= GK_MAT_LIGHT_PROXY;
+    if (m->double_sided)
+        flags |= GK_MAT_DOUBLE_SIDED;
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, base);
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_2D, mr);
+    gk_uniform_4f(prog, "u_base_color", m->base_color[0], m->base_color[1], m->base_color[2], m->base_color[3]);
+    gk_uniform_2f(prog, "u_metallic_roughness", m->metallic, m->roughness);
+    gk_uniform_3f(prog, "u_emissive", m->emissive[0], m->emissive[1], m->emissive[2]);
+    gk_uniform_1i(prog, "u_mat_flags", flags);
+}
+
+void gk_scene_gpu_draw(const gk_scene_gpu *g, const gk_scene *s, GLuint prog, int flags)
+{
+    if (flags & GK_DRAW_MATERIALS) {
+        gk_uniform_1i(prog, "u_base_tex", 0);
+        gk_uniform_1i(prog, "u_mr_tex", 1);
+    }
+    GLint loc_model = glGetUniformLocation(prog, "u_model");
+    GLint loc_normal = glGetUniformLocation(prog, "u_normal_matrix");
+    for (int n = 0; n < s->n_nodes; n++) {
+        const gk_node *node = &s->nodes[n];
+        if (node->mesh_count <= 0)
+            continue;
+        mat4 nm = m4_transpose(m4_inverse(node->world));
+        glUniformMatrix4fv(loc_model, 1, GL_FALSE, node->world.m);
+        glUniformMatrix4fv(loc_normal, 1, GL_FALSE, nm.m);
+        for (int k = node->mesh_first; k < node->mesh_first + node->mesh_count && k < g->n_meshes; k++) {
+            if (k < 0)
+                continue;
+            const gk_mesh *mesh = &s->meshes[k];
+            const gk_material *mat = &s->materials[mesh->material >= 0 && mesh->material < s->n_materials ? mesh->material : 0];
+            if ((flags & GK_DRAW_SKIP_PROXIES) && mat->light_proxy)
+                continue;
+            if (flags & GK_DRAW_MATERIALS)
+                set_material(g, s, prog, mat);
+            glBindVertexArray(g->vao[k]);
+            glDrawElements(GL_TRIANGLES, g->index_count[k], GL_UNSIGNED_INT, NULL);
+        }
+    }
+    glBindVertexArray(0);
+}

@@ -1,0 +1,40 @@
+/* The scene on the GPU: one VAO (positions, normals, uvs) + index buffer per mesh, one texture per
+ * scene texture, and draw helpers that set each node's world matrix and the material uniforms.
+ * Attribute locations: 0 position, 1 normal, 2 uv (shaders use layout(location = N)). */
+#ifndef GK_SCENE_GPU_H
+#define GK_SCENE_GPU_H
+
+#include "../core/err.h"
+#include "../scene/scene.h"
+#include "gl.h"
+
+typedef struct gk_scene_gpu {
+    int n_meshes;
+    GLuint *vao, *vbo, *ibo;   /* vbo: 3 per mesh (pos, normal, uv) */
+    GLsizei *index_count;
+    int n_textures;
+    GLuint *tex;
+    GLuint white_tex;          /* bound where a material has no texture */
+} gk_scene_gpu;
+
+int gk_scene_gpu_upload(gk_scene_gpu *g, const gk_scene *s, gk_err *e);
+void gk_scene_gpu_free(gk_scene_gpu *g);
+
+enum {
+    GK_DRAW_MATERIALS = 1,     /* set u_base_color, u_metallic_roughness, u_emissive, u_mat_flags, textures */
+    GK_DRAW_SKIP_PROXIES = 2,  /* leave out light_proxy meshes (shadow maps: the light stands in their place) */
+};
+
+/* Material flags in u_mat_flags (mirrored in shaders_gles/gbuffer/gbuffer.frag). */
+enum {
+    GK_MAT_BASE_TEX = 1,
+    GK_MAT_MR_TEX = 2,
+    GK_MAT_LIGHT_PROXY = 4,
+    GK_MAT_DOUBLE_SIDED = 8,
+};
+
+/* Draws every node's meshes (after gk_scene_evaluate) with the bound program: sets u_model and
+ * u_normal_matrix per node; textures on units 0 (base colour) and 1 (metallic-roughness). */
+void gk_scene_gpu_draw(const gk_scene_gpu *g, const gk_scene *s, GLuint prog, int flags);
+
+#endif

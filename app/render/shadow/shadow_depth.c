@@ -1,0 +1,105 @@
+/* Depth maps shared by the shadow methods: the scene (light proxies left out: the light itself
+ * stands in their place) rendered from each face of a light into a DEPTH_COMPONENT32F array
+ * layer. 32F depth is core GLES 3.0 (no extension) and keeps linear-depth reconstruction exact
+ * enough for PCSS's blocker averages. */
+#include "shadow.h"
+
+#include <stdio.h>
+
+#include "../gl_target.h"
+
+static int ensure_texture(gk_shadow_maps *m, int slot, int size, int layers, gk_err *e)
+{
+    if (m->tex[slot] && m->size[slot] == size && m->layers[slot] == layers)
+        return 0;
+    if (m->tex[slot])
+        glDeleteTextures(1, &m->tex[slot]);
+    while (glGetError() != GL_NO_ERROR) {
+    }
+    glGenTextures(1, &m->tex[slot]);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, m->tex[slot]);
+    glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_DEPTH_COMPONENT32F, size, size, layers);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_COMPARE_MODE, GL_NONE);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
+    GLenum err = glGetError();
+    if (err != GL_NO_ERROR) {
+        glDeleteTextures(1, &m->tex[slot]);
+        m->tex[slot] = 0;
+        return gk_fail(e, GK_ERUNTIME, "shadow map %dx%dx%d (DEPTH_COMPONENT32F): %s", size, size, layers,
+                       gk_gl_error_name(err));
+    }
+    m->size[slot] = size;
+    m->layers[slot] = layers;
+    return 0;
+}
+
+int gk_shadow_maps_render(gk_shadow_maps *m, const gk_shadow_ctx *ctx, int slot, const gk_shadow_view *v, gk_err *e)
+{
+    if (slot < 0 || slot >= GK_SHADOW_MAX_LIGHTS)
+        return gk_fail(e, GK_ERUNTIME, "shadow slot %d out of range", slot);
+    if (ensure_texture(m, slot, v->map_size, v->n_faces, e) != 0)
+        return -1;
+    GLuint prog = gk_program_get(ctx->progs, "shadow/depth.vert", "shadow/depth.frag", NULL, e);
+    if (!prog)
+        return -1;
+    if (!m->fbo)
+        glGenFramebuffers(1, &m->fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, m->fbo);
+    GLenum none = GL_NONE;
+    glDrawBuffers(1, &none);
+    glReadBuffer(GL_NONE);
+    glUseProgram(prog);
+    glViewport(0, 0, v->map_size, v->map_size);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+    /* A small slope-scaled offset; the lookups add a normal offset and a half-texel bias. */
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(1.0f, 1.0f);
+    for (int f = 0; f < v->n_faces; f++) {
+        if (f == v->skip_face)
+            continue;
+        glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, m->tex[slot], 0, f);
+        if (f == 0 && gk_fbo_check("shadow map", e) != 0) {
+            glDisable(GL_POLYGON_OFFSET_FILL);
+            glBindFramebuffer(GL_FRAMEBUFFER, 0);
+            return -1;
+        }
+        glClear(GL_DEPTH_BUFFER_BIT);
+        gk_uniform_mat4(prog, "u_viewproj", v->viewproj[f].m);
+        gk_scene_gpu_draw(ctx->gpu, ctx->scene, prog, GK_DRAW_SKIP_PROXIES);
+    }
+    glDisable(GL_POLYGON_OFFSET_FILL);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    return 0;
+}
+
+void gk_shadow_maps_bind(const gk_shadow_maps *m, int slot, const gk_shadow_view *v, GLuint prog, int unit)
+{
+    glActiveTexture(GL_TEXTURE0 + (GLenum)unit);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, m->tex[slot]);
+    gk_uniform_1i(prog, "u_shadow_map", unit);
+    gk_uniform_mat4v(prog, "u_shadow_viewproj", v->n_faces, v->viewproj[0].m);
+    gk_uniform_3f(prog, "u_shadow_pos", v->pos.x, v->pos.y, v->pos.z);
+    gk_uniform_3f(prog, "u_shadow_axis", v->axis.x, v->axis.y, v->axis.z);
+    const float basis[9] = {v->basis[0].x, v->basis[0].y, v->basis[0].z, v->basis[1].x, v->basis[1].y,
+                            v->basis[1].z, v->basis[2].x, v->basis[2].y, v->basis[2].z};
+    glUniformMatrix3fv(glGetUniformLocation(prog, "u_shadow_basis"), 1, GL_FALSE, basis);
+    gk_uniform_4f(prog, "u_shadow_proj", v->znear, v->zfar, v->ortho ? 1.0f : 0.0f, (float)v->n_faces);
+    gk_uniform_4f(prog, "u_shadow_light", v->size_u, v->size_v, v->tan_half_fov, (float)v->map_size);
+}
+
+void gk_shadow_maps_free(gk_shadow_maps *m)
+{
+    for (int i = 0; i < GK_SHADOW_MAX_LIGHTS; i++)
+        if (m->tex[i])
+            glDeleteTextures(1, &m->tex[i]);
+    if (m->fbo)
+        glDeleteFramebuffers(1, &m->fbo);
+}

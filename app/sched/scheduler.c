@@ -1,0 +1,221 @@
+/* Frame-time scheduler (see scheduler.h for the model and the control rules). */
+#include "scheduler.h"
+
+#include <math.h>
+#include <string.h>
+
+void gk_sched_params_defaults(gk_sched_params *p, double target_ms)
+{
+    p->target_ms = target_ms;
+    p->margin = 0.15;
+    p->up_after = 30;
+    p->hold_base = 120;
+    p->warmup = 3;
+    p->learn_rate = 0.3;
+}
+
+void gk_sched_reset(gk_sched *s, const gk_sched_params *p, const gk_budget *b, const bool *active)
+{
+    memset(s, 0, sizeof *s);
+    s->p = *p;
+    for (int k = 0; k < b->n; k++)
+        s->active[k] = active ? active[k] : true;
+    s->warm = p->warmup;
+}
+
+/* Cost prior of a knob at a level; knobs that declare none cost 1, 2, 3, ... */
+static double prior(const gk_budget *b, int k, int level)
+{
+    const gk_knob_def *d = b->def[k];
+    double c = d->cost[level];
+    return c > 0 ? c : 1.0 + level;
+}
+
+static bool movable(const gk_sched *s, const gk_budget *b, int k)
+{
+    return s->active[k] && !b->pinned[k] && b->def[k]->n_values > 1;
+}
+
+double gk_sched_predict(const gk_sched *s, const gk_budget *b)
+{
+    if (!s->seeded)
+        return 0;
+    double t = s->base_ms;
+    for (int k = 0; k < b->n; k++)
+        if (s->active[k])
+            t += s->weight[k] * prior(b, k, b->level[k]);
+    return t;
+}
+
+static void seed(gk_sched *s, const gk_budget *b, double ms)
+{
+    int n = 0;
+    for (int k = 0; k < b->n; k++)
+        n += s->active[k];
+    double share = ms / (n + 1);
+    s->base_ms = share;
+    for (int k = 0; k < b->n; k++)
+        s->weight[k] = s->active[k] ? share / prior(b, k, b->level[k]) : 0;
+    s->seeded = true;
+}
+
+/* Normalised LMS on x = (1, prior_k(level_k)...): moves the parameters along x so that the
+ * prediction closes learn_rate of its error. Weights stay non-negative (a knob never makes a frame
+ * faster by being richer). */
+static void fit(gk_sched *s, const gk_budget *b, double ms)
+{
+    double err = ms - gk_sched_predict(s, b);
+    double xx = 1;
+    for (int k = 0; k < b->n; k++)
+        if (s->active[k]) {
+            double x = prior(b, k, b->level[k]);
+            xx += x * x;
+        }
+    double g = s->p.learn_rate * err / xx;
+    s->base_ms = fmax(0, s->base_ms + g);
+    for (int k = 0; k < b->n; k++)
+        if (s->active[k])
+            s->weight[k] = fmax(0, s->weight[k] + g * prior(b, k, b->level[k]));
+}
+
+/* Step response: exactly one active knob changed level since the previous measured frame, so the
+ * difference in frame time is its doing. Returns 1 when it updated the model. The base absorbs the
+ * rest so the prediction matches this frame. */
+static int fit_step(gk_sched *s, const gk_budget *b, double ms)
+{
+    if (!s->have_prev)
+        return 0;
+    int changed = -1;
+    for (int k = 0; k < b->n; k++)
+        if (s->active[k] && b->level[k] != s->prev_level[k]) {
+            if (changed >= 0)
+                return 0;
+            changed = k;
+        }
+    if (changed < 0)
+        return 0;
+    double dprior = prior(b, changed, b->level[changed]) - prior(b, changed, s->prev_level[changed]);
+    if (dprior == 0)
+        return 0;
+    double w = (ms - s->prev_ms) / dprior;
+    if (w < 0)
+        w = 0; /* noise larger than the step: the knob is cheap */
+    s->weight[changed] = 0.5 * s->weight[changed] + 0.5 * w;
+    double rest = ms;
+    for (int k = 0; k < b->n; k++)
+        if (s->active[k])
+            rest -= s->weight[k] * prior(b, k, b->level[k]);
+    s->base_ms = fmax(0, rest);
+    return 1;
+}
+
+/* Predicted time saved by one step down of knob k (negative = added by a step up). */
+static double step_delta(const gk_sched *s, const gk_budget *b, int k, int dir)
+{
+    int l = b->level[k];
+    return s->weight[k] * (prior(b, k, l + dir) - prior(b, k, l));
+}
+
+static double quality_per_step(const gk_budget *b, int k) { return 1.0 / (b->def[k]->n_values - 1); }
+
+static int step_down(gk_sched *s, gk_budget *b, double ms, gk_sched_change *ch, int max)
+{
+    double goal = s->p.target_ms * (1 - s->p.margin / 2);
+    double predicted = ms;
+    int n = 0;
+    while (predicted > goal) {
+        int best = -1;
+        double best_score = -1, best_saved = 0;
+        for (int k = 0; k < b->n; k++) {
+            if (!movable(s, b, k) || b->level[k] <= b->min_level[k])
+                continue;
+            double saved = -step_delta(s, b, k, -1);
+            /* A knob the model believes free still beats doing nothing: tiny score from its prior. */
+            double score = fmax(saved, 1e-9 * (prior(b, k, b->level[k]) - prior(b, k, b->level[k] - 1)))
+                           / quality_per_step(b, k);
+            if (score > best_score) {
+                best_score = score;
+                best = k;
+                best_saved = saved;
+            }
+        }
+        if (best < 0)
+            break; /* everything at its minimum: nothing left to trade */
+        if (n >= max)
+            break;
+        ch[n++] = (gk_sched_change){best, b->level[best], b->level[best] - 1};
+        b->level[best]--;
+        predicted -= fmax(best_saved, 0);
+        if (s->last_dir[best] > 0) {
+            s->reversals[best]++;
+            s->direction_changes++;
+            int shift = s->reversals[best] - 1 < 16 ? s->reversals[best] - 1 : 16;
+            s->blocked_until[best] = s->frame + ((long)s->p.hold_base << shift);
+        }
+        s->last_dir[best] = -1;
+        if (best_saved <= 0)
+            break; /* the model cannot tell how much more to drop: measure again first */
+    }
+    return n;
+}
+
+static int step_up(gk_sched *s, gk_budget *b, gk_sched_change *ch, int max)
+{
+    double goal = s->p.target_ms * (1 - s->p.margin / 2);
+    int best = -1;
+    double best_score = -1;
+    for (int k = 0; k < b->n; k++) {
+        if (!movable(s, b, k) || b->level[k] >= b->max_level[k] || s->frame < s->blocked_until[k])
+            continue;
+        double added = fmax(step_delta(s, b, k, +1), 0);
+        if (s->under_worst_ms + added >= goal)
+            continue;
+        double score = quality_per_step(b, k) / fmax(added, 1e-6);
+        if (score > best_score) {
+            best_score = score;
+            best = k;
+        }
+    }
+    if (best < 0 || max < 1)
+        return 0;
+    ch[0] = (gk_sched_change){best, b->level[best], b->level[best] + 1};
+    b->level[best]++;
+    if (s->last_dir[best] < 0)
+        s->direction_changes++;
+    s->last_dir[best] = +1;
+    return 1;
+}
+
+int gk_sched_update(gk_sched *s, gk_budget *b, double frame_ms, gk_sched_change *changes, int max)
+{
+    s->frame++;
+    if (s->warm > 0) {
+        s->warm--;
+        return 0;
+    }
+    if (!(frame_ms >= 0) || !isfinite(frame_ms))
+        return 0;
+    if (!s->seeded)
+        seed(s, b, frame_ms);
+    else if (!fit_step(s, b, frame_ms))
+        fit(s, b, frame_ms);
+    s->have_prev = true;
+    s->prev_ms = frame_ms;
+    for (int k = 0; k < b->n; k++)
+        s->prev_level[k] = b->level[k];
+    const gk_sched_params *p = &s->p;
+    if (frame_ms > p->target_ms) {
+        s->under_count = 0;
+        return step_down(s, b, frame_ms, changes, max);
+    }
+    if (frame_ms >= p->target_ms * (1 - p->margin)) {
+        s->under_count = 0;
+        return 0;
+    }
+    if (s->under_count == 0 || frame_ms > s->under_worst_ms)
+        s->under_worst_ms = frame_ms;
+    if (++s->under_count < p->up_after)
+        return 0;
+    s->under_count = 0;
+    return step_up(s, b, changes, max);
+}

@@ -1,0 +1,67 @@
+/* Frame-time scheduler (DESIGN §6): keeps frames under the target by moving budget knob levels.
+ *
+ * Cost model: frame_ms ~= base + sum_k w_k * cost_k(level_k), linear in the knobs' cost priors
+ * (gk_knob_def.cost). It is seeded from the first measured frame (equal shares for the base and each
+ * active knob) and fitted online: when exactly one knob changed since the previous measured frame,
+ * the change in frame time over the change in its prior is a direct measurement of that knob's
+ * weight (averaged into it); on other frames normalised least mean squares on the measured time
+ * keeps the whole prediction calibrated (base and weights move along the feature vector).
+ *
+ * Control: over target -> step down at once, as many steps as the model predicts are needed to get
+ * under target*(1 - margin/2), each time the knob whose step saves the most predicted time per
+ * quality lost (quality of a step = 1/(number of values - 1)). Under target*(1 - margin) for
+ * up_after consecutive frames -> one step up, the knob that buys the most quality per predicted
+ * time, and only if the worst of those frames plus the predicted cost stays under
+ * target*(1 - margin/2). A knob stepped down after a step up (a reversal) may not step up again for
+ * hold_base * 2^(reversals-1) frames, so the controller cannot oscillate for long.
+ * Pinned knobs and knobs outside the active set never move; [budgets] ranges are respected. */
+#ifndef GK_SCHEDULER_H
+#define GK_SCHEDULER_H
+
+#include <stdbool.h>
+
+#include "budget.h"
+
+typedef struct gk_sched_params {
+    double target_ms;
+    double margin;        /* fraction of the target kept free before stepping up (0.15) */
+    int up_after;         /* consecutive frames under target*(1-margin) before a step up (30) */
+    int hold_base;        /* frames a reversed knob is blocked from stepping up, doubled per reversal (120) */
+    int warmup;           /* frames not measured after a reset (scene upload, shader compiles) (3) */
+    double learn_rate;    /* NLMS step size, 0..1 (0.3) */
+} gk_sched_params;
+
+typedef struct gk_sched_change {
+    int knob;             /* index in the budget */
+    int from, to;         /* levels */
+} gk_sched_change;
+
+typedef struct gk_sched {
+    gk_sched_params p;
+    bool active[GK_MAX_KNOBS];
+    double weight[GK_MAX_KNOBS]; /* ms per unit of cost prior */
+    double base_ms;
+    bool seeded;
+    int warm;                    /* frames still to ignore */
+    int under_count;
+    double under_worst_ms;
+    long frame;
+    int last_dir[GK_MAX_KNOBS];  /* +1 last moved up, -1 down, 0 never */
+    int reversals[GK_MAX_KNOBS];
+    long blocked_until[GK_MAX_KNOBS];
+    long direction_changes;      /* total over the run, for tests and logs */
+    bool have_prev;              /* the previous measured frame, for step responses */
+    double prev_ms;
+    int prev_level[GK_MAX_KNOBS];
+} gk_sched;
+
+void gk_sched_params_defaults(gk_sched_params *p, double target_ms);
+/* Starts over (new scene or method): active[k] says which knobs affect the frame now (NULL = all). */
+void gk_sched_reset(gk_sched *s, const gk_sched_params *p, const gk_budget *b, const bool *active);
+/* Feeds the time of the frame just drawn at b's current levels; may change levels in b for the next
+ * frame. Fills changes (up to max) and returns their count. */
+int gk_sched_update(gk_sched *s, gk_budget *b, double frame_ms, gk_sched_change *changes, int max);
+/* The model's prediction for b's current levels (ms); 0 before the first measured frame. */
+double gk_sched_predict(const gk_sched *s, const gk_budget *b);
+
+#endif

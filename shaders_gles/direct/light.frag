@@ -1,0 +1,32 @@
+// Direct light of ONE light over the G-buffer, added (blend ONE, ONE) into the RGBA16F HDR
+// target. Variants: GK_LIGHT_KIND (common/lights.glsl) and the shadow method (shadow/shadow.glsl).
+// Validated by tests/e2e/shaders.sh in these variants:
+// @variant GK_LIGHT_KIND=0
+// @variant GK_LIGHT_KIND=1 GK_LIGHT_SPOT SHADOW_HARD
+// @variant GK_LIGHT_KIND=2 SHADOW_PCSS
+// @variant GK_LIGHT_KIND=3 SHADOW_PCSS
+// @variant GK_LIGHT_KIND=4 GK_LIGHT_SPOT SHADOW_PCSS
+// @variant GK_LIGHT_KIND=5 SHADOW_HARD
+// @variant GK_LIGHT_KIND=5 GK_LIGHT_SPOT SHADOW_PCSS PCSS_PCF_N=16
+precision highp float;
+precision highp int;
+#include "common/brdf.glsl"
+#include "common/gbuffer_read.glsl"
+#include "common/lights.glsl"
+#include "shadow/shadow.glsl"
+
+uniform vec2 u_viewport;
+out vec4 o_color;
+
+void main()
+{
+    ivec2 px = ivec2(gl_FragCoord.xy);
+    gk_surface s = gk_read_surface(px, (vec2(px) + 0.5) / u_viewport);
+    if (s.unlit)
+        discard;
+    vec3 radiance = gk_light_radiance(s);
+    if (max(radiance.r, max(radiance.g, radiance.b)) <= 0.0)
+        discard;
+    radiance *= shadow_visibility(s.p, s.n);
+    o_color = vec4(radiance, 1.0);
+}

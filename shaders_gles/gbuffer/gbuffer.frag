@@ -1,0 +1,44 @@
+// G-buffer: RT0 RGBA8 (base colour, metallic), RT1 RGBA16F (world normal facing the viewer,
+// roughness), RT2 RGBA16F (emitted radiance in nits, a = 1 for unlit light proxies); depth 32F.
+precision highp float;
+in vec3 v_world;
+in vec3 v_normal;
+in vec2 v_uv;
+uniform vec4 u_base_color;
+uniform vec2 u_metallic_roughness;
+uniform vec3 u_emissive;
+uniform int u_mat_flags;            // GK_MAT_* in app/render/scene_gpu.h
+uniform mediump sampler2D u_base_tex;
+uniform mediump sampler2D u_mr_tex;
+uniform vec3 u_eye;
+layout(location = 0) out mediump vec4 o_albedo;
+layout(location = 1) out vec4 o_normal;
+layout(location = 2) out vec4 o_emission;
+
+const int MAT_BASE_TEX = 1;
+const int MAT_MR_TEX = 2;
+const int MAT_LIGHT_PROXY = 4;
+const int MAT_DOUBLE_SIDED = 8;
+
+void main()
+{
+    vec4 base = u_base_color;
+    if ((u_mat_flags & MAT_BASE_TEX) != 0)
+        base *= texture(u_base_tex, v_uv);
+    vec2 mr = u_metallic_roughness;
+    if ((u_mat_flags & MAT_MR_TEX) != 0) {
+        vec4 t = texture(u_mr_tex, v_uv);
+        mr *= vec2(t.b, t.g);
+    }
+    vec3 n = normalize(v_normal);
+    // The shading normal faces the viewer (as the path tracer's); emission only from the
+    // front face unless the material is double-sided (brdf_spec.md).
+    bool front = gl_FrontFacing;
+    if (dot(n, u_eye - v_world) < 0.0)
+        n = -n;
+    bool emits = front || (u_mat_flags & MAT_DOUBLE_SIDED) != 0;
+    bool proxy = (u_mat_flags & MAT_LIGHT_PROXY) != 0;
+    o_albedo = vec4(proxy ? vec3(0.0) : base.rgb, clamp(mr.x, 0.0, 1.0));
+    o_normal = vec4(n, clamp(mr.y, 0.0, 1.0));
+    o_emission = vec4(emits ? u_emissive : vec3(0.0), proxy ? 1.0 : 0.0);
+}

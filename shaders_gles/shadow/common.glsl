@@ -1,0 +1,89 @@
+// The depth maps shared by the shadow methods (app/render/shadow/shadow_depth.c): a 2D array of
+// DEPTH_COMPONENT32F layers, 1 for spot/disc/rect (perspective from the light centre along -Z)
+// and directional (orthographic) lights, 6 for point/sphere/rect/disc lights (cube faces
+// +u -u +v -v +dir -dir in the light's frame u_shadow_basis; layer 4 looks along the light's axis). Depth is sampled raw (no compare mode, NEAREST) and converted to
+// linear depth along the face axis.
+uniform highp sampler2DArray u_shadow_map;
+uniform highp mat4 u_shadow_viewproj[6];
+uniform highp vec3 u_shadow_pos;      // light centre; ortho: the map's eye point
+uniform highp vec3 u_shadow_axis;     // map axis for 1-layer maps
+uniform highp mat3 u_shadow_basis;    // columns: light u, v, dir (cube face axes)
+uniform highp vec4 u_shadow_proj;     // near, far, ortho (0/1), layers (1/6)
+uniform highp vec4 u_shadow_light;    // size_u, size_v (m; ortho: 2 tan(sun radius)), tan half fov (ortho: half extent m), map size
+
+struct gk_shadow_coord {
+    highp vec2 uv;
+    highp float layer;
+    highp float d;          // receiver linear depth along the face axis
+    bool inside;            // within the map's frustum
+};
+
+highp vec3 gk_cube_axis(int f)
+{
+    return u_shadow_basis[f / 2] * ((f % 2 == 0) ? 1.0 : -1.0);
+}
+
+int gk_shadow_face(highp vec3 p)
+{
+    if (u_shadow_proj.w < 2.0)
+        return 0;
+    highp vec3 d = (p - u_shadow_pos) * u_shadow_basis; // light-frame coordinates
+    highp vec3 ad = abs(d);
+    if (ad.x >= ad.y && ad.x >= ad.z)
+        return d.x >= 0.0 ? 0 : 1;
+    if (ad.y >= ad.z)
+        return d.y >= 0.0 ? 2 : 3;
+    return d.z >= 0.0 ? 4 : 5;
+}
+
+highp float gk_shadow_linear(highp float window_depth)
+{
+    highp float n = u_shadow_proj.x, f = u_shadow_proj.y;
+    if (u_shadow_proj.z > 0.5)
+        return n + window_depth * (f - n);
+    highp float z_ndc = window_depth * 2.0 - 1.0;
+    return 2.0 * f * n / ((f + n) - z_ndc * (f - n));
+}
+
+// World size of one texel at linear depth d.
+highp float gk_shadow_texel_world(highp float d)
+{
+    highp float extent = u_shadow_proj.z > 0.5 ? 2.0 * u_shadow_light.z : 2.0 * d * u_shadow_light.z;
+    return extent / u_shadow_light.w;
+}
+
+gk_shadow_coord gk_shadow_project(highp vec3 p)
+{
+    gk_shadow_coord c;
+    int f = gk_shadow_face(p);
+    highp vec4 clip = u_shadow_viewproj[f] * vec4(p, 1.0);
+    highp vec3 ndc = clip.xyz / clip.w;
+    c.uv = ndc.xy * 0.5 + 0.5;
+    c.layer = float(f);
+    highp vec3 axis = u_shadow_proj.w > 1.5 ? gk_cube_axis(f) : u_shadow_axis;
+    c.d = dot(p - u_shadow_pos, axis);
+    c.inside = clip.w > 0.0 && all(greaterThanEqual(c.uv, vec2(0.0))) && all(lessThanEqual(c.uv, vec2(1.0))) &&
+               c.d > u_shadow_proj.x && c.d < u_shadow_proj.y;
+    return c;
+}
+
+// Linear depth of the nearest occluder stored at uv (clamped to the map).
+highp float gk_shadow_fetch(highp vec2 uv, highp float layer)
+{
+    return gk_shadow_linear(texture(u_shadow_map, vec3(clamp(uv, 0.0, 1.0), layer)).r);
+}
+
+// Receiver offset along the normal by 1.5 texels (normal-offset bias): removes acne on slopes
+// without peter-panning contact shadows as a large constant bias would.
+highp vec3 gk_shadow_offset(highp vec3 p, highp vec3 n)
+{
+    gk_shadow_coord c = gk_shadow_project(p);
+    return p + n * (1.5 * gk_shadow_texel_world(max(c.d, u_shadow_proj.x)));
+}
+
+// Per-pixel hash in [0,1) (interleaved gradient noise): rotates sample grids so banding becomes
+// fine noise.
+highp float gk_shadow_noise()
+{
+    return fract(52.9829189 * fract(dot(gl_FragCoord.xy, vec2(0.06711056, 0.00583715))));
+}

@@ -1,0 +1,82 @@
+// Joint bilateral upsampling (thesis §3.4 after Kopf et al. 2007) of the sparse cone-traced light
+// and its composition into the renderer's HDR image, drawn with glBlendFunc(GL_ONE, GL_SRC_ALPHA):
+//     hdr' = hdr * a + rgb
+// Calibrated (default):  rgb = rho_d * D + F0 * L_spec,  a = 1, i.e.
+//     hdr' = direct + rho_d / pi * sum_k W_k L_k + F0 L_spec,
+//     rho_d = albedo (1 - metallic),  F0 = mix(0.04, albedo, metallic).
+// FAITHFUL_COMPOSE (thesis code): out = albedo (direct + 0.75 GI) * min(0.5 + AO, 1); the renderer's
+//     direct image is already multiplied by albedo, so rgb = 0.75 albedo D f + L_spec f, a = f =
+//     min(0.5 + AO, 1).
+// Upsampling: 3x3 low-resolution taps around the pixel, weight = spatial Gaussian on the distance to
+// the tap's traced full-resolution pixel x normal similarity exp(-|dN|^2 / 0.14) (thesis code) x
+// plane distance similarity exp(-(dot(N, x_tap - x) / voxel)^2 / 0.14).
+precision highp float;
+precision highp int;
+#include "vct/sparse.glsl"
+uniform highp sampler2D u_diffuse_lo;
+uniform highp sampler2D u_spec_lo;
+uniform highp sampler2D u_gbuf_depth;
+uniform highp sampler2D u_gbuf_normal;
+uniform highp sampler2D u_gbuf_position;
+uniform highp sampler2D u_gbuf_albedo;
+uniform highp sampler2D u_gbuf_material;
+uniform bool u_has_position;
+uniform mat4 u_inv_view_proj;
+uniform ivec2 u_full_size;
+uniform ivec2 u_low_size;
+uniform int u_block;
+uniform float u_voxel_world;
+uniform float u_spec_enabled;
+layout(location = 0) out vec4 o_color;
+
+void main()
+{
+    ivec2 px = ivec2(gl_FragCoord.xy);
+    float z = texelFetch(u_gbuf_depth, px, 0).r;
+    if (z >= 1.0) { o_color = vec4(0.0, 0.0, 0.0, 1.0); return; }
+    vec3 N = normalize(texelFetch(u_gbuf_normal, px, 0).xyz);
+    vec3 X = gbuf_world_position(u_gbuf_depth, u_gbuf_position, u_has_position, u_inv_view_proj, px, u_full_size);
+    vec4 dif; vec3 spec;
+    if (u_block <= 1) {
+        dif = texelFetch(u_diffuse_lo, px, 0);
+        spec = texelFetch(u_spec_lo, px, 0).rgb;
+    } else {
+        ivec2 qc = px / u_block;
+        vec4 sd = vec4(0.0); vec3 ss = vec3(0.0); float sw = 0.0;
+        vec4 nd = vec4(0.0); vec3 ns = vec3(0.0); float best = 1e30;
+        float sigma = float(u_block);
+        for (int dy = -1; dy <= 1; dy++)
+            for (int dx = -1; dx <= 1; dx++) {
+                ivec2 q = clamp(qc + ivec2(dx, dy), ivec2(0), u_low_size - 1);
+                ivec2 tp = sparse_pixel(q, u_block, u_full_size);
+                if (texelFetch(u_gbuf_depth, tp, 0).r >= 1.0) continue;
+                vec3 Nq = normalize(texelFetch(u_gbuf_normal, tp, 0).xyz);
+                vec3 Xq = gbuf_world_position(u_gbuf_depth, u_gbuf_position, u_has_position, u_inv_view_proj, tp, u_full_size);
+                vec2 dp = vec2(tp - px);
+                float f = exp(-dot(dp, dp) / (2.0 * sigma * sigma));
+                vec3 dn = N - Nq;
+                float gn = exp(-dot(dn, dn) / 0.14);
+                float pd = dot(N, Xq - X) / u_voxel_world;
+                float gd = exp(-pd * pd / 0.14);
+                float w = f * gn * gd;
+                vec4 d = texelFetch(u_diffuse_lo, q, 0);
+                vec3 s = texelFetch(u_spec_lo, q, 0).rgb;
+                sd += w * d; ss += w * s; sw += w;
+                float dist = dot(dp, dp) + 1e4 * (1.0 - gn * gd);
+                if (dist < best) { best = dist; nd = d; ns = s; }
+            }
+        if (sw > 1e-4) { dif = sd / sw; spec = ss / sw; }
+        else { dif = nd; spec = ns; }                  // no similar tap: nearest plausible one
+    }
+    vec3 albedo = texelFetch(u_gbuf_albedo, px, 0).rgb;
+    float metallic = texelFetch(u_gbuf_material, px, 0).r;
+    spec *= u_spec_enabled;
+#if FAITHFUL_COMPOSE
+    float f = min(0.5 + dif.a, 1.0);
+    o_color = vec4((0.75 * albedo * dif.rgb + spec) * f, f);
+#else
+    vec3 rho_d = albedo * (1.0 - metallic);
+    vec3 F0 = mix(vec3(0.04), albedo, metallic);
+    o_color = vec4(rho_d * dif.rgb + F0 * spec, 1.0);
+#endif
+}

@@ -1,0 +1,125 @@
+// Direct-light injection (thesis §3.1: the voxelization fragment shader's diffuse direct light, here a
+// separate pass so a moving light re-injects without re-voxelizing). Per occupied voxel:
+//   albedo rho, normal n, position x = means over the fragments the voxelizer averaged;
+//   E_i  = irradiance from light i at x on n [lux = lm/m^2]:
+//            point/spot: I_i(w) * max(n.l, 0) / d^2, I_i = colour * intensity [cd] along the axis,
+//                        times the glTF spot falloff, times cos(theta_emit) for one-sided emitters;
+//            directional: E_i = colour * illuminance [lux] * max(n.l, 0);
+//   V_i  = shadow-map visibility (3x3 PCF), 1 without a shadow map; u_shadow_ambient instead of 0
+//          in shadow (0.07 in the thesis code's faithful mode, 0 calibrated);
+//   L_o  = rho / pi * sum_i E_i V_i + L_emit          [nits = cd/m^2]: outgoing diffuse radiance,
+// stored premultiplied as (L_o * alpha, alpha), alpha = 1 for an occupied voxel (thesis A.1.3).
+// RGBA16F, so HDR radiance is not clipped (the thesis's RGBA8 saturates at 1).
+#include "vct/common.glsl"
+layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+layout(std430, binding = 1) readonly buffer Scratch { uint s[]; };
+layout(binding = 0, rgba16f) writeonly uniform highp image3D u_out;
+
+#define MAX_LIGHTS 4
+uniform ivec3 u_region_lo;
+uniform ivec3 u_region_size;
+uniform vec3 u_grid_origin;
+uniform float u_voxel_size;
+uniform float u_emission_max;        // dequantisation of the emission channels
+uniform int u_n_lights;
+uniform int u_light_type[MAX_LIGHTS];       // 0 point, 1 spot, 2 directional
+uniform vec3 u_light_pos[MAX_LIGHTS];
+uniform vec3 u_light_dir[MAX_LIGHTS];       // emission axis
+uniform vec3 u_light_radiant[MAX_LIGHTS];   // colour * intensity (cd or lux)
+uniform vec2 u_light_spot[MAX_LIGHTS];      // glTF spot: scale, offset
+uniform int u_light_lambert[MAX_LIGHTS];    // one-sided rectangle/disc emitter
+uniform int u_light_shadow[MAX_LIGHTS];
+uniform mat4 u_shadow_vp[MAX_LIGHTS];
+uniform float u_shadow_ambient;
+uniform float u_shadow_bias;
+uniform highp sampler2D u_shadow0;
+uniform highp sampler2D u_shadow1;
+uniform highp sampler2D u_shadow2;
+uniform highp sampler2D u_shadow3;
+
+vec4 unpack8(uint v) { return vec4(float(v & 0xFFu), float((v >> 8) & 0xFFu), float((v >> 16) & 0xFFu), float(v >> 24)); }
+
+float shadow_depth(int i, vec2 uv)   // constant sampler indices only (GLSL ES)
+{
+    if (i == 0) return textureLod(u_shadow0, uv, 0.0).r;
+    if (i == 1) return textureLod(u_shadow1, uv, 0.0).r;
+    if (i == 2) return textureLod(u_shadow2, uv, 0.0).r;
+    return textureLod(u_shadow3, uv, 0.0).r;
+}
+
+float visibility(int i, vec3 x)
+{
+    if (u_light_shadow[i] == 0) return 1.0;
+    vec4 c = u_shadow_vp[i] * vec4(x, 1.0);
+    if (c.w <= 0.0) return 1.0;
+    vec3 ndc = c.xyz / c.w;
+    vec3 sc = ndc * 0.5 + 0.5;
+    if (any(lessThan(sc.xy, vec2(0.0))) || any(greaterThan(sc.xy, vec2(1.0)))) return 1.0;
+    vec2 texel = 1.0 / vec2(textureSize(u_shadow0, 0));
+    if (i == 1) texel = 1.0 / vec2(textureSize(u_shadow1, 0));
+    if (i == 2) texel = 1.0 / vec2(textureSize(u_shadow2, 0));
+    if (i == 3) texel = 1.0 / vec2(textureSize(u_shadow3, 0));
+    float lit = 0.0;
+    for (int dy = -1; dy <= 1; dy++)
+        for (int dx = -1; dx <= 1; dx++)
+            lit += (sc.z - u_shadow_bias <= shadow_depth(i, sc.xy + vec2(dx, dy) * texel)) ? 1.0 : 0.0;
+    lit /= 9.0;
+    return lit + (1.0 - lit) * u_shadow_ambient;
+}
+
+vec3 irradiance(int i, vec3 x, vec3 n)
+{
+    if (u_light_type[i] == 2) return u_light_radiant[i] * max(dot(n, -u_light_dir[i]), 0.0);
+    vec3 L = u_light_pos[i] - x;
+    float d2 = max(dot(L, L), 1e-8);
+    L *= inversesqrt(d2);
+    float cos_emit = dot(-L, u_light_dir[i]);
+    float f = 1.0;
+    if (u_light_type[i] == 1) {
+        float a = clamp(cos_emit * u_light_spot[i].x + u_light_spot[i].y, 0.0, 1.0);
+        f = a * a;
+    }
+    if (u_light_lambert[i] != 0) f *= max(cos_emit, 0.0);
+    return u_light_radiant[i] * f * max(dot(n, L), 0.0) / d2;
+}
+
+void main()
+{
+    ivec3 g = ivec3(gl_GlobalInvocationID);
+    if (any(greaterThanEqual(g, u_region_size))) return;
+    ivec3 c = u_region_lo + g;
+    int i = vox_index(c), N = vox_count();
+    vec3 alb, nrm, frac, emi = vec3(0.0);
+#if AVERAGE_CAS
+    uint a = s[CH_ALB * N + i];
+    if ((a >> 24) == 0u) { imageStore(u_out, c, vec4(0.0)); return; }
+    alb = unpack8(a & 0xFEFEFEFEu).rgb / 255.0;
+    nrm = unpack8(s[CH_NRM * N + i] & 0xFEFEFEFEu).rgb / 255.0 * 2.0 - 1.0;
+    frac = unpack8(s[CH_POS * N + i] & 0xFEFEFEFEu).rgb / 255.0;
+#if EMISSIVE
+    emi = unpack8(s[CH_EMI * N + i] & 0xFEFEFEFEu).rgb / 255.0;
+#endif
+#else
+    uint cnt = s[CH_COUNT * N + i];
+    if (cnt == 0u) { imageStore(u_out, c, vec4(0.0)); return; }
+    float inv = 1.0 / (255.0 * float(cnt));
+    alb = vec3(float(s[(CH_ALB + 0) * N + i]), float(s[(CH_ALB + 1) * N + i]), float(s[(CH_ALB + 2) * N + i])) * inv;
+    nrm = vec3(float(int(s[(CH_NRM + 0) * N + i])), float(int(s[(CH_NRM + 1) * N + i])), float(int(s[(CH_NRM + 2) * N + i])));
+    frac = vec3(float(s[(CH_POS + 0) * N + i]), float(s[(CH_POS + 1) * N + i]), float(s[(CH_POS + 2) * N + i])) * inv;
+#if EMISSIVE
+    emi = vec3(float(s[(CH_EMI + 0) * N + i]), float(s[(CH_EMI + 1) * N + i]), float(s[(CH_EMI + 2) * N + i])) * inv;
+#endif
+#endif
+    float nl = length(nrm);
+    // Opposite normals cancel (two faces in one voxel): such a voxel is lit from neither side here.
+    nrm = nl > 1e-6 ? nrm / nl : vec3(0.0);
+    vec3 x = u_grid_origin + (vec3(c) + frac) * u_voxel_size;
+    vec3 xs = x + nrm * u_voxel_size;   // shadow lookups one voxel off the surface (no self-shadowing)
+    vec3 E = vec3(0.0);
+    for (int l = 0; l < MAX_LIGHTS; l++) {
+        if (l >= u_n_lights) break;
+        E += irradiance(l, x, nrm) * visibility(l, xs);
+    }
+    vec3 Lo = alb * E * (1.0 / 3.14159265) + emi * u_emission_max;
+    imageStore(u_out, c, vec4(Lo, 1.0));
+}

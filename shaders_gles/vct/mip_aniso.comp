@@ -1,0 +1,67 @@
+// Anisotropic pre-integration (thesis §3.2, equations 3.1/3.2 as corrected in summary A.2.2): one
+// direction per dispatch (a minimum-spec GLES 3.1 has only 4 compute image units). For each of the
+// 4 front/back voxel pairs along the direction's axis, composite with "over" on premultiplied
+// colour,  C' = C1 + (1 - a1) C2,  a' = a1 + (1 - a1) a2  (front voxel 1), and average the 4.
+// Direction index 0..5 = +X,-X,+Y,-Y,+Z,-Z; "+X" treats the child with the larger x as the front,
+// i.e. it is the volume as seen from the +X side, sampled by cones travelling towards -X.
+//
+// DIRECTIONAL_INJECTION=1 (not in the thesis; default): when level 1 is built from level 0, a
+// level-0 voxel contributes its radiance to a direction's view only if its mean surface normal faces
+// the viewer of that view (a Lambertian surface is dark from behind and edge-on), its opacity to
+// all views. Without it a lone lit plane lights itself through the coarse levels (measured 74% of
+// its direct light in tests/gpu/test_vct.c), since the plane's coarse voxels look lit from every
+// side. Level 0 stays isotropic as in the thesis (§4, Fig. 16).
+#include "vct/common.glsl"
+layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+layout(binding = 0, rgba16f) readonly uniform highp image3D u_src;
+layout(binding = 1, rgba16f) writeonly uniform highp image3D u_dst;
+layout(std430, binding = 1) readonly buffer Scratch { uint s[]; };
+uniform int u_dir;
+uniform int u_dst_res;
+uniform bool u_from_level0;
+vec4 over(vec4 f, vec4 b) { return f + (1.0 - f.a) * b; }
+
+vec3 view_dir(int dir)   // where the viewer of this view stands
+{
+    vec3 v = vec3(dir / 2 == 0 ? 1.0 : 0.0, dir / 2 == 1 ? 1.0 : 0.0, dir / 2 == 2 ? 1.0 : 0.0);
+    return (dir % 2) == 0 ? v : -v;
+}
+
+vec4 fetch(ivec3 c)
+{
+    vec4 v = imageLoad(u_src, c);
+#if DIRECTIONAL_INJECTION
+    if (u_from_level0 && v.a > 0.0) {
+        int i = vox_index(c), N = vox_count();
+#if AVERAGE_CAS
+        uint q = s[CH_NRM * N + i];
+        vec3 n = vec3(float(q & 0xFEu), float((q >> 8) & 0xFEu), float((q >> 16) & 0xFEu)) / 255.0 * 2.0 - 1.0;
+#else
+        vec3 n = vec3(float(int(s[(CH_NRM + 0) * N + i])), float(int(s[(CH_NRM + 1) * N + i])), float(int(s[(CH_NRM + 2) * N + i])));
+#endif
+        float l = length(n);
+        if (l > 1e-6) {
+            float facing = smoothstep(0.0, 0.2, dot(n / l, view_dir(u_dir)));  // edge-on: dark
+            v.rgb *= facing;
+        }
+    }
+#endif
+    return v;
+}
+void main()
+{
+    ivec3 d = ivec3(gl_GlobalInvocationID);
+    if (any(greaterThanEqual(d, ivec3(u_dst_res)))) return;
+    ivec3 s = 2 * d;
+    int axis = u_dir / 2;
+    bool pos = (u_dir % 2) == 0;
+    ivec3 step_ax = ivec3(axis == 0 ? 1 : 0, axis == 1 ? 1 : 0, axis == 2 ? 1 : 0);
+    vec4 acc = vec4(0.0);
+    for (int j = 0; j < 2; j++)
+        for (int i = 0; i < 2; i++) {
+            ivec3 a = axis == 0 ? s + ivec3(0, i, j) : (axis == 1 ? s + ivec3(i, 0, j) : s + ivec3(i, j, 0));
+            vec4 lo = fetch(a), hi = fetch(a + step_ax);
+            acc += pos ? over(hi, lo) : over(lo, hi);
+        }
+    imageStore(u_dst, d, acc * 0.25);
+}

@@ -1,0 +1,79 @@
+// Cone tracing pass (thesis §3.3) at reduced resolution: per traced pixel the diffuse cone set
+// (4, 6 or 9 cones in the tangent frame, normal = +y as in the thesis code), AO inside the diffuse
+// cones, and with SPECULAR one glossy cone along reflect(V, N).
+// Output u_out_diffuse: rgb = D = sum_k w_k L_k  (w_k from the C side: calibrated w_k = W_k / pi with
+// W_k = cos(theta_k) pi sin^2(alpha_k) rescaled to sum 1, or the thesis code's 1 / 0.607), a = AO =
+// clamp(1 - sum_k w_k ao_k, 0, 1).  u_out_spec: rgb = L_spec, the radiance seen by the glossy cone.
+#include "vct/common.glsl"
+#include "vct/cone_lib.glsl"
+#include "vct/sparse.glsl"
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(binding = 0, rgba16f) writeonly uniform highp image2D u_out_diffuse;
+layout(binding = 1, rgba16f) writeonly uniform highp image2D u_out_spec;
+layout(std430, binding = 2) buffer Counters { uint total_steps; } counters;
+
+#define MAX_CONES 9
+uniform highp sampler2D u_gbuf_depth;
+uniform highp sampler2D u_gbuf_normal;
+uniform highp sampler2D u_gbuf_position;
+uniform highp sampler2D u_gbuf_material;
+uniform bool u_has_position;
+uniform mat4 u_inv_view_proj;
+uniform vec3 u_eye;
+uniform ivec2 u_full_size;
+uniform ivec2 u_low_size;
+uniform int u_block;
+uniform vec3 u_grid_origin;
+uniform float u_grid_size;         // world edge of the cubic grid
+uniform int u_n_cones;
+uniform vec3 u_cone_dir[MAX_CONES];      // tangent frame (t, n, b)
+uniform float u_cone_aperture[MAX_CONES];
+uniform float u_cone_weight[MAX_CONES];
+uniform float u_max_dist;          // voxel-space units (thesis code: sqrt(3))
+uniform float u_apex_offset;       // voxels along the normal (thesis code 2.5, text >= sqrt(3))
+uniform float u_spec_aperture;     // thesis code 0.158 (9 degrees)
+
+void main()
+{
+    ivec2 q = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(q, u_low_size))) return;
+    ivec2 px = sparse_pixel(q, u_block, u_full_size);
+    float z = texelFetch(u_gbuf_depth, px, 0).r;
+    if (z >= 1.0) {                                   // background
+        imageStore(u_out_diffuse, q, vec4(0.0, 0.0, 0.0, 1.0));
+        imageStore(u_out_spec, q, vec4(0.0));
+        return;
+    }
+    vec3 P = gbuf_world_position(u_gbuf_depth, u_gbuf_position, u_has_position, u_inv_view_proj, px, u_full_size);
+    vec3 N = normalize(texelFetch(u_gbuf_normal, px, 0).xyz);
+    vec3 up = abs(N.y) < 0.99 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
+    vec3 T = normalize(cross(up, N));
+    vec3 B = cross(N, T);
+    vec3 pu = (P - u_grid_origin) / u_grid_size;      // voxel space
+    vec3 apex = pu + N * (u_apex_offset / u_res_f);
+    vec3 D = vec3(0.0);
+    float occ = 0.0;
+    int total = 0;
+    for (int k = 0; k < MAX_CONES; k++) {
+        if (k >= u_n_cones) break;
+        vec3 d = normalize(T * u_cone_dir[k].x + N * u_cone_dir[k].y + B * u_cone_dir[k].z);
+        float ao; int steps;
+        vec4 c = trace_cone(apex, d, u_cone_aperture[k], u_max_dist, ao, steps);
+        D += u_cone_weight[k] * c.rgb;
+        occ += u_cone_weight[k] * ao;
+        total += steps;
+    }
+    vec4 spec = vec4(0.0);
+#if SPECULAR
+    vec2 mr = texelFetch(u_gbuf_material, px, 0).rg;
+    if (mr.g < 0.5 || mr.r > 0.5) {                   // glossy enough to be worth a cone
+        vec3 R = reflect(normalize(P - u_eye), N);
+        float ao; int steps;
+        spec = trace_cone(apex, R, u_spec_aperture, u_max_dist, ao, steps);
+        total += steps;
+    }
+#endif
+    atomicAdd(counters.total_steps, uint(total));
+    imageStore(u_out_diffuse, q, vec4(D, clamp(1.0 - occ, 0.0, 1.0)));
+    imageStore(u_out_spec, q, vec4(spec.rgb, 1.0));
+}

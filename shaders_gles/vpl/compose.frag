@@ -1,0 +1,54 @@
+// Adds the indirect light to the HDR image: L = ρ_d/π · E, E joint-bilaterally upsampled from the
+// indirect resolution (the 2×2 nearest low-res samples, weighted by bilinear weight × normal and
+// position agreement). The crossfade while M changes happens in the blur's second pass.
+precision highp float;
+precision highp int;
+uniform highp sampler2D u_ind;
+uniform highp sampler2D u_pos;
+uniform highp sampler2D u_nrm;
+uniform highp sampler2D u_gb_depth;
+uniform highp sampler2D u_gb_normal;
+uniform mediump sampler2D u_gb_albedo;
+uniform highp mat4 u_inv_viewproj;
+uniform ivec2 u_full_size;
+uniform float u_sigma;
+in vec2 v_uv;
+layout(location = 0) out vec4 o_color;
+
+vec3 upsample(highp sampler2D tex, vec3 x, vec3 n)
+{
+    ivec2 size = textureSize(tex, 0);
+    vec2 f = v_uv * vec2(size) - 0.5;
+    ivec2 b = ivec2(floor(f));
+    vec2 fr = f - vec2(b);
+    vec3 sum = vec3(0.0);
+    float wsum = 0.0;
+    for (int j = 0; j < 2; j++)
+        for (int i = 0; i < 2; i++) {
+            ivec2 o = clamp(b + ivec2(i, j), ivec2(0), size - 1);
+            vec4 p = texelFetch(u_pos, o, 0);
+            if (p.w <= 0.0)
+                continue;
+            float wb = (i == 0 ? 1.0 - fr.x : fr.x) * (j == 0 ? 1.0 - fr.y : fr.y) + 1e-3;
+            float wn = max(dot(texelFetch(u_nrm, o, 0).xyz, n), 0.0);
+            vec3 dp = p.xyz - x;
+            float w = wb * wn * wn * exp(-dot(dp, dp) / (2.0 * u_sigma * u_sigma));
+            sum += w * texelFetch(tex, o, 0).rgb;
+            wsum += w;
+        }
+    return wsum > 0.0 ? sum / wsum : vec3(0.0);
+}
+
+void main()
+{
+    ivec2 px = ivec2(gl_FragCoord.xy);
+    float depth = texelFetch(u_gb_depth, px, 0).r;
+    if (depth >= 1.0)
+        discard;
+    vec4 w = u_inv_viewproj * vec4(vec3(v_uv, depth) * 2.0 - 1.0, 1.0);
+    vec3 x = w.xyz / w.w;
+    vec3 n = normalize(texelFetch(u_gb_normal, px, 0).xyz);
+    vec3 E = upsample(u_ind, x, n);
+    vec4 a = texelFetch(u_gb_albedo, px, 0);
+    o_color = vec4((1.0 - a.a) * a.rgb / 3.14159265 * E, 0.0);
+}

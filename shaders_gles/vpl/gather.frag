@@ -1,0 +1,181 @@
+// Indirect gather (thesis §6.5 step 9) with interleaved sampling [Segovia06]: the pixel q of the
+// indirect buffer takes the VPL subset s = (q.y mod B)·B + (q.x mod B), VPLs i = s + j·B², and
+// every VPL i is shadowed by the soft visibility of its VAL C(i):
+//   E(x) = Σ_i Φ_i/π · max(0, n_i·(x − p_i)/d) · max(0, n_x·(p_i − x)/d) / d² · Ṽ_C(i)(x)
+// The sum over the subset is multiplied by B² (each subset is an unbiased 1/B² share); the
+// geometry-aware blur averages the B×B subsets back. Clamp (not in the thesis): d² ≥ u_dmin2;
+// the irradiance it removes goes to alpha (luminance) so the method can report it.
+// Outputs: irradiance (rgb, a = removed), the pixel's world position and normal for the blur.
+precision highp float;
+precision highp int;
+precision highp sampler2DArray;
+uniform highp sampler2D u_gb_depth;
+uniform highp sampler2D u_gb_normal;
+uniform highp sampler2D u_gb_position;
+uniform int u_has_position;
+uniform highp mat4 u_inv_viewproj;
+uniform ivec2 u_full_size;
+uniform ivec2 u_ind_size;
+uniform highp sampler2D u_vpl;   // N×3: pos + label, nrm + area, flux
+uniform highp sampler2D u_val;   // M×4: centre + far, normal + size, t + r_near, b + map res
+uniform int u_n;
+uniform int u_block;
+uniform float u_dmin2;
+#if defined(VIS_CSSM)
+uniform sampler2DArray u_bcos, u_bsin, u_bzcos, u_bzsin, u_bz;
+#elif defined(VIS_VSM)
+uniform sampler2DArray u_bmom;
+#elif defined(VIS_HARD)
+uniform sampler2DArray u_bz;
+#endif
+layout(location = 0) out vec4 o_ind;
+layout(location = 1) out vec4 o_pos;
+layout(location = 2) out vec4 o_nrm;
+
+const float PI = 3.14159265;
+
+#if defined(VIS_CSSM)
+const vec4 C = 3.14159265 * vec4(1.0, 3.0, 5.0, 7.0);
+const float ALPHA = 1.12;      // ringing suppression for K = 4 (dong-001.md §3.3, computed)
+// Contact sharpening, Eq. 5.9: p = 1 + A·exp(−B·(d − z_avg)), thesis values A = 30, B = 10
+// (Fig. 5.3, ch. 5, direct light). For VAL maps it turns the grazing self-occlusion of planar
+// receivers (big kernels over a floor seen edge-on) into black: F11 measured rel RMSE 0.70–0.79
+// against exact visibility with A = 30 (0.44–0.54 with B = 100), 0.06–0.11 with A = 0. The thesis
+// does not say it sharpens VAL shadows; we do not by default (define SHARP_A to restore it).
+#ifndef SHARP_A
+#define SHARP_A 0.0
+#endif
+const float SHARP_B = 10.0;
+// The receiver's own surface is in the VAL's map at depth d: the 4-term series with α = 1.12 only
+// saturates to "lit" at d − z ≤ −0.064 (dong-001.md §3.3), so receivers are tested at d − 0.07
+// (normalised depth; ≈ 0.13 m in the unit Cornell box). Without it every receiver shadowed itself
+// (F11 measured an error above "no visibility" at every M).
+const float CSM_OFFSET = 0.07;
+float csm_lit(vec4 cosz, vec4 sinz, float d)
+{
+    return 0.5 + 2.0 * dot(cos(C * d) * sinz - sin(C * d) * cosz, 1.0 / C);
+}
+#endif
+#if defined(VIS_VSM)
+const float VSM_OFFSET = 0.01; // Chebyshev is one-tailed: a small bias suffices
+#endif
+
+// Soft visibility of receiver x from VAL k (paraboloid CSSM / VSM), or hard per-VPL visibility.
+float visibility(int k, vec3 x)
+{
+#if defined(VIS_NONE)
+    return 1.0;
+#else
+    vec4 c0 = texelFetch(u_val, ivec2(k, 0), 0);
+    vec4 c1 = texelFetch(u_val, ivec2(k, 1), 0);
+    vec4 c2 = texelFetch(u_val, ivec2(k, 2), 0);
+    vec4 c3 = texelFetch(u_val, ivec2(k, 3), 0);
+    vec3 v = x - c0.xyz;
+    float r = length(v);
+    vec3 l = vec3(dot(v, c2.xyz), dot(v, c3.xyz), dot(v, c1.xyz)) / max(r, 1e-6);
+    if (l.z <= 0.0 || r <= c2.w)
+        return 1.0;   // negative half-space / inside the ignored near sphere: no information
+    vec2 uv = 0.5 + 0.5 * l.xy / (1.0 + l.z);
+    float far = c0.w, delta = c1.w, res = c3.w;
+    float d = r / far;
+#if defined(VIS_CSSM)
+    d -= CSM_OFFSET;
+#elif defined(VIS_VSM)
+    d -= VSM_OFFSET;
+#endif
+#if defined(VIS_HARD)
+    float z = texelFetch(u_bz, ivec3(clamp(ivec2(uv * res), ivec2(0), ivec2(int(res) - 1)), k), 0).r;
+    return d <= z + 0.01 ? 1.0 : 0.0;
+#else
+    float layer = float(k);
+    // Initial kernel from the solid angle of the VAL seen through the near sphere r_n
+    // (the PCSS analogue; the thesis gives no formula): w_i = 2·atan(½Δ·(r − r_n)/(r·r_n))/π.
+    float rn = max(c2.w, 1e-3 * far);
+    float wi = 2.0 * atan(0.5 * delta * max(r - rn, 0.0) / (r * rn)) / PI;
+    float li = log2(max(wi * res, 1.0));
+    vec3 tc = vec3(uv, layer);
+#if defined(VIS_CSSM)
+    float si = csm_lit(textureLod(u_bcos, tc, li) * 2.0 - 1.0, textureLod(u_bsin, tc, li) * 2.0 - 1.0, d);
+    float occ = 1.0 - si;
+    if (occ < 1e-3)
+        return 1.0;   // no blockers in the search kernel
+    float znum = 0.5 * textureLod(u_bz, tc, li).r
+               + 2.0 * dot(sin(C * d) * textureLod(u_bzcos, tc, li) - cos(C * d) * textureLod(u_bzsin, tc, li), 1.0 / C);
+    float zavg = clamp(znum / occ, 1e-4, d);
+#else
+    vec2 m = textureLod(u_bmom, tc, li).rg;
+    float var = max(m.y - m.x * m.x, 1e-6);
+    float md = d - m.x;
+    float pl = md <= 0.0 ? 1.0 : var / (var + md * md);
+    // No "lit" early-out on the search kernel's Chebyshev bound: it is an upper bound, and over
+    // the wide search kernel it said "lit" for most umbra receivers (F11: rel RMSE 0.240, as bad as
+    // no visibility; 0.10 without the early-out at point lookups).
+    pl = min(pl, 0.99);
+    float zavg = clamp((m.x - pl * d) / (1.0 - pl), 1e-4, d);   // VSSM blocker depth
+#endif
+    // Penumbra kernel (Fig. 6.2): p·cosθ = (d − z_avg)Δ/z_avg, w = atan(p·cosθ/d)/π.
+    float za = zavg * far;
+    float w = atan((r - za) * delta / (za * r)) / PI;
+    float lf = log2(max(w * res, 1.0));
+#if defined(VIS_CSSM)
+    float s = csm_lit(textureLod(u_bcos, tc, lf) * 2.0 - 1.0, textureLod(u_bsin, tc, lf) * 2.0 - 1.0, d);
+    s = clamp(ALPHA * (s - 0.5) + 0.5, 0.0, 1.0);
+    return SHARP_A > 0.0 ? pow(s, 1.0 + SHARP_A * exp(-SHARP_B * (d - zavg))) : s;
+#else
+    vec2 mf = textureLod(u_bmom, tc, lf).rg;
+    float vf = max(mf.y - mf.x * mf.x, 1e-6);
+    float mdf = d - mf.x;
+    return mdf <= 0.0 ? 1.0 : vf / (vf + mdf * mdf);
+#endif
+#endif
+#endif
+}
+
+void main()
+{
+    ivec2 q = ivec2(gl_FragCoord.xy);
+    ivec2 px = min(ivec2((vec2(q) + 0.5) * vec2(u_full_size) / vec2(u_ind_size)), u_full_size - 1);
+    float depth = texelFetch(u_gb_depth, px, 0).r;
+    if (depth >= 1.0) {
+        o_ind = vec4(0.0);
+        o_pos = vec4(0.0);
+        o_nrm = vec4(0.0);
+        return;
+    }
+    vec3 x;
+    if (u_has_position != 0) {
+        x = texelFetch(u_gb_position, px, 0).xyz;
+    } else {
+        vec2 uv = (vec2(px) + 0.5) / vec2(u_full_size);
+        vec4 w = u_inv_viewproj * vec4(vec3(uv, depth) * 2.0 - 1.0, 1.0);
+        x = w.xyz / w.w;
+    }
+    vec3 nx = normalize(texelFetch(u_gb_normal, px, 0).xyz);
+    int bb = u_block * u_block;
+    int s = (q.y % u_block) * u_block + (q.x % u_block);
+    vec3 E = vec3(0.0);
+    float removed = 0.0;
+    for (int i = s; i < u_n; i += bb) {
+        vec4 p = texelFetch(u_vpl, ivec2(i, 0), 0);
+        vec3 flux = texelFetch(u_vpl, ivec2(i, 2), 0).rgb;
+        if (p.w < 0.0 || dot(flux, vec3(1.0)) <= 0.0)
+            continue;
+        vec3 ni = texelFetch(u_vpl, ivec2(i, 1), 0).xyz;
+        vec3 L = p.xyz - x;
+        float d2 = dot(L, L);
+        vec3 w = L * inversesqrt(max(d2, 1e-12));
+        float g = max(dot(nx, w), 0.0) * max(-dot(ni, w), 0.0);
+        if (g <= 0.0)
+            continue;
+        float V = visibility(int(p.w), x);
+        vec3 e = flux * (g * V / PI);
+        vec3 full = e / max(d2, 1e-8);
+        vec3 clamped = e / max(d2, u_dmin2);
+        E += clamped;
+        removed += dot(full - clamped, vec3(0.2126, 0.7152, 0.0722));
+    }
+    float scale = float(bb);
+    o_ind = vec4(E * scale, removed * scale);
+    o_pos = vec4(x, 1.0);
+    o_nrm = vec4(nx, 1.0);
+}

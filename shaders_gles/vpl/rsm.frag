@@ -1,0 +1,53 @@
+// RSM texel: world position (+ the surface area the texel covers), normal facing the light, and
+// the reflected flux Φ = ρ_d · I(ω) · ΔΩ_texel (ρ_d = (1 − metallic)·base, brdf_spec.md).
+// ΔΩ_texel = (2 tanΘ / R)² / (1 + u² + v²)^{3/2} for a perspective face (photon-mapping §A.1.3).
+precision highp float;
+in vec3 v_world;
+in vec3 v_normal;
+uniform vec4 u_base_color;
+uniform vec2 u_metallic_roughness;
+uniform vec3 u_emissive;
+uniform int u_mat_flags;
+uniform vec3 u_light_pos;
+uniform vec3 u_light_dir;      // emission axis
+uniform vec3 u_radiant;        // colour · intensity (cd)
+uniform int u_light_kind;      // 0 spot, 1 point (uniform), 2 one-sided Lambertian (rect area)
+uniform float u_cos_inner, u_cos_outer;
+uniform vec2 u_face_origin;    // pixel origin of this face in the atlas
+uniform float u_face_res;
+uniform float u_tan_half;
+layout(location = 0) out vec4 o_pos;   // xyz, a = area covered by this texel (m²)
+layout(location = 1) out vec4 o_nrm;
+layout(location = 2) out vec4 o_flux;  // rgb reflected flux of this texel (W)
+
+const int MAT_LIGHT_PROXY = 4;
+
+void main()
+{
+    // A light proxy stands where the light is: the path tracer does not see it, neither do we.
+    if ((u_mat_flags & MAT_LIGHT_PROXY) != 0 || dot(u_emissive, vec3(1.0)) > 0.0)
+        discard;
+    vec3 L = u_light_pos - v_world;
+    float d2 = max(dot(L, L), 1e-8);
+    vec3 l = L * inversesqrt(d2);
+    vec3 n = normalize(v_normal);
+    if (dot(n, l) < 0.0)
+        n = -n;
+    vec2 ndc = (gl_FragCoord.xy - u_face_origin) / u_face_res * 2.0 - 1.0;
+    vec2 uv = ndc * u_tan_half;
+    float texel = 2.0 * u_tan_half / u_face_res;
+    float dOmega = texel * texel / pow(1.0 + dot(uv, uv), 1.5);
+    float c = dot(-l, u_light_dir);
+    float I = 1.0;
+    if (u_light_kind == 0) {
+        float t = clamp((c - u_cos_outer) / max(u_cos_inner - u_cos_outer, 1e-4), 0.0, 1.0);
+        I = t * t;
+    } else if (u_light_kind == 2) {
+        I = max(c, 0.0);
+    }
+    vec3 rho = (1.0 - clamp(u_metallic_roughness.x, 0.0, 1.0)) * u_base_color.rgb;
+    float cos_y = max(dot(n, l), 0.05);
+    o_pos = vec4(v_world, d2 * dOmega / cos_y);
+    o_nrm = vec4(n, 0.0);
+    o_flux = vec4(rho * u_radiant * (I * dOmega), 1.0);
+}

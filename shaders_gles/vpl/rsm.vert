@@ -1,0 +1,17 @@
+// Reflective shadow map (thesis §6.5 step 2): the scene seen from the light, one perspective face
+// (spot; point/area lights use a cube atlas of faces).
+precision highp float;
+layout(location = 0) in vec3 a_position;
+layout(location = 1) in vec3 a_normal;
+uniform mat4 u_model;
+uniform mat4 u_normal_matrix;
+uniform mat4 u_light_vp;
+out vec3 v_world;
+out vec3 v_normal;
+void main()
+{
+    vec4 w = u_model * vec4(a_position, 1.0);
+    v_world = w.xyz;
+    v_normal = mat3(u_normal_matrix) * a_normal;
+    gl_Position = u_light_vp * w;
+}

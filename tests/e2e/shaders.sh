@@ -1,0 +1,106 @@
+#!/bin/sh
+# Validates every shader under shaders_gles/ with glslangValidator as GLSL ES, after the same
+# assembly the renderer does (app/render/shader_source.c): "#version 310 es" (and 320 es),
+# "#define GK_GLES N", the variant's #defines, then the file with each #include "path" (relative
+# to shaders_gles/) replaced by that file, each file at most once per program.
+# Variants: every line "// @variant NAME[=VALUE] ..." in a shader file is one set of defines to
+# validate; a file without such lines is validated once without extra defines. The stage comes
+# from the extension (.vert .frag .comp .geom). A deliberately broken shader must be rejected, so
+# the check can fail.
+. tests/e2e/lib.sh
+ROOT=shaders_gles
+
+# expand FILE SEENFILE: prints FILE with includes expanded; SEENFILE lists the files already
+# included, its line number K - 1 being the source-string number of "#line N K" (as the C loader).
+expand() {
+    if grep -qxF "$1" "$2"; then return 0; fi
+    if [ ! -f "$ROOT/$1" ]; then echo "missing include $1" >&2; return 1; fi
+    echo "$1" >>"$2"
+    _fk=$(($(wc -l <"$2") - 1))
+    echo "#line 1 $_fk"
+    _ln=0
+    while IFS= read -r line || [ -n "$line" ]; do
+        _ln=$((_ln + 1))
+        inc=$(printf '%s\n' "$line" | sed -n 's/^[[:space:]]*#include[[:space:]]*"\([^"]*\)".*/\1/p')
+        if [ -n "$inc" ]; then
+            # the recursive call overwrites the globals _fk and _ln: keep ours in $3 $4
+            set -- "$1" "$2" "$_fk" "$_ln"
+            expand "$inc" "$2" || return 1
+            _fk=$3; _ln=$4
+            echo "#line $((_ln + 1)) $_fk"
+        else
+            printf '%s\n' "$line"
+        fi
+    done <"$ROOT/$1"
+}
+
+# Rewrites glslang's "ERROR: K:LINE:" into "ERROR: shaders_gles/FILE:LINE:" using SEENFILE.
+map_log() {
+    awk -v seen="$1" 'BEGIN { k = 0; while ((getline f < seen) > 0) name[k++] = f }
+        { if (match($0, /[0-9]+:[0-9]+:/)) { s = substr($0, RSTART, RLENGTH); split(s, a, ":");
+              if (a[1] in name) $0 = substr($0, 1, RSTART - 1) "shaders_gles/" name[a[1]] ":" a[2] ":" substr($0, RSTART + RLENGTH) }
+          print }'
+}
+
+# assemble REL GLES "DEFINES" OUT
+assemble() {
+    : >"$TMP/seen"
+    {
+        if head -n 5 "$ROOT/$1" | grep -q '^#version'; then
+            : # a file that carries its own #version (not assembled by the renderer's loader)
+        else
+            echo "#version ${2}0 es"
+            echo "#define GK_GLES $2"
+        fi
+        for d in $3; do
+            echo "#define $(echo "$d" | sed 's/=/ /')"
+        done
+        expand "$1" "$TMP/seen"
+    } >"$4"
+}
+
+validate() { # REL GLES DEFINES
+    ext=${1##*.}
+    out="$TMP/shader.$ext"
+    if ! assemble "$1" "$2" "$3" "$out"; then
+        echo "#   $1: include expansion failed"
+        return 1
+    fi
+    if ! glslangValidator -S "$ext" "$out" >"$TMP/glslang.log" 2>&1; then
+        grep -v '^/' "$TMP/glslang.log" | map_log "$TMP/seen" | sed 's/^/#   /' | head -8
+        return 1
+    fi
+    return 0
+}
+
+if ! command -v glslangValidator >/dev/null 2>&1; then
+    not_ok "glslangValidator is installed (package glslang-tools)"
+    finish
+    exit 1
+fi
+
+count=0
+for f in $(find "$ROOT" -type f \( -name '*.vert' -o -name '*.frag' -o -name '*.comp' -o -name '*.geom' \) | LC_ALL=C sort); do
+    rel=${f#"$ROOT"/}
+    variants=$(sed -n 's#^[[:space:]]*//[[:space:]]*@variant[[:space:]]*##p' "$f" | tr ' ' ',')
+    [ -n "$variants" ] || variants="-"
+    for v in $variants; do
+        defs=$(echo "$v" | sed 's/^-$//' | tr ',' ' ')
+        for gles in 31 32; do
+            [ "$ext" = geom ] && [ "$gles" = 31 ] && continue
+            count=$((count + 1))
+            check "$rel [${defs:-no defines}] GLES $gles validates" validate "$rel" "$gles" "$defs"
+        done
+    done
+done
+[ "$count" -gt 0 ] || not_ok "found shaders to validate"
+
+# The check itself must be able to fail: a shader with an undeclared identifier is rejected.
+mkdir -p "$TMP/bad"
+printf 'precision highp float;\nout vec4 o;\nvoid main() { o = vec4(undeclared_thing); }\n' >"$TMP/bad/bad.frag"
+if ROOT=$TMP/bad validate bad.frag 31 "" >/dev/null; then
+    not_ok "a broken shader is rejected"
+else
+    ok "a broken shader is rejected"
+fi
+finish

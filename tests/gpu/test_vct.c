@@ -1,0 +1,432 @@
+/* vct on llvmpipe (GLES 3.1 path): memory per budget against the formula, averaging of many
+ * writers (summary A.6.1 #6), self-illumination of a lone plane (#4), HDR light not clipped (#12),
+ * and the update rules (a moving light re-injects without re-voxelizing). */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+
+#include "test_vct_util.h"
+
+static vt_gl g;
+
+static int group_setup(void **state)
+{
+    (void)state;
+    return vt_gl_init(&g);
+}
+
+static int group_teardown(void **state)
+{
+    (void)state;
+    vt_gl_fini(&g);
+    return 0;
+}
+
+/* ---- memory --------------------------------------------------------------------------------- */
+static void memory_matches_formula_per_budget(void **state)
+{
+    (void)state;
+    /* Hand-computed once: 64^3, aniso, 10 channels, 32x32 trace target, 2 triangles:
+       scratch 10*4*262144 = 10485760; level 0 8*262144 = 2097152; six chains 32^3..2^3:
+       6*8*(32768+4096+512+64+8) = 1797504; trace 2*8*1024 = 16384; triangles 2*80 = 160. */
+    assert_int_equal(gk_vct_memory_formula(64, true, 10, 32, 32, 2), 10485760L + 2097152 + 1797504 + 16384 + 160);
+    vt_scene sc;
+    vt_scene_init(&sc);
+    vt_add_quad(&sc, v3(0, 0, 0), v3(0, 0, 1), v3(1, 0, 0), v3(0.5f, 0.5f, 0.5f));
+    vt_scene_finish(&sc);
+    gk_gi_light L = vt_light(&sc, GK_LIGHT_POINT, v3(0.5f, 1, 0.5f), v3(0, -1, 0), v3(1, 1, 1), 1);
+    vt_frame f;
+    vt_frame_create(&f, 64, 64, v3(0.5f, 2, 0.6f), v3(0.5f, 0, 0.5f), v3(0, 0, -1), 0.8f);
+    vt_gbuffer(&g, &f, &sc);
+    static const char *budgets[] = {"vct_res=32,vct_mips=iso,vct_trace_scale=0.25",
+                                    "vct_res=32,vct_mips=aniso,vct_trace_scale=0.5",
+                                    "vct_res=64,vct_mips=aniso,vct_trace_scale=0.5",
+                                    "vct_res=128,vct_mips=aniso,vct_trace_scale=1",
+                                    "vct_res=256,vct_mips=aniso,vct_trace_scale=1"};
+    void *vct = vt_create(&g);
+    for (int i = 0; i < 5; i++) {
+        gk_budget b;
+        vt_budget(&b, budgets[i]);
+        assert_int_equal(vt_render(vct, &f, &sc, &b, &L, 1, NULL, NULL), 0);
+        gk_vct_stats st;
+        gk_vct_get_stats(vct, &st);
+        long bytes = gk_gi_vct.memory_bytes(vct);
+        long expect = gk_vct_memory_formula(st.res, strstr(budgets[i], "aniso") != NULL, 10, st.trace_w, st.trace_h, 2);
+        printf("# memory %s: res %d, trace %dx%d -> %.2f MiB\n", budgets[i], st.res, st.trace_w, st.trace_h,
+               (double)bytes / (1 << 20));
+        assert_int_equal(bytes, expect);
+        /* the real allocation: level-0 texture size as GL reports it */
+        GLint w = 0;
+        glBindTexture(GL_TEXTURE_3D, gk_vct_radiance_texture(vct));
+        glGetTexLevelParameteriv(GL_TEXTURE_3D, 0, GL_TEXTURE_WIDTH, &w);
+        glBindTexture(GL_TEXTURE_3D, 0);
+        assert_int_equal(w, st.res);
+        if (i == 4) {
+            /* 256^3 x 10 channels x 4 B = 640 MiB exceeds the 128 MiB storage-block limit of
+               llvmpipe (and the GLES 3.1 minimum): the method falls back to 128^3 */
+            GLint64 max_block = 0;
+            glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
+            if (max_block < 256L * 256 * 256 * 40)
+                assert_int_equal(st.res, 128);
+        }
+    }
+    gk_gi_vct.destroy(vct);
+    vt_frame_destroy(&f);
+    vt_scene_free(&sc);
+}
+
+/* ---- averaging ------------------------------------------------------------------------------ */
+/* Two marker quads fix the bounds to [0,1]^3; n_obj tiny quads (2 triangles each, all inside one
+   voxel of the 32^3 grid) carry the grey values (i * 97 mod 256) / 255 of P.2. */
+static void build_writers(vt_scene *sc, int n_obj, const gk_vct_stats *grid)
+{
+    vt_scene_init(sc);
+    vt_add_quad(sc, v3(0, 0, 0), v3(0.01f, 0, 0), v3(0, 0.01f, 0), v3(1, 1, 1));
+    vt_add_quad(sc, v3(0.99f, 0.99f, 1), v3(0.01f, 0, 0), v3(0, 0.01f, 0), v3(1, 1, 1));
+    if (grid) {
+        float h = grid->voxel_size;
+        vec3 c = v3(grid->grid_origin[0] + 16.5f * h, grid->grid_origin[1] + 16.5f * h, grid->grid_origin[2] + 16.5f * h);
+        for (int i = 0; i < n_obj; i++) {
+            float a = 0.7f * (float)i;   /* different orientations, all within +-0.2 voxel of the centre */
+            vec3 u = v3(0.2f * h * cosf(a), 0.1f * h, 0.2f * h * sinf(a));
+            vec3 w = v3(-0.1f * h * sinf(a), 0.2f * h, 0.1f * h * cosf(a));
+            float gv = (float)((i * 97) % 256) / 255.0f;
+            float q[1][9] = {{c.x - 0.1f * h, c.y - 0.1f * h, c.z - 0.1f * h, u.x, u.y, u.z, w.x, w.y, w.z}};
+            vt_add_quads(sc, 1, (const float(*)[9])q, v3(gv, gv, gv), v3(0, 0, 0), false);
+        }
+    }
+    vt_scene_finish(sc);
+}
+
+static unsigned *voxelize_writers(int n_obj, bool cas, long *n, gk_vct_stats *st_out)
+{
+    vt_scene sc;
+    build_writers(&sc, 0, NULL);
+    vt_frame f;
+    vt_frame_create(&f, 16, 16, v3(0.5f, 0.5f, 3), v3(0.5f, 0.5f, 0.5f), v3(0, 1, 0), 0.8f);
+    gk_gi_light L = vt_light(&sc, GK_LIGHT_POINT, v3(0.5f, 2, 0.5f), v3(0, -1, 0), v3(1, 1, 1), 1);
+    gk_budget b;
+    vt_budget(&b, "vct_res=32,vct_trace_scale=1");
+    void *vct = vt_create(&g);
+    gk_vct_options o;
+    gk_vct_default_options(&o);
+    o.average_cas = cas;
+    gk_vct_set_options(vct, &o);
+    vt_gbuffer(&g, &f, &sc);
+    vt_render(vct, &f, &sc, &b, &L, 1, NULL, NULL);
+    gk_vct_stats grid;
+    gk_vct_get_stats(vct, &grid);
+    vt_scene sc2;
+    build_writers(&sc2, n_obj, &grid);
+    gk_gi_vct.set_scene(vct, &sc2.s, NULL);
+    vt_render(vct, &f, &sc2, &b, &L, 1, NULL, NULL);
+    gk_vct_get_stats(vct, st_out);
+    assert_true(fabsf(st_out->grid_origin[0] - grid.grid_origin[0]) < 1e-6f);  /* same grid */
+    unsigned *data = vt_read_scratch(vct, n);
+    gk_gi_vct.destroy(vct);
+    vt_frame_destroy(&f);
+    vt_scene_free(&sc);
+    vt_scene_free(&sc2);
+    return data;
+}
+
+static void fixed_point_average_is_exact_and_deterministic(void **state)
+{
+    (void)state;
+    static const int objs[] = {2, 4, 9, 32, 60};   /* K = 4, 8, 18, 64, 120 writers */
+    for (int t = 0; t < 5; t++) {
+        long n1, n2;
+        gk_vct_stats st;
+        unsigned *a = voxelize_writers(objs[t], false, &n1, &st);
+        unsigned *b = voxelize_writers(objs[t], false, &n2, &st);
+        assert_non_null(a);
+        assert_non_null(b);
+        assert_int_equal(n1, n2);
+        /* bit-identical between two runs (integer addition is order-independent) */
+        assert_memory_equal(a, b, (size_t)n1 * 4);
+        long N = (long)st.res * st.res * st.res, vi = (16L * st.res + 16) * st.res + 16;
+        unsigned K = 2u * (unsigned)objs[t], sum = 0;
+        double exact = 0;
+        for (int i = 0; i < objs[t]; i++) {
+            sum += 2u * (unsigned)((i * 97) % 256);
+            exact += 2.0 * ((i * 97) % 256) / 255.0 / K;
+        }
+        assert_int_equal(a[0 * N + vi], K);            /* every writer counted */
+        assert_int_equal(a[1 * N + vi], sum);          /* the exact sum of the quantised values */
+        double mean = (double)a[1 * N + vi] / (255.0 * a[0 * N + vi]);
+        printf("# fixed point K=%u: mean %.6f, exact %.6f\n", K, mean, exact);
+        /* values are multiples of 1/255, so the fixed-point mean is exact up to float rounding */
+        assert_true(fabs(mean - exact) < 1e-6);
+        free(a);
+        free(b);
+    }
+}
+
+static void cas_average_reproduces_the_thesis_counter_wrap(void **state)
+{
+    (void)state;
+    static const int objs[] = {2, 4, 9, 32};   /* K = 4, 8, 18, 64 */
+    for (int t = 0; t < 4; t++) {
+        long n;
+        gk_vct_stats st;
+        unsigned *a = voxelize_writers(objs[t], true, &n, &st);
+        assert_non_null(a);
+        long N = (long)st.res * st.res * st.res, vi = (16L * st.res + 16) * st.res + 16;
+        unsigned v = a[1 * N + vi];
+        unsigned count = (v & 1u) | ((v & 0x100u) >> 7) | ((v & 0x10000u) >> 14) | ((v & 0x1000000u) >> 21);
+        double stored = (double)(v & 0xFEu), exact = 0;
+        unsigned K = 2u * (unsigned)objs[t];
+        for (int i = 0; i < objs[t]; i++)
+            exact += 2.0 * ((i * 97) % 256) / K;
+        printf("# thesis CAS K=%u: stored %.0f (counter %u), exact mean %.1f\n", K, stored, count, exact);
+        /* The 4-bit counter wraps at 16 (thesis §3.1, P.2): K mod 16 */
+        assert_int_equal(count, K % 16);
+        /* Below the wrap the moving average is right within its 7-bit rounding (P.2: 80 vs 81.5,
+           116 vs 115.5): 3 of 255. */
+        if (K < 16)
+            assert_true(fabs(stored - exact) <= 3.0);
+        free(a);
+    }
+}
+
+/* ---- self-illumination, HDR ----------------------------------------------------------------- */
+/* Lone lit plane seen from above: mean indirect / mean direct outgoing radiance. */
+static double lone_plane_ratio(float apex_offset)
+{
+    vt_scene sc;
+    vt_scene_init(&sc);
+    vt_add_quad(&sc, v3(0, 0, 0), v3(0, 0, 1), v3(1, 0, 0), v3(0.8f, 0.8f, 0.8f));
+    vt_scene_finish(&sc);
+    vec3 lp = v3(0.5f, 0.6f, 0.5f);
+    gk_gi_light L = vt_light(&sc, GK_LIGHT_POINT, lp, v3(0, -1, 0), v3(1, 1, 1), 1);
+    void *vct = vt_create(&g);
+    gk_vct_options o;
+    gk_vct_default_options(&o);
+    o.apex_offset = apex_offset;
+    gk_vct_set_options(vct, &o);
+    gk_budget b;
+    vt_budget(&b, "vct_res=64,vct_trace_scale=1");
+    const int W = 48, H = 48;
+    vt_frame f;
+    vt_frame_create(&f, W, H, v3(0.5f, 1.5f, 0.51f), v3(0.5f, 0, 0.5f), v3(0, 0, -1), 0.5f);
+    vt_gbuffer(&g, &f, &sc);
+    float *img = malloc(sizeof(float) * 4 * W * H), *pos = malloc(sizeof(float) * 4 * W * H);
+    double ind = 0, dir = 0;
+    if (vt_render(vct, &f, &sc, &b, &L, 1, img, NULL) == 0) {
+        vt_read_positions(&f, pos);
+        for (int i = 0; i < W * H; i++) {
+            if (pos[i * 4 + 3] == 0)
+                continue;
+            vec3 p = v3(pos[i * 4], pos[i * 4 + 1], pos[i * 4 + 2]), d = v3_sub(lp, p);
+            float d2 = v3_dot(d, d);
+            dir += 0.8 / 3.14159265 * (d.y / sqrtf(d2)) / d2;   /* rho/pi E */
+            ind += vt_lum(img + i * 4);
+        }
+    }
+    free(img);
+    free(pos);
+    vt_frame_destroy(&f);
+    gk_gi_vct.destroy(vct);
+    vt_scene_free(&sc);
+    return dir > 0 ? ind / dir : -1;
+}
+
+static void lone_plane_does_not_illuminate_itself(void **state)
+{
+    (void)state;
+    const float offsets[3] = {1.0f, 1.7320508f, 2.5f};
+    double r[3];
+    for (int i = 0; i < 3; i++) {
+        r[i] = lone_plane_ratio(offsets[i]);
+        printf("# lone plane, apex offset %.2f voxels: indirect / direct = %.4f%%\n", offsets[i], 100 * r[i]);
+        assert_true(r[i] >= 0);
+    }
+    assert_true(r[0] > r[2]);   /* the offset matters: the test can see self-illumination */
+    /* Ground truth 0. Measured: 0.000% at the thesis code's 2.5-voxel offset and the text's sqrt(3),
+       40% at 1 voxel (the first level-0 samples overlap the plane's own voxels). Without directional
+       injection (thesis behaviour) the coarse levels show the plane lit from every side and it lights
+       itself at every offset: 79% / 76% / 74% measured. Bound 0.1% at >= sqrt(3). */
+    assert_true(r[1] < 0.001);
+    assert_true(r[2] < 0.001);
+}
+
+/* Floor + back wall; returns the summed indirect luminance and the largest pixel value. */
+static double corner_indirect(float intensity, float *max_px)
+{
+    vt_scene sc;
+    vt_scene_init(&sc);
+    vt_add_quad(&sc, v3(0, 0, 0), v3(0, 0, 1), v3(1, 0, 0), v3(0.8f, 0.8f, 0.8f));
+    vt_add_quad(&sc, v3(0, 0, 0), v3(1, 0, 0), v3(0, 1, 0), v3(0.8f, 0.5f, 0.3f));
+    vt_scene_finish(&sc);
+    gk_gi_light L = vt_light(&sc, GK_LIGHT_POINT, v3(0.5f, 0.3f, 0.6f), v3(0, -1, 0),
+                             v3(intensity, intensity, intensity), 1);
+    void *vct = vt_create(&g);
+    gk_budget b;
+    vt_budget(&b, "vct_res=32,vct_trace_scale=0.5");
+    const int W = 48, H = 48;
+    vt_frame f;
+    vt_frame_create(&f, W, H, v3(0.5f, 0.6f, 2), v3(0.5f, 0.3f, 0.3f), v3(0, 1, 0), 0.9f);
+    vt_gbuffer(&g, &f, &sc);
+    float *img = malloc(sizeof(float) * 4 * W * H);
+    double sum = -1;
+    *max_px = 0;
+    if (vt_render(vct, &f, &sc, &b, &L, 1, img, NULL) == 0) {
+        sum = 0;
+        for (int i = 0; i < W * H; i++) {
+            sum += vt_lum(img + i * 4);
+            for (int c = 0; c < 3; c++)
+                *max_px = fmaxf(*max_px, img[i * 4 + c]);
+        }
+    }
+    free(img);
+    vt_frame_destroy(&f);
+    gk_gi_vct.destroy(vct);
+    vt_scene_free(&sc);
+    return sum;
+}
+
+static void hdr_light_is_not_clipped(void **state)
+{
+    (void)state;
+    float m1, m4;
+    double s1 = corner_indirect(4.0f, &m1), s4 = corner_indirect(16.0f, &m4);
+    printf("# HDR: indirect sum x1 %.4f, x4 %.4f, ratio %.5f; largest pixel %.3f -> %.3f\n", s1, s4, s4 / s1, m1, m4);
+    assert_true(s1 > 0);
+    /* RGBA16F voxels scale linearly: ratio 4 within half-float rounding (0.1% per value; measured
+       4.00000). The thesis's RGBA8 voxels would saturate at 1; here the brightest indirect pixel
+       goes from 0.37 to 1.49 (measured) and the voxels it gathers from are brighter still. */
+    assert_true(fabs(s4 / s1 - 4.0) < 0.01);
+    assert_true(m4 > 1.0f);
+}
+
+/* ---- update rules --------------------------------------------------------------------------- */
+static void moving_light_reinjects_without_revoxelizing(void **state)
+{
+    (void)state;
+    vt_scene sc;
+    vt_scene_init(&sc);
+    vt_add_quad(&sc, v3(0, 0, 0), v3(0, 0, 1), v3(1, 0, 0), v3(0.8f, 0.8f, 0.8f));
+    vt_add_quad(&sc, v3(0, 0, 0), v3(1, 0, 0), v3(0, 1, 0), v3(0.8f, 0.8f, 0.8f));
+    vt_scene_finish(&sc);
+    gk_gi_light L = vt_light(&sc, GK_LIGHT_POINT, v3(0.5f, 0.5f, 0.5f), v3(0, -1, 0), v3(2, 2, 2), 1);
+    void *vct = vt_create(&g);
+    gk_budget b;
+    vt_budget(&b, "vct_res=32,vct_trace_scale=0.5");
+    vt_frame f;
+    vt_frame_create(&f, 32, 32, v3(0.5f, 0.6f, 2), v3(0.5f, 0.3f, 0.3f), v3(0, 1, 0), 0.9f);
+    vt_gbuffer(&g, &f, &sc);
+    gk_vct_stats s0, s1, s2;
+    assert_int_equal(vt_render(vct, &f, &sc, &b, &L, 1, NULL, NULL), 0);
+    gk_vct_get_stats(vct, &s0);
+    assert_int_equal(vt_render(vct, &f, &sc, &b, &L, 1, NULL, NULL), 0);
+    gk_vct_get_stats(vct, &s1);
+    /* nothing changed: no voxelization, no injection, only tracing */
+    assert_int_equal(s1.voxelize_runs, s0.voxelize_runs);
+    assert_int_equal(s1.inject_runs, s0.inject_runs);
+    assert_int_equal(s1.trace_runs, s0.trace_runs + 1);
+    L.position.x += 0.1f;
+    assert_int_equal(vt_render(vct, &f, &sc, &b, &L, 1, NULL, NULL), 0);
+    gk_vct_get_stats(vct, &s2);
+    assert_int_equal(s2.voxelize_runs, s0.voxelize_runs);
+    assert_int_equal(s2.inject_runs, s0.inject_runs + 1);
+    assert_int_equal(s2.mip_runs, s0.mip_runs + 1);
+    /* a budget change of a size knob re-allocates and re-voxelizes */
+    vt_budget(&b, "vct_res=64,vct_trace_scale=0.5");
+    assert_int_equal(vt_render(vct, &f, &sc, &b, &L, 1, NULL, NULL), 0);
+    gk_vct_get_stats(vct, &s2);
+    assert_int_equal(s2.voxelize_runs, s0.voxelize_runs + 1);
+    assert_int_equal(s2.res, 64);
+    gk_gi_vct.destroy(vct);
+    vt_frame_destroy(&f);
+    vt_scene_free(&sc);
+}
+
+/* ---- relative pass costs and work counters -------------------------------------------------- */
+static double model_steps(double a, double m, int res)
+{
+    /* summary A.6.3: steps of one unoccluded cone from 0 to sqrt(3) with step max(m d, 1 voxel) */
+    return 1.0 / (m * a) + log(sqrt(3.0) * res * m * a) / log(1.0 + m * a);
+}
+
+static void pass_costs_and_work_counters(void **state)
+{
+    (void)state;
+    vt_scene sc;
+    vt_scene_init(&sc);
+    vec3 white = v3(0.75f, 0.75f, 0.75f);
+    vt_add_quad(&sc, v3(0, 0, 0), v3(0, 0, 1), v3(1, 0, 0), white);
+    vt_add_quad(&sc, v3(0, 1, 0), v3(1, 0, 0), v3(0, 0, 1), white);
+    vt_add_quad(&sc, v3(0, 0, 0), v3(1, 0, 0), v3(0, 1, 0), white);
+    vt_add_quad(&sc, v3(0, 0, 0), v3(0, 1, 0), v3(0, 0, 1), v3(0.63f, 0.06f, 0.05f));
+    vt_add_quad(&sc, v3(1, 0, 0), v3(0, 0, 1), v3(0, 1, 0), v3(0.14f, 0.45f, 0.09f));
+    vt_add_box(&sc, v3(0.5f, 0, 0.3f), v3(0.25f, 0.35f, 0.25f), white, false);
+    vt_scene_finish(&sc);
+    gk_gi_light L = vt_light(&sc, GK_LIGHT_POINT, v3(0.5f, 0.9f, 0.5f), v3(0, -1, 0), v3(2, 2, 2), 1);
+    const int W = 96, H = 96;
+    vt_frame f;
+    vt_frame_create(&f, W, H, v3(0.5f, 0.5f, 2.0f), v3(0.5f, 0.5f, 0.4f), v3(0, 1, 0), 0.8f);
+    vt_gbuffer(&g, &f, &sc);
+    static const char *budgets[] = {
+        "vct_res=32,vct_mips=iso,vct_cones=4,vct_step=2,vct_trace_scale=0.25",
+        "vct_res=32,vct_mips=aniso,vct_cones=6,vct_step=1,vct_trace_scale=0.5",
+        "vct_res=64,vct_mips=aniso,vct_cones=6,vct_step=1,vct_trace_scale=0.5",
+        "vct_res=64,vct_mips=aniso,vct_cones=6,vct_step=0.5,vct_trace_scale=1",
+        "vct_res=64,vct_mips=aniso,vct_cones=9,vct_step=1,vct_trace_scale=1",
+        "vct_res=128,vct_mips=aniso,vct_cones=6,vct_step=1,vct_trace_scale=0.5",
+    };
+    for (int i = 0; i < 6; i++) {
+        for (int mode = 0; mode < 2; mode++) {   /* 0: defaults, 1: the thesis's options */
+            if (mode == 1 && i != 2)
+                continue;
+            void *vct = vt_create(&g);
+            gk_vct_options o;
+            if (mode)
+                gk_vct_thesis_options(&o);
+            else
+                gk_vct_default_options(&o);
+            gk_vct_set_options(vct, &o);
+            gk_budget b;
+            vt_budget(&b, budgets[i]);
+            /* first frame compiles the programs; the options reset makes the second frame run every
+               pass again, warm */
+            assert_int_equal(vt_render(vct, &f, &sc, &b, &L, 1, NULL, NULL), 0);
+            gk_vct_set_options(vct, &o);
+            gk_pass_times t = {0};
+            assert_int_equal(vt_render(vct, &f, &sc, &b, &L, 1, NULL, &t), 0);
+            gk_vct_stats st;
+            gk_vct_get_stats(vct, &st);
+            char line[512];
+            int used = snprintf(line, sizeof line, "# costs %s%s:", budgets[i], mode ? " (thesis options)" : "");
+            for (int k = 0; k < t.n; k++)
+                used += snprintf(line + used, sizeof line - (size_t)used, " %s %.1f ms", t.name[k], t.ms[k]);
+            double spp = (double)st.last_trace_steps / (st.trace_w * st.trace_h);
+            printf("%s; %.1f samples/traced px\n", line, spp);
+            assert_int_equal(t.n, 5);
+            float step = gk_budget_float(&b, "vct_step", 1);
+            int cones = (int)gk_budget_float(&b, "vct_cones", 6);
+            /* work counter (deterministic): at most the unoccluded-cone model of A.6.3 per cone (wide
+               aperture ~1.1) plus the apex offset's extra steps; early opacity termination and
+               background pixels only lower it */
+            double bound = cones * (model_steps(1.0, step, st.res) + 3.0);
+            assert_true(spp > 1.0 && spp < bound);
+            gk_gi_vct.destroy(vct);
+        }
+    }
+    vt_frame_destroy(&f);
+    vt_scene_free(&sc);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(memory_matches_formula_per_budget),
+        cmocka_unit_test(fixed_point_average_is_exact_and_deterministic),
+        cmocka_unit_test(cas_average_reproduces_the_thesis_counter_wrap),
+        cmocka_unit_test(lone_plane_does_not_illuminate_itself),
+        cmocka_unit_test(hdr_light_is_not_clipped),
+        cmocka_unit_test(moving_light_reinjects_without_revoxelizing),
+        cmocka_unit_test(pass_costs_and_work_counters),
+    };
+    return cmocka_run_group_tests_name("vct", tests, group_setup, group_teardown);
+}

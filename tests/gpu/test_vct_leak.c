@@ -1,0 +1,241 @@
+/* vct light leaking (summary A.6.1 #1 and #2b), measured as numbers on llvmpipe:
+ *  - thin-wall rays: 0-degree rays through the real cone loop across one plane, conservative vs
+ *    thin voxelization (P.3);
+ *  - partition: a zero-thickness wall splits a box, only one side is lit; dark-side / lit-side
+ *    indirect luminance through the whole method (P.4). */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+
+#include "test_vct_util.h"
+
+static vt_gl g;
+
+static int group_setup(void **state)
+{
+    (void)state;
+    return vt_gl_init(&g);
+}
+
+static int group_teardown(void **state)
+{
+    (void)state;
+    vt_gl_fini(&g);
+    return 0;
+}
+
+/* ---- thin-wall rays ------------------------------------------------------------------------- */
+typedef struct leak_result {
+    double half, full;   /* fraction of rays with accumulated alpha < 0.5 / < 0.05 */
+    long occupied;       /* voxels the plane occupies */
+} leak_result;
+
+static leak_result thin_wall(vec3 normal, bool conservative, float offset)
+{
+    leak_result r = {-1, -1, 0};
+    vt_scene sc;
+    vt_scene_init(&sc);
+    vec3 n = v3_norm(normal);
+    vec3 t = v3_norm(v3_cross(fabsf(n.y) < 0.9f ? v3(0, 1, 0) : v3(1, 0, 0), n));
+    vec3 b = v3_cross(n, t);
+    vec3 c = v3(0.5f, 0.5f, 0.5f);
+    vt_add_quad(&sc, v3_sub(c, v3_scale(v3_add(t, b), 0.5f)), t, b, v3(0.5f, 0.5f, 0.5f));
+    vt_scene_finish(&sc);
+    void *vct = vt_create(&g);
+    gk_vct_options o;
+    gk_vct_default_options(&o);
+    o.conservative = conservative;
+    o.grid_offset[0] = offset, o.grid_offset[1] = 0.7f * offset, o.grid_offset[2] = 0.3f * offset;
+    gk_vct_set_options(vct, &o);
+    gk_budget bud;
+    vt_budget(&bud, "vct_res=64,vct_trace_scale=1");
+    vt_frame f;
+    vt_frame_create(&f, 8, 8, v3(0.5f, 0.5f, 3), c, v3(0, 1, 0), 0.5f);
+    vt_gbuffer(&g, &f, &sc);
+    gk_gi_light L = vt_light(&sc, GK_LIGHT_POINT, v3(2, 2, 2), v3(0, -1, 0), v3(1, 1, 1), 1.0f);
+    if (vt_render(vct, &f, &sc, &bud, &L, 1, NULL, NULL) != 0)
+        goto out;
+    gk_vct_stats st;
+    gk_vct_get_stats(vct, &st);
+    /* occupied voxels: count channel (channel 0) of the scratch buffer */
+    long r3 = (long)st.res * st.res * st.res;
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, gk_vct_scratch_buffer(vct));
+    const GLuint *cnt = glMapBufferRange(GL_SHADER_STORAGE_BUFFER, 0, (GLsizeiptr)(r3 * 4), GL_MAP_READ_BIT);
+    for (long i = 0; cnt && i < r3; i++)
+        r.occupied += cnt[i] != 0;
+    glUnmapBuffer(GL_SHADER_STORAGE_BUFFER);
+
+    gk_err e = {0};
+    GLuint p = gk_program_get_compute(g.programs, "vct/test/ray_leak.comp",
+                                      "#define ISO_MIPS 1\n#define AXIS_WEIGHT_SQ 0\n#define OPACITY_CORRECTION 0\n", &e);
+    if (!p) {
+        fprintf(stderr, "# %s\n", e.msg);
+        goto out;
+    }
+    const int rays = 16384;
+    GLuint res_buf, zero[2] = {0, 0};
+    glGenBuffers(1, &res_buf);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, res_buf);
+    glBufferData(GL_SHADER_STORAGE_BUFFER, sizeof zero, zero, GL_DYNAMIC_READ);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, res_buf);
+    glUseProgram(p);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_3D, gk_vct_radiance_texture(vct));
+    glUniform1i(glGetUniformLocation(p, "u_vox0"), 0);
+    glUniform1i(glGetUniformLocation(p, "u_res"), st.res);
+    glUniform1f(glGetUniformLocation(p, "u_res_f"), (float)st.res);
+    glUniform1f(glGetUniformLocation(p, "u_step_mul"), 1.0f);
+    glUniform1f(glGetUniformLocation(p, "u_ao_lambda"), 0.0f);
+    vec3 cu = v3_scale(v3_sub(c, v3(st.grid_origin[0], st.grid_origin[1], st.grid_origin[2])), 1.0f / st.grid_size);
+    glUniform3f(glGetUniformLocation(p, "u_center"), cu.x, cu.y, cu.z);
+    glUniform3f(glGetUniformLocation(p, "u_normal"), n.x, n.y, n.z);
+    glUniform1i(glGetUniformLocation(p, "u_rays"), rays);
+    glUniform1f(glGetUniformLocation(p, "u_march"), 12.0f);
+    glDispatchCompute((GLuint)(rays / 64), 1, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    const GLuint *res = glMapBufferRange(GL_SHADER_STORAGE_BUFFER, 0, sizeof zero, GL_MAP_READ_BIT);
+    if (res) {
+        r.half = (double)res[0] / rays;
+        r.full = (double)res[1] / rays;
+    }
+    glUnmapBuffer(GL_SHADER_STORAGE_BUFFER);
+    glDeleteBuffers(1, &res_buf);
+    glBindTexture(GL_TEXTURE_3D, 0);
+out:
+    vt_frame_destroy(&f);
+    gk_gi_vct.destroy(vct);
+    vt_scene_free(&sc);
+    return r;
+}
+
+static void thin_wall_rays_conservative_beats_thin(void **state)
+{
+    (void)state;
+    const vec3 normals[3] = {v3(1, 1, 0), v3(1, 1, 1), v3(1, 0.4f, 0.2f)};
+    double thin_mean[3];
+    for (int i = 0; i < 3; i++) {
+        /* The thin result depends on where the plane cuts the voxel centres, so it is averaged over
+           four sub-voxel grid offsets (o, 0.7o, 0.3o), o = 0, 1/4, 1/2, 3/4. */
+        leak_result thin_sum = {0, 0, 0}, cons_sum = {0, 0, 0};
+        for (int k = 0; k < 4; k++) {
+            leak_result thin = thin_wall(normals[i], false, 0.25f * (float)k);
+            leak_result cons = thin_wall(normals[i], true, 0.25f * (float)k);
+            assert_true(thin.half >= 0 && cons.half >= 0);
+            /* A 26-separating voxelization cannot be crossed by a ray through the real loop: 0 leaked
+               rays at every offset for all three normals (as in P.3); any leak is a bug. */
+            assert_true(cons.half == 0.0);
+            assert_true(cons.occupied >= thin.occupied);
+            thin_sum.half += thin.half / 4, thin_sum.full += thin.full / 4, thin_sum.occupied += thin.occupied / 4;
+            cons_sum.half += cons.half / 4, cons_sum.full += cons.full / 4, cons_sum.occupied += cons.occupied / 4;
+        }
+        thin_mean[i] = thin_sum.half;
+        printf("# thin wall n=(%.1f,%.1f,%.1f), mean of 4 offsets: thin %ld voxels, rays alpha<0.5 %.2f%% "
+               "(<0.05 %.2f%%); conservative %ld voxels, %.2f%% (%.2f%%)\n",
+               normals[i].x, normals[i].y, normals[i].z, thin_sum.occupied, 100 * thin_sum.half,
+               100 * thin_sum.full, cons_sum.occupied, 100 * cons_sum.half, 100 * cons_sum.full);
+    }
+    /* Diagonal walls leak through the thin (6-separating) voxelization (P.3: 19% for (1,1,0) and 32%
+       for (1,1,1), trilinear, 1-voxel steps). Measured here (mean of 4 offsets): 12.0% and 41.6%
+       (0.2% for the nearly axis-aligned (1,0.4,0.2)); the bounds (half of that) require the failure
+       to be clearly there, so the test shows that the conservative mode (0%) is what removes it. */
+    assert_true(thin_mean[0] > 0.06);
+    assert_true(thin_mean[1] > 0.20);
+}
+
+/* ---- partition ------------------------------------------------------------------------------ */
+/* Box [0,1]^3 open towards +z, a zero-thickness wall at x = 0.5; a narrow spot light lights only
+   the floor of the x < 0.5 half. Returns dark-side / lit-side mean indirect luminance over visible
+   pixels more than 0.08 from the wall (ground truth 0). */
+static double partition_leak(const char *budget, const gk_vct_options *opt, double *lit_mean)
+{
+    vt_scene sc;
+    vt_scene_init(&sc);
+    vec3 white = v3(0.75f, 0.75f, 0.75f);
+    vt_add_quad(&sc, v3(0, 0, 0), v3(0, 0, 1), v3(1, 0, 0), white);    /* floor, +y */
+    vt_add_quad(&sc, v3(0, 1, 0), v3(1, 0, 0), v3(0, 0, 1), white);    /* ceiling, -y */
+    vt_add_quad(&sc, v3(0, 0, 0), v3(1, 0, 0), v3(0, 1, 0), white);    /* back, +z */
+    vt_add_quad(&sc, v3(0, 0, 0), v3(0, 1, 0), v3(0, 0, 1), white);    /* left, +x */
+    vt_add_quad(&sc, v3(1, 0, 0), v3(0, 0, 1), v3(0, 1, 0), white);    /* right, -x */
+    vt_add_quad(&sc, v3(0.5f, 0, 0), v3(0, 0, 1), v3(0, 1, 0), white); /* partition */
+    vt_scene_finish(&sc);
+    /* spot at (0.25, 0.95, 0.5) straight down, outer cone 13 deg: floor footprint radius
+       0.95 tan 13 = 0.22 < 0.25, so no direct light reaches the dark half or the wall */
+    gk_gi_light L = vt_light(&sc, GK_LIGHT_SPOT, v3(0.25f, 0.95f, 0.5f), v3(0, -1, 0), v3(20, 20, 20),
+                             13.0f * 3.14159265f / 180.0f);
+    void *vct = vt_create(&g);
+    if (opt)
+        gk_vct_set_options(vct, opt);
+    gk_budget bud;
+    vt_budget(&bud, budget);
+    vt_frame f;
+    const int W = 64, H = 64;
+    vt_frame_create(&f, W, H, v3(0.5f, 0.5f, 2.2f), v3(0.5f, 0.45f, 0.4f), v3(0, 1, 0), 0.9f);
+    vt_gbuffer(&g, &f, &sc);
+    float *img = malloc(sizeof(float) * 4 * W * H), *pos = malloc(sizeof(float) * 4 * W * H);
+    double ratio = -1;
+    if (vt_render(vct, &f, &sc, &bud, &L, 1, img, NULL) == 0) {
+        vt_read_positions(&f, pos);
+        double sl = 0, sd = 0;
+        int nl = 0, nd = 0;
+        for (int i = 0; i < W * H; i++) {
+            if (pos[i * 4 + 3] == 0)
+                continue;
+            float x = pos[i * 4];
+            if (x < 0.42f)
+                sl += vt_lum(img + i * 4), nl++;
+            else if (x > 0.58f)
+                sd += vt_lum(img + i * 4), nd++;
+        }
+        if (nl > 100 && nd > 100) {
+            ratio = (sd / nd) / (sl / nl);
+            *lit_mean = sl / nl;
+        }
+    }
+    free(img);
+    free(pos);
+    vt_frame_destroy(&f);
+    gk_gi_vct.destroy(vct);
+    vt_scene_free(&sc);
+    return ratio;
+}
+
+static void partition_leak_is_small(void **state)
+{
+    (void)state;
+    static const char *budgets[] = {
+        "vct_res=32,vct_trace_scale=1,vct_mips=aniso", "vct_res=64,vct_trace_scale=1,vct_mips=aniso",
+        "vct_res=64,vct_trace_scale=1,vct_mips=iso", "vct_res=64,vct_trace_scale=0.5,vct_mips=aniso",
+        "vct_res=64,vct_trace_scale=1,vct_cones=4", "vct_res=64,vct_trace_scale=1,vct_cones=9",
+    };
+    double r[6], lit;
+    for (int i = 0; i < 6; i++) {
+        r[i] = partition_leak(budgets[i], NULL, &lit);
+        printf("# partition leak %s: dark/lit = %.3f%% (lit-side mean indirect %.4f nits)\n", budgets[i],
+               100 * r[i], lit);
+        assert_true(r[i] >= 0);
+        assert_true(lit > 0);
+    }
+    /* Measured (llvmpipe, this scene): 32^3 6.0%, 64^3 2.9%, 64^3 iso 30.7%, 64^3 at trace scale 0.5
+       2.8%, 4 cones 3.3%, 9 cones 3.7%. P.4 measured 0.3-0.6% in a box whose lit side is lit all
+       over; here only a small spot of floor is lit, so the lit side's indirect light (the
+       denominator) is weaker, and the leak grows with the thesis code's 2.5-voxel apex offset
+       (0.8% with a 1-voxel offset, 0.3% with that and step 0.5; measured once while writing this).
+       Bounds: 1.5x the measurements, and isotropic mips must leak clearly more than anisotropic
+       ones (the red-green wall problem, Fig. 11b). */
+    assert_true(r[0] < 0.09);
+    assert_true(r[1] < 0.045);
+    assert_true(r[2] > 3 * r[1]);
+    assert_true(r[3] < 0.045);
+    assert_true(r[4] < 0.05 && r[5] < 0.055);
+    assert_true(r[1] < r[0]);   /* finer grid, less leaking (P.4) */
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(thin_wall_rays_conservative_beats_thin),
+        cmocka_unit_test(partition_leak_is_small),
+    };
+    return cmocka_run_group_tests_name("vct_leak", tests, group_setup, group_teardown);
+}

@@ -1,0 +1,366 @@
+/* Helpers shared by the vct GPU tests (tests/gpu/test_vct*.c): an EGL surfaceless GLES context,
+ * small in-memory scenes (quads and boxes, one node per object), a test G-buffer rendered with
+ * shaders_gles/vct/test/gbuf.*, an RGBA32F HDR target to read the method's contribution back, and
+ * one call that renders a frame through gk_gi_vct. Header-only (static functions) because each
+ * GPU test is one program. */
+#ifndef TEST_VCT_UTIL_H
+#define TEST_VCT_UTIL_H
+
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "gi/vct/vct.h"
+#include "render/gl.h"
+#include "render/gl_program.h"
+
+#define VT_MAX_OBJ 64
+
+/* ---- context ------------------------------------------------------------------------------- */
+typedef struct vt_gl {
+    EGLDisplay dpy;
+    EGLContext ctx;
+    gk_program_cache *programs;
+} vt_gl;
+
+static int vt_gl_init(vt_gl *g)
+{
+    g->dpy = eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, NULL);
+    if (g->dpy == EGL_NO_DISPLAY || !eglInitialize(g->dpy, NULL, NULL) || !eglBindAPI(EGL_OPENGL_ES_API))
+        return -1;
+    EGLint attr[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 1, EGL_NONE};
+    g->ctx = eglCreateContext(g->dpy, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attr);
+    if (g->ctx == EGL_NO_CONTEXT || !eglMakeCurrent(g->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, g->ctx))
+        return -2;
+    /* #version 310 es: the portable GLES 3.1 path is what is tested */
+    g->programs = gk_program_cache_create(NULL, 31);
+    return g->programs ? 0 : -3;
+}
+
+static void vt_gl_fini(vt_gl *g)
+{
+    gk_program_cache_destroy(g->programs);
+    eglMakeCurrent(g->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    eglDestroyContext(g->dpy, g->ctx);
+    eglTerminate(g->dpy);
+}
+
+/* ---- scenes -------------------------------------------------------------------------------- */
+typedef struct vt_scene {
+    gk_scene s;
+    gk_mesh meshes[VT_MAX_OBJ];
+    gk_material mats[VT_MAX_OBJ];
+    gk_node nodes[VT_MAX_OBJ];
+    gk_light lights[4];
+} vt_scene;
+
+static void vt_scene_init(vt_scene *v)
+{
+    memset(v, 0, sizeof *v);
+    v->s.meshes = v->meshes;
+    v->s.materials = v->mats;
+    v->s.nodes = v->nodes;
+    v->s.lights = v->lights;
+    v->s.camera_node = -1;
+    snprintf(v->s.name, sizeof v->s.name, "vct-test");
+}
+
+static void vt_scene_free(vt_scene *v)
+{
+    for (int i = 0; i < v->s.n_meshes; i++) {
+        free(v->meshes[i].positions);
+        free(v->meshes[i].normals);
+        free(v->meshes[i].indices);
+    }
+}
+
+/* Bounds and counts after objects were added (node world matrices applied). */
+static void vt_scene_finish(vt_scene *v)
+{
+    vec3 lo = v3(1e30f, 1e30f, 1e30f), hi = v3(-1e30f, -1e30f, -1e30f);
+    v->s.n_triangles = 0;
+    for (int n = 0; n < v->s.n_nodes; n++) {
+        const gk_mesh *m = &v->meshes[v->nodes[n].mesh_first];
+        for (uint32_t i = 0; i < m->n_vertices; i++) {
+            vec3 p = m4_point(v->nodes[n].world, v3(m->positions[i * 3], m->positions[i * 3 + 1], m->positions[i * 3 + 2]));
+            lo = v3_min(lo, p);
+            hi = v3_max(hi, p);
+        }
+        v->s.n_triangles += m->n_triangles;
+    }
+    v->s.bmin = lo;
+    v->s.bmax = hi;
+}
+
+/* Adds an object made of quads (corner, edge u, edge v each), one node; returns the node index. */
+static int vt_add_quads(vt_scene *v, int nq, const float (*q)[9], vec3 albedo, vec3 emission, bool animated)
+{
+    int i = v->s.n_meshes++;
+    gk_mesh *m = &v->meshes[i];
+    m->n_vertices = (uint32_t)nq * 4;
+    m->n_triangles = (uint32_t)nq * 2;
+    m->positions = calloc(m->n_vertices * 3, sizeof(float));
+    m->normals = calloc(m->n_vertices * 3, sizeof(float));
+    m->indices = calloc(m->n_triangles * 3, sizeof(uint32_t));
+    for (int k = 0; k < nq; k++) {
+        vec3 c = v3(q[k][0], q[k][1], q[k][2]), u = v3(q[k][3], q[k][4], q[k][5]), w = v3(q[k][6], q[k][7], q[k][8]);
+        vec3 n = v3_norm(v3_cross(u, w));
+        vec3 p[4] = {c, v3_add(c, u), v3_add(v3_add(c, u), w), v3_add(c, w)};
+        for (int j = 0; j < 4; j++) {
+            memcpy(&m->positions[(k * 4 + j) * 3], &p[j], sizeof(vec3));
+            memcpy(&m->normals[(k * 4 + j) * 3], &n, sizeof(vec3));
+        }
+        uint32_t b = (uint32_t)k * 4, idx[6] = {b, b + 1, b + 2, b, b + 2, b + 3};
+        memcpy(&m->indices[k * 6], idx, sizeof idx);
+    }
+    m->material = i;
+    gk_material *mat = &v->mats[i];
+    mat->base_color[0] = albedo.x, mat->base_color[1] = albedo.y, mat->base_color[2] = albedo.z;
+    mat->base_color[3] = 1;
+    mat->emissive[0] = emission.x, mat->emissive[1] = emission.y, mat->emissive[2] = emission.z;
+    mat->base_color_tex = mat->metallic_roughness_tex = -1;
+    mat->roughness = 1;
+    v->s.n_materials = v->s.n_meshes;
+    gk_node *nd = &v->nodes[v->s.n_nodes];
+    nd->parent = -1;
+    nd->mesh_first = i;
+    nd->mesh_count = 1;
+    nd->light = nd->camera = -1;
+    nd->world = m4_identity();
+    nd->animated = animated;
+    return v->s.n_nodes++;
+}
+
+static int vt_add_quad(vt_scene *v, vec3 c, vec3 u, vec3 w, vec3 albedo)
+{
+    float q[1][9] = {{c.x, c.y, c.z, u.x, u.y, u.z, w.x, w.y, w.z}};
+    return vt_add_quads(v, 1, (const float(*)[9])q, albedo, v3(0, 0, 0), false);
+}
+
+/* Axis-aligned box [lo, lo + size] with outward faces. */
+static int vt_add_box(vt_scene *v, vec3 lo, vec3 sz, vec3 albedo, bool animated)
+{
+    vec3 hi = v3_add(lo, sz);
+    float q[6][9] = {
+        {lo.x, lo.y, lo.z, 0, 0, sz.z, 0, sz.y, 0}, {hi.x, lo.y, lo.z, 0, sz.y, 0, 0, 0, sz.z},
+        {lo.x, lo.y, lo.z, sz.x, 0, 0, 0, 0, sz.z}, {lo.x, hi.y, lo.z, 0, 0, sz.z, sz.x, 0, 0},
+        {lo.x, lo.y, lo.z, 0, sz.y, 0, sz.x, 0, 0}, {lo.x, lo.y, hi.z, sz.x, 0, 0, 0, sz.y, 0},
+    };
+    return vt_add_quads(v, 6, (const float(*)[9])q, albedo, v3(0, 0, 0), animated);
+}
+
+/* ---- G-buffer + HDR target ------------------------------------------------------------------ */
+typedef struct vt_frame {
+    int w, h;
+    GLuint gbuf_fbo, pos, normal, albedo, material, depth;
+    GLuint hdr_fbo, hdr;
+    mat4 view, proj, view_proj, inv_view_proj;
+    vec3 eye;
+} vt_frame;
+
+static GLuint vt_tex(GLenum fmt, int w, int h)
+{
+    GLuint t;
+    glGenTextures(1, &t);
+    glBindTexture(GL_TEXTURE_2D, t);
+    glTexStorage2D(GL_TEXTURE_2D, 1, fmt, w, h);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    return t;
+}
+
+static void vt_frame_create(vt_frame *f, int w, int h, vec3 eye, vec3 target, vec3 up, float yfov)
+{
+    memset(f, 0, sizeof *f);
+    f->w = w, f->h = h, f->eye = eye;
+    f->pos = vt_tex(GL_RGBA32F, w, h);
+    f->normal = vt_tex(GL_RGBA16F, w, h);
+    f->albedo = vt_tex(GL_RGBA8, w, h);
+    f->material = vt_tex(GL_RGBA8, w, h);
+    f->depth = vt_tex(GL_DEPTH_COMPONENT32F, w, h);
+    glGenFramebuffers(1, &f->gbuf_fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, f->gbuf_fbo);
+    GLuint cols[4] = {f->pos, f->normal, f->albedo, f->material};
+    for (int i = 0; i < 4; i++)
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + (GLenum)i, GL_TEXTURE_2D, cols[i], 0);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, f->depth, 0);
+    f->hdr = vt_tex(GL_RGBA32F, w, h);
+    glGenFramebuffers(1, &f->hdr_fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, f->hdr_fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, f->hdr, 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    f->view = m4_look_at(eye, target, up);
+    f->proj = m4_perspective(yfov, (float)w / (float)h, 0.05f, 20.0f);
+    f->view_proj = m4_mul(f->proj, f->view);
+    f->inv_view_proj = m4_inverse(f->view_proj);
+}
+
+static void vt_frame_destroy(vt_frame *f)
+{
+    GLuint t[6] = {f->pos, f->normal, f->albedo, f->material, f->depth, f->hdr};
+    glDeleteTextures(6, t);
+    glDeleteFramebuffers(1, &f->gbuf_fbo);
+    glDeleteFramebuffers(1, &f->hdr_fbo);
+}
+
+/* Rasterizes the scene (current node matrices) into the G-buffer. */
+static int vt_gbuffer(vt_gl *g, vt_frame *f, const vt_scene *v)
+{
+    gk_err e = {0};
+    GLuint prog = gk_program_get(g->programs, "vct/test/gbuf.vert", "vct/test/gbuf.frag", NULL, &e);
+    if (!prog) {
+        fprintf(stderr, "# %s\n", e.msg);
+        return -1;
+    }
+    int nt = (int)v->s.n_triangles;
+    float *vb = calloc((size_t)nt * 3 * 9, sizeof(float));
+    int k = 0;
+    for (int n = 0; n < v->s.n_nodes; n++) {
+        const gk_node *nd = &v->nodes[n];
+        const gk_mesh *m = &v->meshes[nd->mesh_first];
+        const float *alb = v->mats[m->material].base_color;
+        for (uint32_t t = 0; t < m->n_triangles * 3; t++, k++) {
+            uint32_t i = m->indices[t];
+            vec3 p = m4_point(nd->world, v3(m->positions[i * 3], m->positions[i * 3 + 1], m->positions[i * 3 + 2]));
+            vec3 nn = v3_norm(m4_dir(nd->world, v3(m->normals[i * 3], m->normals[i * 3 + 1], m->normals[i * 3 + 2])));
+            float row[9] = {p.x, p.y, p.z, nn.x, nn.y, nn.z, alb[0], alb[1], alb[2]};
+            memcpy(vb + (size_t)k * 9, row, sizeof row);
+        }
+    }
+    GLuint vao, vbo;
+    glGenVertexArrays(1, &vao);
+    glBindVertexArray(vao);
+    glGenBuffers(1, &vbo);
+    glBindBuffer(GL_ARRAY_BUFFER, vbo);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)((size_t)k * 9 * sizeof(float)), vb, GL_STATIC_DRAW);
+    for (int a = 0; a < 3; a++) {
+        glEnableVertexAttribArray((GLuint)a);
+        glVertexAttribPointer((GLuint)a, 3, GL_FLOAT, GL_FALSE, 9 * sizeof(float), (void *)(size_t)(a * 3 * sizeof(float)));
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, f->gbuf_fbo);
+    GLenum bufs[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3};
+    glDrawBuffers(4, bufs);
+    glViewport(0, 0, f->w, f->h);
+    glClearColor(0, 0, 0, 0);
+    glClearDepthf(1.0f);
+    glEnable(GL_DEPTH_TEST);
+    glDepthMask(GL_TRUE);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glUseProgram(prog);
+    glUniformMatrix4fv(glGetUniformLocation(prog, "u_view_proj"), 1, GL_FALSE, f->view_proj.m);
+    glUniform3f(glGetUniformLocation(prog, "u_eye"), f->eye.x, f->eye.y, f->eye.z);
+    glDrawArrays(GL_TRIANGLES, 0, k);
+    glDisable(GL_DEPTH_TEST);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glDeleteBuffers(1, &vbo);
+    glDeleteVertexArrays(1, &vao);
+    free(vb);
+    return glGetError() == GL_NO_ERROR ? 0 : -1;
+}
+
+/* Point/spot light for gk_gi_frame (no shadow map). */
+static gk_gi_light vt_light(vt_scene *v, enum gk_light_type type, vec3 pos, vec3 dir, vec3 radiant, float outer)
+{
+    int i = v->s.n_lights++;
+    gk_light *l = &v->lights[i];
+    memset(l, 0, sizeof *l);
+    l->type = type;
+    l->shape = GK_SHAPE_POINT;
+    l->color[0] = l->color[1] = l->color[2] = 1;
+    l->intensity = 1;
+    l->inner_cone = outer * 0.8f;
+    l->outer_cone = outer;
+    gk_gi_light L;
+    memset(&L, 0, sizeof L);
+    L.scene_light = i;
+    L.node = -1;
+    L.position = pos;
+    L.direction = v3_norm(dir);
+    L.radiant = radiant;
+    return L;
+}
+
+/* Renders one frame through gk_gi_vct into a cleared HDR target and reads it back (RGBA floats). */
+static int vt_render(void *vct, vt_frame *f, const vt_scene *v, const gk_budget *b, const gk_gi_light *lights,
+                     int n_lights, float *out_rgba, gk_pass_times *times)
+{
+    gk_gi_frame fr;
+    memset(&fr, 0, sizeof fr);
+    fr.scene = &v->s;
+    fr.width = f->w, fr.height = f->h;
+    fr.view = f->view, fr.proj = f->proj, fr.view_proj = f->view_proj, fr.inv_view_proj = f->inv_view_proj;
+    fr.eye = f->eye;
+    fr.gbuf_depth = f->depth, fr.gbuf_normal = f->normal, fr.gbuf_albedo = f->albedo;
+    fr.gbuf_material = f->material, fr.gbuf_position = f->pos;
+    fr.hdr_fbo = f->hdr_fbo;
+    fr.n_lights = n_lights;
+    fr.lights = lights;
+    fr.budget = b;
+    glBindFramebuffer(GL_FRAMEBUFFER, f->hdr_fbo);
+    glClearColor(0, 0, 0, 0);
+    glClear(GL_COLOR_BUFFER_BIT);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    gk_err e = {0};
+    if (gk_gi_vct.render(vct, &fr, times, &e) != 0) {
+        fprintf(stderr, "# vct render: %s\n", e.msg);
+        return -1;
+    }
+    if (out_rgba) {
+        glBindFramebuffer(GL_FRAMEBUFFER, f->hdr_fbo);
+        glReadPixels(0, 0, f->w, f->h, GL_RGBA, GL_FLOAT, out_rgba);
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    }
+    return glGetError() == GL_NO_ERROR ? 0 : -1;
+}
+
+/* Reads the G-buffer positions (RGBA32F) for masks in tests. */
+static void vt_read_positions(vt_frame *f, float *out_rgba)
+{
+    glBindFramebuffer(GL_FRAMEBUFFER, f->gbuf_fbo);
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    glReadPixels(0, 0, f->w, f->h, GL_RGBA, GL_FLOAT, out_rgba);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+/* A budget with the vct knobs at the given values (strings as on the command line). */
+static void vt_budget(gk_budget *b, const char *pins)
+{
+    gk_budget_init(b);
+    gk_gi_vct.declare_knobs(b);
+    gk_err e = {0};
+    if (pins && gk_budget_pin_list(b, pins, &e) != 0)
+        fprintf(stderr, "# budget: %s\n", e.msg);
+}
+
+static void *vt_create(vt_gl *g)
+{
+    gk_gi_context ctx = {g->programs, 31};
+    gk_err e = {0};
+    void *v = gk_gi_vct.create(&ctx, &e);
+    if (!v)
+        fprintf(stderr, "# vct create: %s\n", e.msg);
+    return v;
+}
+
+/* Copies the whole scratch buffer (res^3 x channels uints) into a malloc'd array. */
+static unsigned *vt_read_scratch(void *vct, long *n_out)
+{
+    GLint64 size = 0;
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, gk_vct_scratch_buffer(vct));
+    glGetBufferParameteri64v(GL_SHADER_STORAGE_BUFFER, GL_BUFFER_SIZE, &size);
+    unsigned *out = malloc((size_t)size);
+    const void *p = glMapBufferRange(GL_SHADER_STORAGE_BUFFER, 0, (GLsizeiptr)size, GL_MAP_READ_BIT);
+    if (p && out)
+        memcpy(out, p, (size_t)size);
+    glUnmapBuffer(GL_SHADER_STORAGE_BUFFER);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+    *n_out = (long)(size / 4);
+    return out;
+}
+
+static float vt_lum(const float *p) { return 0.2126f * p[0] + 0.7152f * p[1] + 0.0722f * p[2]; }
+
+#endif

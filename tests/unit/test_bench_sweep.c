@@ -1,0 +1,100 @@
+/* The bench's pure logic: sweep parsing/enumeration and the Pareto front. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+#include <math.h>
+#include <string.h>
+
+#include "bench/bench.h"
+
+static const gk_knob_def shadow = {.name = "shadow", .owner = "render", .n_values = 2,
+                                   .values = {"hard", "pcss"}, .cost = {1, 8}, .default_level = 1};
+static const gk_knob_def map = {.name = "shadow_map", .owner = "render", .n_values = 3,
+                                .values = {"256", "512", "1024"}, .cost = {1, 4, 16}, .default_level = 1};
+static const gk_knob_def res = {.name = "vct_res", .owner = "vct", .n_values = 2,
+                                .values = {"32", "64"}, .cost = {1, 8}, .default_level = 1};
+
+static void setup_budget(gk_budget *b)
+{
+    gk_budget_init(b);
+    gk_budget_add(b, &shadow);
+    gk_budget_add(b, &map);
+    gk_budget_add(b, &res);
+}
+
+static void sweep_is_a_cartesian_product(void **state)
+{
+    (void)state;
+    gk_budget b;
+    setup_budget(&b);
+    gk_bench_sweep s;
+    gk_err e = {0};
+    assert_int_equal(gk_bench_sweep_parse("shadow=hard,pcss;shadow_map=256,1024", &b, &s, &e), 0);
+    assert_int_equal(gk_bench_sweep_count(&s), 4);
+    char pins[256];
+    gk_bench_sweep_pins(&s, 0, pins, sizeof pins);
+    assert_string_equal(pins, "shadow=hard,shadow_map=256");
+    gk_bench_sweep_pins(&s, 1, pins, sizeof pins);
+    assert_string_equal(pins, "shadow=hard,shadow_map=1024");
+    gk_bench_sweep_pins(&s, 3, pins, sizeof pins);
+    assert_string_equal(pins, "shadow=pcss,shadow_map=1024");
+}
+
+static void sweep_rejects_unknown_knobs_and_values(void **state)
+{
+    (void)state;
+    gk_budget b;
+    setup_budget(&b);
+    gk_bench_sweep s;
+    gk_err e = {0};
+    assert_int_equal(gk_bench_sweep_parse("shadows=hard", &b, &s, &e), -1);
+    assert_non_null(strstr(e.msg, "unknown knob 'shadows'"));
+    assert_int_equal(gk_bench_sweep_parse("shadow=soft", &b, &s, &e), -1);
+    assert_non_null(strstr(e.msg, "no value 'soft'"));
+    assert_int_equal(gk_bench_sweep_parse("shadow", &b, &s, &e), -1);
+    assert_int_equal(e.code, GK_EINPUT);
+}
+
+static void default_sweeps_follow_the_method(void **state)
+{
+    (void)state;
+    gk_budget b;
+    setup_budget(&b);
+    gk_bench_sweep s[8];
+    assert_int_equal(gk_bench_default_sweeps(&b, "none", s, 8), 1);
+    assert_int_equal(gk_bench_sweep_count(&s[0]), 6);
+    assert_int_equal(gk_bench_default_sweeps(&b, "vct", s, 8), 1);
+    assert_string_equal(s[0].knob[0], "vct_res");
+}
+
+static void pareto_front_keeps_only_undominated_points(void **state)
+{
+    (void)state;
+    gk_bench_row rows[5];
+    memset(rows, 0, sizeof rows);
+    double t[5] = {1, 2, 3, 4, 2};
+    double err[5] = {0.5, 0.3, 0.35, 0.1, NAN};
+    for (int i = 0; i < 5; i++) {
+        strcpy(rows[i].scene, "cornell");
+        rows[i].frame_ms_median = t[i];
+        rows[i].rel_rmse = err[i];
+    }
+    gk_bench_mark_pareto(rows, 5);
+    assert_true(rows[0].pareto);
+    assert_true(rows[1].pareto);
+    assert_false(rows[2].pareto); /* slower and worse than row 1 */
+    assert_true(rows[3].pareto);
+    assert_false(rows[4].pareto); /* no error measured */
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(sweep_is_a_cartesian_product),
+        cmocka_unit_test(sweep_rejects_unknown_knobs_and_values),
+        cmocka_unit_test(default_sweeps_follow_the_method),
+        cmocka_unit_test(pareto_front_keeps_only_undominated_points),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

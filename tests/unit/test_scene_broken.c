@@ -1,0 +1,265 @@
+/* The loader on small hand-written files: a valid triangle first (so the broken variants fail for
+ * the reason they were broken), then each defect gives GK_EINPUT with a message that starts with
+ * the file's path and says what is wrong. Also: degenerate triangles dropped and counted,
+ * generated normals, a texture decoded from sRGB, the default camera, loading from memory. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "core/tonemap.h"
+#include "io/image_io.h"
+#include "scene/scene.h"
+
+static char tmpdir[256];
+
+static void write_file(const char *name, const void *data, size_t len)
+{
+    char path[512];
+    snprintf(path, sizeof path, "%s/%s", tmpdir, name);
+    FILE *f = fopen(path, "wb");
+    assert_non_null(f);
+    assert_int_equal(fwrite(data, 1, len, f), len);
+    fclose(f);
+}
+
+/* t.bin: three positions (0,0,0) (1,0,0) (0,1,0), then u16 indices 0 1 2 (+2 bytes of padding);
+ * a second triangle (collinear: degenerate) for the degenerate test: (0,0,0) (1,0,0) (2,0,0). */
+static void write_bin(const char *name, float nan_at, unsigned index2)
+{
+    unsigned char bin[44] = {0};
+    float p[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    if (nan_at >= 0)
+        p[(int)nan_at] = NAN;
+    memcpy(bin, p, sizeof p);
+    uint16_t idx[3] = {0, 1, (uint16_t)index2};
+    memcpy(bin + 36, idx, sizeof idx);
+    write_file(name, bin, sizeof bin);
+}
+
+/* A one-triangle document; the parts that the cases vary are parameters. */
+static void write_gltf(const char *name, const char *bin, int mode, int pos_count, int view_len, const char *material,
+                       const char *extra)
+{
+    char json[4096];
+    int n = snprintf(json, sizeof json,
+                     "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],"
+                     "\"nodes\":[{\"mesh\":0}],"
+                     "\"meshes\":[{\"name\":\"tri\",\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1,"
+                     "\"mode\":%d%s}]}],"
+                     "\"buffers\":[{\"uri\":\"%s\",\"byteLength\":44}],"
+                     "\"bufferViews\":[{\"buffer\":0,\"byteOffset\":0,\"byteLength\":%d},"
+                     "{\"buffer\":0,\"byteOffset\":36,\"byteLength\":6}],"
+                     "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":%d,\"type\":\"VEC3\"},"
+                     "{\"bufferView\":1,\"componentType\":5123,\"count\":3,\"type\":\"SCALAR\"}]%s}",
+                     mode, material, bin, view_len, pos_count, extra);
+    assert_true(n > 0 && n < (int)sizeof json);
+    write_file(name, json, (size_t)n);
+}
+
+static char *path_of(const char *name)
+{
+    static char path[512];
+    snprintf(path, sizeof path, "%s/%s", tmpdir, name);
+    return path;
+}
+
+/* Loads NAME and expects GK_EINPUT, a message starting with the path and containing `what`. */
+static void expect_input_error(const char *name, const char *what)
+{
+    gk_err e = {0};
+    char *path = path_of(name);
+    gk_scene *s = gk_scene_load(path, &e);
+    if (s)
+        gk_scene_free(s);
+    assert_null(s);
+    assert_int_equal(e.code, GK_EINPUT);
+    if (strncmp(e.msg, path, strlen(path)) != 0 || !strstr(e.msg, what))
+        print_error("message: %s\nwanted the path and '%s'\n", e.msg, what);
+    assert_int_equal(strncmp(e.msg, path, strlen(path)), 0);
+    assert_non_null(strstr(e.msg, what));
+}
+
+static int setup(void **state)
+{
+    (void)state;
+    snprintf(tmpdir, sizeof tmpdir, "/tmp/gk-scene-test.XXXXXX");
+    if (!mkdtemp(tmpdir))
+        return -1;
+    write_bin("t.bin", -1, 2);
+    return 0;
+}
+
+static int teardown(void **state)
+{
+    (void)state;
+    char cmd[300];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmpdir);
+    return system(cmd) == 0 ? 0 : -1;
+}
+
+static void valid_triangle_loads_with_generated_normals(void **state)
+{
+    (void)state;
+    write_gltf("ok.gltf", "t.bin", 4, 3, 36, "", "");
+    gk_err e = {0};
+    gk_scene *s = gk_scene_load(path_of("ok.gltf"), &e);
+    if (!s)
+        print_error("%s\n", e.msg);
+    assert_non_null(s);
+    assert_int_equal(s->n_triangles, 1);
+    assert_int_equal(s->n_materials, 1); /* only the default */
+    assert_non_null(s->meshes[0].normals);
+    assert_float_equal(s->meshes[0].normals[2], 1.0f, 1e-6f); /* flat +z */
+    /* no camera in the file: the default one frames the bounds from outside, looking at the centre */
+    assert_int_equal(s->camera_node, -1);
+    mat4 view, proj;
+    vec3 eye;
+    gk_scene_camera(s, 1.0f, &view, &proj, &eye);
+    assert_true(eye.z > 0.5f);
+    vec3 c = m4_point(view, v3(0.5f, 0.5f, 0.0f));
+    assert_float_equal(c.x, 0.0f, 1e-4f);
+    assert_float_equal(c.y, 0.0f, 1e-4f);
+    assert_true(c.z < 0);
+    gk_scene_free(s);
+}
+
+static void broken_files_name_the_file_and_the_defect(void **state)
+{
+    (void)state;
+    write_bin("badindex.bin", -1, 5);
+    write_gltf("badindex.gltf", "badindex.bin", 4, 3, 36, "", "");
+    expect_input_error("badindex.gltf", "index 5");
+
+    write_gltf("pastview.gltf", "t.bin", 4, 10, 36, "", "");
+    expect_input_error("pastview.gltf", "reads past");
+
+    write_gltf("pastbuffer.gltf", "t.bin", 4, 3, 80, "", "");
+    expect_input_error("pastbuffer.gltf", "past buffer");
+
+    write_bin("nan.bin", 4, 2);
+    write_gltf("nan.gltf", "nan.bin", 4, 3, 36, "", "");
+    expect_input_error("nan.gltf", "NaN");
+
+    write_gltf("lines.gltf", "t.bin", 1, 3, 36, "", "");
+    expect_input_error("lines.gltf", "mode 1");
+
+    write_gltf("notex.gltf", "t.bin", 4, 3, 36, ",\"material\":0",
+               ",\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0}}}],"
+               "\"textures\":[{\"source\":0}],\"images\":[{\"uri\":\"missing.png\"}]");
+    expect_input_error("notex.gltf", "missing.png");
+
+    write_gltf("nobin.gltf", "absent.bin", 4, 3, 36, "", "");
+    expect_input_error("nobin.gltf", "tinygltf");
+
+    write_gltf("badmat.gltf", "t.bin", 4, 3, 36, ",\"material\":3", "");
+    expect_input_error("badmat.gltf", "material 3");
+
+    write_gltf("cycle.gltf", "t.bin", 4, 3, 36, "", ",\"cameras\":[]");
+    /* a node hierarchy cycle: 0 -> 1 -> 0 */
+    const char *cyc = "{\"asset\":{\"version\":\"2.0\"},\"nodes\":[{\"children\":[1]},{\"children\":[0]}]}";
+    write_file("cycle.gltf", cyc, strlen(cyc));
+    expect_input_error("cycle.gltf", "cycle");
+
+    const char *notjson = "this is { not json";
+    write_file("notjson.gltf", notjson, strlen(notjson));
+    expect_input_error("notjson.gltf", "tinygltf");
+
+    const char *methods = "{\"asset\":{\"version\":\"2.0\"},\"scenes\":[{\"extras\":{\"gikiosk\":{\"methods\":\"vct,rtx\"}}}]}";
+    write_file("methods.gltf", methods, strlen(methods));
+    expect_input_error("methods.gltf", "unknown method 'rtx'");
+
+    expect_input_error("does-not-exist.gltf", "no such file");
+}
+
+static void degenerate_triangles_are_dropped_and_counted(void **state)
+{
+    (void)state;
+    /* two triangles over four positions: (0,1,2) is fine, (0,1,3) is collinear */
+    unsigned char bin[64] = {0};
+    float p[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 2, 0, 0};
+    uint16_t idx[6] = {0, 1, 2, 0, 1, 3};
+    memcpy(bin, p, sizeof p);
+    memcpy(bin + 48, idx, sizeof idx);
+    write_file("deg.bin", bin, sizeof bin);
+    const char *json =
+        "{\"asset\":{\"version\":\"2.0\"},\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"mesh\":0}],"
+        "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1}]}],"
+        "\"buffers\":[{\"uri\":\"deg.bin\",\"byteLength\":64}],"
+        "\"bufferViews\":[{\"buffer\":0,\"byteLength\":48},{\"buffer\":0,\"byteOffset\":48,\"byteLength\":12}],"
+        "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":4,\"type\":\"VEC3\"},"
+        "{\"bufferView\":1,\"componentType\":5123,\"count\":6,\"type\":\"SCALAR\"}]}";
+    write_file("deg.gltf", json, strlen(json));
+    gk_err e = {0};
+    gk_scene *s = gk_scene_load(path_of("deg.gltf"), &e);
+    assert_non_null(s);
+    assert_int_equal(s->n_triangles, 1);
+    assert_int_equal(s->n_degenerate_dropped, 1);
+    gk_scene_free(s);
+}
+
+static void base_colour_texture_is_decoded_to_linear(void **state)
+{
+    (void)state;
+    gk_image img = {0};
+    assert_int_equal(gk_image_alloc(&img, 4, 4, 3), 0);
+    for (int i = 0; i < 4 * 4 * 3; i++)
+        img.pixels[i] = 0.5f;
+    gk_err e = {0};
+    char *png = path_of("grey.png");
+    assert_int_equal(gk_image_write(png, &img, NULL, &e), 0);
+    gk_image_free(&img);
+    write_gltf("tex.gltf", "t.bin", 4, 3, 36, ",\"material\":0",
+               ",\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0}}}],"
+               "\"textures\":[{\"source\":0}],\"images\":[{\"uri\":\"grey.png\"}]");
+    gk_scene *s = gk_scene_load(path_of("tex.gltf"), &e);
+    if (!s)
+        print_error("%s\n", e.msg);
+    assert_non_null(s);
+    assert_int_equal(s->n_textures, 1);
+    assert_int_equal(s->textures[0].width, 4);
+    assert_int_equal(s->materials[0].base_color_tex, 0);
+    /* 0.5 is stored as 128/255 in 8 bits; its linear value is ~0.216, not 0.5 */
+    assert_float_equal(s->textures[0].rgba[0], gk_srgb_to_linear(128.0f / 255.0f), 1e-3f);
+    assert_float_equal(s->textures[0].rgba[3], 1.0f, 1e-6f);
+    gk_scene_free(s);
+}
+
+static void memory_loads_read_no_files(void **state)
+{
+    (void)state;
+    /* the same valid document, from memory without a base directory: its .bin may not be read */
+    char path[512];
+    snprintf(path, sizeof path, "%s/ok.gltf", tmpdir);
+    FILE *f = fopen(path, "rb");
+    assert_non_null(f);
+    char buf[4096];
+    size_t n = fread(buf, 1, sizeof buf, f);
+    fclose(f);
+    gk_err e = {0};
+    gk_scene *s = gk_scene_load_memory(buf, n, "mem.gltf", NULL, &e);
+    assert_null(s);
+    assert_int_equal(e.code, GK_EINPUT);
+    assert_int_equal(strncmp(e.msg, "mem.gltf: ", 10), 0);
+    s = gk_scene_load_memory(buf, n, "mem.gltf", tmpdir, &e);
+    assert_non_null(s);
+    assert_string_equal(s->name, "mem");
+    gk_scene_free(s);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(valid_triangle_loads_with_generated_normals),
+        cmocka_unit_test(broken_files_name_the_file_and_the_defect),
+        cmocka_unit_test(degenerate_triangles_are_dropped_and_counted),
+        cmocka_unit_test(base_colour_texture_is_decoded_to_linear),
+        cmocka_unit_test(memory_loads_read_no_files),
+    };
+    return cmocka_run_group_tests(tests, setup, teardown);
+}

@@ -1,0 +1,227 @@
+/* Frame-time scheduler on a synthetic cost model: convergence under the target, no oscillation,
+ * pins and ranges, recovery when the load drops. The synthetic "true" costs deliberately differ
+ * from the knobs' priors (the shadow map's true cost grows linearly while its prior grows
+ * quadratically), so the online fit has something to learn. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "sched/scheduler.h"
+
+static const gk_knob_def scale = {
+    .name = "render_scale", .owner = "render", .n_values = 3,
+    .values = {"0.5", "0.75", "1"}, .cost = {1, 2.25f, 4}, .default_level = 2,
+};
+static const gk_knob_def shadow = {
+    .name = "shadow_map", .owner = "render", .n_values = 4,
+    .values = {"256", "512", "1024", "2048"}, .cost = {1, 4, 16, 64}, .default_level = 3,
+};
+static const gk_knob_def voxels = {
+    .name = "vct_res", .owner = "vct", .n_values = 3,
+    .values = {"32", "64", "128"}, .cost = {1, 8, 64}, .default_level = 2,
+};
+
+/* True cost in ms at the current levels, times load, with +-5 % uniform noise from a fixed LCG. */
+typedef struct sim {
+    unsigned rng;
+    double load;
+    double noise;
+} sim;
+
+static double frand(sim *m)
+{
+    m->rng = m->rng * 1664525u + 1013904223u;
+    return (m->rng >> 8) / 16777216.0;
+}
+
+static double true_ms(sim *m, const gk_budget *b)
+{
+    static const double scale_ms[] = {3, 6.75, 12};       /* fill-rate bound: ~ pixel count */
+    static const double shadow_ms[] = {0.5, 1, 2, 4};     /* linear, unlike the prior */
+    static const double voxel_ms[] = {0.4, 1.5, 6.4};
+    double t = 2 + scale_ms[b->level[0]] + shadow_ms[b->level[1]] + voxel_ms[b->level[2]];
+    return t * m->load * (1 + m->noise * (2 * frand(m) - 1));
+}
+
+static void setup(gk_budget *b)
+{
+    gk_budget_init(b);
+    gk_budget_add(b, &scale);
+    gk_budget_add(b, &shadow);
+    gk_budget_add(b, &voxels);
+}
+
+static int cmp(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static double p95(double *v, int n)
+{
+    qsort(v, (size_t)n, sizeof *v, cmp);
+    return v[(int)(0.95 * (n - 1))];
+}
+
+/* Runs n frames, storing frame times; counts per-knob direction changes. */
+static void run(gk_sched *s, gk_budget *b, sim *m, int n, double *times, int *dir_changes, int *last_dir)
+{
+    for (int f = 0; f < n; f++) {
+        double ms = true_ms(m, b);
+        if (times)
+            times[f] = ms;
+        gk_sched_change ch[GK_MAX_KNOBS * GK_MAX_KNOB_VALUES];
+        int k = gk_sched_update(s, b, ms, ch, (int)(sizeof ch / sizeof ch[0]));
+        for (int i = 0; i < k; i++) {
+            int d = ch[i].to > ch[i].from ? 1 : -1;
+            if (last_dir[ch[i].knob] && last_dir[ch[i].knob] != d)
+                (*dir_changes)++;
+            last_dir[ch[i].knob] = d;
+        }
+    }
+}
+
+static void converges_under_target_without_oscillation(void **state)
+{
+    (void)state;
+    gk_budget b;
+    setup(&b);
+    gk_sched_params p;
+    gk_sched_params_defaults(&p, 16.7);
+    gk_sched s;
+    gk_sched_reset(&s, &p, &b, NULL);
+    sim m = {.rng = 1, .load = 1, .noise = 0.05};
+    assert_true(true_ms(&m, &b) > 16.7 * 1.2); /* the richest levels do not fit: work to do */
+    double times[1000];
+    int changes = 0, last_dir[GK_MAX_KNOBS] = {0};
+    run(&s, &b, &m, 1000, times, &changes, last_dir);
+    /* Judge the steady state: frames 100..999 (the first frames are the descent). */
+    double q95 = p95(times + 100, 900);
+    print_message("# sched steady state: p95 %.2f ms vs target 16.7 ms, %d direction changes, levels %d/%d/%d\n",
+                  q95, changes, b.level[0], b.level[1], b.level[2]);
+    assert_true(q95 <= 16.7);
+    /* Measured: 0 direction changes (the step-response fit learns render_scale's true cost on its
+       first move). Reversals are held for 120, 240, 480 frames, so hunting would show as 3+. */
+    assert_true(changes <= 2);
+    /* It must not have given up more than needed: some knob above its minimum. */
+    assert_true(b.level[0] + b.level[1] + b.level[2] > 0);
+}
+
+static void high_noise_bounded_direction_changes(void **state)
+{
+    (void)state;
+    /* +-20 % noise keeps frames crossing the thresholds: the hold times must bound the hunting. */
+    gk_budget b;
+    setup(&b);
+    gk_sched_params p;
+    gk_sched_params_defaults(&p, 16.7);
+    gk_sched s;
+    gk_sched_reset(&s, &p, &b, NULL);
+    sim m = {.rng = 7, .load = 1, .noise = 0.2};
+    double times[1000];
+    int changes = 0, last_dir[GK_MAX_KNOBS] = {0};
+    run(&s, &b, &m, 1000, times, &changes, last_dir);
+    double q95 = p95(times + 100, 900);
+    print_message("# sched noisy (+-20%%): p95 %.2f ms vs target 16.7 ms, %d direction changes\n", q95, changes);
+    /* Measured: 8. 3 knobs x (1 + log2(1000/120)) reversals ~ 12 is the hard bound of the hold rule. */
+    assert_true(changes <= 12);
+    assert_true(q95 <= 16.7 * 1.1);
+}
+
+static void pins_and_ranges_hold_under_overload(void **state)
+{
+    (void)state;
+    gk_budget b;
+    setup(&b);
+    gk_err e = {0};
+    assert_int_equal(gk_budget_pin_list(&b, "render_scale=1", &e), 0);
+    assert_int_equal(gk_budget_set_range(&b, "vct_res", "64", "128", &e), 0);
+    gk_sched_params p;
+    gk_sched_params_defaults(&p, 16.7);
+    gk_sched s;
+    gk_sched_reset(&s, &p, &b, NULL);
+    sim m = {.rng = 3, .load = 4, .noise = 0.05}; /* impossible target: everything movable drops */
+    int changes = 0, last_dir[GK_MAX_KNOBS] = {0};
+    for (int f = 0; f < 500; f++) {
+        run(&s, &b, &m, 1, NULL, &changes, last_dir);
+        assert_int_equal(b.level[0], 2);   /* pinned at "1" */
+        assert_true(b.level[2] >= 1);      /* range floor "64" */
+    }
+    assert_int_equal(b.level[1], 0);      /* the free knob went to its minimum */
+    assert_int_equal(b.level[2], 1);
+}
+
+static void inactive_knobs_never_move(void **state)
+{
+    (void)state;
+    gk_budget b;
+    setup(&b);
+    bool active[GK_MAX_KNOBS] = {true, true, false}; /* method "none": vct_res does not matter */
+    gk_sched_params p;
+    gk_sched_params_defaults(&p, 16.7);
+    gk_sched s;
+    gk_sched_reset(&s, &p, &b, active);
+    sim m = {.rng = 5, .load = 3, .noise = 0.05};
+    int changes = 0, last_dir[GK_MAX_KNOBS] = {0};
+    run(&s, &b, &m, 300, NULL, &changes, last_dir);
+    assert_int_equal(b.level[2], 2);
+    assert_int_equal(b.level[0], 0);
+}
+
+static void recovers_when_load_drops(void **state)
+{
+    (void)state;
+    gk_budget b;
+    setup(&b);
+    gk_sched_params p;
+    gk_sched_params_defaults(&p, 16.7);
+    gk_sched s;
+    gk_sched_reset(&s, &p, &b, NULL);
+    sim m = {.rng = 11, .load = 2.5, .noise = 0.05};
+    int changes = 0, last_dir[GK_MAX_KNOBS] = {0};
+    run(&s, &b, &m, 300, NULL, &changes, last_dir);
+    int heavy = b.level[0] + b.level[1] + b.level[2];
+    m.load = 0.5; /* at half the load even the richest levels (24.4 ms * 0.5) fit */
+    double times[1000];
+    run(&s, &b, &m, 1000, times, &changes, last_dir);
+    int light = b.level[0] + b.level[1] + b.level[2];
+    double q95 = p95(times + 500, 500);
+    print_message("# sched recovery: levels %d -> %d (max 7), p95 after %.2f ms\n", heavy, light, q95);
+    assert_true(light > heavy);
+    assert_int_equal(light, 2 + 3 + 2); /* everything back at its richest */
+    assert_true(q95 <= 16.7);
+}
+
+static void fit_learns_true_costs(void **state)
+{
+    (void)state;
+    /* After convergence the model's prediction should track the measured mean closely. */
+    gk_budget b;
+    setup(&b);
+    gk_sched_params p;
+    gk_sched_params_defaults(&p, 16.7);
+    gk_sched s;
+    gk_sched_reset(&s, &p, &b, NULL);
+    sim m = {.rng = 13, .load = 1, .noise = 0.0};
+    int changes = 0, last_dir[GK_MAX_KNOBS] = {0};
+    run(&s, &b, &m, 400, NULL, &changes, last_dir);
+    double truth = true_ms(&m, &b), pred = gk_sched_predict(&s, &b);
+    print_message("# sched model: predicted %.2f ms, true %.2f ms\n", pred, truth);
+    assert_true(pred > truth * 0.95 && pred < truth * 1.05);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(converges_under_target_without_oscillation),
+        cmocka_unit_test(high_noise_bounded_direction_changes),
+        cmocka_unit_test(pins_and_ranges_hold_under_overload),
+        cmocka_unit_test(inactive_knobs_never_move),
+        cmocka_unit_test(recovers_when_load_drops),
+        cmocka_unit_test(fit_learns_true_costs),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
