@@ -47,11 +47,20 @@ typedef struct gk_gi_frame {
     int width, height;           /* internal render size (after render_scale) */
     mat4 view, proj, view_proj, inv_view_proj;
     vec3 eye;
-    unsigned gbuf_depth;         /* DEPTH_COMPONENT32F / 24 */
-    unsigned gbuf_normal;        /* RGBA16F: world normal xyz */
-    unsigned gbuf_albedo;        /* RGBA8: base colour rgb, a = unused */
-    unsigned gbuf_material;      /* RGBA8: r = metallic, g = roughness */
-    unsigned gbuf_position;      /* RGBA16F/32F world position (0 if the renderer reconstructs from depth) */
+    /* The renderer's G-buffer (app/render/render_frame.c), at width x height:
+       gbuf_depth    DEPTH_COMPONENT32F window depth of proj (reconstruct world position with
+                     inv_view_proj: ndc = (uv, depth) * 2 - 1);
+       gbuf_albedo   RGBA8: base colour rgb, a = METALLIC;
+       gbuf_normal   RGBA16F: world normal xyz (unit), w = ROUGHNESS;
+       gbuf_emission RGBA16F: emitted radiance rgb (nits).
+       gbuf_material and gbuf_position are 0 from the renderer (metallic and roughness live in
+       albedo.a and normal.w; positions come from depth); a method's own tests may set them. */
+    unsigned gbuf_depth;
+    unsigned gbuf_normal;
+    unsigned gbuf_albedo;
+    unsigned gbuf_emission;
+    unsigned gbuf_material;
+    unsigned gbuf_position;
     unsigned direct_tex;         /* RGBA16F: direct light (linear, before exposure) */
     unsigned hdr_fbo;            /* FBO whose colour attachment 0 is the HDR image the method adds to
                                     (additive blending is the method's job: glBlendFunc(ONE, ONE)) */

@@ -5,9 +5,11 @@
 #include <string.h>
 
 extern const gk_gi_method gk_gi_vct;
+extern const gk_gi_method gk_gi_vpl;
 
 static const gk_gi_method *const registry[] = {
     &gk_gi_vct,
+    &gk_gi_vpl,
     NULL, /* sentinel: keeps the array non-empty while no method is registered */
 };
 

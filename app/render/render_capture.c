@@ -8,7 +8,8 @@
 #include "../io/image_io.h"
 #include "renderer_internal.h"
 
-static int read_image(gk_renderer *r, GLenum format, bool linear, gk_image *img, gk_err *e)
+/* linear: RGBA (alpha 1) when rgba, else RGB like the references; display: RGB. */
+static int read_image(gk_renderer *r, GLenum format, bool linear, bool rgba, gk_image *img, gk_err *e)
 {
     int w = r->opts.width, h = r->opts.height;
     gk_target t;
@@ -19,7 +20,7 @@ static int read_image(gk_renderer *r, GLenum format, bool linear, gk_image *img,
     float *px = NULL;
     if (rc == 0 && (px = malloc(sizeof(float) * 4 * (size_t)w * (size_t)h)) == NULL)
         rc = gk_fail(e, GK_ERUNTIME, "capture: out of memory");
-    if (rc == 0 && gk_image_alloc(img, w, h, linear ? 4 : 3) != 0)
+    if (rc == 0 && gk_image_alloc(img, w, h, linear && rgba ? 4 : 3) != 0)
         rc = gk_fail(e, GK_ERUNTIME, "capture: out of memory");
     if (rc == 0) {
         glBindFramebuffer(GL_FRAMEBUFFER, t.fbo);
@@ -42,7 +43,7 @@ static int read_image(gk_renderer *r, GLenum format, bool linear, gk_image *img,
             for (int x = 0; x < w; x++)
                 for (int c = 0; c < img->channels; c++)
                     img->pixels[((size_t)y * w + x) * img->channels + c] = px[((size_t)(h - 1 - y) * w + x) * 4 + c];
-        if (linear)
+        if (img->channels == 4)
             for (long i = 0; rc == 0 && i < (long)w * h; i++)
                 img->pixels[4 * i + 3] = 1.0f;
     }
@@ -59,7 +60,7 @@ int gk_renderer_read_linear(gk_renderer *r, gk_image *img, gk_err *e)
 {
     if (!r->have_frame)
         return gk_fail(e, GK_ERUNTIME, "capture: no frame rendered yet");
-    return read_image(r, GL_RGBA16F, true, img, e);
+    return read_image(r, GL_RGBA16F, true, true, img, e);
 }
 
 int gk_renderer_capture(gk_renderer *r, const char *png_path, const char *exr_path, gk_err *e)
@@ -68,7 +69,7 @@ int gk_renderer_capture(gk_renderer *r, const char *png_path, const char *exr_pa
         return gk_fail(e, GK_ERUNTIME, "capture: no frame rendered yet");
     gk_image img;
     if (png_path) {
-        if (read_image(r, GL_RGBA8, false, &img, e) != 0)
+        if (read_image(r, GL_RGBA8, false, false, &img, e) != 0)
             return -1;
         int rc = gk_image_write(png_path, &img, NULL, e);
         gk_image_free(&img);
@@ -76,7 +77,7 @@ int gk_renderer_capture(gk_renderer *r, const char *png_path, const char *exr_pa
             return -1;
     }
     if (exr_path) {
-        if (read_image(r, GL_RGBA16F, true, &img, e) != 0)
+        if (read_image(r, GL_RGBA16F, true, false, &img, e) != 0)
             return -1;
         char exposure[32];
         snprintf(exposure, sizeof exposure, "%g", (double)r->exposure);

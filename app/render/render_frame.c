@@ -7,6 +7,7 @@
 
 #include "../core/log.h"
 #include "../core/tonemap.h"
+#include "render_gi.h"
 #include "renderer_internal.h"
 
 static int ensure_targets(gk_renderer *r, int w, int h, gk_err *e)
@@ -241,6 +242,7 @@ int gk_renderer_draw(gk_renderer *r, const gk_frame_params *fp, unsigned target_
         if (s->nodes[i].light >= 0 && s->nodes[i].light < s->n_lights)
             fl[n++] = (frame_light){.node = i};
 
+    gk_pass_times gi_times = {0};
     while (glGetError() != GL_NO_ERROR) {
     }
     gk_timer_frame_begin(r->timer);
@@ -258,8 +260,14 @@ int gk_renderer_draw(gk_renderer *r, const gk_frame_params *fp, unsigned target_
         gk_timer_pass_end(r->timer);
     }
     if (rc == 0) {
-        /* GI methods render here ("gi" pass); method "none" adds nothing. */
+        /* The GI method adds indirect light into the HDR target ("gi" pass, plus the method's
+           own pass columns); "none" adds nothing. A method that fails is logged and the frame
+           keeps its direct light (render_gi.c then skips the broken method): a kiosk keeps
+           showing something. */
         gk_timer_pass_begin(r->timer, "gi");
+        gk_err gi_err = {0};
+        if (gk_render_gi_run(r->gi, r, fp ? fp->method : NULL, b, &view, &proj, eye, &gi_times, &gi_err) != 0)
+            gk_log("renderer: GI method %s failed, showing direct light only: %s", fp->method, gi_err.msg);
         gk_timer_pass_end(r->timer);
         if (!r->exposure_known)
             measure_exposure(r);
@@ -269,6 +277,10 @@ int gk_renderer_draw(gk_renderer *r, const gk_frame_params *fp, unsigned target_
     }
     gk_pass_times t;
     gk_timer_frame_end(r->timer, &t);
+    for (int i = 0; i < gi_times.n && t.n < GK_MAX_PASSES; i++) {
+        t.name[t.n] = gi_times.name[i];
+        t.ms[t.n++] = gi_times.ms[i];
+    }
     if (times)
         *times = t;
     glUseProgram(0);

@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "../core/log.h"
+#include "render_gi.h"
 #include "renderer_internal.h"
 
 gk_renderer *gk_renderer_create(const gk_render_opts *opts, gk_err *e)
@@ -33,8 +34,9 @@ gk_renderer *gk_renderer_create(const gk_render_opts *opts, gk_err *e)
     }
     r->progs = gk_program_cache_create(r->shader_dir, r->caps.gles >= 32 ? 32 : 31);
     r->timer = gk_timer_create(opts->gpu_timer_queries && r->caps.timer_query);
+    r->gi = gk_render_gi_create();
     glGenVertexArrays(1, &r->empty_vao);
-    if (!r->progs || !r->timer) {
+    if (!r->progs || !r->timer || !r->gi) {
         gk_renderer_destroy(r);
         gk_fail(e, GK_ERUNTIME, "renderer: out of memory");
         return NULL;
@@ -65,6 +67,8 @@ void gk_renderer_destroy(gk_renderer *r)
     for (int i = 0; i < GK_MAX_SHADOW_METHODS && gk_shadow_methods[i]; i++)
         if (r->shadow_state[i])
             gk_shadow_methods[i]->destroy(r->shadow_state[i]);
+    if (r->gi)
+        gk_render_gi_destroy(r->gi);
     if (r->empty_vao)
         glDeleteVertexArrays(1, &r->empty_vao);
     gk_timer_destroy(r->timer);
@@ -96,11 +100,11 @@ int gk_renderer_set_scene(gk_renderer *r, gk_scene *s, gk_err *e)
 
 int gk_renderer_methods(const gk_renderer *r, const char **names, int max)
 {
-    (void)r;
+    if (r->scene)
+        return gk_render_gi_methods(r->scene, names, max);
     int n = 0;
     if (n < max)
         names[n++] = "none";
-    /* GI methods are listed here when implemented and applicable to r->scene (none yet). */
     return n;
 }
 

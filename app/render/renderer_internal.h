@@ -32,6 +32,7 @@ struct gk_renderer {
     gk_target hdr;              /* RGBA16F scene radiance at render scale */
     int render_w, render_h;     /* render size (output * render_scale) */
 
+    struct gk_render_gi *gi;    /* GI methods (render_gi.c) */
     void *shadow_state[GK_MAX_SHADOW_METHODS]; /* per method of gk_shadow_methods[], created on first use */
 
     float exposure;             /* display scale, fixed per scene (tonemap.h) */

@@ -5,6 +5,7 @@
 // linear depth along the face axis.
 uniform highp sampler2DArray u_shadow_map;
 uniform highp mat4 u_shadow_viewproj[6];
+uniform highp mat4 u_shadow_inv_viewproj[6];
 uniform highp vec3 u_shadow_pos;      // light centre; ortho: the map's eye point
 uniform highp vec3 u_shadow_axis;     // map axis for 1-layer maps
 uniform highp mat3 u_shadow_basis;    // columns: light u, v, dir (cube face axes)
@@ -86,4 +87,31 @@ highp vec3 gk_shadow_offset(highp vec3 p, highp vec3 n)
 highp float gk_shadow_noise()
 {
     return fract(52.9829189 * fract(dot(gl_FragCoord.xy, vec2(0.06711056, 0.00583715))));
+}
+
+// Receiver-plane depth bias (Isidoro 2006): the receiver's linear depth at uv + offset, taking
+// the receiver as its tangent plane, to first order: d + dot(gradient, offset). Without it a
+// wide PCSS kernel on a surface inclined to the map (walls parallel to the light's axis) finds
+// the receiver itself in front of its own depth and darkens it.
+highp float gk_shadow_plane_depth(highp vec2 uv, int f, highp vec3 p, highp vec3 n, highp vec3 axis, highp float fallback)
+{
+    highp vec4 a = u_shadow_inv_viewproj[f] * vec4(uv * 2.0 - 1.0, -1.0, 1.0);
+    highp vec4 b = u_shadow_inv_viewproj[f] * vec4(uv * 2.0 - 1.0, 1.0, 1.0);
+    highp vec3 p0 = a.xyz / a.w, p1 = b.xyz / b.w;
+    highp float denom = dot(n, p1 - p0);
+    if (abs(denom) < 1e-6)
+        return fallback;
+    highp vec3 x = p0 + (p1 - p0) * (dot(n, p - p0) / denom);
+    return dot(x - u_shadow_pos, axis);
+}
+
+highp vec2 gk_shadow_receiver_gradient(gk_shadow_coord c, highp vec3 p, highp vec3 n)
+{
+    int f = int(c.layer);
+    highp vec3 axis = u_shadow_proj.w > 1.5 ? gk_cube_axis(f) : u_shadow_axis;
+    highp float e = 1.0 / u_shadow_light.w;
+    highp float du = gk_shadow_plane_depth(c.uv + vec2(e, 0.0), f, p, n, axis, c.d) - c.d;
+    highp float dv = gk_shadow_plane_depth(c.uv + vec2(0.0, e), f, p, n, axis, c.d) - c.d;
+    // Near-grazing planes give huge slopes; they receive almost no light (cos ~ 0) anyway.
+    return clamp(vec2(du, dv) / e, vec2(-100.0 * c.d), vec2(100.0 * c.d));
 }

@@ -23,9 +23,11 @@ highp vec2 gk_pcss_kernel(highp float d, highp float z)
 
 highp float shadow_visibility(highp vec3 world_pos, highp vec3 world_normal)
 {
-    gk_shadow_coord c = gk_shadow_project(gk_shadow_offset(world_pos, world_normal));
+    highp vec3 p = gk_shadow_offset(world_pos, world_normal);
+    gk_shadow_coord c = gk_shadow_project(p);
     if (!c.inside)
         return 1.0;
+    highp vec2 grad = gk_shadow_receiver_gradient(c, p, world_normal);
     highp float bias = 0.5 * gk_shadow_texel_world(c.d);
     highp float texel = 1.0 / u_shadow_light.w;
     // The search area is limited to a quarter of the map: past that the near plane is too close
@@ -39,7 +41,7 @@ highp float shadow_visibility(highp vec3 world_pos, highp vec3 world_normal)
         for (int i = 0; i < PCSS_BLOCKER_N; i++) {
             highp vec2 g = (vec2(float(i), float(j)) + fract(jitter + vec2(0.0, 0.5))) / float(PCSS_BLOCKER_N) - 0.5;
             highp float z = gk_shadow_fetch(c.uv + g * wi, c.layer);
-            if (z + bias < c.d) {
+            if (z + bias < c.d + dot(grad, g * wi)) {
                 sum += z;
                 count += 1.0;
             }
@@ -54,7 +56,7 @@ highp float shadow_visibility(highp vec3 world_pos, highp vec3 world_normal)
         for (int i = 0; i < PCSS_PCF_N; i++) {
             highp vec2 g = (vec2(float(i), float(j)) + fract(jitter + vec2(0.5, 0.0))) / float(PCSS_PCF_N) - 0.5;
             highp float z = gk_shadow_fetch(c.uv + g * wb, c.layer);
-            lit += c.d <= z + bias ? 1.0 : 0.0;
+            lit += c.d + dot(grad, g * wb) <= z + bias ? 1.0 : 0.0;
         }
     }
     return lit / float(PCSS_PCF_N * PCSS_PCF_N);

@@ -21,6 +21,7 @@ uniform highp sampler2D u_gbuf_position;
 uniform highp sampler2D u_gbuf_albedo;
 uniform highp sampler2D u_gbuf_material;
 uniform bool u_has_position;
+uniform bool u_has_material;
 uniform mat4 u_inv_view_proj;
 uniform ivec2 u_full_size;
 uniform ivec2 u_low_size;
@@ -69,7 +70,7 @@ void main()
         else { dif = nd; spec = ns; }                  // no similar tap: nearest plausible one
     }
     vec3 albedo = texelFetch(u_gbuf_albedo, px, 0).rgb;
-    float metallic = texelFetch(u_gbuf_material, px, 0).r;
+    float metallic = gbuf_metallic_roughness(u_gbuf_material, u_gbuf_albedo, u_gbuf_normal, u_has_material, px).x;
     spec *= u_spec_enabled;
 #if FAITHFUL_COMPOSE
     float f = min(0.5 + dif.a, 1.0);

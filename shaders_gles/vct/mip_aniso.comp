@@ -41,7 +41,7 @@ vec4 fetch(ivec3 c)
 #endif
         float l = length(n);
         if (l > 1e-6) {
-            float facing = smoothstep(0.0, 0.2, dot(n / l, view_dir(u_dir)));  // edge-on: dark
+            float facing = smoothstep(-0.2, 0.0, dot(n / l, view_dir(u_dir)));  // back: dark; edge-on: lit
             v.rgb *= facing;
         }
     }

@@ -17,7 +17,9 @@ uniform highp sampler2D u_gbuf_depth;
 uniform highp sampler2D u_gbuf_normal;
 uniform highp sampler2D u_gbuf_position;
 uniform highp sampler2D u_gbuf_material;
+uniform highp sampler2D u_gbuf_albedo;
 uniform bool u_has_position;
+uniform bool u_has_material;
 uniform mat4 u_inv_view_proj;
 uniform vec3 u_eye;
 uniform ivec2 u_full_size;
@@ -58,18 +60,18 @@ void main()
         if (k >= u_n_cones) break;
         vec3 d = normalize(T * u_cone_dir[k].x + N * u_cone_dir[k].y + B * u_cone_dir[k].z);
         float ao; int steps;
-        vec4 c = trace_cone(apex, d, u_cone_aperture[k], u_max_dist, ao, steps);
+        vec4 c = trace_cone(apex, d, N, u_cone_aperture[k], u_max_dist, ao, steps);
         D += u_cone_weight[k] * c.rgb;
         occ += u_cone_weight[k] * ao;
         total += steps;
     }
     vec4 spec = vec4(0.0);
 #if SPECULAR
-    vec2 mr = texelFetch(u_gbuf_material, px, 0).rg;
+    vec2 mr = gbuf_metallic_roughness(u_gbuf_material, u_gbuf_albedo, u_gbuf_normal, u_has_material, px);
     if (mr.g < 0.5 || mr.r > 0.5) {                   // glossy enough to be worth a cone
         vec3 R = reflect(normalize(P - u_eye), N);
         float ao; int steps;
-        spec = trace_cone(apex, R, u_spec_aperture, u_max_dist, ao, steps);
+        spec = trace_cone(apex, R, N, u_spec_aperture, u_max_dist, ao, steps);
         total += steps;
     }
 #endif

@@ -131,9 +131,45 @@ float visibility(int k, vec3 x)
 #endif
 }
 
+#ifdef MULTIRES
+// Multi-resolution gather (seed 000 §3.2.2, Algorithm 3.1): shade a region of this level only when
+// it is continuous and its parent is not (level 0: a pixel is always continuous; the top level's
+// parent counts as discontinuous). Regions mixing geometry and background are discontinuous.
+uniform highp sampler2D u_mr_t0, u_mr_t1, u_mr_t2, u_mr_t3;
+uniform highp sampler2D u_mr_p0, u_mr_p1, u_mr_p2;
+uniform int u_mr_level, u_mr_top;
+uniform float u_tau_z, u_tau_n;
+bool mr_disc(vec4 t0, vec4 t1, vec4 t2)
+{
+    if (t0.z > 0.0 && t0.z < 1.0)
+        return true;
+    if (t0.y - t0.x > u_tau_z * t0.x)
+        return true;
+    vec3 dn = t2.xyz - t1.xyz;
+    return max(dn.x, max(dn.y, dn.z)) > u_tau_n;
+}
+#endif
+
 void main()
 {
     ivec2 q = ivec2(gl_FragCoord.xy);
+    vec3 x, nx;
+#ifdef MULTIRES
+    vec4 t0 = texelFetch(u_mr_t0, q, 0);
+    if (t0.z <= 0.0)
+        discard;
+    vec4 t1 = texelFetch(u_mr_t1, q, 0), t2 = texelFetch(u_mr_t2, q, 0);
+    if (u_mr_level > 0 && mr_disc(t0, t1, t2))
+        discard;
+    if (u_mr_top == 0) {
+        ivec2 p = q / 2;
+        if (!mr_disc(texelFetch(u_mr_p0, p, 0), texelFetch(u_mr_p1, p, 0), texelFetch(u_mr_p2, p, 0)))
+            discard;
+    }
+    x = texelFetch(u_mr_t3, q, 0).xyz;
+    nx = normalize(t1.xyz + t2.xyz);
+    int bb = 1, s = 0;   // every region takes every VPL
+#else
     ivec2 px = min(ivec2((vec2(q) + 0.5) * vec2(u_full_size) / vec2(u_ind_size)), u_full_size - 1);
     float depth = texelFetch(u_gb_depth, px, 0).r;
     if (depth >= 1.0) {
@@ -142,7 +178,6 @@ void main()
         o_nrm = vec4(0.0);
         return;
     }
-    vec3 x;
     if (u_has_position != 0) {
         x = texelFetch(u_gb_position, px, 0).xyz;
     } else {
@@ -150,9 +185,10 @@ void main()
         vec4 w = u_inv_viewproj * vec4(vec3(uv, depth) * 2.0 - 1.0, 1.0);
         x = w.xyz / w.w;
     }
-    vec3 nx = normalize(texelFetch(u_gb_normal, px, 0).xyz);
+    nx = normalize(texelFetch(u_gb_normal, px, 0).xyz);
     int bb = u_block * u_block;
     int s = (q.y % u_block) * u_block + (q.x % u_block);
+#endif
     vec3 E = vec3(0.0);
     float removed = 0.0;
     for (int i = s; i < u_n; i += bb) {
@@ -174,8 +210,14 @@ void main()
         E += clamped;
         removed += dot(full - clamped, vec3(0.2126, 0.7152, 0.0722));
     }
+#ifdef MULTIRES
+    o_ind = vec4(E, 1.0);   // a = hasData
+    o_pos = vec4(removed);
+    o_nrm = vec4(0.0);
+#else
     float scale = float(bb);
     o_ind = vec4(E * scale, removed * scale);
     o_pos = vec4(x, 1.0);
     o_nrm = vec4(nx, 1.0);
+#endif
 }

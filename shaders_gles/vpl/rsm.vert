@@ -4,7 +4,6 @@ precision highp float;
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
 uniform mat4 u_model;
-uniform mat4 u_normal_matrix;
 uniform mat4 u_light_vp;
 out vec3 v_world;
 out vec3 v_normal;
@@ -12,6 +11,7 @@ void main()
 {
     vec4 w = u_model * vec4(a_position, 1.0);
     v_world = w.xyz;
-    v_normal = mat3(u_normal_matrix) * a_normal;
+    // gi.h's draw_scene promises u_model only, so the normal matrix is derived here.
+    v_normal = transpose(inverse(mat3(u_model))) * a_normal;
     gl_Position = u_light_vp * w;
 }

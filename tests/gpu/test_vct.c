@@ -381,9 +381,10 @@ static void pass_costs_and_work_counters(void **state)
                 continue;
             void *vct = vt_create(&g);
             gk_vct_options o;
-            if (mode)
+            if (mode) {
                 gk_vct_thesis_options(&o);
-            else
+                o.specular = 1;   /* the specular cone too (the scene has no glossy material) */
+            } else
                 gk_vct_default_options(&o);
             gk_vct_set_options(vct, &o);
             gk_budget b;

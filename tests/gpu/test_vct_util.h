@@ -19,6 +19,8 @@
 
 #define VT_MAX_OBJ 64
 
+static bool vt_full_gbuffer = false;
+
 /* ---- context ------------------------------------------------------------------------------- */
 typedef struct vt_gl {
     EGLDisplay dpy;
@@ -26,7 +28,7 @@ typedef struct vt_gl {
     gk_program_cache *programs;
 } vt_gl;
 
-static int vt_gl_init(vt_gl *g)
+static inline int vt_gl_init(vt_gl *g)
 {
     g->dpy = eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, NULL);
     if (g->dpy == EGL_NO_DISPLAY || !eglInitialize(g->dpy, NULL, NULL) || !eglBindAPI(EGL_OPENGL_ES_API))
@@ -40,7 +42,7 @@ static int vt_gl_init(vt_gl *g)
     return g->programs ? 0 : -3;
 }
 
-static void vt_gl_fini(vt_gl *g)
+static inline void vt_gl_fini(vt_gl *g)
 {
     gk_program_cache_destroy(g->programs);
     eglMakeCurrent(g->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
@@ -57,7 +59,7 @@ typedef struct vt_scene {
     gk_light lights[4];
 } vt_scene;
 
-static void vt_scene_init(vt_scene *v)
+static inline void vt_scene_init(vt_scene *v)
 {
     memset(v, 0, sizeof *v);
     v->s.meshes = v->meshes;
@@ -68,7 +70,7 @@ static void vt_scene_init(vt_scene *v)
     snprintf(v->s.name, sizeof v->s.name, "vct-test");
 }
 
-static void vt_scene_free(vt_scene *v)
+static inline void vt_scene_free(vt_scene *v)
 {
     for (int i = 0; i < v->s.n_meshes; i++) {
         free(v->meshes[i].positions);
@@ -78,7 +80,7 @@ static void vt_scene_free(vt_scene *v)
 }
 
 /* Bounds and counts after objects were added (node world matrices applied). */
-static void vt_scene_finish(vt_scene *v)
+static inline void vt_scene_finish(vt_scene *v)
 {
     vec3 lo = v3(1e30f, 1e30f, 1e30f), hi = v3(-1e30f, -1e30f, -1e30f);
     v->s.n_triangles = 0;
@@ -96,7 +98,7 @@ static void vt_scene_finish(vt_scene *v)
 }
 
 /* Adds an object made of quads (corner, edge u, edge v each), one node; returns the node index. */
-static int vt_add_quads(vt_scene *v, int nq, const float (*q)[9], vec3 albedo, vec3 emission, bool animated)
+static inline int vt_add_quads(vt_scene *v, int nq, const float (*q)[9], vec3 albedo, vec3 emission, bool animated)
 {
     int i = v->s.n_meshes++;
     gk_mesh *m = &v->meshes[i];
@@ -134,14 +136,14 @@ static int vt_add_quads(vt_scene *v, int nq, const float (*q)[9], vec3 albedo, v
     return v->s.n_nodes++;
 }
 
-static int vt_add_quad(vt_scene *v, vec3 c, vec3 u, vec3 w, vec3 albedo)
+static inline int vt_add_quad(vt_scene *v, vec3 c, vec3 u, vec3 w, vec3 albedo)
 {
     float q[1][9] = {{c.x, c.y, c.z, u.x, u.y, u.z, w.x, w.y, w.z}};
     return vt_add_quads(v, 1, (const float(*)[9])q, albedo, v3(0, 0, 0), false);
 }
 
 /* Axis-aligned box [lo, lo + size] with outward faces. */
-static int vt_add_box(vt_scene *v, vec3 lo, vec3 sz, vec3 albedo, bool animated)
+static inline int vt_add_box(vt_scene *v, vec3 lo, vec3 sz, vec3 albedo, bool animated)
 {
     vec3 hi = v3_add(lo, sz);
     float q[6][9] = {
@@ -161,7 +163,7 @@ typedef struct vt_frame {
     vec3 eye;
 } vt_frame;
 
-static GLuint vt_tex(GLenum fmt, int w, int h)
+static inline GLuint vt_tex(GLenum fmt, int w, int h)
 {
     GLuint t;
     glGenTextures(1, &t);
@@ -172,7 +174,7 @@ static GLuint vt_tex(GLenum fmt, int w, int h)
     return t;
 }
 
-static void vt_frame_create(vt_frame *f, int w, int h, vec3 eye, vec3 target, vec3 up, float yfov)
+static inline void vt_frame_create(vt_frame *f, int w, int h, vec3 eye, vec3 target, vec3 up, float yfov)
 {
     memset(f, 0, sizeof *f);
     f->w = w, f->h = h, f->eye = eye;
@@ -198,7 +200,7 @@ static void vt_frame_create(vt_frame *f, int w, int h, vec3 eye, vec3 target, ve
     f->inv_view_proj = m4_inverse(f->view_proj);
 }
 
-static void vt_frame_destroy(vt_frame *f)
+static inline void vt_frame_destroy(vt_frame *f)
 {
     GLuint t[6] = {f->pos, f->normal, f->albedo, f->material, f->depth, f->hdr};
     glDeleteTextures(6, t);
@@ -207,7 +209,7 @@ static void vt_frame_destroy(vt_frame *f)
 }
 
 /* Rasterizes the scene (current node matrices) into the G-buffer. */
-static int vt_gbuffer(vt_gl *g, vt_frame *f, const vt_scene *v)
+static inline int vt_gbuffer(vt_gl *g, vt_frame *f, const vt_scene *v)
 {
     gk_err e = {0};
     GLuint prog = gk_program_get(g->programs, "vct/test/gbuf.vert", "vct/test/gbuf.frag", NULL, &e);
@@ -262,7 +264,7 @@ static int vt_gbuffer(vt_gl *g, vt_frame *f, const vt_scene *v)
 }
 
 /* Point/spot light for gk_gi_frame (no shadow map). */
-static gk_gi_light vt_light(vt_scene *v, enum gk_light_type type, vec3 pos, vec3 dir, vec3 radiant, float outer)
+static inline gk_gi_light vt_light(vt_scene *v, enum gk_light_type type, vec3 pos, vec3 dir, vec3 radiant, float outer)
 {
     int i = v->s.n_lights++;
     gk_light *l = &v->lights[i];
@@ -284,7 +286,7 @@ static gk_gi_light vt_light(vt_scene *v, enum gk_light_type type, vec3 pos, vec3
 }
 
 /* Renders one frame through gk_gi_vct into a cleared HDR target and reads it back (RGBA floats). */
-static int vt_render(void *vct, vt_frame *f, const vt_scene *v, const gk_budget *b, const gk_gi_light *lights,
+static inline int vt_render(void *vct, vt_frame *f, const vt_scene *v, const gk_budget *b, const gk_gi_light *lights,
                      int n_lights, float *out_rgba, gk_pass_times *times)
 {
     gk_gi_frame fr;
@@ -294,7 +296,10 @@ static int vt_render(void *vct, vt_frame *f, const vt_scene *v, const gk_budget 
     fr.view = f->view, fr.proj = f->proj, fr.view_proj = f->view_proj, fr.inv_view_proj = f->inv_view_proj;
     fr.eye = f->eye;
     fr.gbuf_depth = f->depth, fr.gbuf_normal = f->normal, fr.gbuf_albedo = f->albedo;
-    fr.gbuf_material = f->material, fr.gbuf_position = f->pos;
+    /* the renderer's layout (gi.h): positions from depth, metallic/roughness in albedo.a/normal.w;
+       vt_full_gbuffer switches to the optional position and material textures */
+    fr.gbuf_material = vt_full_gbuffer ? f->material : 0;
+    fr.gbuf_position = vt_full_gbuffer ? f->pos : 0;
     fr.hdr_fbo = f->hdr_fbo;
     fr.n_lights = n_lights;
     fr.lights = lights;
@@ -317,7 +322,7 @@ static int vt_render(void *vct, vt_frame *f, const vt_scene *v, const gk_budget 
 }
 
 /* Reads the G-buffer positions (RGBA32F) for masks in tests. */
-static void vt_read_positions(vt_frame *f, float *out_rgba)
+static inline void vt_read_positions(vt_frame *f, float *out_rgba)
 {
     glBindFramebuffer(GL_FRAMEBUFFER, f->gbuf_fbo);
     glReadBuffer(GL_COLOR_ATTACHMENT0);
@@ -326,7 +331,7 @@ static void vt_read_positions(vt_frame *f, float *out_rgba)
 }
 
 /* A budget with the vct knobs at the given values (strings as on the command line). */
-static void vt_budget(gk_budget *b, const char *pins)
+static inline void vt_budget(gk_budget *b, const char *pins)
 {
     gk_budget_init(b);
     gk_gi_vct.declare_knobs(b);
@@ -335,7 +340,7 @@ static void vt_budget(gk_budget *b, const char *pins)
         fprintf(stderr, "# budget: %s\n", e.msg);
 }
 
-static void *vt_create(vt_gl *g)
+static inline void *vt_create(vt_gl *g)
 {
     gk_gi_context ctx = {g->programs, 31};
     gk_err e = {0};
@@ -346,7 +351,7 @@ static void *vt_create(vt_gl *g)
 }
 
 /* Copies the whole scratch buffer (res^3 x channels uints) into a malloc'd array. */
-static unsigned *vt_read_scratch(void *vct, long *n_out)
+static inline unsigned *vt_read_scratch(void *vct, long *n_out)
 {
     GLint64 size = 0;
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, gk_vct_scratch_buffer(vct));
@@ -361,6 +366,6 @@ static unsigned *vt_read_scratch(void *vct, long *n_out)
     return out;
 }
 
-static float vt_lum(const float *p) { return 0.2126f * p[0] + 0.7152f * p[1] + 0.0722f * p[2]; }
+static inline float vt_lum(const float *p) { return 0.2126f * p[0] + 0.7152f * p[1] + 0.0722f * p[2]; }
 
 #endif

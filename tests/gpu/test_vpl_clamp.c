@@ -38,9 +38,15 @@ static float e_direct(vec3 y, vec3 n)
     float d2 = v3_dot(L, L), d = sqrtf(d2);
     vec3 l = v3_scale(L, 1.0f / d);
     float c = -v3_dot(l, H.gl_light.direction);
-    float ci = cosf(H.light.inner_cone), co = cosf(H.light.outer_cone);
-    float t = fminf(fmaxf((c - co) / (ci - co), 0.0f), 1.0f);
-    return H.light.intensity * t * t * fmaxf(v3_dot(n, l), 0.0f) / d2;
+    float I = H.light.intensity;
+    if (H.light.shape == GK_SHAPE_RECT) { /* one-sided Lambertian emitter: I·cos */
+        I *= fmaxf(c, 0.0f);
+    } else if (H.light.type == GK_LIGHT_SPOT) {
+        float ci = cosf(H.light.inner_cone), co = cosf(H.light.outer_cone);
+        float t = fminf(fmaxf((c - co) / (ci - co), 0.0f), 1.0f);
+        I *= t * t;
+    }
+    return I * fmaxf(v3_dot(n, l), 0.0f) / d2;
 }
 
 static vec3 ref_pixel(vec3 x, vec3 nx, int mat_x)
@@ -174,10 +180,52 @@ static void test_f13_clamp(void **state)
     free(off);
 }
 
+/* The other RSM layouts against the same analytic integral: a point light (6-face cube atlas) and
+   a rectangular area light (5-face hemicube, I·cosθ), with and without the clamp. */
+static double light_energy_ratio(enum gk_light_type type, enum gk_light_shape shape, const char *clamp)
+{
+    H.light.type = type, H.light.shape = shape;
+    H.light.size[0] = H.light.size[1] = 0.1f;
+    float *ref = malloc(sizeof(float) * W * HH * 4);
+    reference(ref);
+    gk_vpl_debug d;
+    gk_vpl_default_debug(&d);
+    d.vis_override = GK_VPL_VIS_NONE;
+    d.fade_frames = 0;
+    gk_vpl_set_debug(H.self, &d);
+    char list[128];
+    snprintf(list, sizeof list, "vpl_n=256,vpl_m=8,vpl_block=1,vpl_res=1,vpl_blur=2,vpl_clamp=%s", clamp);
+    assert_int_equal(h_budget(&H, list), 0);
+    assert_int_equal(h_frame(&H, 0), 0);
+    double r = h_mean(H.img, W * HH) / h_mean(ref, W * HH);
+    free(ref);
+    H.light.type = GK_LIGHT_SPOT, H.light.shape = GK_SHAPE_POINT;
+    return r;
+}
+
+static void test_rsm_layouts_energy(void **state)
+{
+    (void)state;
+    double point = light_energy_ratio(GK_LIGHT_POINT, GK_SHAPE_POINT, "off");
+    double rect = light_energy_ratio(GK_LIGHT_SPOT, GK_SHAPE_RECT, "off");
+    double point_c = light_energy_ratio(GK_LIGHT_POINT, GK_SHAPE_POINT, "on");
+    double rect_c = light_energy_ratio(GK_LIGHT_SPOT, GK_SHAPE_RECT, "on");
+    print_message("# RSM energy vs analytic one-bounce: point light (cube) %.3f (clamped %.3f), rect light "
+                  "(hemicube) %.3f (clamped %.3f)\n", point, point_c, rect, rect_c);
+    /* Measured (N = 256, full-res indirect): point 1.016 unclamped / 0.970 clamped, rect 1.102 /
+       0.975 (the unclamped excess is corner spikes, larger for the broad I·cos lobe; the spot gave
+       1.012 / 0.978). Bound: clamped within ±10% of the analytic integral; a cube face counted
+       twice or a lost cos or solid-angle factor is off by ≥ 1/6 or ×2. Unclamped below +20%. */
+    assert_true(point_c > 0.9 && point_c < 1.1);
+    assert_true(rect_c > 0.9 && rect_c < 1.1);
+    assert_true(point < 1.2 && rect < 1.2);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_f13_clamp),
+        cmocka_unit_test(test_rsm_layouts_energy),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

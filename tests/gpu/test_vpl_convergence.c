@@ -130,6 +130,19 @@ static void test_f11_convergence(void **state)
        fell inside the tall box, between its top and the floor). The cheaper variant must keep at
        least a quarter of CSSM's gain over "no visibility". */
     assert_true(e_vsm < 0.75 * e_none);
+
+    /* F12 (image half; the clustering half is in test_vpl_cluster): w_n = 0 lets clusters
+       straddle walls, whose maps then hold no information for half their receivers. */
+    gk_vpl_default_debug(&d);
+    d.fade_frames = 0;
+    d.w_nrm = 0.0f;
+    gk_vpl_set_debug(H.self, &d);
+    float *nonrm = run("vpl_m=8,vpl_vis=cssm");
+    double e_nonrm = h_rel_rmse(nonrm, exact, W * HH);
+    print_message("# F12 at M=8: rel RMSE w_n=0.3 %.4f, w_n=0 %.4f\n", err[2], e_nonrm);
+    /* Measured 0.080 vs 0.102. */
+    assert_true(err[2] < e_nonrm);
+    free(nonrm);
     free(vsm);
     free(cen);
     free(exact);

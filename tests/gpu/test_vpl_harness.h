@@ -37,6 +37,7 @@ typedef struct vpl_h {
     const gk_gi_method *m;
     void *self;
     float *img;          /* w*h*4 indirect radiance of the last frame */
+    gk_pass_times times; /* the method's pass timings of the last frame */
 } vpl_h;
 
 static inline void h_quad(gk_mesh *m, vec3 o, vec3 a, vec3 b, vec3 n, int mat)
@@ -93,8 +94,16 @@ static inline void h_aim(vpl_h *h, vec3 target)
     h->gl_light.axis_v = v3(0, 1, 0);
 }
 
+static inline int h_init_with(vpl_h *h, bool with_boxes, int w, int hh, gk_scene *external);
+
 /* with_boxes: the two cuboids of T5; w×h: render size. Returns 0 or prints why not. */
 static inline int h_init(vpl_h *h, bool with_boxes, int w, int hh)
+{
+    return h_init_with(h, with_boxes, w, hh, NULL);
+}
+
+/* external: a loaded scene (camera and first light from it) instead of the built-in box. */
+static inline int h_init_with(vpl_h *h, bool with_boxes, int w, int hh, gk_scene *external)
 {
     memset(h, 0, sizeof *h);
     gk_err e = {0};
@@ -135,6 +144,14 @@ static inline int h_init(vpl_h *h, bool with_boxes, int w, int hh)
     h->light.intensity = 2.0f;
     h->light.inner_cone = 25.0f * 3.14159265f / 180.0f, h->light.outer_cone = 30.0f * 3.14159265f / 180.0f;
     gk_scene *s = &h->scene;
+    if (external) {
+        for (int i = 0; i < n; i++) { /* the built-in box is not needed */
+            free(h->meshes[i].positions);
+            free(h->meshes[i].normals);
+            free(h->meshes[i].indices);
+        }
+        *s = *external;
+    } else {
     snprintf(s->name, sizeof s->name, "vpl-cornell-corner");
     s->meshes = h->meshes, s->n_meshes = n;
     s->materials = h->materials, s->n_materials = 3;
@@ -142,6 +159,7 @@ static inline int h_init(vpl_h *h, bool with_boxes, int w, int hh)
     s->lights = &h->light, s->n_lights = 1;
     s->camera_node = -1;
     s->bmin = v3(0, 0, 0), s->bmax = v3(1, 1, 1);
+    }
     if (gk_scene_gpu_upload(&h->gpu, s, &e)) {
         fprintf(stderr, "upload: %s\n", e.msg);
         return -1;
@@ -157,11 +175,25 @@ static inline int h_init(vpl_h *h, bool with_boxes, int w, int hh)
     h->eye = v3(0.5f, 0.5f, 0.98f);
     h->view = m4_look_at(h->eye, v3(0.5f, 0.5f, 0.0f), v3(0, 1, 0));
     h->proj = m4_perspective(70.0f * 3.14159265f / 180.0f, (float)w / (float)hh, 0.01f, 5.0f);
+    if (external)
+        gk_scene_camera(s, (float)w / (float)hh, &h->view, &h->proj, &h->eye);
     h->vp = m4_mul(h->proj, h->view);
     h->inv_vp = m4_inverse(h->vp);
     h->gl_light.scene_light = 0, h->gl_light.node = -1;
     h->gl_light.radiant = v3(h->light.intensity, h->light.intensity, h->light.intensity);
     h_aim(h, v3(0, 0, 0));
+    if (external) {
+        for (int i = 0; i < s->n_nodes; i++)
+            if (s->nodes[i].light >= 0) {
+                const gk_light *L = &s->lights[s->nodes[i].light];
+                h->gl_light.scene_light = s->nodes[i].light, h->gl_light.node = i;
+                gk_scene_light_frame(s, i, &h->gl_light.position, &h->gl_light.direction, &h->gl_light.axis_u,
+                                     &h->gl_light.axis_v);
+                h->gl_light.radiant = v3(L->color[0] * L->intensity, L->color[1] * L->intensity,
+                                         L->color[2] * L->intensity);
+                break;
+            }
+    }
     h->img = malloc((size_t)w * hh * 4 * sizeof(float));
     gk_budget_init(&h->budget);
     h->m = &gk_gi_vpl;
@@ -226,7 +258,9 @@ static inline int h_frame(vpl_h *h, double t)
     glClear(GL_COLOR_BUFFER_BIT);
     gk_err e = {0};
     gk_pass_times pt = {0};
-    if (h->m->render(h->self, &f, &pt, &e)) {
+    int rc = h->m->render(h->self, &f, &pt, &e);
+    h->times = pt;
+    if (rc) {
         fprintf(stderr, "render: %s\n", e.msg);
         return -1;
     }
@@ -274,7 +308,7 @@ static inline void h_free(vpl_h *h)
     gk_target_destroy(&h->hdr);
     gk_scene_gpu_free(&h->gpu);
     gk_program_cache_destroy(h->programs);
-    for (int i = 0; i < h->scene.n_meshes; i++) {
+    for (int i = 0; h->scene.meshes == h->meshes && i < h->scene.n_meshes; i++) {
         free(h->meshes[i].positions);
         free(h->meshes[i].normals);
         free(h->meshes[i].indices);

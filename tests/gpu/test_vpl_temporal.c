@@ -68,12 +68,11 @@ static void test_f8_flicker(void **state)
     double fixed = flicker(false, 6), random = flicker(true, 6);
     print_message("# F8: mean |dL| per frame / mean L: fixed Halton %.4f, random pattern per frame %.4f\n", fixed,
                   random);
-    /* Measured: fixed 0.0199, random 0.0890 (4.5x). The light's own change at 0.1°/frame is a
-       fraction of a percent of the image, so the fixed pattern's ~2% is the clustering and VAL
-       maps following the light. Bounds: fixed below 4% (2x measured) and random at least 2x
-       worse (the pattern is what the test is sensitive to). */
-    assert_true(fixed < 0.04);
-    assert_true(random > 2.0 * fixed);
+    /* Measured: fixed 0.0048, random 0.135 (28x). The fixed pattern's 0.5% per frame includes the
+       light's true change (not subtracted: no per-frame reference here). Bounds: fixed below 1%
+       (2x measured) and random at least 5x worse (the pattern is what the test is sensitive to). */
+    assert_true(fixed < 0.01);
+    assert_true(random > 5.0 * fixed);
 }
 
 /* Mean indirect of each frame while M goes 8, 8, 8, 16, 16, 16, 16, 16. */
@@ -110,8 +109,9 @@ static void test_m_change_no_pop(void **state)
     m_step(0, &jump_pop, &settled_pop);
     print_message("# M 8->16: per-pixel mean |dL| on the switch frame / mean L: crossfade %.4f, none %.4f; "
                   "mean change once settled %.4f\n", jump_fade, jump_pop, settled);
-    /* Measured: crossfade 0.0049, none 0.0245, settled change 0.0076. The brief's bound: one M
-       step moves the frame by < 5%; the crossfade must also cut the switch-frame change. */
+    /* Measured: crossfade 0.0018, none 0.0089 (nested seeds alone already keep the step under 1%),
+       settled change 0.0048. The bound is the brief's: one M step moves the frame by < 5%; the
+       crossfade must also cut the switch-frame change. */
     assert_true(jump_fade < 0.05);
     assert_true(jump_fade < jump_pop);
 }

@@ -33,6 +33,7 @@ void gk_vct_default_options(gk_vct_options *o)
     o->directional_injection = true;
     o->specular = -1;
     o->apex_offset = 2.5f;
+    o->self_offset = 1.5f;
     o->max_dist = 1.7320508f;
     o->ao_lambda = 725.0f;
     o->spec_aperture = 0.158f;
@@ -47,6 +48,7 @@ void gk_vct_thesis_options(gk_vct_options *o)
     o->faithful_weights = true;
     o->directional_injection = false;
     o->shadow_ambient = 0.07f;
+    o->self_offset = 0.0f;
 }
 
 static bool vct_applies(const gk_scene *s)

@@ -33,6 +33,8 @@ typedef struct gk_vct_options {
     bool clip_cones;          /* stop every cone at the volume border (thesis code: only cones < 0.3) */
     int specular;             /* -1 (default): when the scene has specular materials; 0 off; 1 on */
     float apex_offset;        /* voxels along the normal, thesis code 2.5 */
+    float self_offset;        /* samples pushed along the normal by this x their footprint: 1.5 (default);
+                                 0 = thesis (coarse samples see the receiver's own surface) */
     float max_dist;           /* voxel-space units, thesis code sqrt(3) */
     float ao_lambda;          /* AO falloff, thesis code 725 */
     float spec_aperture;      /* thesis code 0.158 (9 degrees) */

@@ -1,6 +1,7 @@
 /* The GL side of each vct pass: program variants, bindings, dispatches and barriers. */
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "vct_internal.h"
@@ -109,7 +110,7 @@ int vct_pass_inject(gk_vct *v, const gk_gi_frame *f, gk_err *e)
         uniform_at(p, "u_light_lambert", i, nm, sizeof nm);
         glUniform1i(glGetUniformLocation(p, nm), lambert);
         uniform_at(p, "u_light_shadow", i, nm, sizeof nm);
-        glUniform1i(glGetUniformLocation(p, nm), L->shadow_depth_tex != 0);
+        glUniform1i(glGetUniformLocation(p, nm), L->shadow_depth_tex != 0 && !getenv("VCT_NOSHADOW"));
         uniform_at(p, "u_shadow_vp", i, nm, sizeof nm);
         glUniformMatrix4fv(glGetUniformLocation(p, nm), 1, GL_FALSE, L->shadow_view_proj.m);
     }
@@ -137,7 +138,7 @@ int vct_pass_mips(gk_vct *v, gk_err *e)
     char defs[256];
     defines_common(v, defs, sizeof defs);
     size_t used = strlen(defs);
-    snprintf(defs + used, sizeof defs - used, "#define DIRECTIONAL_INJECTION %d\n", v->opt.directional_injection ? 1 : 0);
+    snprintf(defs + used, sizeof defs - used, "#define DIRECTIONAL_INJECTION %d\n", v->opt.directional_injection && !getenv("VCT_NODIR") ? 1 : 0);
     GLuint p = gk_program_get_compute(v->ctx.programs, "vct/mip_aniso.comp", defs, e);
     if (!p)
         return -1;
@@ -251,7 +252,9 @@ int vct_pass_trace(gk_vct *v, const gk_gi_frame *f, const vct_budget *b, gk_err 
     bind_tex(p, "u_gbuf_position", 9, GL_TEXTURE_2D, pos_tex, v->nearest_sampler);
     bind_tex(p, "u_gbuf_material", 10, GL_TEXTURE_2D, f->gbuf_material ? f->gbuf_material : f->gbuf_depth,
              v->nearest_sampler);
+    bind_tex(p, "u_gbuf_albedo", 11, GL_TEXTURE_2D, f->gbuf_albedo, v->nearest_sampler);
     glUniform1i(glGetUniformLocation(p, "u_has_position"), f->gbuf_position != 0);
+    glUniform1i(glGetUniformLocation(p, "u_has_material"), f->gbuf_material != 0);
     glUniformMatrix4fv(glGetUniformLocation(p, "u_inv_view_proj"), 1, GL_FALSE, f->inv_view_proj.m);
     glUniform3f(glGetUniformLocation(p, "u_eye"), f->eye.x, f->eye.y, f->eye.z);
     glUniform2i(glGetUniformLocation(p, "u_full_size"), f->width, f->height);
@@ -267,6 +270,10 @@ int vct_pass_trace(gk_vct *v, const gk_gi_frame *f, const vct_budget *b, gk_err 
     glUniform1f(glGetUniformLocation(p, "u_max_dist"), v->opt.max_dist);
     glUniform1f(glGetUniformLocation(p, "u_apex_offset"), v->opt.apex_offset);
     glUniform1f(glGetUniformLocation(p, "u_spec_aperture"), v->opt.spec_aperture);
+    float so = v->opt.self_offset;
+    if (getenv("VCT_SELF"))
+        so = (float)atof(getenv("VCT_SELF"));
+    glUniform1f(glGetUniformLocation(p, "u_self_offset"), so);
     float dir[VCT_MAX_CONES][3], ap[VCT_MAX_CONES], w[VCT_MAX_CONES];
     int n = vct_cone_set(b->cones, v->opt.faithful_weights, dir, ap, w);
     glUniform1i(glGetUniformLocation(p, "u_n_cones"), n);
@@ -281,7 +288,7 @@ int vct_pass_trace(gk_vct *v, const gk_gi_frame *f, const vct_budget *b, gk_err 
     glBindImageTexture(1, v->trace_spec, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glDispatchCompute((GLuint)groups(v->trace_w, 8), (GLuint)groups(v->trace_h, 8), 1);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-    unbind_units(11);
+    unbind_units(12);
     v->stats.trace_runs++;
     return 0;
 }
@@ -325,6 +332,7 @@ int vct_pass_compose(gk_vct *v, const gk_gi_frame *f, gk_err *e)
     bind_tex(p, "u_gbuf_material", 6, GL_TEXTURE_2D, f->gbuf_material ? f->gbuf_material : f->gbuf_depth,
              v->nearest_sampler);
     glUniform1i(glGetUniformLocation(p, "u_has_position"), f->gbuf_position != 0);
+    glUniform1i(glGetUniformLocation(p, "u_has_material"), f->gbuf_material != 0);
     glUniformMatrix4fv(glGetUniformLocation(p, "u_inv_view_proj"), 1, GL_FALSE, f->inv_view_proj.m);
     glUniform2i(glGetUniformLocation(p, "u_full_size"), f->width, f->height);
     glUniform2i(glGetUniformLocation(p, "u_low_size"), v->trace_w, v->trace_h);

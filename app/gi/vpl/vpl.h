@@ -35,6 +35,7 @@ typedef struct gk_vpl_stats {
     double cluster_error;    /* mean k-means distance */
     float spacing, dmin;     /* mean VPL spacing and clamp distance (m) */
     double clamp_removed;    /* fraction of the gathered irradiance the clamp removed (measure) */
+    int mr_regions;          /* multires: regions shaded over all levels (measure) */
     int fade_left;
     gk_vpl vpl[GK_VPL_MAX_N];
     int labels[GK_VPL_MAX_N];

@@ -30,6 +30,7 @@ static void free_ind(vpl_state *s)
     glDeleteTextures(6, t);
     s->ind_fbo = 0;
     s->have_hist = false;
+    vpl_free_multires(s); /* its level 0 shares pos_tex/nrm_tex */
 }
 
 static int single_fbo(GLuint *fbo, GLuint tex, gk_err *e)
@@ -51,7 +52,7 @@ static int ensure_ind(vpl_state *s, int w, int h, gk_err *e)
     /* RGBA32F throughout: the removed-energy channel and world positions need the range. */
     s->ind_tex = tex2d(GL_RGBA32F, w, h);
     s->pos_tex = tex2d(GL_RGBA32F, w, h);
-    s->nrm_tex = tex2d(GL_RGBA16F, w, h);
+    s->nrm_tex = tex2d(GL_RGBA32F, w, h); /* also level 0 of the multires normal minimum */
     s->blur_tex = tex2d(GL_RGBA32F, w, h);
     s->out_tex[0] = tex2d(GL_RGBA32F, w, h);
     s->out_tex[1] = tex2d(GL_RGBA32F, w, h);
@@ -68,7 +69,7 @@ static int ensure_ind(vpl_state *s, int w, int h, gk_err *e)
     return 0;
 }
 
-static void bind_tex(int unit, GLenum target, GLuint tex, GLuint prog, const char *name)
+void vpl_bind_tex(int unit, GLenum target, GLuint tex, GLuint prog, const char *name)
 {
     glActiveTexture(GL_TEXTURE0 + unit);
     glBindTexture(target, tex);
@@ -107,7 +108,7 @@ static void measure(vpl_state *s)
     free(px);
 }
 
-static const char *vis_define(int vis)
+const char *vpl_vis_define(int vis)
 {
     switch (vis) {
     case GK_VPL_VIS_CSSM: return "#define VIS_CSSM 1\n";
@@ -117,40 +118,22 @@ static const char *vis_define(int vis)
     }
 }
 
-int vpl_gather(vpl_state *s, const gk_gi_frame *f, float fade, gk_err *e)
+/* Interleaved gather at the indirect resolution into ind_tex (+ pos, nrm for the blur). */
+static int interleaved(vpl_state *s, const gk_gi_frame *f, gk_err *e)
 {
-    int iw = (int)lrintf((float)f->width * s->res_scale), ih = (int)lrintf((float)f->height * s->res_scale);
-    iw = iw < 1 ? 1 : iw, ih = ih < 1 ? 1 : ih;
-    if (ensure_ind(s, iw, ih, e))
-        return -1;
-    GLuint g = gk_program_get(s->ctx.programs, "common/fullscreen.vert", "vpl/gather.frag", vis_define(s->vis), e);
+    int iw = s->iw, ih = s->ih;
+    GLuint g = gk_program_get(s->ctx.programs, "common/fullscreen.vert", "vpl/gather.frag", vpl_vis_define(s->vis), e);
     if (!g)
         return -1;
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_BLEND);
-    glDisable(GL_CULL_FACE);
-    glBindVertexArray(s->empty_vao);
     glBindFramebuffer(GL_FRAMEBUFFER, s->ind_fbo);
     const GLenum b3[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
     glDrawBuffers(3, b3);
     glViewport(0, 0, iw, ih);
     glUseProgram(g);
-    bind_tex(0, GL_TEXTURE_2D, f->gbuf_depth, g, "u_gb_depth");
-    bind_tex(1, GL_TEXTURE_2D, f->gbuf_normal, g, "u_gb_normal");
-    bind_tex(2, GL_TEXTURE_2D, f->gbuf_position ? f->gbuf_position : f->gbuf_normal, g, "u_gb_position");
-    bind_tex(3, GL_TEXTURE_2D, s->vpl_tex, g, "u_vpl");
-    bind_tex(4, GL_TEXTURE_2D, s->val_tex, g, "u_val");
-    if (s->vis == GK_VPL_VIS_CSSM) {
-        bind_tex(5, GL_TEXTURE_2D_ARRAY, s->bcos, g, "u_bcos");
-        bind_tex(6, GL_TEXTURE_2D_ARRAY, s->bsin, g, "u_bsin");
-        bind_tex(7, GL_TEXTURE_2D_ARRAY, s->bzcos, g, "u_bzcos");
-        bind_tex(8, GL_TEXTURE_2D_ARRAY, s->bzsin, g, "u_bzsin");
-        bind_tex(9, GL_TEXTURE_2D_ARRAY, s->z_arr, g, "u_bz");
-    } else if (s->vis == GK_VPL_VIS_VSM) {
-        bind_tex(5, GL_TEXTURE_2D_ARRAY, s->bmom, g, "u_bmom");
-    } else if (s->vis == GK_VPL_VIS_EXACT) {
-        bind_tex(9, GL_TEXTURE_2D_ARRAY, s->z_arr, g, "u_bz");
-    }
+    vpl_bind_tex(0, GL_TEXTURE_2D, f->gbuf_depth, g, "u_gb_depth");
+    vpl_bind_tex(1, GL_TEXTURE_2D, f->gbuf_normal, g, "u_gb_normal");
+    vpl_bind_tex(2, GL_TEXTURE_2D, f->gbuf_position ? f->gbuf_position : f->gbuf_normal, g, "u_gb_position");
+    vpl_bind_visibility(s, g);
     set_1i(g, "u_has_position", f->gbuf_position != 0);
     gk_uniform_mat4(g, "u_inv_viewproj", f->inv_view_proj.m);
     set_2i(g, "u_full_size", f->width, f->height);
@@ -161,6 +144,40 @@ int vpl_gather(vpl_state *s, const gk_gi_frame *f, float fade, gk_err *e)
     glDrawArrays(GL_TRIANGLES, 0, 3);
     if (s->dbg.measure)
         measure(s);
+    return 0;
+}
+
+void vpl_bind_visibility(vpl_state *s, GLuint g)
+{
+    vpl_bind_tex(3, GL_TEXTURE_2D, s->vpl_tex, g, "u_vpl");
+    vpl_bind_tex(4, GL_TEXTURE_2D, s->val_tex, g, "u_val");
+    if (s->vis == GK_VPL_VIS_CSSM) {
+        vpl_bind_tex(5, GL_TEXTURE_2D_ARRAY, s->bcos, g, "u_bcos");
+        vpl_bind_tex(6, GL_TEXTURE_2D_ARRAY, s->bsin, g, "u_bsin");
+        vpl_bind_tex(7, GL_TEXTURE_2D_ARRAY, s->bzcos, g, "u_bzcos");
+        vpl_bind_tex(8, GL_TEXTURE_2D_ARRAY, s->bzsin, g, "u_bzsin");
+        vpl_bind_tex(9, GL_TEXTURE_2D_ARRAY, s->z_arr, g, "u_bz");
+    } else if (s->vis == GK_VPL_VIS_VSM) {
+        vpl_bind_tex(5, GL_TEXTURE_2D_ARRAY, s->bmom, g, "u_bmom");
+    } else if (s->vis == GK_VPL_VIS_EXACT) {
+        vpl_bind_tex(9, GL_TEXTURE_2D_ARRAY, s->z_arr, g, "u_bz");
+    }
+}
+
+int vpl_gather(vpl_state *s, const gk_gi_frame *f, float fade, gk_err *e)
+{
+    int iw = (int)lrintf((float)f->width * s->res_scale), ih = (int)lrintf((float)f->height * s->res_scale);
+    iw = iw < 1 ? 1 : iw, ih = ih < 1 ? 1 : ih;
+    if (ensure_ind(s, iw, ih, e))
+        return -1;
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+    glBindVertexArray(s->empty_vao);
+    if (s->multires ? vpl_gather_multires(s, f, e) : interleaved(s, f, e))
+        return -1;
+    glBindVertexArray(s->empty_vao);
+    glViewport(0, 0, s->iw, s->ih);
 
     /* Geometry-aware blur, horizontal into blur_tex, vertical into out_tex[cur]. */
     GLuint b = gk_program_get(s->ctx.programs, "common/fullscreen.vert", "vpl/blur.frag", NULL, e);
@@ -168,8 +185,8 @@ int vpl_gather(vpl_state *s, const gk_gi_frame *f, float fade, gk_err *e)
         return -1;
     glUseProgram(b);
     const GLenum b1[1] = {GL_COLOR_ATTACHMENT0};
-    bind_tex(1, GL_TEXTURE_2D, s->pos_tex, b, "u_pos");
-    bind_tex(2, GL_TEXTURE_2D, s->nrm_tex, b, "u_nrm");
+    vpl_bind_tex(1, GL_TEXTURE_2D, s->pos_tex, b, "u_pos");
+    vpl_bind_tex(2, GL_TEXTURE_2D, s->nrm_tex, b, "u_nrm");
     set_1i(b, "u_radius", s->blur_radius);
     gk_uniform_1f(b, "u_sigma", 0.1f * s->diam);  /* σ = 10% of the scene extent (§6.5) */
     gk_uniform_1f(b, "u_alpha", 0.8f);            /* α = 0.8 */
@@ -177,9 +194,9 @@ int vpl_gather(vpl_state *s, const gk_gi_frame *f, float fade, gk_err *e)
     for (int pass = 0; pass < 2; pass++) {
         glBindFramebuffer(GL_FRAMEBUFFER, pass == 0 ? s->blur_fbo : s->out_fbo[cur]);
         glDrawBuffers(1, b1);
-        bind_tex(0, GL_TEXTURE_2D, pass == 0 ? s->ind_tex : s->blur_tex, b, "u_ind");
+        vpl_bind_tex(0, GL_TEXTURE_2D, pass == 0 ? s->ind_tex : s->blur_tex, b, "u_ind");
         set_2i(b, "u_dir", pass == 0, pass == 1);
-        bind_tex(3, GL_TEXTURE_2D, s->out_tex[1 - cur], b, "u_hist");
+        vpl_bind_tex(3, GL_TEXTURE_2D, s->out_tex[1 - cur], b, "u_hist");
         gk_uniform_1f(b, "u_fade", pass == 1 && s->have_hist ? fade : 1.0f);
         glDrawArrays(GL_TRIANGLES, 0, 3);
     }
@@ -195,12 +212,12 @@ int vpl_gather(vpl_state *s, const gk_gi_frame *f, float fade, gk_err *e)
     glBlendEquation(GL_FUNC_ADD);
     glBlendFunc(GL_ONE, GL_ONE);
     glUseProgram(c);
-    bind_tex(0, GL_TEXTURE_2D, s->out_tex[cur], c, "u_ind");
-    bind_tex(2, GL_TEXTURE_2D, s->pos_tex, c, "u_pos");
-    bind_tex(3, GL_TEXTURE_2D, s->nrm_tex, c, "u_nrm");
-    bind_tex(4, GL_TEXTURE_2D, f->gbuf_depth, c, "u_gb_depth");
-    bind_tex(5, GL_TEXTURE_2D, f->gbuf_normal, c, "u_gb_normal");
-    bind_tex(6, GL_TEXTURE_2D, f->gbuf_albedo, c, "u_gb_albedo");
+    vpl_bind_tex(0, GL_TEXTURE_2D, s->out_tex[cur], c, "u_ind");
+    vpl_bind_tex(2, GL_TEXTURE_2D, s->pos_tex, c, "u_pos");
+    vpl_bind_tex(3, GL_TEXTURE_2D, s->nrm_tex, c, "u_nrm");
+    vpl_bind_tex(4, GL_TEXTURE_2D, f->gbuf_depth, c, "u_gb_depth");
+    vpl_bind_tex(5, GL_TEXTURE_2D, f->gbuf_normal, c, "u_gb_normal");
+    vpl_bind_tex(6, GL_TEXTURE_2D, f->gbuf_albedo, c, "u_gb_albedo");
     gk_uniform_mat4(c, "u_inv_viewproj", f->inv_view_proj.m);
     set_2i(c, "u_full_size", f->width, f->height);
     gk_uniform_1f(c, "u_sigma", 0.05f * s->diam);
@@ -217,6 +234,7 @@ int vpl_gather(vpl_state *s, const gk_gi_frame *f, float fade, gk_err *e)
 void vpl_free_gpu(vpl_state *s)
 {
     free_ind(s);
+    vpl_free_multires(s);
     void vpl_free_maps(vpl_state *);
     vpl_free_maps(s);
     if (s->rsm_fbo) {

@@ -9,6 +9,7 @@
 
 #define VPL_RSM_RES 128      /* per RSM face; the thesis gives none (dong-001.md §14.3) */
 #define VPL_EXACT_RES 64     /* per-VPL hard shadow maps of the exact-visibility reference */
+#define VPL_MR_MAX_LEVELS 6  /* 000: coarsest regions 32×32 pixels (16×16 of them at 512²) */
 
 typedef struct vpl_state {
     gk_gi_context ctx;
@@ -44,6 +45,11 @@ typedef struct vpl_state {
     int iw, ih, cur;
     bool have_hist;
     GLuint empty_vao;
+    /* multi-resolution splatting (seed 000 §3.2), vpl_gather=multires */
+    bool multires;
+    int mr_levels, mr_w, mr_h;
+    GLuint mr_t[VPL_MR_MAX_LEVELS][4], mr_rend[VPL_MR_MAX_LEVELS], mr_sint[VPL_MR_MAX_LEVELS];
+    GLuint mr_fbo[VPL_MR_MAX_LEVELS], mr_rend_fbo[VPL_MR_MAX_LEVELS], mr_sint_fbo[VPL_MR_MAX_LEVELS];
 } vpl_state;
 
 /* vpl_rsm.c: RSM of every light + VPL generation + readback into st.vpl; returns VPL count. */
@@ -55,6 +61,14 @@ void vpl_upload(vpl_state *s, const gk_val *emitters, int count);
 /* vpl_gather.c: gather + blur + compose into f->hdr_fbo. */
 int vpl_gather(vpl_state *s, const gk_gi_frame *f, float fade, gk_err *e);
 void vpl_free_gpu(vpl_state *s);
+/* vpl_multires.c: min–max mips, per-level gather of valid regions, interpolation into s->ind_tex
+   (plus pos_tex/nrm_tex for the blur), replacing the interleaved gather. */
+int vpl_gather_multires(vpl_state *s, const gk_gi_frame *f, gk_err *e);
+void vpl_free_multires(vpl_state *s);
+/* Binding helpers shared by the gather files. */
+void vpl_bind_tex(int unit, GLenum target, GLuint tex, GLuint prog, const char *name);
+void vpl_bind_visibility(vpl_state *s, GLuint prog);
+const char *vpl_vis_define(int vis);
 
 /* Emitter geometry shared by the map pass and the gather (centre offset, near radius, far). */
 void vpl_emitter_params(const vpl_state *s, const gk_val *v, bool exact, float out_c[3], float *rnear,

@@ -86,6 +86,10 @@ void gk_shadow_maps_bind(const gk_shadow_maps *m, int slot, const gk_shadow_view
     glBindTexture(GL_TEXTURE_2D_ARRAY, m->tex[slot]);
     gk_uniform_1i(prog, "u_shadow_map", unit);
     gk_uniform_mat4v(prog, "u_shadow_viewproj", v->n_faces, v->viewproj[0].m);
+    mat4 inv[GK_SHADOW_MAX_FACES];
+    for (int f = 0; f < v->n_faces; f++)
+        inv[f] = m4_inverse(v->viewproj[f]);
+    gk_uniform_mat4v(prog, "u_shadow_inv_viewproj", v->n_faces, inv[0].m);
     gk_uniform_3f(prog, "u_shadow_pos", v->pos.x, v->pos.y, v->pos.z);
     gk_uniform_3f(prog, "u_shadow_axis", v->axis.x, v->axis.y, v->axis.z);
     const float basis[9] = {v->basis[0].x, v->basis[0].y, v->basis[0].z, v->basis[1].x, v->basis[1].y,

@@ -5,8 +5,14 @@
 
 extern const gk_shadow_method gk_shadow_hard;
 extern const gk_shadow_method gk_shadow_pcss;
+/* shadow_vssm.c, shadow_cssm.c: the knob's vssm and cssm, then diagnostic variants used by the
+   failure tests (savsm, vssm_nocontact, cssm_sat, cssm_raw). At most GK_MAX_SHADOW_METHODS (8). */
+extern const gk_shadow_method gk_shadow_vssm, gk_shadow_cssm, gk_shadow_cssm_sat, gk_shadow_savsm,
+    gk_shadow_vssm_nocontact, gk_shadow_cssm_raw;
 
-const gk_shadow_method *const gk_shadow_methods[] = {&gk_shadow_hard, &gk_shadow_pcss, NULL};
+const gk_shadow_method *const gk_shadow_methods[] = {&gk_shadow_hard, &gk_shadow_pcss, &gk_shadow_vssm, &gk_shadow_cssm,
+                                                     &gk_shadow_cssm_sat, &gk_shadow_savsm, &gk_shadow_vssm_nocontact,
+                                                     &gk_shadow_cssm_raw, NULL};
 
 const gk_shadow_method *gk_shadow_method_find(const char *name)
 {

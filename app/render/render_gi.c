@@ -1,0 +1,254 @@
+/* GI methods inside the frame (DESIGN §5): the renderer lends each method its G-buffer, HDR
+ * target, lights and a scene-drawing callback through gk_gi_frame (app/gi/gi.h), creates a
+ * method's state on first use, hands it each new scene once, and collects its pass times.
+ *
+ * Light injection needs a 2D depth map per light (gk_gi_light.shadow_depth_tex): the direct-light
+ * shadow maps are cube maps or arrays owned by the shadow method, so the GI layer keeps its own
+ * single-face depth maps — perspective along the emitter's axis for local lights (the cone of a
+ * spot; 160 degrees for one-sided area emitters and point lights, which covers what a ceiling
+ * light sees), orthographic over the scene bounds for directional lights. They are re-rendered
+ * only when the scene changes or animates. */
+#include "render_gi.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../core/log.h"
+#include "renderer_internal.h"
+
+#define GI_LIGHT_MAP_SIZE 1024
+#define GI_MAX_METHODS 16
+
+struct gk_render_gi {
+    void *state[GI_MAX_METHODS];             /* per registered method, created on first use */
+    const gk_scene *scene_of[GI_MAX_METHODS]; /* the scene each state last saw */
+    bool failed[GI_MAX_METHODS];             /* creation or set_scene failed: do not retry each frame */
+    GLuint depth_tex[GK_GI_MAX_LIGHTS];
+    GLuint fbo;
+    gk_gi_light lights[GK_GI_MAX_LIGHTS];
+    int n_lights;
+    const gk_scene *maps_scene;              /* scene the maps were rendered for (static scenes) */
+};
+
+gk_render_gi *gk_render_gi_create(void)
+{
+    return calloc(1, sizeof(gk_render_gi));
+}
+
+void gk_render_gi_destroy(gk_render_gi *g)
+{
+    if (!g)
+        return;
+    int n;
+    const gk_gi_method *const *m = gk_gi_methods(&n);
+    for (int i = 0; i < n && i < GI_MAX_METHODS; i++)
+        if (g->state[i])
+            m[i]->destroy(g->state[i]);
+    glDeleteTextures(GK_GI_MAX_LIGHTS, g->depth_tex);
+    if (g->fbo)
+        glDeleteFramebuffers(1, &g->fbo);
+    free(g);
+}
+
+void gk_render_gi_declare_knobs(gk_budget *b)
+{
+    int n;
+    const gk_gi_method *const *m = gk_gi_methods(&n);
+    for (int i = 0; i < n; i++)
+        m[i]->declare_knobs(b);
+}
+
+static bool listed(const char *const *names, int n, const char *name)
+{
+    for (int i = 0; i < n; i++)
+        if (strcmp(names[i], name) == 0)
+            return true;
+    return false;
+}
+
+int gk_render_gi_methods(const gk_scene *s, const char **names, int max)
+{
+    int n = 0;
+    if (n < max)
+        names[n++] = "none";
+    if (!s)
+        return n;
+    /* What the scene needs (gk_scene_methods) AND what is implemented and applies. */
+    const char *needs[16];
+    int n_needs = gk_scene_methods(s, needs, 16);
+    int count;
+    const gk_gi_method *const *m = gk_gi_methods(&count);
+    for (int i = 0; i < n_needs && n < max; i++) {
+        if (strcmp(needs[i], "none") == 0)
+            continue;
+        for (int k = 0; k < count; k++)
+            if (strcmp(m[k]->name, needs[i]) == 0 && m[k]->applies(s) && !listed(names, n, needs[i]))
+                names[n++] = m[k]->name;
+    }
+    return n;
+}
+
+/* The single-face view of one light for injection (see the header comment). */
+static mat4 light_view_proj(const gk_scene *s, const gk_light *l, vec3 pos, vec3 dir, float *znear, float *zfar,
+                            bool *perspective)
+{
+    vec3 c = v3_scale(v3_add(s->bmin, s->bmax), 0.5f);
+    float radius = 0.5f * v3_len(v3_sub(s->bmax, s->bmin)) + 1e-3f;
+    vec3 up = fabsf(dir.y) < 0.95f ? v3(0, 1, 0) : v3(1, 0, 0);
+    if (l->type == GK_LIGHT_DIRECTIONAL) {
+        vec3 eye = v3_sub(c, v3_scale(dir, 2.0f * radius));
+        *znear = 0.0f;
+        *zfar = 4.0f * radius;
+        *perspective = false;
+        return m4_mul(m4_ortho(-radius, radius, -radius, radius, *znear, *zfar), m4_look_at(eye, c, up));
+    }
+    float fov = 160.0f * (float)M_PI / 180.0f;
+    if (l->type == GK_LIGHT_SPOT && l->shape != GK_SHAPE_RECT)
+        fov = fminf(fov, 2.0f * l->outer_cone + 0.1f);
+    float far = v3_len(v3_sub(c, pos)) + radius;
+    *znear = fmaxf(0.01f, far * 1e-3f);
+    *zfar = far;
+    *perspective = true;
+    return m4_mul(m4_perspective(fov, 1.0f, *znear, *zfar), m4_look_at(pos, v3_add(pos, dir), up));
+}
+
+static int render_light_maps(gk_render_gi *g, gk_renderer *r, gk_err *e)
+{
+    const gk_scene *s = r->scene;
+    bool dynamic = s->features.has_animation;
+    if (g->maps_scene == s && !dynamic)
+        return 0;
+    GLuint prog = gk_program_get(r->progs, "shadow/depth.vert", "shadow/depth.frag", NULL, e);
+    if (!prog)
+        return -1;
+    if (!g->fbo)
+        glGenFramebuffers(1, &g->fbo);
+    g->n_lights = 0;
+    for (int i = 0; i < s->n_nodes && g->n_lights < GK_GI_MAX_LIGHTS; i++) {
+        int li = s->nodes[i].light;
+        if (li < 0 || li >= s->n_lights)
+            continue;
+        const gk_light *l = &s->lights[li];
+        int k = g->n_lights++;
+        gk_gi_light *L = &g->lights[k];
+        memset(L, 0, sizeof *L);
+        L->scene_light = li;
+        L->node = i;
+        gk_scene_light_frame(s, i, &L->position, &L->direction, &L->axis_u, &L->axis_v);
+        L->radiant = v3(l->color[0] * l->intensity, l->color[1] * l->intensity, l->color[2] * l->intensity);
+        L->shadow_view_proj = light_view_proj(s, l, L->position, L->direction, &L->shadow_near, &L->shadow_far,
+                                              &L->shadow_is_perspective);
+        if (!g->depth_tex[k]) {
+            glGenTextures(1, &g->depth_tex[k]);
+            glBindTexture(GL_TEXTURE_2D, g->depth_tex[k]);
+            glTexStorage2D(GL_TEXTURE_2D, 1, GL_DEPTH_COMPONENT32F, GI_LIGHT_MAP_SIZE, GI_LIGHT_MAP_SIZE);
+            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        }
+        L->shadow_depth_tex = g->depth_tex[k];
+        glBindFramebuffer(GL_FRAMEBUFFER, g->fbo);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, g->depth_tex[k], 0);
+        GLenum none = GL_NONE;
+        glDrawBuffers(1, &none);
+        if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+            return gk_fail(e, GK_ERUNTIME, "GI light map: framebuffer incomplete");
+        glViewport(0, 0, GI_LIGHT_MAP_SIZE, GI_LIGHT_MAP_SIZE);
+        glEnable(GL_DEPTH_TEST);
+        glDepthMask(GL_TRUE);
+        glDisable(GL_BLEND);
+        glClear(GL_DEPTH_BUFFER_BIT);
+        glUseProgram(prog);
+        gk_uniform_mat4(prog, "u_viewproj", L->shadow_view_proj.m);
+        gk_scene_gpu_draw(&r->gpu, s, prog, GK_DRAW_SKIP_PROXIES);
+    }
+    glDisable(GL_DEPTH_TEST);
+    g->maps_scene = s;
+    return 0;
+}
+
+static void draw_scene_cb(void *ctx, unsigned program)
+{
+    gk_renderer *r = ctx;
+    gk_scene_gpu_draw(&r->gpu, r->scene, program, GK_DRAW_MATERIALS | GK_DRAW_SKIP_PROXIES);
+}
+
+int gk_render_gi_run(gk_render_gi *g, gk_renderer *r, const char *method, const gk_budget *b,
+                     const mat4 *view, const mat4 *proj, vec3 eye, gk_pass_times *times, gk_err *e)
+{
+    if (!method || strcmp(method, "none") == 0)
+        return 0;
+    int count;
+    const gk_gi_method *const *m = gk_gi_methods(&count);
+    int k = -1;
+    for (int i = 0; i < count && i < GI_MAX_METHODS; i++)
+        if (strcmp(m[i]->name, method) == 0)
+            k = i;
+    if (k < 0 || g->failed[k])
+        return 0; /* unknown or broken method: direct light only (the kiosk keeps showing something) */
+    if (!g->state[k]) {
+        gk_gi_context ctx = {.programs = r->progs, .gles_version = r->caps.gles};
+        g->state[k] = m[k]->create(&ctx, e);
+        if (!g->state[k]) {
+            g->failed[k] = true;
+            return -1;
+        }
+    }
+    bool changed = g->scene_of[k] != r->scene;
+    if (changed) {
+        if (m[k]->set_scene(g->state[k], r->scene, e) != 0) {
+            g->failed[k] = true;
+            return -1;
+        }
+        g->scene_of[k] = r->scene;
+    }
+    if (render_light_maps(g, r, e) != 0)
+        return -1;
+
+    gk_gi_frame f;
+    memset(&f, 0, sizeof f);
+    f.scene = r->scene;
+    f.scene_changed = changed || r->scene->features.has_animation;
+    f.width = r->render_w;
+    f.height = r->render_h;
+    f.view = *view;
+    f.proj = *proj;
+    f.view_proj = m4_mul(*proj, *view);
+    f.inv_view_proj = m4_inverse(f.view_proj);
+    f.eye = eye;
+    f.gbuf_albedo = r->gbuf.color[0];
+    f.gbuf_normal = r->gbuf.color[1];
+    f.gbuf_emission = r->gbuf.color[2];
+    f.gbuf_depth = r->gbuf.depth;
+    f.direct_tex = 0; /* the method adds into the same HDR target: reading it would be a feedback loop */
+    f.hdr_fbo = r->hdr.fbo;
+    f.n_lights = g->n_lights;
+    f.lights = g->lights;
+    f.budget = b;
+    f.draw_scene = draw_scene_cb;
+    f.draw_ctx = r;
+    gk_pass_times own = {0};
+    int rc = m[k]->render(g->state[k], &f, &own, e);
+    for (int i = 0; times && i < own.n && times->n < GK_MAX_PASSES; i++) {
+        times->name[times->n] = own.name[i];
+        times->ms[times->n++] = own.ms[i];
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, r->hdr.fbo);
+    glViewport(0, 0, r->render_w, r->render_h);
+    glDisable(GL_BLEND);
+    glDisable(GL_DEPTH_TEST);
+    return rc;
+}
+
+long gk_render_gi_memory(const gk_render_gi *g, const char *method)
+{
+    int count;
+    const gk_gi_method *const *m = gk_gi_methods(&count);
+    for (int i = 0; i < count && i < GI_MAX_METHODS; i++)
+        if (g->state[i] && strcmp(m[i]->name, method) == 0 && m[i]->memory_bytes)
+            return m[i]->memory_bytes(g->state[i]);
+    return 0;
+}

@@ -1,0 +1,184 @@
+/* Convolution soft shadow maps, CSSM (Annen et al. 2008; dong-001.md §3, checklist §11.2), over the
+ * shared depth maps. Per light and frame: depth map -> normalised linear depth (compute) -> the
+ * K = 4 Fourier bases cos/sin(c_k z), z cos/sin(c_k z) and z, prefiltered either as
+ *   mipmaps:  RGBA16F arrays written by compute (cssm_basis.comp) + glGenerateMipmap, or
+ *   SATs:     exact modular fixed-point RGBA32UI / R32UI summed-area tables (vssm_sat.comp)
+ * -> the lighting pass (shaders_gles/shadow/cssm.glsl): 6 basis lookups + 1 depth per pixel.
+ * Methods registered here:
+ *   cssm       mipmap prefilter (the thesis's fast path: ">3x faster", 8/16-bit storage)
+ *   cssm_sat   SAT prefilter (the thesis's quality path for single lights)
+ *   cssm_raw   SAT, no ringing suppression (alpha = 1) and no sharpening (A = 0): the baseline
+ *              of failure tests F2 (ringing) and F3 (contact leak)
+ * Texture units: the method's unit (depth map), +1..+4 the bases, +5 z (+6 z^2 SAT, unused sums). */
+#include <math.h>
+#include <stdlib.h>
+
+#include "shadow_prefilter.h"
+
+/* Depth scale of the Fourier series (z_c = CSSM_RANGE z), and the receiver shift where the scaled,
+   clamped K = 4 test saturates (dong-001.md §3.3: alpha >= 1.12 -> 0.064). */
+#define CSSM_RANGE 0.85f
+#define CSSM_SHIFT 0.064f
+
+enum { B_COS, B_SIN, B_ZCOS, B_ZSIN, B_Z, B_Z2, B_TMP0, B_TMP1, B_N };
+
+typedef struct cssm_slot {
+    GLuint zlin;
+    GLuint basis[B_N];
+    int size, layers;
+} cssm_slot;
+
+typedef struct cssm_state {
+    bool sat;
+    gk_shadow_maps maps;
+    cssm_slot slot[GK_SHADOW_MAX_LIGHTS];
+} cssm_state;
+
+static void slot_free(cssm_slot *s)
+{
+    if (s->zlin)
+        glDeleteTextures(1, &s->zlin);
+    for (int i = 0; i < B_N; i++)
+        if (s->basis[i])
+            glDeleteTextures(1, &s->basis[i]);
+    *s = (cssm_slot){0};
+}
+
+static int slot_ensure(cssm_slot *s, bool sat, int size, int layers, gk_err *e)
+{
+    if (s->zlin && s->size == size && s->layers == layers)
+        return 0;
+    slot_free(s);
+    if (!(s->zlin = gk_pf_array_create(GL_R32F, size, layers, 1, false, e)))
+        return -1;
+    for (int i = 0; i < B_N; i++) {
+        if (!sat && i > B_Z)
+            break;
+        GLenum fmt = !sat ? GL_RGBA16F : (i == B_Z || i == B_Z2) ? GL_R32UI : GL_RGBA32UI;
+        s->basis[i] = sat ? gk_pf_array_create(fmt, size, layers, 1, false, e)
+                          : gk_pf_array_create(fmt, size, layers, 0, true, e);
+        if (!s->basis[i]) {
+            slot_free(s);
+            return -1;
+        }
+    }
+    s->size = size;
+    s->layers = layers;
+    return 0;
+}
+
+static void *cssm_create_mm(void) { return calloc(1, sizeof(cssm_state)); }
+
+static void *cssm_create_sat(void)
+{
+    cssm_state *st = calloc(1, sizeof(cssm_state));
+    if (st)
+        st->sat = true;
+    return st;
+}
+
+static void cssm_destroy(void *self)
+{
+    cssm_state *st = self;
+    if (!st)
+        return;
+    gk_shadow_maps_free(&st->maps);
+    for (int i = 0; i < GK_SHADOW_MAX_LIGHTS; i++)
+        slot_free(&st->slot[i]);
+    free(st);
+}
+
+static int basis_mipmaps(gk_program_cache *progs, cssm_slot *s, gk_err *e)
+{
+    GLuint p0 = gk_program_get_compute(progs, "shadow/cssm_basis.comp", "#define CSSM_PASS 0\n", e);
+    GLuint p1 = p0 ? gk_program_get_compute(progs, "shadow/cssm_basis.comp", "#define CSSM_PASS 1\n", e) : 0;
+    if (!p1)
+        return -1;
+    GLuint groups = (GLuint)((s->size + 7) / 8);
+    glUseProgram(p0);
+    gk_pf_bind(p0, "u_z", s->zlin, 0);
+    gk_uniform_1i(p0, "u_size", s->size);
+    gk_uniform_1f(p0, "u_range", CSSM_RANGE);
+    for (int i = 0; i < 4; i++)
+        glBindImageTexture((GLuint)i, s->basis[B_COS + i], 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glDispatchCompute(groups, groups, (GLuint)s->layers);
+    glUseProgram(p1);
+    gk_pf_bind(p1, "u_z", s->zlin, 0);
+    gk_uniform_1i(p1, "u_size", s->size);
+    gk_uniform_1f(p1, "u_range", CSSM_RANGE);
+    glBindImageTexture(0, s->basis[B_Z], 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glDispatchCompute(groups, groups, (GLuint)s->layers);
+    glMemoryBarrier(GL_ALL_BARRIER_BITS);
+    for (int i = B_COS; i <= B_Z; i++) {
+        glBindTexture(GL_TEXTURE_2D_ARRAY, s->basis[i]);
+        glGenerateMipmap(GL_TEXTURE_2D_ARRAY);
+    }
+    glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
+    return 0;
+}
+
+static int basis_sats(gk_program_cache *progs, cssm_slot *s, gk_err *e)
+{
+    float q = (float)((1u << gk_sat_bits(s->size)) - 1u);
+    GLuint *b = s->basis;
+    if (gk_pf_sat(progs, 0, s->zlin, s->size, s->layers, q, CSSM_RANGE, b[B_Z], b[B_Z2], 0, 0, e) != 0 ||
+        gk_pf_sat(progs, 1, s->zlin, s->size, s->layers, q, CSSM_RANGE, b[B_COS], b[B_SIN], b[B_TMP0], b[B_TMP1], e) != 0 ||
+        gk_pf_sat(progs, 2, s->zlin, s->size, s->layers, q, CSSM_RANGE, b[B_ZCOS], b[B_ZSIN], b[B_TMP0], b[B_TMP1], e) != 0)
+        return -1;
+    return 0;
+}
+
+static int cssm_render(void *self, const gk_shadow_ctx *ctx, int slot, const gk_shadow_view *v, gk_err *e)
+{
+    cssm_state *st = self;
+    if (gk_shadow_maps_render(&st->maps, ctx, slot, v, e) != 0)
+        return -1;
+    cssm_slot *s = &st->slot[slot];
+    if (slot_ensure(s, st->sat, v->map_size, v->n_faces, e) != 0)
+        return -1;
+    if (gk_pf_linearize(ctx->progs, st->maps.tex[slot], v, s->zlin, 0, e) != 0)
+        return -1;
+    int rc = st->sat ? basis_sats(ctx->progs, s, e) : basis_mipmaps(ctx->progs, s, e);
+    glUseProgram(0);
+    return rc;
+}
+
+static void cssm_bind(void *self, int slot, const gk_shadow_view *v, GLuint prog, int unit)
+{
+    cssm_state *st = self;
+    cssm_slot *s = &st->slot[slot];
+    gk_shadow_maps_bind(&st->maps, slot, v, prog, unit);
+    static const char *const names[] = {"u_cssm_cos", "u_cssm_sin", "u_cssm_zcos", "u_cssm_zsin", "u_cssm_z", "u_cssm_z2"};
+    int n = st->sat ? 6 : 5;
+    for (int i = 0; i < n; i++)
+        gk_pf_bind(prog, names[i], s->basis[i], unit + 1 + i);
+    float q = (float)((1u << gk_sat_bits(s->size)) - 1u);
+    gk_uniform_4f(prog, "u_cssm", CSSM_RANGE, CSSM_SHIFT, 1.0f / q, 0.0f);
+}
+
+const gk_shadow_method gk_shadow_cssm = {
+    .name = "cssm",
+    .glsl_define = "#define SHADOW_CSSM 1\n",
+    .create = cssm_create_mm,
+    .destroy = cssm_destroy,
+    .render = cssm_render,
+    .bind = cssm_bind,
+};
+
+const gk_shadow_method gk_shadow_cssm_sat = {
+    .name = "cssm_sat",
+    .glsl_define = "#define SHADOW_CSSM 1\n#define CSSM_SAT 1\n",
+    .create = cssm_create_sat,
+    .destroy = cssm_destroy,
+    .render = cssm_render,
+    .bind = cssm_bind,
+};
+
+const gk_shadow_method gk_shadow_cssm_raw = {
+    .name = "cssm_raw",
+    .glsl_define = "#define SHADOW_CSSM 1\n#define CSSM_SAT 1\n#define CSSM_ALPHA 1.0\n#define CSSM_SHARP_A 0.0\n",
+    .create = cssm_create_sat,
+    .destroy = cssm_destroy,
+    .render = cssm_render,
+    .bind = cssm_bind,
+};

@@ -1,0 +1,155 @@
+// Convolution soft shadow maps, CSSM (Annen et al. 2008; dong-001.md §3, checklist §11.2):
+//   the lit test f(d, z) = 1 - fbar, fbar ~ 1/2 + 2 sum_k sin(c_k (d - z)) / c_k, c_k = pi (2k - 1)
+//   (the pi restored, errata §14.1), K = 4, expanded in the basis cos/sin(c_k z) so it can be
+//   prefiltered; the average blocker depth by CSM-Z (Eq. 5.11) over the same expansion; the final
+//   kernel f_w from the PCSS formula with the plane at z_avg; ringing suppression (scale about 1/2
+//   by CSSM_ALPHA, clamp) and contact sharpening G(v) = v^p, p = 1 + A exp(-B (d - z_avg)).
+// Depth units: z_c = u_cssm.x * z (z normalised over [near, far]); the series has period 2 in
+// d - z, and u_cssm.x < 1 keeps far receivers behind near blockers on the plateau. The receiver
+// depth is shifted by u_cssm.y, the point where the scaled, clamped test saturates (0.064 for
+// K = 4, alpha = 1.12: dong-001.md §3.3 table), so a surface's own depth samples count as lit.
+//   CSSM_SAT 0: mipmapped RGBA16F bases, textureLod at log2(kernel); 1: exact integer SATs with
+//   sub-texel box position (app/render/shadow/shadow_cssm.c).
+//   CSSM_ALPHA 1.12 (1: no ringing suppression), CSSM_SHARP_A 30 (0: no sharpening), CSSM_SHARP_B
+//   10 per metre of d - z_avg (the thesis does not give B's unit; world metres are ours).
+#ifndef CSSM_SAT
+#define CSSM_SAT 0
+#endif
+#ifndef CSSM_ALPHA
+#define CSSM_ALPHA 1.12
+#endif
+#ifndef CSSM_SHARP_A
+#define CSSM_SHARP_A 30.0
+#endif
+#ifndef CSSM_SHARP_B
+#define CSSM_SHARP_B 10.0
+#endif
+const highp vec4 CSSM_CK = 3.14159265358979 * vec4(1.0, 3.0, 5.0, 7.0);
+uniform highp vec4 u_cssm; // depth scale (z_c = x * z), receiver shift, SAT 1/q, unused
+
+struct cssm_basis {
+    highp vec4 c, s, zc, zs;
+    highp float z;
+};
+
+#if CSSM_SAT
+uniform highp usampler2DArray u_cssm_cos;
+uniform highp usampler2DArray u_cssm_sin;
+uniform highp usampler2DArray u_cssm_zcos;
+uniform highp usampler2DArray u_cssm_zsin;
+uniform highp usampler2DArray u_cssm_z;
+uniform highp usampler2DArray u_cssm_z2;
+
+highp uvec4 cssm_sat4(highp usampler2DArray s, ivec2 p, int layer)
+{
+    return any(lessThan(p, ivec2(0))) ? uvec4(0u) : texelFetch(s, ivec3(p, layer), 0);
+}
+
+// Mean of a basis over the texel box [lo, hi], decoded from (v + 1) / 2 fixed point to [-1, 1].
+highp vec4 cssm_box4(highp usampler2DArray s, ivec2 lo, ivec2 hi, int layer)
+{
+    ivec2 top = ivec2(int(u_shadow_light.w) - 1);
+    lo = clamp(lo, ivec2(0), top);
+    hi = clamp(hi, lo, top);
+    ivec2 a = lo - 1;
+    highp uvec4 sum = cssm_sat4(s, hi, layer) - cssm_sat4(s, ivec2(a.x, hi.y), layer) -
+                      cssm_sat4(s, ivec2(hi.x, a.y), layer) + cssm_sat4(s, a, layer);
+    highp float area = float((hi.x - lo.x + 1) * (hi.y - lo.y + 1));
+    return 2.0 * vec4(sum) * (u_cssm.z / area) - 1.0;
+}
+
+// Sub-texel box position as in gk_sat_moments_smooth (vssm_sat.glsl).
+highp vec4 cssm_smooth4(highp usampler2DArray s, highp vec2 tc, highp vec2 w, int layer)
+{
+    ivec2 wi = max(ivec2(floor(w + 0.5)), ivec2(1));
+    highp vec2 start = tc - 0.5 * vec2(wi);
+    highp vec2 fl = floor(start);
+    highp vec2 f = start - fl;
+    ivec2 i0 = ivec2(fl);
+    highp vec4 m00 = cssm_box4(s, i0, i0 + wi - 1, layer);
+    highp vec4 m10 = cssm_box4(s, i0 + ivec2(1, 0), i0 + wi - 1 + ivec2(1, 0), layer);
+    highp vec4 m01 = cssm_box4(s, i0 + ivec2(0, 1), i0 + wi - 1 + ivec2(0, 1), layer);
+    highp vec4 m11 = cssm_box4(s, i0 + ivec2(1, 1), i0 + wi, layer);
+    return mix(mix(m00, m10, f.x), mix(m01, m11, f.x), f.y);
+}
+
+cssm_basis cssm_fetch(highp vec2 uv, highp vec2 w, int layer, bool with_z)
+{
+    highp vec2 tc = uv * u_shadow_light.w;
+    cssm_basis b;
+    b.c = cssm_smooth4(u_cssm_cos, tc, w, layer);
+    b.s = cssm_smooth4(u_cssm_sin, tc, w, layer);
+    b.zc = vec4(0.0);
+    b.zs = vec4(0.0);
+    b.z = 0.0;
+    if (with_z) {
+        b.zc = cssm_smooth4(u_cssm_zcos, tc, w, layer);
+        b.zs = cssm_smooth4(u_cssm_zsin, tc, w, layer);
+        b.z = u_cssm.x * gk_sat_moments_smooth(u_cssm_z, u_cssm_z2, tc, w, layer, u_cssm.z).x;
+    }
+    return b;
+}
+#else
+uniform highp sampler2DArray u_cssm_cos;
+uniform highp sampler2DArray u_cssm_sin;
+uniform highp sampler2DArray u_cssm_zcos;
+uniform highp sampler2DArray u_cssm_zsin;
+uniform highp sampler2DArray u_cssm_z;
+
+// Trilinear lookups at the level whose texel matches the kernel (geometric mean of u and v widths:
+// mipmaps are square, dong-001.md §1.3).
+cssm_basis cssm_fetch(highp vec2 uv, highp vec2 w, int layer, bool with_z)
+{
+    highp vec3 p = vec3(uv, float(layer));
+    highp float lod = log2(max(sqrt(w.x * w.y), 1.0));
+    cssm_basis b;
+    b.c = textureLod(u_cssm_cos, p, lod);
+    b.s = textureLod(u_cssm_sin, p, lod);
+    b.zc = vec4(0.0);
+    b.zs = vec4(0.0);
+    b.z = 0.0;
+    if (with_z) {
+        b.zc = textureLod(u_cssm_zcos, p, lod);
+        b.zs = textureLod(u_cssm_zsin, p, lod);
+        b.z = textureLod(u_cssm_z, p, lod).r;
+    }
+    return b;
+}
+#endif
+
+// Filtered lit test s_f (Eq. 5.3 with the Fourier basis) at shifted receiver depth d.
+highp float cssm_lit(cssm_basis b, highp float d)
+{
+    return 0.5 + 2.0 * dot(cos(CSSM_CK * d) * b.s - sin(CSSM_CK * d) * b.c, 1.0 / CSSM_CK);
+}
+
+// Numerator of CSM-Z (Eq. 5.11): <fbar z>, the same expansion as cssm_lit.
+highp float cssm_znum(cssm_basis b, highp float d)
+{
+    return 0.5 * b.z + 2.0 * dot(sin(CSSM_CK * d) * b.zc - cos(CSSM_CK * d) * b.zs, 1.0 / CSSM_CK);
+}
+
+highp float shadow_visibility(highp vec3 world_pos, highp vec3 world_normal)
+{
+    gk_shadow_coord c = gk_shadow_project(gk_shadow_offset(world_pos, world_normal));
+    if (!c.inside)
+        return 1.0;
+    int layer = int(c.layer);
+    highp float dn = gk_soft_norm(c.d - 0.5 * gk_shadow_texel_world(c.d));
+    highp float d = u_cssm.x * dn - u_cssm.y;
+    // Stage 1: initial kernel at the near plane; filtered test and CSM-Z over it.
+    highp vec2 wi = gk_soft_kernel(c.d, u_shadow_proj.x);
+    cssm_basis b = cssm_fetch(c.uv, wi, layer, true);
+    highp float occ = 1.0 - cssm_lit(b, d);
+    if (occ < 1e-3)
+        return 1.0; // no blockers
+    // Stage 2: z_avg, final kernel f_w.
+    highp float zavg = clamp(cssm_znum(b, d) / occ, 0.0, u_cssm.x * dn);
+    highp float zavg_world = gk_soft_denorm(zavg / u_cssm.x);
+    highp vec2 wf = gk_soft_kernel(c.d, zavg_world);
+    // Stage 3: filtered test over f_w, ringing suppression, contact sharpening.
+    highp float s = cssm_lit(cssm_fetch(c.uv, wf, layer, false), d);
+    s = clamp(CSSM_ALPHA * (s - 0.5) + 0.5, 0.0, 1.0);
+    highp float p = 1.0 + CSSM_SHARP_A * exp(-CSSM_SHARP_B * max(c.d - zavg_world, 0.0));
+    return pow(s, p);
+}

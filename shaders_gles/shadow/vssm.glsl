@@ -1,0 +1,264 @@
+// Variance soft shadow maps, VSSM (Yang et al. 2010; dong-001.md §5, Algorithms 2 and 3), with
+// the Chebyshev bound as corrected (errata §14.1: p_max = s^2 / (s^2 + (d - mu)^2), mu = E(z),
+// t = d). Depths are normalised to [0, 1] over [near, far]; moments come from the exact integer
+// SATs, bounds from the min-max HSM (app/render/shadow/shadow_vssm.c).
+//   VSSM_SUBDIV 1 (default): non-planar kernels (E(z) >= d) are subdivided: 5x5 uniform for the
+//                blocker search, an H = 3 adaptive quadtree with stackless traversal for the
+//                shadow kernel; non-planar leaves use a 2x2 point-sample PCF, planar-lit ones
+//                (E(z) >= d and s^2 < Threshold) count as lit. 0: SAVSM, a non-planar kernel is lit.
+//   VSSM_CONTACT 1 (default): |z_occ - d| < eps (0.01 r_sc) -> 3x3 jittered bilinear PCF.
+#ifndef VSSM_SUBDIV
+#define VSSM_SUBDIV 1
+#endif
+#ifndef VSSM_CONTACT
+#define VSSM_CONTACT 1
+#endif
+#ifndef VSSM_M
+#define VSSM_M 5
+#endif
+#ifndef VSSM_H
+#define VSSM_H 3
+#endif
+// Variance floor: a few fixed-point quanta (2^-17..2^-16) of E(z^2) so that flat kernels of
+// blockers and rounding in E(z^2) - E(z)^2 cannot divide by zero.
+#define VSSM_MIN_VAR 2e-6
+
+uniform highp usampler2DArray u_vssm_sat_z;
+uniform highp usampler2DArray u_vssm_sat_z2;
+uniform highp sampler2DArray u_vssm_zmin;
+uniform highp sampler2DArray u_vssm_zmax;
+uniform highp vec4 u_vssm; // 1/q (SAT dequantisation), top HSM level, contact eps, planar-lit variance threshold
+
+highp vec3 vssm_moments(ivec2 lo, ivec2 hi, int layer)
+{
+    return gk_sat_moments(u_vssm_sat_z, u_vssm_sat_z2, lo, hi, layer, u_vssm.x);
+}
+
+highp float vssm_cheb(highp vec2 m, highp float d)
+{
+    highp float var = max(m.y - m.x * m.x, VSSM_MIN_VAR);
+    highp float t = d - m.x;
+    return t <= 0.0 ? 1.0 : var / (var + t * t);
+}
+
+highp float vssm_z(ivec2 p, int layer)
+{
+    p = clamp(p, ivec2(0), ivec2(int(u_shadow_light.w) - 1));
+    return texelFetch(u_vssm_zmin, ivec3(p, layer), 0).r;
+}
+
+// 2x2 point samples (quadrant centres) of the box [lo, hi]: (occluders, sum of their depths).
+highp vec2 vssm_pcf4(ivec2 lo, ivec2 hi, int layer, highp float d)
+{
+    highp vec2 a = vec2(lo), b = vec2(hi + 1);
+    highp vec2 r = vec2(0.0);
+    for (int j = 0; j < 2; j++)
+        for (int i = 0; i < 2; i++) {
+            highp float z = vssm_z(ivec2(floor(mix(a, b, (vec2(float(i), float(j)) + 0.5) * 0.5))), layer);
+            if (z < d)
+                r += vec2(1.0, z);
+        }
+    return r;
+}
+
+// Sub-range k of n equal integer parts of [lo, hi] (nested: part k of n/2 = parts 2k, 2k+1 of n).
+ivec2 vssm_split(int lo, int hi, int k, int n)
+{
+    int w = hi - lo + 1;
+    return ivec2(lo + (k * w) / n, lo + ((k + 1) * w) / n - 1);
+}
+
+// (min, max) depth over the box from the HSM: level ceil(log2 width), at most 2x2 texels there.
+highp vec2 vssm_hsm(ivec2 lo, ivec2 hi, int layer)
+{
+    ivec2 top = ivec2(int(u_shadow_light.w) - 1);
+    lo = clamp(lo, ivec2(0), top);
+    hi = clamp(hi, lo, top);
+    int w = max(hi.x - lo.x, hi.y - lo.y) + 1;
+    int l = clamp(int(ceil(log2(float(w)))), 0, int(u_vssm.y));
+    ivec2 a = lo >> l, b = hi >> l;
+    highp vec2 r = vec2(1e30, -1e30);
+    for (int j = 0; j < 2; j++)
+        for (int i = 0; i < 2; i++) {
+            ivec2 p = min(a + ivec2(i, j), b);
+            r.x = min(r.x, texelFetch(u_vssm_zmin, ivec3(p, layer), l).r);
+            r.y = max(r.y, texelFetch(u_vssm_zmax, ivec3(p, layer), l).r);
+        }
+    return r;
+}
+
+// Average blocker depth (Eq. 7.4, z_unocc = d) over the search kernel, and the blocker fraction
+// (0: no blocker, lit).
+highp vec2 vssm_blocker(highp vec2 tc, highp vec2 w, int layer, highp float d)
+{
+    highp vec2 m = gk_sat_moments_smooth(u_vssm_sat_z, u_vssm_sat_z2, tc, w, layer, u_vssm.x);
+    if (m.x < d) {
+        highp float p = vssm_cheb(m, d);
+        if (p >= 0.9999)
+            return vec2(d, 0.0);
+        return vec2((m.x - p * d) / (1.0 - p), 1.0 - p);
+    }
+#if VSSM_SUBDIV
+    ivec2 lo, hi;
+    gk_soft_box(tc, w, lo, hi);
+    highp float a_all = 0.0, a_vsm = 0.0, ex = 0.0, ex2 = 0.0, a_pcf = 0.0, z_pcf = 0.0;
+    for (int j = 0; j < VSSM_M; j++)
+        for (int i = 0; i < VSSM_M; i++) {
+            ivec2 sx = vssm_split(lo.x, hi.x, i, VSSM_M), sy = vssm_split(lo.y, hi.y, j, VSSM_M);
+            if (sx.y < sx.x || sy.y < sy.x)
+                continue;
+            ivec2 slo = ivec2(sx.x, sy.x), shi = ivec2(sx.y, sy.y);
+            highp vec3 mc = vssm_moments(slo, shi, layer);
+            a_all += mc.z;
+            if (mc.x < d) {
+                a_vsm += mc.z;
+                ex += mc.x * mc.z;
+                ex2 += mc.y * mc.z;
+            } else {
+                highp vec2 pc = vssm_pcf4(slo, shi, layer, d);
+                a_pcf += 0.25 * mc.z * pc.x;
+                z_pcf += 0.25 * mc.z * pc.y;
+            }
+        }
+    highp float a1 = 0.0, d1 = 0.0;
+    if (a_vsm > 0.0) {
+        highp vec2 mv = vec2(ex, ex2) / a_vsm;
+        highp float p = vssm_cheb(mv, d);
+        if (p < 0.9999) {
+            a1 = (1.0 - p) * a_vsm;
+            d1 = (mv.x - p * d) / (1.0 - p);
+        }
+    }
+    highp float ab = a1 + a_pcf;
+    if (ab <= 0.0 || a_all <= 0.0)
+        return vec2(d, 0.0);
+    return vec2((d1 * a1 + z_pcf) / ab, ab / a_all);
+#else
+    return vec2(d, 0.0); // SAVSM: a non-planar kernel is taken as lit
+#endif
+}
+
+#if VSSM_SUBDIV
+// Algorithm 3: adaptive subdivision of the shadow kernel, a quadtree of height VSSM_H traversed in
+// preorder without a stack (node = level l + Morton index c; Child = (l+1, 4c); Next climbs while
+// the node is a last sibling).
+highp float vssm_adaptive(ivec2 lo, ivec2 hi, int layer, highp float d)
+{
+    highp float a_vsm = 0.0, ex = 0.0, ex2 = 0.0, a_lit = 0.0, a_pcf = 0.0, b_pcf = 0.0;
+    int l = 0;
+    highp uint c = 0u;
+    for (int it = 0; it < 100; it++) {
+        int n = 1 << l;
+        int ix = 0, iy = 0;
+        for (int b = 0; b < VSSM_H; b++)
+            if (b < l) {
+                ix |= int((c >> uint(2 * b)) & 1u) << b;
+                iy |= int((c >> uint(2 * b + 1)) & 1u) << b;
+            }
+        ivec2 sx = vssm_split(lo.x, hi.x, ix, n), sy = vssm_split(lo.y, hi.y, iy, n);
+        bool descend = false;
+        if (sx.y >= sx.x && sy.y >= sy.x) {
+            ivec2 slo = ivec2(sx.x, sy.x), shi = ivec2(sx.y, sy.y);
+            highp vec3 mc = vssm_moments(slo, shi, layer);
+            highp float var = mc.y - mc.x * mc.x;
+            if (mc.x >= d && var < u_vssm.w) {
+                a_lit += mc.z;
+            } else if (mc.x < d) {
+                a_vsm += mc.z;
+                ex += mc.x * mc.z;
+                ex2 += mc.y * mc.z;
+            } else if (l < VSSM_H) {
+                descend = true;
+            } else {
+                highp vec2 pc = vssm_pcf4(slo, shi, layer, d);
+                a_pcf += mc.z;
+                b_pcf += 0.25 * mc.z * pc.x;
+            }
+        }
+        if (descend) {
+            l++;
+            c <<= 2u;
+            continue;
+        }
+        while (l > 0 && (c & 3u) == 3u) {
+            c >>= 2u;
+            l--;
+        }
+        if (l == 0)
+            break;
+        c += 1u;
+    }
+    highp float total = a_vsm + a_lit + a_pcf;
+    if (total <= 0.0)
+        return 1.0;
+    highp float L = a_vsm > 0.0 ? vssm_cheb(vec2(ex, ex2) / a_vsm, d) : 1.0;
+    highp float L1 = a_pcf > 0.0 ? 1.0 - b_pcf / a_pcf : 1.0;
+    return (L * a_vsm + a_lit + L1 * a_pcf) / total;
+}
+#endif
+
+// Bilinear-weighted depth test of the 2x2 texels around tc.
+highp float vssm_pcf_bilinear(highp vec2 tc, int layer, highp float d)
+{
+    highp vec2 t = tc - 0.5;
+    ivec2 i = ivec2(floor(t));
+    highp vec2 f = t - floor(t);
+    highp float v00 = vssm_z(i, layer) >= d ? 1.0 : 0.0;
+    highp float v10 = vssm_z(i + ivec2(1, 0), layer) >= d ? 1.0 : 0.0;
+    highp float v01 = vssm_z(i + ivec2(0, 1), layer) >= d ? 1.0 : 0.0;
+    highp float v11 = vssm_z(i + ivec2(1, 1), layer) >= d ? 1.0 : 0.0;
+    return mix(mix(v00, v10, f.x), mix(v01, v11, f.x), f.y);
+}
+
+// Contact fallback (§7.5.4, after [Bavoil08]): 3x3 jittered bilinear PCF over the penumbra kernel.
+highp float vssm_contact(highp vec2 tc, highp vec2 w, int layer, highp float d)
+{
+    highp float jit = gk_shadow_noise();
+    highp float sum = 0.0;
+    for (int j = 0; j < 3; j++)
+        for (int i = 0; i < 3; i++) {
+            highp vec2 g = (vec2(float(i), float(j)) + fract(jit + vec2(0.0, 0.5))) / 3.0 - 0.5;
+            sum += vssm_pcf_bilinear(tc + g * w, layer, d);
+        }
+    return sum / 9.0;
+}
+
+highp float shadow_visibility(highp vec3 world_pos, highp vec3 world_normal)
+{
+    gk_shadow_coord c = gk_shadow_project(gk_shadow_offset(world_pos, world_normal));
+    if (!c.inside)
+        return 1.0;
+    int layer = int(c.layer);
+    highp vec2 tc = c.uv * u_shadow_light.w;
+    highp float d = gk_soft_norm(c.d - 0.5 * gk_shadow_texel_world(c.d));
+    // 1. Blocker search kernel from the near plane; HSM early-out over it (1 texel margin for the
+    //    interpolated box).
+    highp vec2 wi = gk_soft_kernel(c.d, u_shadow_proj.x);
+    ivec2 lo, hi;
+    gk_soft_box(tc, wi, lo, hi);
+    highp vec2 mm = vssm_hsm(lo - 1, hi + 1, layer);
+    if (d <= mm.x)
+        return 1.0;
+    if (d > mm.y)
+        return 0.0;
+    // 2. Average blocker depth.
+    highp vec2 b = vssm_blocker(tc, wi, layer, d);
+    if (b.y <= 0.0)
+        return 1.0;
+    highp float zocc = min(b.x, d);
+    // 3. Penumbra kernel from the blocker plane.
+    highp vec2 wp = gk_soft_kernel(c.d, gk_soft_denorm(zocc));
+#if VSSM_CONTACT
+    if (abs(zocc - d) < u_vssm.z)
+        return vssm_contact(tc, wp, layer, d);
+#endif
+    highp vec2 m = gk_sat_moments_smooth(u_vssm_sat_z, u_vssm_sat_z2, tc, wp, layer, u_vssm.x);
+    if (m.x < d)
+        return vssm_cheb(m, d);
+#if VSSM_SUBDIV
+    gk_soft_box(tc, wp, lo, hi);
+    return vssm_adaptive(lo, hi, layer, d);
+#else
+    return 1.0;
+#endif
+}

@@ -1,0 +1,27 @@
+#!/bin/sh
+# `make bench`: the speed-against-accuracy sweeps of each module (DESIGN §3-4). Each writes
+# out/bench/NAME/bench.csv and out/bench/NAME/speed-accuracy-SCENE.png/.svg. Slow on llvmpipe
+# (minutes per sweep); the frame times there are CPU times: read them as ratios within one run.
+# BENCH_ARGS adds options to every sweep (e.g. BENCH_ARGS="--frames 9").
+set -eu
+BIN=${1:-build/gikiosk}
+OUT=${OUT:-out/bench}
+ARGS=${BENCH_ARGS:-}
+mkdir -p "$OUT"
+run() { # name, then bench options
+    name=$1; shift
+    echo "bench: $name: $*"
+    # shellcheck disable=SC2086
+    "$BIN" bench "$@" $ARGS --out "$OUT/$name"
+}
+# Direct light and soft shadows: shadow method x shadow-map size (renderer core).
+run shadows --scenes shadow-planes,cornell --methods none
+# Voxel cone tracing: each knob one at a time, on the scenes of its issue.
+if "$BIN" scenes | grep -q 'vct'; then
+    run vct --scenes cornell,light-leak,atrium --methods vct
+fi
+# VPLs with clustered virtual area lights: N x M and adaptive M.
+if "$BIN" scenes | grep -q 'vpl'; then
+    run vpl --scenes cornell-spot,atrium --methods vpl --sweep 'vpl_n=256,512,1024;vpl_m=2,4,8,16,32,adaptive'
+fi
+echo "bench: results in $OUT/*/bench.csv and $OUT/*/speed-accuracy-*.png"
