@@ -179,6 +179,8 @@ void gk_hud_draw(gk_hud *h, unsigned fbo, const gk_hud_info *in)
     budget_lines[0][0] = '\0';
     if (h->has_text && in->budget) {
         for (int k = 0; k < in->budget->n; k++) {
+            if (!gk_budget_knob_active(in->budget, k, in->method))
+                continue; /* knobs of methods not on screen say nothing to a visitor */
             char item[96];
             snprintf(item, sizeof item, "%s%s=%s", budget_lines[n_budget_lines][0] ? "  " : "",
                      in->budget->def[k]->name, in->budget->def[k]->values[in->budget->level[k]]);

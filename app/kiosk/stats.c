@@ -69,7 +69,7 @@ void gk_summary_add(gk_summary *s, const char *scene, const char *method, double
         snprintf(e->scene, sizeof e->scene, "%s", scene);
     }
     snprintf(e->method, sizeof e->method, "%s", method);
-    gk_budget_format(b, e->budgets, sizeof e->budgets);
+    gk_budget_format_active(b, method, e->budgets, sizeof e->budgets);
     e->frames++;
     if (e->n_ms == e->cap_ms && e->cap_ms < SUMMARY_MAX_SAMPLES) {
         long cap = e->cap_ms ? e->cap_ms * 2 : 256;

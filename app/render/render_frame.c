@@ -43,14 +43,17 @@ typedef struct frame_light {
     gk_shadow_view view;
 } frame_light;
 
-static int pass_shadows(gk_renderer *r, const gk_shadow_method *m, int map_size, frame_light *fl, int n, gk_err *e)
+static int pass_shadows(gk_renderer *r, const gk_shadow_method *m, int map_size, const gk_budget *b, frame_light *fl,
+                        int n, gk_err *e)
 {
     if (!m)
         return 0;
     int mi = method_index(m);
+    if (mi < 0)
+        return gk_fail(e, GK_ERUNTIME, "shadow method %s is not in gk_shadow_methods[]", m->name);
     if (!r->shadow_state[mi] && !(r->shadow_state[mi] = m->create()))
         return gk_fail(e, GK_ERUNTIME, "shadow method %s: out of memory", m->name);
-    gk_shadow_ctx ctx = {.progs = r->progs, .scene = r->scene, .gpu = &r->gpu, .caps = &r->caps};
+    gk_shadow_ctx ctx = {.progs = r->progs, .scene = r->scene, .gpu = &r->gpu, .caps = &r->caps, .budget = b};
     int slot = 0;
     for (int i = 0; i < n && slot < GK_SHADOW_MAX_LIGHTS; i++) {
         int size = map_size;
@@ -247,7 +250,7 @@ int gk_renderer_draw(gk_renderer *r, const gk_frame_params *fp, unsigned target_
     }
     gk_timer_frame_begin(r->timer);
     gk_timer_pass_begin(r->timer, "shadow");
-    int rc = pass_shadows(r, m, map_size, fl, n, e);
+    int rc = pass_shadows(r, m, map_size, b, fl, n, e);
     gk_timer_pass_end(r->timer);
     if (rc == 0) {
         gk_timer_pass_begin(r->timer, "gbuffer");

@@ -11,7 +11,7 @@
 #include "scene_gpu.h"
 #include "shadow/shadow.h"
 
-#define GK_MAX_SHADOW_METHODS 8
+#define GK_MAX_SHADOW_METHODS 16 /* entries of gk_shadow_methods[]; a static assert in shadow_methods.c keeps them in step */
 
 /* Texture units of the lighting passes. */
 enum { UNIT_ALBEDO = 0, UNIT_NORMAL = 1, UNIT_EMISSION = 2, UNIT_DEPTH = 3, UNIT_SHADOW = 4 };

@@ -26,7 +26,8 @@ int gk_budget_add(gk_budget *b, const gk_knob_def *def)
     b->level[i] = def->default_level;
     b->pinned[i] = false;
     b->min_level[i] = 0;
-    b->max_level[i] = def->n_values - 1;
+    b->max_level[i] = def->auto_max_level > 0 && def->auto_max_level < def->n_values ? def->auto_max_level
+                                                                                   : def->n_values - 1;
     return i;
 }
 
@@ -122,14 +123,29 @@ int gk_budget_set_range(gk_budget *b, const char *name, const char *min_value, c
     return 0;
 }
 
-void gk_budget_format(const gk_budget *b, char *out, int out_len)
+bool gk_budget_knob_active(const gk_budget *b, int i, const char *method)
+{
+    const char *owner = b->def[i]->owner;
+    return !owner || !strcmp(owner, "render") || (method && !strcmp(owner, method));
+}
+
+static void format_knobs(const gk_budget *b, const char *method, bool all, char *out, int out_len)
 {
     out[0] = '\0';
     for (int i = 0; i < b->n; i++) {
+        if (!all && !gk_budget_knob_active(b, i, method))
+            continue;
         int used = (int)strlen(out);
         if (used >= out_len - 1)
             break;
-        snprintf(out + used, (size_t)(out_len - used), "%s%s=%s", i ? "," : "", b->def[i]->name,
+        snprintf(out + used, (size_t)(out_len - used), "%s%s=%s", used ? "," : "", b->def[i]->name,
                  b->def[i]->values[b->level[i]]);
     }
+}
+
+void gk_budget_format(const gk_budget *b, char *out, int out_len) { format_knobs(b, NULL, true, out, out_len); }
+
+void gk_budget_format_active(const gk_budget *b, const char *method, char *out, int out_len)
+{
+    format_knobs(b, method, false, out, out_len);
 }

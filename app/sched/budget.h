@@ -18,6 +18,9 @@ typedef struct gk_knob_def {
     const char *values[GK_MAX_KNOB_VALUES];   /* cheap -> rich, as written on the command line */
     float cost[GK_MAX_KNOB_VALUES];           /* cost prior: relative cost of each value (cheapest = 1) */
     int default_level;
+    int auto_max_level;                       /* richest level the scheduler may pick by itself (0 = the
+                                                 last); richer ones are reference modes, reached only
+                                                 through --budget or a [budgets] range */
 } gk_knob_def;
 
 typedef struct gk_budget {
@@ -43,5 +46,9 @@ int gk_budget_pin_list(gk_budget *b, const char *list, gk_err *e);
 int gk_budget_set_range(gk_budget *b, const char *name, const char *min_value, const char *max_value, gk_err *e);
 /* "shadow_map=1024,render_scale=1" into out. */
 void gk_budget_format(const gk_budget *b, char *out, int out_len);
+/* Only the knobs in play for a GI method: the renderer's own ("render") and the method's. */
+void gk_budget_format_active(const gk_budget *b, const char *method, char *out, int out_len);
+/* True when knob i matters for method (owner "render" or the method itself). */
+bool gk_budget_knob_active(const gk_budget *b, int i, const char *method);
 
 #endif

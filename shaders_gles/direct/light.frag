@@ -8,6 +8,10 @@
 // @variant GK_LIGHT_KIND=4 GK_LIGHT_SPOT SHADOW_PCSS
 // @variant GK_LIGHT_KIND=5 SHADOW_HARD
 // @variant GK_LIGHT_KIND=5 GK_LIGHT_SPOT SHADOW_PCSS PCSS_PCF_N=16
+// @variant GK_LIGHT_KIND=5 SHADOW_VSSM
+// @variant GK_LIGHT_KIND=1 GK_LIGHT_SPOT SHADOW_VSSM VSSM_SUBDIV=0
+// @variant GK_LIGHT_KIND=5 SHADOW_CSSM
+// @variant GK_LIGHT_KIND=2 SHADOW_CSSM CSSM_SAT=1
 precision highp float;
 precision highp int;
 #include "common/brdf.glsl"

@@ -2,9 +2,9 @@
 // the Chebyshev bound as corrected (errata §14.1: p_max = s^2 / (s^2 + (d - mu)^2), mu = E(z),
 // t = d). Depths are normalised to [0, 1] over [near, far]; moments come from the exact integer
 // SATs, bounds from the min-max HSM (app/render/shadow/shadow_vssm.c).
-//   VSSM_SUBDIV 1 (default): non-planar kernels (E(z) >= d) are subdivided: 5x5 uniform for the
-//                blocker search, an H = 3 adaptive quadtree with stackless traversal for the
-//                shadow kernel; non-planar leaves use a 2x2 point-sample PCF, planar-lit ones
+//   VSSM_SUBDIV 1 (default): non-planar kernels (E(z) >= d) are subdivided: m x m uniform (m = 5
+//                by default) for the blocker search, an adaptive quadtree of height H (3 by
+//                default) with stackless traversal for the shadow kernel (m, H: u_vssm_sub); non-planar leaves use a 2x2 point-sample PCF, planar-lit ones
 //                (E(z) >= d and s^2 < Threshold) count as lit. 0: SAVSM, a non-planar kernel is lit.
 //   VSSM_CONTACT 1 (default): |z_occ - d| < eps (0.01 r_sc) -> 3x3 jittered bilinear PCF.
 #ifndef VSSM_SUBDIV
@@ -13,12 +13,12 @@
 #ifndef VSSM_CONTACT
 #define VSSM_CONTACT 1
 #endif
-#ifndef VSSM_M
-#define VSSM_M 5
-#endif
-#ifndef VSSM_H
-#define VSSM_H 3
-#endif
+// Subdivision depth (knob shadow_subdiv, app/render/shadow/shadow_vssm.c): u_vssm_sub = (m, H), the
+// m x m uniform grid of the blocker search and the height H of the adaptive quadtree; the thesis's
+// m = 5, H = 3 is the default. VSSM_M_MAX / VSSM_H_MAX bound the loops (the richest knob level).
+#define VSSM_M_MAX 8
+#define VSSM_H_MAX 4
+uniform highp vec2 u_vssm_sub;
 // Variance floor: a few fixed-point quanta (2^-17..2^-16) of E(z^2) so that flat kernels of
 // blockers and rounding in E(z^2) - E(z)^2 cannot divide by zero.
 #define VSSM_MIN_VAR 2e-6
@@ -102,9 +102,10 @@ highp vec2 vssm_blocker(highp vec2 tc, highp vec2 w, int layer, highp float d)
     ivec2 lo, hi;
     gk_soft_box(tc, w, lo, hi);
     highp float a_all = 0.0, a_vsm = 0.0, ex = 0.0, ex2 = 0.0, a_pcf = 0.0, z_pcf = 0.0;
-    for (int j = 0; j < VSSM_M; j++)
-        for (int i = 0; i < VSSM_M; i++) {
-            ivec2 sx = vssm_split(lo.x, hi.x, i, VSSM_M), sy = vssm_split(lo.y, hi.y, j, VSSM_M);
+    int m_sub = clamp(int(u_vssm_sub.x + 0.5), 1, VSSM_M_MAX);
+    for (int j = 0; j < m_sub; j++)
+        for (int i = 0; i < m_sub; i++) {
+            ivec2 sx = vssm_split(lo.x, hi.x, i, m_sub), sy = vssm_split(lo.y, hi.y, j, m_sub);
             if (sx.y < sx.x || sy.y < sy.x)
                 continue;
             ivec2 slo = ivec2(sx.x, sy.x), shi = ivec2(sx.y, sy.y);
@@ -139,18 +140,19 @@ highp vec2 vssm_blocker(highp vec2 tc, highp vec2 w, int layer, highp float d)
 }
 
 #if VSSM_SUBDIV
-// Algorithm 3: adaptive subdivision of the shadow kernel, a quadtree of height VSSM_H traversed in
-// preorder without a stack (node = level l + Morton index c; Child = (l+1, 4c); Next climbs while
-// the node is a last sibling).
+// Algorithm 3: adaptive subdivision of the shadow kernel, a quadtree of height H = u_vssm_sub.y
+// traversed in preorder without a stack (node = level l + Morton index c; Child = (l+1, 4c); Next
+// climbs while the node is a last sibling). At most 1 + 4 + ... + 4^H_MAX = 341 nodes.
 highp float vssm_adaptive(ivec2 lo, ivec2 hi, int layer, highp float d)
 {
     highp float a_vsm = 0.0, ex = 0.0, ex2 = 0.0, a_lit = 0.0, a_pcf = 0.0, b_pcf = 0.0;
+    int h_sub = clamp(int(u_vssm_sub.y + 0.5), 0, VSSM_H_MAX);
     int l = 0;
     highp uint c = 0u;
-    for (int it = 0; it < 100; it++) {
+    for (int it = 0; it < 341; it++) {
         int n = 1 << l;
         int ix = 0, iy = 0;
-        for (int b = 0; b < VSSM_H; b++)
+        for (int b = 0; b < VSSM_H_MAX; b++)
             if (b < l) {
                 ix |= int((c >> uint(2 * b)) & 1u) << b;
                 iy |= int((c >> uint(2 * b + 1)) & 1u) << b;
@@ -167,7 +169,7 @@ highp float vssm_adaptive(ivec2 lo, ivec2 hi, int layer, highp float d)
                 a_vsm += mc.z;
                 ex += mc.x * mc.z;
                 ex2 += mc.y * mc.z;
-            } else if (l < VSSM_H) {
+            } else if (l < h_sub) {
                 descend = true;
             } else {
                 highp vec2 pc = vssm_pcf4(slo, shi, layer, d);
@@ -225,18 +227,27 @@ highp float vssm_contact(highp vec2 tc, highp vec2 w, int layer, highp float d)
 
 highp float shadow_visibility(highp vec3 world_pos, highp vec3 world_normal)
 {
-    gk_shadow_coord c = gk_shadow_project(gk_shadow_offset(world_pos, world_normal));
+    // No receiver offset: Chebyshev's test is t <= mu (a surface's own samples at t count as
+    // lit), and any offset puts the receiver's own samples behind t and biases p_max upward
+    // (measured +0.065 in the T1 penumbra with the 1.5 + 0.5 texel offset of the other methods).
+    gk_shadow_coord c = gk_shadow_project(world_pos);
     if (!c.inside)
         return 1.0;
     int layer = int(c.layer);
     highp vec2 tc = c.uv * u_shadow_light.w;
-    highp float d = gk_soft_norm(c.d - 0.5 * gk_shadow_texel_world(c.d));
+    highp float d = gk_soft_norm(c.d);
     // 1. Blocker search kernel from the near plane; HSM early-out over it (1 texel margin for the
     //    interpolated box).
     highp vec2 wi = gk_soft_kernel(c.d, u_shadow_proj.x);
     ivec2 lo, hi;
     gk_soft_box(tc, wi, lo, hi);
     highp vec2 mm = vssm_hsm(lo - 1, hi + 1, layer);
+    // Point-sample tests (HSM, PCF leaves, contact PCF) compare with d - tol: a surface's own
+    // samples differ from d by rounding (linearisation, 2^-17 fixed point) and, on slopes, by up
+    // to about a texel of depth; without it lit receivers self-shadow in PCF leaves (measured:
+    // lit-mask max error 1.0 on T1).
+    highp float tol = 1e-4 + gk_shadow_texel_world(c.d) / (u_shadow_proj.y - u_shadow_proj.x);
+    d -= tol;
     if (d <= mm.x)
         return 1.0;
     if (d > mm.y)

@@ -1,4 +1,5 @@
 // Zeroes the voxel scratch channels inside a region (GLES 3.1 has no glClearBufferData).
+// @variant CONSERVATIVE=1 AVERAGE_CAS=0 EMISSIVE=0
 #include "vct/common.glsl"
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 layout(std430, binding = 1) writeonly buffer Scratch { uint s[]; };

@@ -1,4 +1,6 @@
 // Joint bilateral upsampling (thesis §3.4 after Kopf et al. 2007) of the sparse cone-traced light
+// @variant FAITHFUL_COMPOSE=0
+// @variant FAITHFUL_COMPOSE=1
 // and its composition into the renderer's HDR image, drawn with glBlendFunc(GL_ONE, GL_SRC_ALPHA):
 //     hdr' = hdr * a + rgb
 // Calibrated (default):  rgb = rho_d * D + F0 * L_spec,  a = 1, i.e.

@@ -50,26 +50,19 @@ vec4 vox_sample(vec3 p, vec3 d, float lod)
 #endif
 }
 
-// u_self_offset (not in the thesis; 0 = thesis): every sample is pushed along the receiver's
-// normal n by u_self_offset x its own footprint (the voxel size of its mip level). A coarse voxel
-// that contains the receiver's own surface reaches up to one footprint above it and trilinear
-// filtering one more half, so with 1.5 the samples of a planar receiver never see its own voxels:
-// no self-illumination (thesis: lit from every side) and no self-occlusion (dark backs).
-uniform float u_self_offset;
-
 // Front-to-back accumulation C += (1 - A) C_s, A += (1 - A) a_s; AO ao += (1 - ao) a_s / (1 + d lambda).
 // Returns the premultiplied radiance seen along the cone; ao = accumulated occlusion (0 = open).
-vec4 trace_cone(vec3 apex, vec3 d, vec3 n, float aperture, float max_dist, out float ao, out int steps)
+vec4 trace_cone(vec3 apex, vec3 d, float aperture, float max_dist, out float ao, out int steps)
 {
     float vs = 1.0 / u_res_f, dst = 0.0, diam = 0.0, ao_acc = 0.0;
     vec4 acc = vec4(0.0);
     steps = 0;
     for (int it = 0; it < 4096; it++) {
         if (acc.a >= 1.0 || dst > max_dist) break;
-        float lod = max(log2(diam * u_res_f), 0.0);
-        vec3 p = apex + d * dst + n * (u_self_offset * exp2(lod) * vs);
+        vec3 p = apex + d * dst;
         // thesis code: only cones narrower than 0.3 stop at the volume border
         if ((CLIP_CONES != 0 || aperture < 0.3) && (any(lessThan(p, vec3(0.0))) || any(greaterThan(p, vec3(1.0))))) break;
+        float lod = max(log2(diam * u_res_f), 0.0);
         vec4 s = vox_sample(p, d, lod);
         float step_len = max(diam * u_step_mul, vs);
 #if OPACITY_CORRECTION

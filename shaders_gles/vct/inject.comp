@@ -1,4 +1,6 @@
 // Direct-light injection (thesis §3.1: the voxelization fragment shader's diffuse direct light, here a
+// @variant CONSERVATIVE=1 AVERAGE_CAS=0 EMISSIVE=0
+// @variant CONSERVATIVE=0 AVERAGE_CAS=1 EMISSIVE=1
 // separate pass so a moving light re-injects without re-voxelizing). Per occupied voxel:
 //   albedo rho, normal n, position x = means over the fragments the voxelizer averaged;
 //   E_i  = irradiance from light i at x on n [lux = lm/m^2]:
@@ -37,7 +39,7 @@ uniform highp sampler2D u_shadow1;
 uniform highp sampler2D u_shadow2;
 uniform highp sampler2D u_shadow3;
 
-vec4 unpack8(uint v) { return vec4(float(v & 0xFFu), float((v >> 8) & 0xFFu), float((v >> 16) & 0xFFu), float(v >> 24)); }
+vec4 vct_unpack8(uint v) { return vec4(float(v & 0xFFu), float((v >> 8) & 0xFFu), float((v >> 16) & 0xFFu), float(v >> 24)); }
 
 float shadow_depth(int i, vec2 uv)   // constant sampler indices only (GLSL ES)
 {
@@ -93,11 +95,11 @@ void main()
 #if AVERAGE_CAS
     uint a = s[CH_ALB * N + i];
     if ((a >> 24) == 0u) { imageStore(u_out, c, vec4(0.0)); return; }
-    alb = unpack8(a & 0xFEFEFEFEu).rgb / 255.0;
-    nrm = unpack8(s[CH_NRM * N + i] & 0xFEFEFEFEu).rgb / 255.0 * 2.0 - 1.0;
-    frac = unpack8(s[CH_POS * N + i] & 0xFEFEFEFEu).rgb / 255.0;
+    alb = vct_unpack8(a & 0xFEFEFEFEu).rgb / 255.0;
+    nrm = vct_unpack8(s[CH_NRM * N + i] & 0xFEFEFEFEu).rgb / 255.0 * 2.0 - 1.0;
+    frac = vct_unpack8(s[CH_POS * N + i] & 0xFEFEFEFEu).rgb / 255.0;
 #if EMISSIVE
-    emi = unpack8(s[CH_EMI * N + i] & 0xFEFEFEFEu).rgb / 255.0;
+    emi = vct_unpack8(s[CH_EMI * N + i] & 0xFEFEFEFEu).rgb / 255.0;
 #endif
 #else
     uint cnt = s[CH_COUNT * N + i];

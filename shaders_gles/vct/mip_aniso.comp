@@ -1,16 +1,19 @@
 // Anisotropic pre-integration (thesis §3.2, equations 3.1/3.2 as corrected in summary A.2.2): one
+// @variant CONSERVATIVE=1 AVERAGE_CAS=0 EMISSIVE=0 DIRECTIONAL_INJECTION=0
+// @variant CONSERVATIVE=1 AVERAGE_CAS=1 EMISSIVE=1 DIRECTIONAL_INJECTION=1
 // direction per dispatch (a minimum-spec GLES 3.1 has only 4 compute image units). For each of the
 // 4 front/back voxel pairs along the direction's axis, composite with "over" on premultiplied
 // colour,  C' = C1 + (1 - a1) C2,  a' = a1 + (1 - a1) a2  (front voxel 1), and average the 4.
 // Direction index 0..5 = +X,-X,+Y,-Y,+Z,-Z; "+X" treats the child with the larger x as the front,
 // i.e. it is the volume as seen from the +X side, sampled by cones travelling towards -X.
 //
-// DIRECTIONAL_INJECTION=1 (not in the thesis; default): when level 1 is built from level 0, a
-// level-0 voxel contributes its radiance to a direction's view only if its mean surface normal faces
-// the viewer of that view (a Lambertian surface is dark from behind and edge-on), its opacity to
-// all views. Without it a lone lit plane lights itself through the coarse levels (measured 74% of
-// its direct light in tests/gpu/test_vct.c), since the plane's coarse voxels look lit from every
-// side. Level 0 stays isotropic as in the thesis (§4, Fig. 16).
+// DIRECTIONAL_INJECTION=1 (not in the thesis; option gk_vct_options.directional_injection): when
+// level 1 is built from level 0, a level-0 voxel contributes its radiance to a direction's view only
+// if its mean surface normal faces that view's viewer (dark from behind and edge-on), its opacity to
+// all views. Without it (thesis) a lone lit plane lights itself through the coarse levels (74% of
+// its direct light, tests/gpu/test_vct.c); with it, 0% -- but a wall's coarse samples then see its
+// own dark back as an occluder, so the Cornell box's walls get too little floor light (rel. RMSE
+// against the path tracer 0.19 -> 0.29). Level 0 stays isotropic as in the thesis (§4, Fig. 16).
 #include "vct/common.glsl"
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 layout(binding = 0, rgba16f) readonly uniform highp image3D u_src;
@@ -41,7 +44,7 @@ vec4 fetch(ivec3 c)
 #endif
         float l = length(n);
         if (l > 1e-6) {
-            float facing = smoothstep(-0.2, 0.0, dot(n / l, view_dir(u_dir)));  // back: dark; edge-on: lit
+            float facing = smoothstep(0.0, 0.2, dot(n / l, view_dir(u_dir)));  // back and edge-on: dark
             v.rgb *= facing;
         }
     }

@@ -1,4 +1,6 @@
 // Cone tracing pass (thesis §3.3) at reduced resolution: per traced pixel the diffuse cone set
+// @variant ISO_MIPS=0 AXIS_WEIGHT_SQ=0 OPACITY_CORRECTION=0 SPECULAR=1 CLIP_CONES=0
+// @variant ISO_MIPS=1 AXIS_WEIGHT_SQ=1 OPACITY_CORRECTION=1 SPECULAR=0 CLIP_CONES=1
 // (4, 6 or 9 cones in the tangent frame, normal = +y as in the thesis code), AO inside the diffuse
 // cones, and with SPECULAR one glossy cone along reflect(V, N).
 // Output u_out_diffuse: rgb = D = sum_k w_k L_k  (w_k from the C side: calibrated w_k = W_k / pi with
@@ -60,7 +62,7 @@ void main()
         if (k >= u_n_cones) break;
         vec3 d = normalize(T * u_cone_dir[k].x + N * u_cone_dir[k].y + B * u_cone_dir[k].z);
         float ao; int steps;
-        vec4 c = trace_cone(apex, d, N, u_cone_aperture[k], u_max_dist, ao, steps);
+        vec4 c = trace_cone(apex, d, u_cone_aperture[k], u_max_dist, ao, steps);
         D += u_cone_weight[k] * c.rgb;
         occ += u_cone_weight[k] * ao;
         total += steps;
@@ -71,7 +73,7 @@ void main()
     if (mr.g < 0.5 || mr.r > 0.5) {                   // glossy enough to be worth a cone
         vec3 R = reflect(normalize(P - u_eye), N);
         float ao; int steps;
-        spec = trace_cone(apex, R, N, u_spec_aperture, u_max_dist, ao, steps);
+        spec = trace_cone(apex, R, u_spec_aperture, u_max_dist, ao, steps);
         total += steps;
     }
 #endif

@@ -1,4 +1,6 @@
 // Voxelization without geometry shaders (summary A.7.1 (b)): one invocation per triangle, from a
+// @variant CONSERVATIVE=1 AVERAGE_CAS=0 EMISSIVE=0
+// @variant CONSERVATIVE=0 AVERAGE_CAS=1 EMISSIVE=1
 // world-space triangle SSBO. For every voxel column along the triangle's dominant axis
 // (argmax |n|, the axis the thesis's GS projects along) over the triangle's bounding box:
 //   CONSERVATIVE=1: every voxel the triangle touches (Schwarz & Seidel 2010 triangle/box overlap,
@@ -30,7 +32,7 @@ uniform ivec3 u_region_hi;
 uniform float u_emission_scale;  // 1 / max emission of the scene
 
 uint pack8(vec4 v) { uvec4 u = uvec4(clamp(v, 0.0, 255.0)); return (u.w << 24) | (u.z << 16) | (u.y << 8) | u.x; }
-vec4 unpack8(uint v) { return vec4(float(v & 0xFFu), float((v >> 8) & 0xFFu), float((v >> 16) & 0xFFu), float(v >> 24)); }
+vec4 vct_unpack8(uint v) { return vec4(float(v & 0xFFu), float((v >> 8) & 0xFFu), float((v >> 16) & 0xFFu), float(v >> 24)); }
 uint encN(uint m, uint n) { return (m & 0xFEFEFEFEu) | (n & 1u) | ((n & 2u) << 7) | ((n & 4u) << 14) | ((n & 8u) << 21); }
 uint decN(uint m) { return (m & 1u) | ((m & 0x100u) >> 7) | ((m & 0x10000u) >> 14) | ((m & 0x1000000u) >> 21); }
 
@@ -43,7 +45,7 @@ void cas_average(int idx, vec4 val)
     for (int it = 0; it < 16; ++it) {           // thesis code: retry cap 16
         uint cur = atomicCompSwap(s[idx], prev, newV);
         if (cur == prev) break;
-        vec4 r = unpack8(cur & 0xFEFEFEFEu);
+        vec4 r = vct_unpack8(cur & 0xFEFEFEFEu);
         uint n = decN(cur);
         r = (r * float(n) + val) / float(n + 1u);
         r = round(r * 0.5) * 2.0;                // keep the LSBs free for the counter

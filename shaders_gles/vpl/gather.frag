@@ -6,6 +6,15 @@
 // geometry-aware blur averages the B×B subsets back. Clamp (not in the thesis): d² ≥ u_dmin2;
 // the irradiance it removes goes to alpha (luminance) so the method can report it.
 // Outputs: irradiance (rgb, a = removed), the pixel's world position and normal for the blur.
+// One visibility define is required (vpl_vis_define in app/gi/vpl/vpl_gather.c):
+// @variant VIS_CSSM=1
+// @variant VIS_VSM=1
+// @variant VIS_HARD=1
+// @variant VIS_NONE=1
+// @variant VIS_CSSM=1 MULTIRES=1
+// @variant VIS_VSM=1 MULTIRES=1
+// @variant VIS_HARD=1 MULTIRES=1
+// @variant VIS_NONE=1 MULTIRES=1
 precision highp float;
 precision highp int;
 precision highp sampler2DArray;

@@ -4,6 +4,8 @@
 // reduces the 2×2 children of level l − 1.
 // T0 = (z_min, z_max, coverage, 0)   coverage = fraction of children with geometry
 // T1 = (n_min.xyz, 0)   T2 = (n_max.xyz, 0)   T3 = (mean position.xyz, coverage)
+// @variant LEVEL0=1
+// @variant LEVELN=1
 precision highp float;
 precision highp int;
 #ifdef LEVEL0

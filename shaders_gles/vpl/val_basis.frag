@@ -1,6 +1,8 @@
 // Basis images of one VAL layer from its depth (thesis §6.3.2 / CSSM §5.3): CSSM writes
 // cos/sin(c_k z) (RGBA8, stored 0.5 + 0.5·v, an affine code that commutes with box filtering) and
 // z·cos/sin(c_k z) (RGBA16F); VSM writes the two moments (z, z²). Mipmapped afterwards.
+// @variant CSSM=1
+// @variant VIS_VSM=1
 precision highp float;
 precision highp int;
 uniform highp sampler2DArray u_z;

@@ -38,7 +38,8 @@ cat >"$S/a.gltf" <<'GLTF'
 GLTF
 sed 's/0.8, 0.6, 0.4, 1/0.3, 0.5, 0.9, 1/' "$S/a.gltf" >"$S/b.gltf"
 printf '[playlist]\nscenes = a, b\ndwell_s = 30\n' >"$TMP/ok.ini"
-RUN="$GIKIOSK run --platform mock --size 64x64 --scenes-dir $S"
+# --method none: these tests are about the kiosk, not GI (and the capture names carry the method).
+RUN="$GIKIOSK run --platform mock --size 64x64 --scenes-dir $S --method none"
 
 # --- a scripted run: `next` at 0.05 s; the click's release (50 ms later) lands at 0.10 s, i.e.
 # frame 6 at 60 virtual frames per second. Frames 0..5 show a, 6..11 b.

@@ -10,28 +10,31 @@
 . tests/e2e/lib.sh
 ROOT=shaders_gles
 
-# expand FILE SEENFILE: prints FILE with includes expanded; SEENFILE lists the files already
-# included, its line number K - 1 being the source-string number of "#line N K" (as the C loader).
+# expand FILE SEENFILE: prints FILE with includes expanded (one awk process: a shell loop per
+# line was too slow); SEENFILE receives the files in inclusion order, line K + 1 being the
+# source-string number K of "#line N K" (as the C loader numbers them).
 expand() {
-    if grep -qxF "$1" "$2"; then return 0; fi
-    if [ ! -f "$ROOT/$1" ]; then echo "missing include $1" >&2; return 1; fi
-    echo "$1" >>"$2"
-    _fk=$(($(wc -l <"$2") - 1))
-    echo "#line 1 $_fk"
-    _ln=0
-    while IFS= read -r line || [ -n "$line" ]; do
-        _ln=$((_ln + 1))
-        inc=$(printf '%s\n' "$line" | sed -n 's/^[[:space:]]*#include[[:space:]]*"\([^"]*\)".*/\1/p')
-        if [ -n "$inc" ]; then
-            # the recursive call overwrites the globals _fk and _ln: keep ours in $3 $4
-            set -- "$1" "$2" "$_fk" "$_ln"
-            expand "$inc" "$2" || return 1
-            _fk=$3; _ln=$4
-            echo "#line $((_ln + 1)) $_fk"
-        else
-            printf '%s\n' "$line"
-        fi
-    done <"$ROOT/$1"
+    awk -v root="$ROOT" -v top="$1" -v seenfile="$2" '
+        function emit(path, from, at,    k, line, n, inc, file) {
+            if (path in seen) return 1
+            file = root "/" path
+            if ((getline line < file) < 0) { printf "%s:%d: missing include %s\n", from, at, path > "/dev/stderr"; return 0 }
+            close(file)
+            k = nfiles++; seen[path] = k; print path > seenfile
+            print "#line 1 " k
+            n = 0
+            while ((getline line < file) > 0) {
+                n++
+                if (line ~ /^[ \t]*#include[ \t]*"/) {
+                    inc = line; sub(/^[ \t]*#include[ \t]*"/, "", inc); sub(/".*$/, "", inc)
+                    if (!emit(inc, path, n)) return 0
+                    print "#line " (n + 1) " " k
+                } else print line
+            }
+            close(file)
+            return 1
+        }
+        BEGIN { nfiles = 0; printf "" > seenfile; if (!emit(top, top, 0)) exit 1 }'
 }
 
 # Rewrites glslang's "ERROR: K:LINE:" into "ERROR: shaders_gles/FILE:LINE:" using SEENFILE.
@@ -52,21 +55,21 @@ assemble() {
             echo "#version ${2}0 es"
             echo "#define GK_GLES $2"
         fi
-        for d in $3; do
-            echo "#define $(echo "$d" | sed 's/=/ /')"
+        for _def in $3; do
+            echo "#define $(echo "$_def" | sed 's/=/ /')"
         done
         expand "$1" "$TMP/seen"
     } >"$4"
 }
 
 validate() { # REL GLES DEFINES
-    ext=${1##*.}
-    out="$TMP/shader.$ext"
+    _ext=${1##*.}
+    out="$TMP/shader.$_ext"
     if ! assemble "$1" "$2" "$3" "$out"; then
         echo "#   $1: include expansion failed"
         return 1
     fi
-    if ! glslangValidator -S "$ext" "$out" >"$TMP/glslang.log" 2>&1; then
+    if ! glslangValidator -S "$_ext" "$out" >"$TMP/glslang.log" 2>&1; then
         grep -v '^/' "$TMP/glslang.log" | map_log "$TMP/seen" | sed 's/^/#   /' | head -8
         return 1
     fi
@@ -84,6 +87,7 @@ for f in $(find "$ROOT" -type f \( -name '*.vert' -o -name '*.frag' -o -name '*.
     rel=${f#"$ROOT"/}
     variants=$(sed -n 's#^[[:space:]]*//[[:space:]]*@variant[[:space:]]*##p' "$f" | tr ' ' ',')
     [ -n "$variants" ] || variants="-"
+    ext=${rel##*.}
     for v in $variants; do
         defs=$(echo "$v" | sed 's/^-$//' | tr ',' ' ')
         for gles in 31 32; do

@@ -192,7 +192,7 @@ static void cas_average_reproduces_the_thesis_counter_wrap(void **state)
 
 /* ---- self-illumination, HDR ----------------------------------------------------------------- */
 /* Lone lit plane seen from above: mean indirect / mean direct outgoing radiance. */
-static double lone_plane_ratio(float apex_offset)
+static double lone_plane_ratio(float apex_offset, bool directional)
 {
     vt_scene sc;
     vt_scene_init(&sc);
@@ -204,6 +204,7 @@ static double lone_plane_ratio(float apex_offset)
     gk_vct_options o;
     gk_vct_default_options(&o);
     o.apex_offset = apex_offset;
+    o.directional_injection = directional;
     gk_vct_set_options(vct, &o);
     gk_budget b;
     vt_budget(&b, "vct_res=64,vct_trace_scale=1");
@@ -236,19 +237,23 @@ static void lone_plane_does_not_illuminate_itself(void **state)
 {
     (void)state;
     const float offsets[3] = {1.0f, 1.7320508f, 2.5f};
-    double r[3];
-    for (int i = 0; i < 3; i++) {
-        r[i] = lone_plane_ratio(offsets[i]);
-        printf("# lone plane, apex offset %.2f voxels: indirect / direct = %.4f%%\n", offsets[i], 100 * r[i]);
-        assert_true(r[i] >= 0);
-    }
-    assert_true(r[0] > r[2]);   /* the offset matters: the test can see self-illumination */
-    /* Ground truth 0. Measured: 0.000% at the thesis code's 2.5-voxel offset and the text's sqrt(3),
-       40% at 1 voxel (the first level-0 samples overlap the plane's own voxels). Without directional
-       injection (thesis behaviour) the coarse levels show the plane lit from every side and it lights
-       itself at every offset: 79% / 76% / 74% measured. Bound 0.1% at >= sqrt(3). */
-    assert_true(r[1] < 0.001);
-    assert_true(r[2] < 0.001);
+    double r[2][3];
+    for (int dir = 0; dir < 2; dir++)
+        for (int i = 0; i < 3; i++) {
+            r[dir][i] = lone_plane_ratio(offsets[i], dir == 1);
+            printf("# lone plane, %s, apex offset %.2f voxels: indirect / direct = %.4f%%\n",
+                   dir ? "directional injection" : "thesis (isotropic radiance)", offsets[i], 100 * r[dir][i]);
+            assert_true(r[dir][i] >= 0);
+        }
+    /* Ground truth 0. Thesis behaviour (default): the plane's coarse voxels look lit from every side
+       and wide cones' coarse samples overlap them, so the plane lights itself at every offset:
+       measured 79% / 76% / 74% (A.6.1 #3/#4). Bound: it must be visible (> 30%) -- the failure mode
+       is real and the test sees it. With directional injection: measured 40% at 1 voxel (level-0
+       samples overlap the plane's own voxels) and 0.000% at sqrt(3) and 2.5; bound 0.1%. */
+    assert_true(r[0][2] > 0.30);
+    assert_true(r[1][0] > r[1][2]);
+    assert_true(r[1][1] < 0.001);
+    assert_true(r[1][2] < 0.001);
 }
 
 /* Floor + back wall; returns the summed indirect luminance and the largest pixel value. */

@@ -16,11 +16,11 @@
  * steps ~ 1/ln(1 + m a) for a ~ 1.1 (1/ln 3.2 = 0.86, 1/ln 2.65 = 1.03, 1/ln 2.1 = 1.35,
  * 1/ln 1.55 = 2.28, normalised). Trace scale: traced pixels ~ s^2. Mips: six directions vs one
  * hardware mip chain. */
-static const gk_knob_def knob_res = {"vct_res", "vct", 4, {"32", "64", "128", "256"}, {1, 4, 24, 160}, 1};
-static const gk_knob_def knob_cones = {"vct_cones", "vct", 3, {"4", "6", "9"}, {1, 1.5f, 2.25f}, 1};
-static const gk_knob_def knob_step = {"vct_step", "vct", 4, {"2", "1.5", "1", "0.5"}, {1, 1.2f, 1.57f, 2.65f}, 2};
-static const gk_knob_def knob_scale = {"vct_trace_scale", "vct", 3, {"0.25", "0.5", "1"}, {1, 4, 16}, 1};
-static const gk_knob_def knob_mips = {"vct_mips", "vct", 2, {"iso", "aniso"}, {1, 2}, 1};
+static const gk_knob_def knob_res = {"vct_res", "vct", 4, {"32", "64", "128", "256"}, {1, 4, 24, 160}, 1, 2}; /* 256^3 is past the 128 MiB SSBO limit on llvmpipe: a pinned value only */
+static const gk_knob_def knob_cones = {"vct_cones", "vct", 3, {"4", "6", "9"}, {1, 1.5f, 2.25f}, 1, 0};
+static const gk_knob_def knob_step = {"vct_step", "vct", 4, {"2", "1.5", "1", "0.5"}, {1, 1.2f, 1.57f, 2.65f}, 2, 0};
+static const gk_knob_def knob_scale = {"vct_trace_scale", "vct", 3, {"0.25", "0.5", "1"}, {1, 4, 16}, 1, 0};
+static const gk_knob_def knob_mips = {"vct_mips", "vct", 2, {"iso", "aniso"}, {1, 2}, 1, 0};
 
 void gk_vct_default_options(gk_vct_options *o)
 {
@@ -30,10 +30,9 @@ void gk_vct_default_options(gk_vct_options *o)
     o->faithful_weights = false;
     o->axis_weight_sq = false;
     o->opacity_correction = false;
-    o->directional_injection = true;
+    o->directional_injection = false;
     o->specular = -1;
     o->apex_offset = 2.5f;
-    o->self_offset = 1.5f;
     o->max_dist = 1.7320508f;
     o->ao_lambda = 725.0f;
     o->spec_aperture = 0.158f;
@@ -48,7 +47,6 @@ void gk_vct_thesis_options(gk_vct_options *o)
     o->faithful_weights = true;
     o->directional_injection = false;
     o->shadow_ambient = 0.07f;
-    o->self_offset = 0.0f;
 }
 
 static bool vct_applies(const gk_scene *s)

@@ -28,13 +28,11 @@ typedef struct gk_vct_options {
                                  false (default): calibrated weights W_k/pi, rho/pi composition */
     bool axis_weight_sq;      /* d^2 axis weights (calibrated) instead of the thesis's |d| */
     bool opacity_correction;  /* step-length opacity correction (not in the thesis) */
-    bool directional_injection; /* true (default): level-1 views show a voxel's radiance only from the side its
-                                   normal faces (not in the thesis; false = thesis: lit from every side) */
+    bool directional_injection; /* level-1 views show a voxel's radiance only to viewers its normal faces
+                                   (not in the thesis). false (default, thesis): lit from every side. */
     bool clip_cones;          /* stop every cone at the volume border (thesis code: only cones < 0.3) */
     int specular;             /* -1 (default): when the scene has specular materials; 0 off; 1 on */
     float apex_offset;        /* voxels along the normal, thesis code 2.5 */
-    float self_offset;        /* samples pushed along the normal by this x their footprint: 1.5 (default);
-                                 0 = thesis (coarse samples see the receiver's own surface) */
     float max_dist;           /* voxel-space units, thesis code sqrt(3) */
     float ao_lambda;          /* AO falloff, thesis code 725 */
     float spec_aperture;      /* thesis code 0.158 (9 degrees) */

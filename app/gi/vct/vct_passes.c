@@ -1,7 +1,6 @@
 /* The GL side of each vct pass: program variants, bindings, dispatches and barriers. */
 #include <math.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 
 #include "vct_internal.h"
@@ -110,7 +109,7 @@ int vct_pass_inject(gk_vct *v, const gk_gi_frame *f, gk_err *e)
         uniform_at(p, "u_light_lambert", i, nm, sizeof nm);
         glUniform1i(glGetUniformLocation(p, nm), lambert);
         uniform_at(p, "u_light_shadow", i, nm, sizeof nm);
-        glUniform1i(glGetUniformLocation(p, nm), L->shadow_depth_tex != 0 && !getenv("VCT_NOSHADOW"));
+        glUniform1i(glGetUniformLocation(p, nm), L->shadow_depth_tex != 0);
         uniform_at(p, "u_shadow_vp", i, nm, sizeof nm);
         glUniformMatrix4fv(glGetUniformLocation(p, nm), 1, GL_FALSE, L->shadow_view_proj.m);
     }
@@ -138,7 +137,7 @@ int vct_pass_mips(gk_vct *v, gk_err *e)
     char defs[256];
     defines_common(v, defs, sizeof defs);
     size_t used = strlen(defs);
-    snprintf(defs + used, sizeof defs - used, "#define DIRECTIONAL_INJECTION %d\n", v->opt.directional_injection && !getenv("VCT_NODIR") ? 1 : 0);
+    snprintf(defs + used, sizeof defs - used, "#define DIRECTIONAL_INJECTION %d\n", v->opt.directional_injection ? 1 : 0);
     GLuint p = gk_program_get_compute(v->ctx.programs, "vct/mip_aniso.comp", defs, e);
     if (!p)
         return -1;
@@ -270,10 +269,6 @@ int vct_pass_trace(gk_vct *v, const gk_gi_frame *f, const vct_budget *b, gk_err 
     glUniform1f(glGetUniformLocation(p, "u_max_dist"), v->opt.max_dist);
     glUniform1f(glGetUniformLocation(p, "u_apex_offset"), v->opt.apex_offset);
     glUniform1f(glGetUniformLocation(p, "u_spec_aperture"), v->opt.spec_aperture);
-    float so = v->opt.self_offset;
-    if (getenv("VCT_SELF"))
-        so = (float)atof(getenv("VCT_SELF"));
-    glUniform1f(glGetUniformLocation(p, "u_self_offset"), so);
     float dir[VCT_MAX_CONES][3], ap[VCT_MAX_CONES], w[VCT_MAX_CONES];
     int n = vct_cone_set(b->cones, v->opt.faithful_weights, dir, ap, w);
     glUniform1i(glGetUniformLocation(p, "u_n_cones"), n);

@@ -235,7 +235,6 @@ void vpl_free_gpu(vpl_state *s)
 {
     free_ind(s);
     vpl_free_multires(s);
-    void vpl_free_maps(vpl_state *);
     vpl_free_maps(s);
     if (s->rsm_fbo) {
         glDeleteFramebuffers(1, &s->rsm_fbo);

@@ -56,6 +56,7 @@ typedef struct vpl_state {
 int vpl_generate(vpl_state *s, const gk_gi_frame *f, gk_err *e);
 /* vpl_valmap.c: paraboloid maps (+ CSSM/VSM bases and mips) for `count` emitters in val data. */
 int vpl_build_maps(vpl_state *s, const gk_gi_frame *f, const gk_val *emitters, int count, gk_err *e);
+void vpl_free_maps(vpl_state *s);
 /* Uploads VPLs (with labels) and the emitter table the gather reads. */
 void vpl_upload(vpl_state *s, const gk_val *emitters, int count);
 /* vpl_gather.c: gather + blur + compose into f->hdr_fbo. */

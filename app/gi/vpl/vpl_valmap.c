@@ -44,7 +44,6 @@ static void ensure_maps(vpl_state *s, int res, int layers, int vis)
     if (s->map_layers >= layers && s->map_res == res && s->map_vis == vis)
         return;
     free_maps(s);
-    bool soft = vis == GK_VPL_VIS_CSSM || vis == GK_VPL_VIS_VSM;
     s->z_arr = array_tex(GL_R16F, res, layers, vis == GK_VPL_VIS_CSSM);
     if (vis == GK_VPL_VIS_CSSM) {
         s->bcos = array_tex(GL_RGBA8, res, layers, true);
@@ -56,7 +55,6 @@ static void ensure_maps(vpl_state *s, int res, int layers, int vis)
         bool f32 = gk_gl_has_extension("GL_OES_texture_float_linear");
         s->bmom = array_tex(f32 ? GL_RG32F : GL_RG16F, res, layers, true);
     }
-    (void)soft;
     glGenRenderbuffers(1, &s->map_depth);
     glBindRenderbuffer(GL_RENDERBUFFER, s->map_depth);
     glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, res, res);
@@ -204,5 +202,4 @@ void vpl_upload(vpl_state *s, const gk_val *em, int count)
     free(vb);
 }
 
-void vpl_free_maps(vpl_state *s);
 void vpl_free_maps(vpl_state *s) { free_maps(s); }

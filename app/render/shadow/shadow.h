@@ -23,6 +23,7 @@
 
 #include "../../core/err.h"
 #include "../../scene/scene.h"
+#include "../../sched/budget.h"
 #include "../gl.h"
 #include "../gl_program.h"
 #include "../scene_gpu.h"
@@ -50,6 +51,7 @@ typedef struct gk_shadow_ctx {
     const gk_scene *scene;
     const gk_scene_gpu *gpu;
     const gk_gl_caps *caps;
+    const gk_budget *budget;      /* the frame's knobs (method-specific ones such as shadow_subdiv); may be NULL */
 } gk_shadow_ctx;
 
 typedef struct gk_shadow_method {

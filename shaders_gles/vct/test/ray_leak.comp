@@ -1,4 +1,5 @@
 // Test-only (summary A.6.1 #1 / P.3): 0-degree rays across a thin wall through the real cone loop
+// @variant ISO_MIPS=1 AXIS_WEIGHT_SQ=0 OPACITY_CORRECTION=0
 // (trace_cone with aperture 0: 1-voxel steps at level 0, trilinear). Counts rays whose accumulated
 // opacity stays below 0.5 (leaked) and below 0.05 (fully leaked).
 #include "vct/common.glsl"
@@ -25,7 +26,7 @@ void main()
     vec3 d = normalize(n * cos(ang) + (t * cos(az) + b * sin(az)) * sin(ang));
     vec3 start = hit - d * (0.5 * u_march * vs);
     float ao; int steps;
-    vec4 c = trace_cone(start, d, vec3(0.0), 0.0, u_march * vs, ao, steps);
+    vec4 c = trace_cone(start, d, 0.0, u_march * vs, ao, steps);
     if (c.a < 0.5) atomicAdd(result.leaked_half, 1u);
     if (c.a < 0.05) atomicAdd(result.leaked_full, 1u);
 }

@@ -1,0 +1,157 @@
+/* Soft shadows of every method against the exact visibility of the analytic scenes T1
+ * "plane-over-plane" and T2 "stacked blockers" (dong-001.md §9.2), and the failure tests F1 (VSM
+ * light bleeding: VSSM vs the no-subdivision SAVSM mode) and F4 (umbra underestimation) of §10.
+ * Scenes: receiver y = 0, light square of side S at y = 4 facing down, blocker 2x2 at y = 1
+ * centred at the origin (T2: plus 2x2 at y = 2 offset by (1, 0, 0.5)); camera (0, 6, 6) looking
+ * at the origin, 60 degree FOV; 128x128 pixels, shadow map 512. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+
+#include "gpu/test_shadow_util.h"
+
+#define W 128
+#define H 128
+
+static sx_session ses;
+
+static int setup(void **state)
+{
+    (void)state;
+    return sx_open(&ses, W, H);
+}
+
+static int teardown(void **state)
+{
+    (void)state;
+    sx_close(&ses);
+    return 0;
+}
+
+static sx_setup t1(float S)
+{
+    sx_setup st = {.S = S, .light = v3(0, SX_LIGHT_Y, 0), .n_rects = 1, .eye = v3(0, 6, 6), .target = v3(0, 0, 0),
+                   .yfov = 1.0471976f};
+    st.rect[0] = (sx_rect){-1, 1, -1, 1, 1};
+    return st;
+}
+
+static sx_setup t2(float S)
+{
+    sx_setup st = t1(S);
+    st.n_rects = 2;
+    st.rect[1] = (sx_rect){0, 2, -0.5f, 1.5f, 2};
+    return st;
+}
+
+/* Renders every method in `methods` for one set-up; stats[i] per method. */
+static void measure(const sx_setup *st, const char *what, const char *const *methods, int n, sx_stats *stats,
+                    double *umbra_ratio)
+{
+    fx_scene with, without;
+    sx_build(&with, st, true);
+    sx_build(&without, st, false);
+    sx_truth t;
+    sx_truth_build(&t, &with, st, W, H);
+    float *a = malloc(sizeof(float) * W * H), *b = malloc(sizeof(float) * W * H), *v = malloc(sizeof(float) * W * H);
+    gk_err e = {0};
+    if (gk_renderer_set_scene(ses.r, &without.s, &e) != 0 || sx_draw(&ses, "shadow=hard,shadow_map=512", b) != 0)
+        fail_msg("render without blockers: %s", e.msg);
+    if (gk_renderer_set_scene(ses.r, &with.s, &e) != 0)
+        fail_msg("set_scene: %s", e.msg);
+    for (int m = 0; m < n; m++) {
+        char pins[96];
+        snprintf(pins, sizeof pins, "shadow=%s,shadow_map=512", methods[m]);
+        if (sx_draw(&ses, pins, a) != 0)
+            fail_msg("render %s", methods[m]);
+        sx_ratio(a, b, &t, v);
+        stats[m] = sx_compare(v, &t);
+        sx_print(what, methods[m], &stats[m]);
+        if (umbra_ratio) { /* F4: pixels the method calls umbra (V < 0.02) over the exact umbra */
+            int got = 0, want = 0;
+            for (int i = 0; i < W * H; i++)
+                if (t.valid[i] && !isnan(v[i])) {
+                    got += v[i] < 0.02f;
+                    want += t.v[i] < 0.02f;
+                }
+            umbra_ratio[m] = want ? (double)got / want : 0;
+            printf("#   F4 %s %s: umbra area ratio %.3f (%d / %d pixels)\n", what, methods[m], umbra_ratio[m], got, want);
+        }
+    }
+    gk_renderer_set_scene(ses.r, NULL, &e);
+    free(a);
+    free(b);
+    free(v);
+    sx_truth_free(&t);
+}
+
+static const char *const all_methods[] = {"hard", "pcss", "vssm", "cssm", "cssm_sat", "savsm"};
+enum { M_HARD, M_PCSS, M_VSSM, M_CSSM, M_CSSM_SAT, M_SAVSM, M_N };
+
+static void t1_every_method_matches_analytic(void **state)
+{
+    (void)state;
+    sx_stats s[M_N];
+    sx_setup st = t1(1.0f);
+    measure(&st, "T1 S=1", all_methods, M_N, s, NULL);
+    assert_true(s[M_PCSS].n[SX_PENUMBRA] > 300 && s[M_PCSS].n[SX_UMBRA] > 300 && s[M_PCSS].n[SX_LIT] > 3000);
+    /* Measured (llvmpipe, 128^2, map 512), mean |dV| umbra / penumbra / lit:
+         hard     0      / 0.248 / 0        (a step where the truth is a ramp)
+         pcss     0      / 0.030 / 0        (12x12 PCF steps + per-pixel jitter)
+         vssm     0.0002 / 0.011 / 0.0001   (exact for two planes up to texels and rounding)
+         cssm     0.217  / 0.113 / 0.0008   (K = 4: the 1 m gap is 0.105 of the normalised
+         cssm_sat 0.195  / 0.116 / 0        depth range, below the 0.128 the shifted, clamped
+                                            test needs to saturate -> the umbra leaks ~0.19)
+       Bounds: about 1.5x each measurement (absolute floors 0.005 where it is ~0); the K = 4
+       leak is asserted to stay below 0.3 so a regression of the series shows. */
+    assert_true(s[M_PCSS].mean[SX_PENUMBRA] < 0.045 && s[M_PCSS].mean[SX_UMBRA] < 0.005);
+    assert_true(s[M_VSSM].mean[SX_PENUMBRA] < 0.02 && s[M_VSSM].mean[SX_UMBRA] < 0.005 && s[M_VSSM].mean[SX_LIT] < 0.005);
+    assert_true(s[M_VSSM].mean[SX_PENUMBRA] < s[M_PCSS].mean[SX_PENUMBRA]);
+    assert_true(s[M_CSSM].mean[SX_PENUMBRA] < 0.17 && s[M_CSSM].mean[SX_UMBRA] < 0.3 && s[M_CSSM].mean[SX_LIT] < 0.005);
+    assert_true(s[M_CSSM_SAT].mean[SX_PENUMBRA] < 0.17 && s[M_CSSM_SAT].mean[SX_UMBRA] < 0.3);
+    /* every soft method beats hard shadows in the penumbra at least 1.4x */
+    for (int m = M_PCSS; m < M_N; m++)
+        assert_true(s[m].mean[SX_PENUMBRA] * 1.4 < s[M_HARD].mean[SX_PENUMBRA]);
+}
+
+static void t2_stacked_blockers_and_f1_f4(void **state)
+{
+    (void)state;
+    sx_stats s[M_N];
+    double ratio[M_N];
+    sx_setup st = t2(1.0f);
+    measure(&st, "T2 S=1", all_methods, M_N, s, ratio);
+    sx_setup st2 = t2(2.0f);
+    sx_stats s2[M_N];
+    double ratio2[M_N];
+    measure(&st2, "T2 S=2", all_methods, M_N, s2, ratio2);
+    /* F1 (light bleeding): mean positive error max(V - V_exact, 0) over umbra + penumbra is the
+       bias's positive part; the penumbra bias stands for it. Measured at S = 1: savsm +0.0915,
+       vssm +0.0905, pcss +0.024. The thesis's subdivision (Alg. 2/3) only acts on NON-PLANAR
+       kernels (E(z) >= d); on T2's flat receiver every kernel has E(z) < d, so the Chebyshev
+       bleeding of two stacked blocker layers remains in VSSM as in SAVSM (dong-001.md §5.1's
+       0.2/0.6/1.0 oracle: 0.100). Asserted: the leak is there and measurable (> 0.05, the test
+       can see it), VSSM is never worse than SAVSM, and PCSS (no moments) leaks < half as much. */
+    assert_true(s[M_SAVSM].bias[SX_PENUMBRA] > 0.05);
+    assert_true(s[M_VSSM].bias[SX_PENUMBRA] <= s[M_SAVSM].bias[SX_PENUMBRA] + 0.002);
+    assert_true(s[M_VSSM].bias[SX_PENUMBRA] < 0.14);
+    assert_true(s[M_PCSS].bias[SX_PENUMBRA] < 0.5 * s[M_VSSM].bias[SX_PENUMBRA]);
+    /* F4 (umbra underestimation, blocker flattening): umbra area ratio (V < 0.02) vs exact.
+       Measured S = 1 / S = 2: vssm 0.883 / 0.731, cssm 0.904 / 0.489, cssm_sat 1.03 / 1.21,
+       pcss 1.00 / 0.98, hard 1.52 / 2.68. The moment methods underestimate and get worse with
+       the light size, as the thesis says; bounds at the measurement +-0.1 so a change shows. */
+    assert_true(ratio[M_VSSM] < 0.98 && ratio[M_VSSM] > 0.78);
+    assert_true(ratio2[M_VSSM] < ratio[M_VSSM] && ratio2[M_VSSM] > 0.63);
+    assert_true(ratio2[M_CSSM] < ratio[M_CSSM] && ratio2[M_CSSM] > 0.39);
+    assert_true(ratio[M_PCSS] > 0.9 && ratio2[M_PCSS] > 0.88);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(t1_every_method_matches_analytic),
+        cmocka_unit_test(t2_stacked_blockers_and_f1_f4),
+    };
+    return cmocka_run_group_tests(tests, setup, teardown);
+}

@@ -1,0 +1,362 @@
+/* Shared by tests/gpu/test_shadow*.c (header-only): the analytic soft-shadow scenes of
+ * dong-001.md §9.2 built in memory on test_render_fixture.h, one renderer driven through the real
+ * pipeline with the shadow method pinned per frame, visibility measured as
+ *     V = L(scene) / L(scene without blockers, hard shadows)
+ * on a white diffuse receiver (the lighting multiplies the unshadowed radiance by
+ * shadow_visibility(), so the ratio is exactly the method's V), and the exact V in C:
+ *   rectangles (T1, T2): V = 1 - area((P1 u P2) n L) / S^2, P_i the occluder squares projected
+ *   through the receiver point onto the light plane (scale H / h_i), L the light square;
+ *   box (T3): the convex hull of the projected box corners clipped to L. */
+#ifndef TEST_SHADOW_UTIL_H
+#define TEST_SHADOW_UTIL_H
+
+#include "gpu/test_render_fixture.h"
+#include "metrics/metrics.h"
+
+#define SX_LIGHT_Y 4.0f
+
+/* Every method name the tests pin, diagnostic variants included (gk_shadow_methods[]): the test's
+   own "shadow" knob is added before the renderer's (gk_budget_add keeps the first by name). */
+static const gk_knob_def sx_knob_shadow = {
+    .name = "shadow", .owner = "test", .n_values = 8,
+    .values = {"hard", "pcss", "vssm", "cssm", "cssm_sat", "savsm", "vssm_nocontact", "cssm_raw"},
+    .cost = {1, 1, 1, 1, 1, 1, 1, 1}, .default_level = 0,
+};
+
+typedef struct sx_rect { float x0, x1, z0, z1, y; } sx_rect;
+
+typedef struct sx_setup {
+    float S;                    /* light side (m) */
+    vec3 light;                 /* light centre */
+    int n_rects;
+    sx_rect rect[2];            /* horizontal occluders */
+    bool box;                   /* T3: unit cube [-0.5, 0.5] x [0, 1] x [-0.5, 0.5], yawed */
+    float box_yaw;
+    vec3 eye, target;
+    float yfov;
+} sx_setup;
+
+/* A quad with arbitrary corners (counter-clockwise seen from its front). */
+static inline void sx_quad4(fx_scene *f, vec3 a, vec3 b, vec3 c, vec3 d, int material)
+{
+    int k = f->s.n_meshes++;
+    fx_quad_data *q = &f->quads[k];
+    vec3 p[4] = {a, b, c, d};
+    vec3 n = v3_norm(v3_cross(v3_sub(b, a), v3_sub(c, a)));
+    for (int i = 0; i < 4; i++) {
+        q->pos[3 * i] = p[i].x, q->pos[3 * i + 1] = p[i].y, q->pos[3 * i + 2] = p[i].z;
+        q->nrm[3 * i] = n.x, q->nrm[3 * i + 1] = n.y, q->nrm[3 * i + 2] = n.z;
+        q->uv[2 * i] = (float)(i == 1 || i == 2), q->uv[2 * i + 1] = (float)(i >= 2);
+    }
+    const uint32_t idx[6] = {0, 1, 2, 0, 2, 3};
+    memcpy(q->idx, idx, sizeof idx);
+    gk_mesh *m = &f->meshes[k];
+    memset(m, 0, sizeof *m);
+    m->positions = q->pos;
+    m->normals = q->nrm;
+    m->uvs = q->uv;
+    m->indices = q->idx;
+    m->n_vertices = 4;
+    m->n_triangles = 2;
+    m->material = material;
+    m->bmin = v3(fminf(fminf(a.x, b.x), fminf(c.x, d.x)), fminf(fminf(a.y, b.y), fminf(c.y, d.y)),
+                 fminf(fminf(a.z, b.z), fminf(c.z, d.z)));
+    m->bmax = v3(fmaxf(fmaxf(a.x, b.x), fmaxf(c.x, d.x)), fmaxf(fmaxf(a.y, b.y), fmaxf(c.y, d.y)),
+                 fmaxf(fmaxf(a.z, b.z), fmaxf(c.z, d.z)));
+    int nd = fx_add_node(f);
+    f->nodes[nd].mesh_first = k;
+    f->nodes[nd].mesh_count = 1;
+    f->s.n_triangles += 2;
+}
+
+static inline vec3 sx_box_corner(const sx_setup *st, int i)
+{
+    float x = (i & 1) ? 0.5f : -0.5f, y = (i & 2) ? 1.0f : 0.0f, z = (i & 4) ? 0.5f : -0.5f;
+    float c = cosf(st->box_yaw), s = sinf(st->box_yaw);
+    return v3(c * x + s * z, y, -s * x + c * z);
+}
+
+/* The scene: receiver 10x10 (rho 0.8), blockers (when `blockers`), a rect spot light of side S
+   facing down (cone 0.95 rad: one perspective map, dong-001.md's "map from the light centre"). */
+static inline void sx_build(fx_scene *f, const sx_setup *st, bool blockers)
+{
+    fx_init(f, st->eye, st->target, st->yfov);
+    f->s.bmin = v3(-5, 0, -5);
+    f->s.bmax = v3(5, 2.5f, 5);
+    int white = fx_material(f, 0.8f, 0, 0.9f);
+    fx_quad(f, -5, 5, -5, 5, 0, white);
+    int black = fx_material(f, 0.0f, 0, 0.9f);
+    if (blockers) {
+        for (int i = 0; i < st->n_rects; i++)
+            fx_quad(f, st->rect[i].x0, st->rect[i].x1, st->rect[i].z0, st->rect[i].z1, st->rect[i].y, black);
+        if (st->box) {
+            static const int faces[5][4] = {{2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+            for (int k = 0; k < 5; k++)
+                sx_quad4(f, sx_box_corner(st, faces[k][0]), sx_box_corner(st, faces[k][1]), sx_box_corner(st, faces[k][2]),
+                         sx_box_corner(st, faces[k][3]), white);
+        }
+    }
+    gk_light *l = fx_light(f, GK_LIGHT_SPOT, GK_SHAPE_RECT, 20, st->light, v3(0, -1, 0));
+    l->size[0] = l->size[1] = st->S;
+    l->outer_cone = 0.95f;
+    l->inner_cone = 0.9f;
+}
+
+/* --- exact visibility ------------------------------------------------------------------------ */
+static inline double sx_overlap(double a0, double a1, double b0, double b1)
+{
+    return fmax(0.0, fmin(a1, b1) - fmax(a0, b0));
+}
+
+/* Area of a convex polygon clipped to [x0,x1]x[z0,z1] (Sutherland-Hodgman). */
+static inline double sx_clip_area(const double *px, const double *pz, int n, double x0, double x1, double z0, double z1)
+{
+    double ax[40], az[40], bx[40], bz[40];
+    int na = n;
+    for (int i = 0; i < n; i++)
+        ax[i] = px[i], az[i] = pz[i];
+    for (int e = 0; e < 4 && na > 0; e++) {
+        int nb = 0;
+        for (int i = 0; i < na; i++) {
+            int j = (i + 1) % na;
+            double vi = e == 0 ? ax[i] - x0 : e == 1 ? x1 - ax[i] : e == 2 ? az[i] - z0 : z1 - az[i];
+            double vj = e == 0 ? ax[j] - x0 : e == 1 ? x1 - ax[j] : e == 2 ? az[j] - z0 : z1 - az[j];
+            if (vi >= 0)
+                bx[nb] = ax[i], bz[nb] = az[i], nb++;
+            if ((vi >= 0) != (vj >= 0)) {
+                double t = vi / (vi - vj);
+                bx[nb] = ax[i] + t * (ax[j] - ax[i]), bz[nb] = az[i] + t * (az[j] - az[i]), nb++;
+            }
+        }
+        na = nb;
+        for (int i = 0; i < na; i++)
+            ax[i] = bx[i], az[i] = bz[i];
+    }
+    double a = 0;
+    for (int i = 0; i < na; i++) {
+        int j = (i + 1) % na;
+        a += ax[i] * az[j] - ax[j] * az[i];
+    }
+    return 0.5 * fabs(a);
+}
+
+static inline double sx_exact_v(const sx_setup *st, vec3 p)
+{
+    double H = st->light.y - p.y, S = st->S, lx0 = st->light.x - S / 2, lx1 = lx0 + S, lz0 = st->light.z - S / 2,
+           lz1 = lz0 + S;
+    double blocked = 0;
+    if (st->n_rects > 0) {
+        double r[2][4];
+        for (int i = 0; i < st->n_rects; i++) {
+            double k = H / (st->rect[i].y - p.y);
+            r[i][0] = p.x + (st->rect[i].x0 - p.x) * k, r[i][1] = p.x + (st->rect[i].x1 - p.x) * k;
+            r[i][2] = p.z + (st->rect[i].z0 - p.z) * k, r[i][3] = p.z + (st->rect[i].z1 - p.z) * k;
+            blocked += sx_overlap(r[i][0], r[i][1], lx0, lx1) * sx_overlap(r[i][2], r[i][3], lz0, lz1);
+        }
+        if (st->n_rects == 2) {
+            double ix0 = fmax(r[0][0], r[1][0]), ix1 = fmin(r[0][1], r[1][1]);
+            double iz0 = fmax(r[0][2], r[1][2]), iz1 = fmin(r[0][3], r[1][3]);
+            if (ix1 > ix0 && iz1 > iz0)
+                blocked -= sx_overlap(ix0, ix1, lx0, lx1) * sx_overlap(iz0, iz1, lz0, lz1);
+        }
+    }
+    if (st->box) {
+        /* corners projected through p onto the light plane (bottom raised by 1e-4 m: the box's
+           silhouette seen from a point on its own ground plane reaches the horizon), hull, clip */
+        double hx[8], hz[8], ox[16], oz[16];
+        for (int i = 0; i < 8; i++) {
+            vec3 c = sx_box_corner(st, i);
+            double cy = fmax(c.y, 1e-4);
+            double k = H / (cy - p.y);
+            hx[i] = p.x + (c.x - p.x) * k, hz[i] = p.z + (c.z - p.z) * k;
+        }
+        /* monotone chain hull */
+        int idx[8];
+        for (int i = 0; i < 8; i++)
+            idx[i] = i;
+        for (int i = 1; i < 8; i++)
+            for (int j = i; j > 0 && (hx[idx[j]] < hx[idx[j - 1]] || (hx[idx[j]] == hx[idx[j - 1]] && hz[idx[j]] < hz[idx[j - 1]])); j--) {
+                int t = idx[j]; idx[j] = idx[j - 1]; idx[j - 1] = t;
+            }
+        int n = 0;
+        for (int pass = 0; pass < 2; pass++) {
+            int start = n;
+            for (int a = 0; a < 8; a++) {
+                int i = pass ? idx[7 - a] : idx[a];
+                while (n >= start + 2 && (ox[n - 1] - ox[n - 2]) * (hz[i] - oz[n - 2]) - (oz[n - 1] - oz[n - 2]) * (hx[i] - ox[n - 2]) <= 0)
+                    n--;
+                ox[n] = hx[i], oz[n] = hz[i], n++;
+            }
+            n--;
+        }
+        blocked += sx_clip_area(ox, oz, n, lx0, lx1, lz0, lz1);
+    }
+    return fmin(fmax(1.0 - blocked / (S * S), 0.0), 1.0);
+}
+
+/* --- rendering -------------------------------------------------------------------------------- */
+typedef struct sx_session {
+    fx_gl gl;
+    gk_renderer *r;
+    gk_budget b;
+} sx_session;
+
+static inline int sx_open(sx_session *x, int w, int h)
+{
+    memset(x, 0, sizeof *x);
+    if (fx_gl_open(&x->gl, w, h) != 0)
+        return -1;
+    gk_err e = {0};
+    gk_render_opts o = {.width = w, .height = h, .gles_version = 32, .shader_dir = getenv("GK_SHADER_DIR")};
+    x->r = gk_renderer_create(&o, &e);
+    if (!x->r) {
+        fprintf(stderr, "renderer: %s\n", e.msg);
+        return -1;
+    }
+    gk_budget_init(&x->b);
+    gk_budget_add(&x->b, &sx_knob_shadow);
+    gk_renderer_declare_knobs(x->r, &x->b);
+    return 0;
+}
+
+static inline void sx_close(sx_session *x)
+{
+    gk_renderer_destroy(x->r);
+    fx_gl_close(&x->gl);
+}
+
+/* Draws the scene (already set) with the given pins and reads the green channel into out. */
+static inline int sx_draw(sx_session *x, const char *pins, float *out)
+{
+    gk_err e = {0};
+    if (gk_budget_pin_list(&x->b, pins, &e) != 0) {
+        fprintf(stderr, "pins %s: %s\n", pins, e.msg);
+        return -1;
+    }
+    gk_frame_params fp = {.time_s = 0, .method = "none", .budget = &x->b};
+    gk_pass_times t;
+    gk_image img = {0};
+    if (gk_renderer_draw(x->r, &fp, x->gl.fbo, &t, &e) != 0 || gk_renderer_read_linear(x->r, &img, &e) != 0) {
+        fprintf(stderr, "draw %s: %s\n", pins, e.msg);
+        return -1;
+    }
+    for (int i = 0; i < img.width * img.height; i++)
+        out[i] = img.pixels[(size_t)i * img.channels + 1];
+    gk_image_free(&img);
+    return 0;
+}
+
+/* Per pixel: the receiver point (valid when the camera ray reaches the receiver plane y = 0
+   unobstructed by a blocker) and its exact V. */
+typedef struct sx_truth {
+    int w, h;
+    unsigned char *valid;
+    float *v;
+    vec3 *p;
+} sx_truth;
+
+static inline bool sx_ray_blocked(const sx_setup *st, vec3 eye, vec3 p)
+{
+    for (int i = 0; i < st->n_rects; i++) {
+        const sx_rect *r = &st->rect[i];
+        if ((eye.y - r->y) * (p.y - r->y) >= 0)
+            continue;
+        float t = (r->y - eye.y) / (p.y - eye.y);
+        float x = eye.x + t * (p.x - eye.x), z = eye.z + t * (p.z - eye.z);
+        if (x >= r->x0 - 0.02f && x <= r->x1 + 0.02f && z >= r->z0 - 0.02f && z <= r->z1 + 0.02f)
+            return true;
+    }
+    if (st->box) { /* slab test in the box's frame, 2 cm margin */
+        float c = cosf(st->box_yaw), s = sinf(st->box_yaw);
+        vec3 o = v3(c * eye.x - s * eye.z, eye.y, s * eye.x + c * eye.z);
+        vec3 q = v3(c * p.x - s * p.z, p.y, s * p.x + c * p.z);
+        vec3 d = v3_sub(q, o);
+        float lo[3] = {-0.52f, -1.0f, -0.52f}, hi[3] = {0.52f, 1.02f, 0.52f};
+        float oo[3] = {o.x, o.y, o.z}, dd[3] = {d.x, d.y, d.z}, t0 = 0, t1 = 1;
+        for (int k = 0; k < 3; k++) {
+            if (fabsf(dd[k]) < 1e-9f) {
+                if (oo[k] < lo[k] || oo[k] > hi[k])
+                    return false;
+                continue;
+            }
+            float a = (lo[k] - oo[k]) / dd[k], b = (hi[k] - oo[k]) / dd[k];
+            if (a > b) { float t = a; a = b; b = t; }
+            t0 = fmaxf(t0, a);
+            t1 = fminf(t1, b);
+        }
+        if (t0 <= t1)
+            return true;
+    }
+    return false;
+}
+
+static inline void sx_truth_build(sx_truth *t, fx_scene *f, const sx_setup *st, int w, int h)
+{
+    t->w = w, t->h = h;
+    t->valid = calloc((size_t)w * h, 1);
+    t->v = calloc((size_t)w * h, sizeof(float));
+    t->p = calloc((size_t)w * h, sizeof(vec3));
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            vec3 p, eye;
+            int i = y * w + x;
+            if (fx_pixel_on_plane(f, w, h, x, y, 0, &p, &eye) != 0 || sx_ray_blocked(st, eye, p))
+                continue;
+            t->valid[i] = 1;
+            t->p[i] = p;
+            t->v[i] = (float)sx_exact_v(st, p);
+        }
+}
+
+static inline void sx_truth_free(sx_truth *t)
+{
+    free(t->valid);
+    free(t->v);
+    free(t->p);
+}
+
+/* V of a method = L / L_unblocked where the unblocked radiance is meaningful; NaN elsewhere. */
+static inline void sx_ratio(const float *with, const float *without, const sx_truth *t, float *v)
+{
+    for (int i = 0; i < t->w * t->h; i++)
+        v[i] = (t->valid[i] && without[i] > 1e-4f) ? with[i] / without[i] : NAN;
+}
+
+/* Error statistics of V against the truth in the umbra (V = 0), penumbra and lit (V = 1) masks. */
+typedef struct sx_stats {
+    double mean[3], max[3], bias[3];
+    int n[3];
+} sx_stats;
+
+enum { SX_UMBRA, SX_PENUMBRA, SX_LIT };
+
+static inline int sx_class(float v) { return v <= 1e-6f ? SX_UMBRA : v >= 1 - 1e-6f ? SX_LIT : SX_PENUMBRA; }
+
+static inline sx_stats sx_compare(const float *v, const sx_truth *t)
+{
+    sx_stats s = {0};
+    for (int i = 0; i < t->w * t->h; i++) {
+        if (!t->valid[i] || isnan(v[i]))
+            continue;
+        int c = sx_class(t->v[i]);
+        double d = (double)v[i] - t->v[i];
+        s.mean[c] += fabs(d);
+        s.bias[c] += d;
+        s.max[c] = fmax(s.max[c], fabs(d));
+        s.n[c]++;
+    }
+    for (int c = 0; c < 3; c++)
+        if (s.n[c]) {
+            s.mean[c] /= s.n[c];
+            s.bias[c] /= s.n[c];
+        }
+    return s;
+}
+
+static inline void sx_print(const char *what, const char *method, const sx_stats *s)
+{
+    printf("# %-10s %-15s umbra mean %.4f max %.4f (n %4d) | penumbra mean %.4f max %.4f bias %+.4f (n %4d) | lit mean %.4f max %.4f (n %4d)\n",
+           what, method, s->mean[0], s->max[0], s->n[0], s->mean[1], s->max[1], s->bias[1], s->n[1], s->mean[2], s->max[2], s->n[2]);
+}
+
+#endif
