@@ -48,7 +48,7 @@ spp_for() {
         light-leak) echo 32 ;;   # the right room is black by design: the image is exactly 0
         caustic-ring) echo 256 ;;
         furnace) echo 128 ;;
-        atrium) echo 64 ;;
+        atrium) echo 512 ;;
         *) echo 128 ;;
     esac
 }

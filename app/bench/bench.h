@@ -37,9 +37,12 @@ typedef struct gk_bench_opts {
 
 typedef struct gk_bench_row {
     char scene[64], method[32];
+    char reference[80];        /* the reference the error is measured against ("cornell-direct"), "" = none */
     int level[GK_MAX_KNOBS];   /* knob levels, in the budget's knob order */
     double frame_ms_median, frame_ms_p95;
     double rel_rmse, ssim, psnr, mean_ratio;  /* NaN without a reference */
+    double test_mean;                         /* mean linear radiance (light-leak: the leak itself, as
+                                                 its reference is black) */
     double pass_ms[GK_MAX_PASSES];            /* medians, in the order of pass_names */
     bool pareto;
 } gk_bench_row;

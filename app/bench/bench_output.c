@@ -27,7 +27,7 @@ int gk_bench_write_csv(const gk_bench_result *r, const char *path, gk_err *e)
     fputs("scene,method", f);
     for (int k = 0; k < r->budget.n; k++)
         fprintf(f, ",%s", r->budget.def[k]->name);
-    fputs(",frame_ms_median,frame_ms_p95,rel_rmse,ssim,psnr,mean_ratio,pareto", f);
+    fputs(",frame_ms_median,frame_ms_p95,reference,rel_rmse,ssim,psnr,mean_ratio,test_mean,pareto", f);
     for (int p = 0; p < r->n_passes; p++)
         fprintf(f, ",%s_ms", r->pass_names[p]);
     fputc('\n', f);
@@ -38,10 +38,12 @@ int gk_bench_write_csv(const gk_bench_result *r, const char *path, gk_err *e)
             fprintf(f, ",%s", r->budget.def[k]->values[row->level[k]]);
         put_num(f, row->frame_ms_median);
         put_num(f, row->frame_ms_p95);
+        fprintf(f, ",%s", row->reference);
         put_num(f, row->rel_rmse);
         put_num(f, row->ssim);
         put_num(f, row->psnr);
         put_num(f, row->mean_ratio);
+        put_num(f, row->test_mean);
         fprintf(f, ",%d", row->pareto ? 1 : 0);
         for (int p = 0; p < r->n_passes; p++)
             put_num(f, row->pass_ms[p]);

@@ -66,7 +66,8 @@ typedef struct bench_run {
     gk_platform *platform;
     gk_renderer *renderer;
     gk_scene *scene;
-    gk_image reference;        /* empty when the scene has none */
+    gk_image reference;        /* SCENE.exr (all light paths); empty when the scene has none */
+    gk_image reference_direct; /* SCENE-direct.exr: what method none computes */
     int width, height;
 } bench_run;
 
@@ -130,22 +131,29 @@ static int measure(bench_run *b, const char *method, const char *pins, gk_err *e
                 col_vals[k] = pass_ms[(size_t)k * GK_MAX_PASSES + (size_t)p];
             row->pass_ms[p] = percentile(col_vals, frames < 64 ? frames : 64, 0.5);
         }
-        row->rel_rmse = row->ssim = row->psnr = row->mean_ratio = NAN;
+        row->rel_rmse = row->ssim = row->psnr = row->mean_ratio = row->test_mean = NAN;
         /* The image that is compared: the linear HDR capture, written where the user can look. */
         char exr[1024];
         snprintf(exr, sizeof exr, "%s/captures/%s-%s-%03d.exr", b->o->out_dir, b->scene->name, method, r->n_rows);
         rc = gk_renderer_capture(b->renderer, NULL, exr, e);
-        if (rc == 0 && b->reference.pixels) {
+        /* Each method is judged on what it computes: none (direct light only) against the
+           reference's direct component, GI methods against the full image. */
+        bool direct = strcmp(method, "none") == 0 && b->reference_direct.pixels;
+        const gk_image *ref = direct ? &b->reference_direct : &b->reference;
+        snprintf(row->reference, sizeof row->reference, "%s%s", ref->pixels ? b->scene->name : "",
+                 direct ? "-direct" : "");
+        if (rc == 0 && ref->pixels) {
             gk_image test = {0};
             gk_metrics m;
             rc = gk_image_read(exr, &test, e);
             if (rc == 0)
-                rc = gk_metrics_compute(&b->reference, &test, 0.0, &m, e);
+                rc = gk_metrics_compute(ref, &test, 0.0, &m, e);
             if (rc == 0) {
                 row->rel_rmse = m.rel_rmse;
                 row->ssim = m.ssim;
                 row->psnr = m.psnr;
                 row->mean_ratio = m.mean_ratio;
+                row->test_mean = m.test_mean;
             }
             gk_image_free(&test);
         }
@@ -157,6 +165,27 @@ static int measure(bench_run *b, const char *method, const char *pins, gk_err *e
     return rc;
 }
 
+/* REFS/NAME+SUFFIX.exr into img; a missing or differently sized reference leaves img empty (the
+   bench then measures time only) and says so. */
+static int load_reference(bench_run *b, const char *name, const char *suffix, gk_image *img, gk_err *e)
+{
+    char ref[1024];
+    snprintf(ref, sizeof ref, "%s/%s%s.exr", b->o->refs_dir, name, suffix);
+    memset(img, 0, sizeof *img);
+    if (access(ref, R_OK) != 0) {
+        gk_log("bench: no reference %s (make references): no error from it", ref);
+        return 0;
+    }
+    if (gk_image_read(ref, img, e) < 0)
+        return -1;
+    if (img->width != b->width || img->height != b->height) {
+        gk_log("bench: %s is %dx%d, the bench renders %dx%d: no error from it", ref, img->width, img->height,
+               b->width, b->height);
+        gk_image_free(img);
+    }
+    return 0;
+}
+
 static int bench_scene(bench_run *b, const char *name, gk_err *e)
 {
     char path[1024];
@@ -165,20 +194,8 @@ static int bench_scene(bench_run *b, const char *name, gk_err *e)
     b->scene = gk_scene_load(path, e);
     if (!b->scene)
         return -1;
-    char ref[1024];
-    snprintf(ref, sizeof ref, "%s/%s.exr", b->o->refs_dir, name);
-    memset(&b->reference, 0, sizeof b->reference);
-    if (access(ref, R_OK) == 0) {
-        if (gk_image_read(ref, &b->reference, e) < 0)
-            return -1;
-        if (b->reference.width != b->width || b->reference.height != b->height) {
-            gk_log("bench: %s is %dx%d, the bench renders %dx%d: no error for this scene", ref,
-                   b->reference.width, b->reference.height, b->width, b->height);
-            gk_image_free(&b->reference);
-        }
-    } else {
-        gk_log("bench: no reference %s (make references): timing only", ref);
-    }
+    if (load_reference(b, name, "", &b->reference, e) < 0 || load_reference(b, name, "-direct", &b->reference_direct, e) < 0)
+        return -1;
     int rc = gk_renderer_set_scene(b->renderer, b->scene, e);
     const char *applies[16];
     int n_applies = rc == 0 ? gk_renderer_methods(b->renderer, applies, 16) : 0;
@@ -229,15 +246,27 @@ static int bench_scene(bench_run *b, const char *name, gk_err *e)
     if (tty_progress())
         fputc('\n', stderr);
     gk_image_free(&b->reference);
+    gk_image_free(&b->reference_direct);
     gk_scene_free(b->scene);
     b->scene = NULL;
     return rc;
 }
 
+/* mkdir -p */
 static int make_dir(const char *path, gk_err *e)
 {
-    if (mkdir(path, 0755) < 0 && errno != EEXIST)
-        return gk_fail(e, GK_ERUNTIME, "bench: cannot create %s: %s", path, strerror(errno));
+    char buf[1024];
+    snprintf(buf, sizeof buf, "%s", path);
+    for (char *p = buf + 1; *p; p++) {
+        if (*p != '/')
+            continue;
+        *p = '\0';
+        if (mkdir(buf, 0755) < 0 && errno != EEXIST)
+            return gk_fail(e, GK_ERUNTIME, "bench: cannot create %s: %s", buf, strerror(errno));
+        *p = '/';
+    }
+    if (mkdir(buf, 0755) < 0 && errno != EEXIST)
+        return gk_fail(e, GK_ERUNTIME, "bench: cannot create %s: %s", buf, strerror(errno));
     return 0;
 }
 
@@ -284,7 +313,8 @@ int gk_bench_run(const gk_bench_opts *o, gk_bench_result **out, gk_err *e)
         return -1;
     }
     gk_render_opts ro = {.width = b.width, .height = b.height, .gles_version = o->gles_version,
-                         .shader_dir = o->shader_dir, .gpu_timer_queries = false};
+                         .shader_dir = o->shader_dir, .gpu_timer_queries = false,
+                         .rerender_static_shadows = true};
     b.renderer = gk_renderer_create(&ro, e);
     int rc = b.renderer ? 0 : -1;
     char list[512];

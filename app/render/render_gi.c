@@ -23,13 +23,13 @@
 
 struct gk_render_gi {
     void *state[GI_MAX_METHODS];             /* per registered method, created on first use */
-    const gk_scene *scene_of[GI_MAX_METHODS]; /* the scene each state last saw */
+    unsigned generation_of[GI_MAX_METHODS];  /* renderer scene generation each state last saw (0 = none) */
     bool failed[GI_MAX_METHODS];             /* creation or set_scene failed: do not retry each frame */
     GLuint depth_tex[GK_GI_MAX_LIGHTS];
     GLuint fbo;
     gk_gi_light lights[GK_GI_MAX_LIGHTS];
     int n_lights;
-    const gk_scene *maps_scene;              /* scene the maps were rendered for (static scenes) */
+    unsigned maps_generation;                /* scene generation the maps were rendered for (static scenes) */
 };
 
 gk_render_gi *gk_render_gi_create(void)
@@ -118,7 +118,7 @@ static int render_light_maps(gk_render_gi *g, gk_renderer *r, gk_err *e)
 {
     const gk_scene *s = r->scene;
     bool dynamic = s->features.has_animation;
-    if (g->maps_scene == s && !dynamic)
+    if (g->maps_generation == r->scene_generation && !dynamic)
         return 0;
     GLuint prog = gk_program_get(r->progs, "shadow/depth.vert", "shadow/depth.frag", NULL, e);
     if (!prog)
@@ -166,7 +166,7 @@ static int render_light_maps(gk_render_gi *g, gk_renderer *r, gk_err *e)
         gk_scene_gpu_draw(&r->gpu, s, prog, GK_DRAW_SKIP_PROXIES);
     }
     glDisable(GL_DEPTH_TEST);
-    g->maps_scene = s;
+    g->maps_generation = r->scene_generation;
     return 0;
 }
 
@@ -197,13 +197,13 @@ int gk_render_gi_run(gk_render_gi *g, gk_renderer *r, const char *method, const 
             return -1;
         }
     }
-    bool changed = g->scene_of[k] != r->scene;
+    bool changed = g->generation_of[k] != r->scene_generation;
     if (changed) {
         if (m[k]->set_scene(g->state[k], r->scene, e) != 0) {
             g->failed[k] = true;
             return -1;
         }
-        g->scene_of[k] = r->scene;
+        g->generation_of[k] = r->scene_generation;
     }
     if (render_light_maps(g, r, e) != 0)
         return -1;

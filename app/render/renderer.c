@@ -83,6 +83,9 @@ int gk_renderer_set_scene(gk_renderer *r, gk_scene *s, gk_err *e)
         gk_scene_gpu_free(&r->gpu);
     r->have_gpu = false;
     r->scene = NULL;
+    /* A new scene may live at the address of the old one: caches key on the generation. */
+    r->scene_generation++;
+    r->shadow_cache_key[0] = '\0';
     r->have_frame = false;
     r->exposure_known = false;
     if (!s)

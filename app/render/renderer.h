@@ -25,6 +25,8 @@ typedef struct gk_render_opts {
     int gles_version;         /* 31 forces the portable path; 32 allows capability-checked 3.2 paths */
     const char *shader_dir;   /* NULL: the shaders embedded in the binary */
     bool gpu_timer_queries;   /* false on llvmpipe (meaningless there) */
+    bool rerender_static_shadows; /* re-render shadow maps every frame even when nothing moved
+                                     (the bench, to measure a method's per-frame cost) */
 } gk_render_opts;
 
 typedef struct gk_frame_params {

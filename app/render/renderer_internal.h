@@ -25,6 +25,7 @@ struct gk_renderer {
     GLuint empty_vao;           /* full-screen passes draw gl_VertexID-only triangles */
 
     gk_scene *scene;
+    unsigned scene_generation;  /* bumped by every set_scene: caches compare this, not pointers */
     gk_scene_gpu gpu;
     bool have_gpu;
 
@@ -33,6 +34,7 @@ struct gk_renderer {
     int render_w, render_h;     /* render size (output * render_scale) */
 
     struct gk_render_gi *gi;    /* GI methods (render_gi.c) */
+    char shadow_cache_key[512]; /* scene|method|size|knobs of the maps now in shadow_state ("" = none) */
     void *shadow_state[GK_MAX_SHADOW_METHODS]; /* per method of gk_shadow_methods[], created on first use */
 
     float exposure;             /* display scale, fixed per scene (tonemap.h) */

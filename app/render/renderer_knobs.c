@@ -26,11 +26,26 @@ static const gk_knob_def knob_shadow_map = {
     .values = {"256", "512", "1024", "2048"}, .cost = {1.0f, 1.6f, 3.4f, 10.6f}, .default_level = 2,
 };
 
+/* VSSM kernel subdivision depth (dong-001.md §5.2; read by shadow/shadow_vssm.c, no effect for the
+ * other shadow methods): level -> (m x m blocker grid, quadtree height H) = (1,0) (2,1) (3,2)
+ * (5,3) (8,4); 3 is the thesis's default, 4 a reference level the scheduler does not pick itself.
+ * Cost prior after §8.2's T_vssm(SM_res^2, penumbra_px): about half of a VSSM frame is the SAT
+ * build and half the shadow lookups (Tables 7.1/7.2: SAT 2.5-4.8 ms, shadow 2-3.8 ms), the knob
+ * only changes the lookups of NON-PLANAR kernels, taken as 10% of penumbra pixels, whose
+ * worst-case fetches grow as m^2 x 12 + (sum_l 4^l) x 8 + 4^H x 4 + 40 = 64 / 144 / 380 / 1276 /
+ * 4560. Cost = 0.5 + 0.5 (0.9 + 0.1 fetches / 64): 1, 1.06, 1.25, 1.95, 4.5. */
+static const gk_knob_def knob_shadow_subdiv = {
+    .name = "shadow_subdiv", .owner = "render", .n_values = 5,
+    .values = {"0", "1", "2", "3", "4"}, .cost = {1.0f, 1.06f, 1.25f, 1.95f, 4.5f}, .default_level = 3,
+    .auto_max_level = 3,
+};
+
 void gk_renderer_declare_knobs(gk_renderer *r, gk_budget *b)
 {
     (void)r;
     gk_budget_add(b, &knob_render_scale);
     gk_budget_add(b, &knob_shadow);
     gk_budget_add(b, &knob_shadow_map);
+    gk_budget_add(b, &knob_shadow_subdiv);
     gk_render_gi_declare_knobs(b);
 }

@@ -10,11 +10,21 @@
  *   savsm           no subdivision: a non-planar kernel counts as lit (summed-area VSM,
  *                   [Lauritzen07]) -- the baseline of failure test F1
  *   vssm_nocontact  without the |z_occ - d| < eps contact PCF -- the baseline of F7
+ * Subdivision depth: the budget knob shadow_subdiv (renderer_knobs.c), read from ctx->budget at
+ * render time, picks (m, H) = the blocker search's m x m grid and the adaptive quadtree's height:
+ *   0: (1, 0)  a non-planar kernel is one 2x2 point-sample PCF (cheapest that still sees it)
+ *   1: (2, 1)   2: (3, 2)   3: (5, 3) the thesis's values (default: no knob -> level 3)
+ *   4: (8, 4)  a reference level past the thesis (dong-001.md §5.7's sweep m <= 8, H <= 4)
  * Texture units: the method's unit (shared depth map), +1 SAT z, +2 SAT z^2, +3 HSM min, +4 HSM max. */
 #include <math.h>
 #include <stdlib.h>
 
 #include "shadow_prefilter.h"
+
+/* (m, H) per shadow_subdiv level; the shader's loop bounds VSSM_M_MAX = 8, VSSM_H_MAX = 4 cover the last. */
+static const int subdiv_m[] = {1, 2, 3, 5, 8}, subdiv_h[] = {0, 1, 2, 3, 4};
+#define SUBDIV_DEFAULT 3
+#define SUBDIV_LEVELS ((int)(sizeof subdiv_m / sizeof subdiv_m[0]))
 
 typedef struct vssm_slot {
     GLuint zmin, zmax, sat_z, sat_z2;
@@ -25,6 +35,7 @@ typedef struct vssm_slot {
 typedef struct vssm_state {
     gk_shadow_maps maps;
     vssm_slot slot[GK_SHADOW_MAX_LIGHTS];
+    int subdiv;                 /* shadow_subdiv level of the last render (index into subdiv_m/h) */
 } vssm_state;
 
 static void slot_free(vssm_slot *s)
@@ -54,7 +65,22 @@ static int slot_ensure(vssm_slot *s, int size, int layers, gk_err *e)
     return 0;
 }
 
-static void *vssm_create(void) { return calloc(1, sizeof(vssm_state)); }
+static void *vssm_create(void)
+{
+    vssm_state *st = calloc(1, sizeof(vssm_state));
+    if (st)
+        st->subdiv = SUBDIV_DEFAULT;
+    return st;
+}
+
+/* The knob's level from its value string ("0".."4"); the default when there is no budget or knob. */
+static int subdiv_level(const gk_budget *b)
+{
+    const char *v = b ? gk_budget_value(b, "shadow_subdiv") : NULL;
+    if (!v || !*v || v[1] != '\0' || v[0] < '0' || v[0] >= '0' + SUBDIV_LEVELS)
+        return SUBDIV_DEFAULT;
+    return v[0] - '0';
+}
 
 static void vssm_destroy(void *self)
 {
@@ -78,6 +104,7 @@ static float scene_radius_norm(const gk_shadow_view *v, const gk_scene *s)
 static int vssm_render(void *self, const gk_shadow_ctx *ctx, int slot, const gk_shadow_view *v, gk_err *e)
 {
     vssm_state *st = self;
+    st->subdiv = subdiv_level(ctx->budget);
     if (gk_shadow_maps_render(&st->maps, ctx, slot, v, e) != 0)
         return -1;
     vssm_slot *s = &st->slot[slot];
@@ -108,6 +135,7 @@ static void vssm_bind(void *self, int slot, const gk_shadow_view *v, GLuint prog
        epsilon" -- the dimensionally consistent reading (recorded, dong-001.md §14.3). */
     float eps = 0.01f * s->rsc;
     gk_uniform_4f(prog, "u_vssm", 1.0f / q, (float)(gk_pf_levels(s->size) - 1), eps, eps * eps);
+    gk_uniform_2f(prog, "u_vssm_sub", (float)subdiv_m[st->subdiv], (float)subdiv_h[st->subdiv]);
 }
 
 #define VSSM_METHOD(ident, name_, defines)                                                                             \
