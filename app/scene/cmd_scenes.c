@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "commands.h"
+#include "render/render_gi.h"
 #include "scene/scene.h"
 
 #ifndef GK_SHARE_SCENES
@@ -52,13 +53,26 @@ static const char *default_dir(char *buf, size_t cap)
     return GK_SHARE_SCENES;
 }
 
+/* The methods the kiosk can run on the scene (implemented, needed by the scene, and accepting it),
+   then in brackets those the scene needs that are not implemented yet: "none,vct,vpl [+ispm,lgv]". */
 static void methods_string(const gk_scene *s, char *out, size_t cap)
 {
-    const char *names[8];
-    int n = gk_scene_methods(s, names, 8), len = 0;
+    const char *runs[16], *needs[16];
+    int n_runs = gk_render_gi_methods(s, runs, 16), n_needs = gk_scene_methods(s, needs, 16), len = 0;
     out[0] = '\0';
-    for (int i = 0; i < n && (size_t)len < cap; i++)
-        len += snprintf(out + len, cap - (size_t)len, "%s%s", i ? "," : "", names[i]);
+    for (int i = 0; i < n_runs && (size_t)len < cap; i++)
+        len += snprintf(out + len, cap - (size_t)len, "%s%s", i ? "," : "", runs[i]);
+    int missing = 0;
+    for (int i = 0; i < n_needs && (size_t)len < cap; i++) {
+        bool runs_it = false;
+        for (int k = 0; k < n_runs; k++)
+            runs_it |= strcmp(runs[k], needs[i]) == 0;
+        if (runs_it || gk_gi_find(needs[i]))
+            continue; /* running, or implemented but declining this scene (e.g. vpl without lights) */
+        len += snprintf(out + len, cap - (size_t)len, "%s%s", missing++ ? "," : " [+", needs[i]);
+    }
+    if (missing && (size_t)len < cap)
+        snprintf(out + len, cap - (size_t)len, "]");
 }
 
 static const char *light_kind(const gk_light *l)
@@ -159,6 +173,7 @@ static int list(const char *dir)
         }
         free(files[i]);
     }
+    printf("\nMETHODS: what the kiosk runs on the scene; [+...]: methods the scene needs that are not implemented yet.\n");
     if (n == 0)
         fprintf(stderr, "gikiosk scenes: %s: no .gltf or .glb files\n", dir);
     return rc;
