@@ -1,15 +1,19 @@
 #!/bin/sh
 # Renders the path-traced references into tests/references/ (run by `make references`):
 #   SCENE.exr, SCENE-direct.exr, SCENE-indirect.exr and SCENE-caustics.exr (the last only where the
-#   scene has caustic paths, i.e. its caustics render is not black), at a fixed size and seed, and
-#   records each one's noise floor in tests/references/noise.csv (file,spp,seed,rel_rmse_floor).
+#   scene has caustic paths, i.e. its caustics render is not black), and for the scenes the one-bounce
+#   GI methods are measured on (cornell, cornell-spot) SCENE-1bounce.exr = `--bounces 2`, all path
+#   types: direct light + exactly one diffuse bounce, the ruler for vct and vpl, which compute one
+#   bounce (tests/e2e/gi_bounce.sh). Fixed size and seed; each one's noise floor is recorded in
+#   tests/references/noise.csv (file,spp,seed,rel_rmse_floor).
 # The floor is measured by the renderer itself from two independent halves of the samples (see
 # app/ref/render.h) and is also stored in each EXR (gikiosk:noise_floor).
 #
 # usage: tools/references.sh BIN [SCENE...]      (default: every scene of the list below)
 #        tools/references.sh --bench BIN          (cornell, 1 vs 2 threads: samples/s, rays/s)
 # env:   SCENES_DIR (default config/scenes; built into a temp dir if it has no scenes),
-#        OUT_DIR (default tests/references), SIZE (default 160x120), SPP_SCALE (default 1)
+#        OUT_DIR (default tests/references), SIZE (default 160x120), SPP_SCALE (default 1),
+#        VARIANTS (default "all direct indirect caustics 1bounce": which images to render)
 set -eu
 
 bench=0
@@ -20,6 +24,7 @@ SCENES_DIR=${SCENES_DIR:-config/scenes}
 OUT_DIR=${OUT_DIR:-tests/references}
 SIZE=${SIZE:-160x120}
 SPP_SCALE=${SPP_SCALE:-1}
+VARIANTS=${VARIANTS:-all direct indirect caustics 1bounce}
 SEED=1
 
 if [ ! -f "$SCENES_DIR/cornell.gltf" ] && [ ! -f "$SCENES_DIR/cornell.glb" ]; then
@@ -46,7 +51,7 @@ spp_for() {
         cornell-spot) echo 2048 ;;
         shadow-planes) echo 512 ;;
         light-leak) echo 32 ;;   # the right room is black by design: the image is exactly 0
-        caustic-ring) echo 256 ;;
+        caustic-ring) echo 2048 ;;   # caustics come from light tracing: rel. noise is high where the ring focuses
         furnace) echo 128 ;;
         atrium) echo 512 ;;
         *) echo 128 ;;
@@ -67,12 +72,17 @@ for scene in $scenes; do
         continue
     fi
     spp=$(( $(spp_for "$scene") * SPP_SCALE ))
-    for paths in all direct indirect caustics; do
-        if [ "$paths" = all ]; then file=$scene.exr; else file=$scene-$paths.exr; fi
+    for variant in $VARIANTS; do
+        paths=$variant bounces=unlimited
+        if [ "$variant" = 1bounce ]; then
+            case $scene in cornell | cornell-spot) ;; *) continue ;; esac
+            paths=all bounces=2   # D vertices: the first surface seen + one bounce
+        fi
+        if [ "$variant" = all ]; then file=$scene.exr; else file=$scene-$variant.exr; fi
         out=$OUT_DIR/$file
         start=$(date +%s)
         "$BIN" reference --scene "$scene" --scenes-dir "$SCENES_DIR" --size "$SIZE" --spp "$spp" \
-            --paths "$paths" --seed "$SEED" --out "$out"
+            --paths "$paths" --bounces "$bounces" --seed "$SEED" --out "$out"
         if [ "$paths" = caustics ] && [ "$(max_of "$out")" = "0.000000 0.000000 0.000000" ]; then
             rm -f "$out"   # no caustic paths in this scene
             echo "references: $scene has no caustics"

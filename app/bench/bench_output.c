@@ -54,23 +54,45 @@ int gk_bench_write_csv(const gk_bench_result *r, const char *path, gk_err *e)
     return 0;
 }
 
-/* A label for a row: the knobs that differ between the rows of its scene and method. */
-static void row_label(const gk_bench_result *r, int i, char *out, int len)
+/* Does knob k take more than one value among the rows of this scene and method? */
+static bool knob_varies(const gk_bench_result *r, const gk_bench_row *row, int k)
+{
+    for (int j = 0; j < r->n_rows; j++)
+        if (!strcmp(r->rows[j].scene, row->scene) && !strcmp(r->rows[j].method, row->method) &&
+            r->rows[j].level[k] != row->level[k])
+            return true;
+    return false;
+}
+
+/* The series a row is drawn in: its method when the scene has several, else the value of the
+   first knob the sweep varies (the shadow method of a shadow sweep), so the chart separates what
+   the engineer compares. *series_knob receives that knob (-1: the method). */
+static void row_series(const gk_bench_result *r, int i, bool several_methods, char *out, int len, int *series_knob)
+{
+    const gk_bench_row *row = &r->rows[i];
+    *series_knob = -1;
+    if (!several_methods)
+        for (int k = 0; k < r->budget.n && *series_knob < 0; k++)
+            if (knob_varies(r, row, k))
+                *series_knob = k;
+    if (*series_knob < 0)
+        snprintf(out, (size_t)len, "%s", row->method);
+    else
+        snprintf(out, (size_t)len, "%s=%s", r->budget.def[*series_knob]->name,
+                 r->budget.def[*series_knob]->values[row->level[*series_knob]]);
+}
+
+/* A point's label: the values of the other knobs that vary. */
+static void row_label(const gk_bench_result *r, int i, int series_knob, char *out, int len)
 {
     out[0] = '\0';
     const gk_bench_row *row = &r->rows[i];
     for (int k = 0; k < r->budget.n; k++) {
-        bool varies = false;
-        for (int j = 0; j < r->n_rows && !varies; j++)
-            varies = !strcmp(r->rows[j].scene, row->scene) && !strcmp(r->rows[j].method, row->method) &&
-                     r->rows[j].level[k] != row->level[k];
-        if (!varies)
+        if (k == series_knob || !knob_varies(r, row, k))
             continue;
         int used = (int)strlen(out);
         snprintf(out + used, (size_t)(len - used), "%s%s", used ? "/" : "", r->budget.def[k]->values[row->level[k]]);
     }
-    if (!out[0])
-        snprintf(out, (size_t)len, "%s", row->method);
 }
 
 static int write_scene_chart(const gk_bench_result *r, const char *dir, const char *scene, gk_err *e)
@@ -83,25 +105,37 @@ static int write_scene_chart(const gk_bench_result *r, const char *dir, const ch
         return gk_fail(e, GK_ERUNTIME, "%s: %s", dat, strerror(errno));
     /* One gnuplot data block per method (separated by two blank lines), then the Pareto front
        sorted by time. */
-    const char *methods[32];
-    int n_methods = 0;
+    bool several_methods = false;
+    for (int i = 0; i < r->n_rows; i++)
+        for (int j = 0; j < r->n_rows; j++)
+            several_methods |= !strcmp(r->rows[i].scene, scene) && !strcmp(r->rows[j].scene, scene) &&
+                               strcmp(r->rows[i].method, r->rows[j].method) != 0;
+    char series[32][64];
+    int n_series = 0;
     for (int i = 0; i < r->n_rows; i++) {
         if (strcmp(r->rows[i].scene, scene) || isnan(r->rows[i].rel_rmse))
             continue;
+        char key[64];
+        int sk;
+        row_series(r, i, several_methods, key, sizeof key, &sk);
         bool seen = false;
-        for (int m = 0; m < n_methods; m++)
-            seen |= !strcmp(methods[m], r->rows[i].method);
-        if (!seen && n_methods < 32)
-            methods[n_methods++] = r->rows[i].method;
+        for (int m = 0; m < n_series; m++)
+            seen |= !strcmp(series[m], key);
+        if (!seen && n_series < 32)
+            snprintf(series[n_series++], sizeof series[0], "%s", key);
     }
-    for (int m = 0; m < n_methods; m++) {
-        fprintf(f, "# method %s\n", methods[m]);
+    for (int m = 0; m < n_series; m++) {
+        fprintf(f, "# series %s\n", series[m]);
         for (int i = 0; i < r->n_rows; i++) {
             const gk_bench_row *row = &r->rows[i];
-            if (strcmp(row->scene, scene) || strcmp(row->method, methods[m]) || isnan(row->rel_rmse))
+            char key[64], label[128];
+            int sk;
+            if (strcmp(row->scene, scene) || isnan(row->rel_rmse))
                 continue;
-            char label[128];
-            row_label(r, i, label, sizeof label);
+            row_series(r, i, several_methods, key, sizeof key, &sk);
+            if (strcmp(key, series[m]))
+                continue;
+            row_label(r, i, sk, label, sizeof label);
             fprintf(f, "%.6g %.6g \"%s\"\n", row->frame_ms_median, row->rel_rmse, label);
         }
         fputs("\n\n", f);
@@ -120,7 +154,7 @@ static int write_scene_chart(const gk_bench_result *r, const char *dir, const ch
     for (int a = 0; a < n; a++)
         fprintf(f, "%.6g %.6g\n", r->rows[idx[a]].frame_ms_median, r->rows[idx[a]].rel_rmse);
     fclose(f);
-    if (n_methods == 0) {
+    if (n_series == 0) {
         gk_log("bench: %s has no measured error (no reference): no chart", scene);
         return 0;
     }
@@ -130,8 +164,8 @@ static int write_scene_chart(const gk_bench_result *r, const char *dir, const ch
         return gk_fail(e, GK_ERUNTIME, "%s: %s", gp, strerror(errno));
     fprintf(f, "# Speed against accuracy for %s: regenerate with `gnuplot %s`.\n", scene, gp);
     fprintf(f, "set title \"%s: error against frame time (llvmpipe CPU times: compare as ratios)\"\n", scene);
-    fputs("set xlabel \"frame time, median (ms)\"\nset ylabel \"relative RMSE vs path-traced reference\"\n"
-          "set logscale y\nset grid\nset key outside right top\nset offsets graph 0.05, graph 0.05, graph 0.05, graph 0.05\n",
+    fputs("set xlabel \"frame time, median (ms, log scale)\"\nset ylabel \"relative RMSE vs path-traced reference\"\n"
+          "set logscale xy\nset grid\nset key outside right top\nset offsets graph 0.05, graph 0.05, graph 0.05, graph 0.05\n",
           f);
     for (int pass = 0; pass < 2; pass++) {
         if (pass == 0)
@@ -139,10 +173,10 @@ static int write_scene_chart(const gk_bench_result *r, const char *dir, const ch
         else
             fprintf(f, "set terminal svg size 1000,640 font \"DejaVu Sans,10\"\nset output \"%s/speed-accuracy-%s.svg\"\n", dir, scene);
         fputs("plot ", f);
-        for (int m = 0; m < n_methods; m++)
+        for (int m = 0; m < n_series; m++)
             fprintf(f, "\"%s\" index %d using 1:2 with points pt 7 ps 1.2 title \"%s\", \"%s\" index %d using 1:2:3 with labels offset 0,0.8 font \",7\" notitle, ",
-                    dat, m, methods[m], dat, m);
-        fprintf(f, "\"%s\" index %d using 1:2 with linespoints lw 2 dt 2 pt 6 ps 2 lc rgb \"black\" title \"Pareto front\"\n", dat, n_methods);
+                    dat, m, series[m], dat, m);
+        fprintf(f, "\"%s\" index %d using 1:2 with linespoints lw 2 dt 2 pt 6 ps 2 lc rgb \"black\" title \"Pareto front\"\n", dat, n_series);
     }
     fclose(f);
     char cmd[2200];

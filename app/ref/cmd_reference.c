@@ -29,6 +29,9 @@ static void usage(FILE *f)
           "  --paths CLASS       all | direct | indirect | caustics (default all):\n"
           "                      direct = L D S* E + L S* E, caustics = L S+ D S* E,\n"
           "                      indirect = paths with two or more diffuse/glossy vertices\n"
+          "  --bounces N         keep paths with at most N diffuse/glossy vertices, the first\n"
+          "                      surface seen included: 1 = direct light, 2 = direct + one\n"
+          "                      bounce; combines with --paths (default unlimited)\n"
           "  --threads N         worker threads (default: online CPUs); the image is the same\n"
           "  --seed N            random seed (default 1)\n"
           "  --scenes-dir DIR    where scenes live (default config/scenes)\n"
@@ -141,6 +144,13 @@ static int parse_args(int argc, char **argv, args *a)
                 return -1;
             }
             a->o.paths = (unsigned)m;
+        } else if (!strcmp(k, "--bounces")) {
+            int b = gk_ref_bounces_parse(v);
+            if (b == -2) {
+                fprintf(stderr, "gikiosk reference: --bounces: '%s' is not an integer in [0, 1000] or 'unlimited'\n", v);
+                return -1;
+            }
+            a->o.max_diffuse = b;
         } else if (!strcmp(k, "--time")) {
             char *end;
             a->time = strtof(v, &end);
@@ -247,7 +257,7 @@ int gk_cmd_reference(int argc, char **argv)
                a.width, a.height, a.o.spp, a.o.threads, r.seconds, (double)r.samples / r.seconds,
                (double)r.rays / r.seconds, (unsigned long long)r.rays);
 
-    char cmd[2048], spp_s[32], seed_s[32], floor_s[32], secs_s[32], size_s[32], tris_s[32];
+    char cmd[2048], spp_s[32], seed_s[32], floor_s[32], secs_s[32], size_s[32], tris_s[32], bounces_s[32];
     join_command(argc, argv, cmd, sizeof cmd);
     snprintf(spp_s, sizeof spp_s, "%d", a.o.spp);
     snprintf(seed_s, sizeof seed_s, "%llu", (unsigned long long)a.o.seed);
@@ -259,6 +269,7 @@ int gk_cmd_reference(int argc, char **argv)
     const char *kv[][2] = {
         {"gikiosk:command", cmd}, {"gikiosk:scene", a.scene}, {"gikiosk:spp", spp_s},
         {"gikiosk:seed", seed_s}, {"gikiosk:paths", gk_ref_paths_name(a.o.paths)},
+        {"gikiosk:bounces", gk_ref_bounces_name(a.o.max_diffuse, bounces_s, sizeof bounces_s)},
         {"gikiosk:render_seconds", secs_s}, {"gikiosk:size", size_s}, {"gikiosk:triangles", tris_s},
         {"gikiosk:noise_floor", floor_s},
     };

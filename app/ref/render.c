@@ -37,6 +37,27 @@ void gk_ref_options_default(gk_ref_options *o)
     o->rr_depth = 4;
     o->seed = 1;
     o->paths = GK_PATH_ALL;
+    o->max_diffuse = GK_BOUNCES_UNLIMITED;
+}
+
+int gk_ref_bounces_parse(const char *s)
+{
+    if (!strcmp(s, "unlimited"))
+        return GK_BOUNCES_UNLIMITED;
+    char *end;
+    long v = strtol(s, &end, 10);
+    if (end == s || *end || v < 0 || v > 1000)
+        return -2;
+    return (int)v;
+}
+
+const char *gk_ref_bounces_name(int max_diffuse, char *buf, size_t len)
+{
+    if (max_diffuse == GK_BOUNCES_UNLIMITED)
+        snprintf(buf, len, "unlimited");
+    else
+        snprintf(buf, len, "%d", max_diffuse);
+    return buf;
 }
 
 int gk_ref_paths_parse(const char *s)
@@ -78,7 +99,8 @@ static void render_tile(job *j, int tile, gk_trace_stats *st)
                         j->sum_h1[3 * pix + c] = acc[c];
                 gk_rng rng;
                 gk_rng_seed(&rng, j->o->seed, pix, (uint64_t)s, 0);
-                vec3 l = gk_trace_eye(rs, rs->eye, d, j->o->paths, j->o->max_depth, j->o->rr_depth, &rng, st);
+                vec3 l = gk_trace_eye(rs, rs->eye, d, j->o->paths, j->o->max_diffuse, j->o->max_depth,
+                                      j->o->rr_depth, &rng, st);
                 /* A NaN or Inf sample would poison the pixel: drop it (counted as black). */
                 if (isfinite(l.x) && isfinite(l.y) && isfinite(l.z)) {
                     acc[0] += l.x;
@@ -192,7 +214,9 @@ int gk_ref_render(const gk_ref_scene *rs, const gk_ref_options *o, gk_ref_result
     j.n1 = o->spp / 2;
     j.tiles_x = (rs->width + TILE - 1) / TILE;
     j.n_tiles = j.tiles_x * ((rs->height + TILE - 1) / TILE);
-    j.light_pass = (o->paths & GK_PATH_CAUSTICS) && rs->n_lights > 0 && rs->has_delta_surfaces;
+    /* Light-traced caustics L S+ D E have one D vertex: dropped only by a limit of 0 bounces. */
+    j.light_pass = (o->paths & GK_PATH_CAUSTICS) && rs->n_lights > 0 && rs->has_delta_surfaces &&
+                   o->max_diffuse != 0;
     j.n_items = j.n_tiles + (j.light_pass ? LIGHT_CHUNKS : 0);
     j.last_percent = -1;
     j.sum_h1 = calloc(npix * 3, sizeof(double));

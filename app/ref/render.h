@@ -25,6 +25,8 @@ typedef struct gk_ref_options {
     int rr_depth;        /* Russian roulette from this vertex on (4 by default; > max_depth: never) */
     uint64_t seed;
     unsigned paths;      /* GK_PATH_* mask */
+    int max_diffuse;     /* most D vertices per path, the eye's first surface included (1: direct
+                            light, 2: direct + one bounce); GK_BOUNCES_UNLIMITED by default */
     bool progress;       /* draw a progress bar on stderr */
 } gk_ref_options;
 
@@ -47,5 +49,10 @@ double gk_ref_rel_rmse(const float *t, const float *r, size_t n);
 /* "all", "direct", "indirect", "caustics" <-> mask; -1 if unknown. */
 int gk_ref_paths_parse(const char *s);
 const char *gk_ref_paths_name(unsigned mask);
+
+/* "unlimited" or an integer in [0, 1000] <-> max_diffuse; -2 if invalid. The name is written into
+   buf (at least 16 bytes) and returned. */
+int gk_ref_bounces_parse(const char *s);
+const char *gk_ref_bounces_name(int max_diffuse, char *buf, size_t len);
 
 #endif

@@ -56,8 +56,14 @@ static vec3 offset_point(const gk_ref_scene *rs, vec3 p, vec3 ng, vec3 dir)
     return v3_add(p, v3_scale(ng, v3_dot(dir, ng) > 0.0f ? eps : -eps));
 }
 
-vec3 gk_trace_eye(const gk_ref_scene *rs, vec3 o, vec3 d, unsigned mask, int max_depth, int rr_depth,
-                  gk_rng *rng, gk_trace_stats *st)
+/* Whether a path with n_diffuse D vertices is within the bounce limit. */
+static bool within_bounces(int n_diffuse, int max_diffuse)
+{
+    return max_diffuse == GK_BOUNCES_UNLIMITED || n_diffuse <= max_diffuse;
+}
+
+vec3 gk_trace_eye(const gk_ref_scene *rs, vec3 o, vec3 d, unsigned mask, int max_diffuse, int max_depth,
+                  int rr_depth, gk_rng *rng, gk_trace_stats *st)
 {
     vec3 radiance = v3(0, 0, 0), beta = v3(1, 1, 1);
     int n_diffuse = 0;
@@ -71,7 +77,8 @@ vec3 gk_trace_eye(const gk_ref_scene *rs, vec3 o, vec3 d, unsigned mask, int max
         if (!gk_scene_intersect(rs, o, d, INFINITY, &h)) {
             int sun;
             vec3 le = gk_sky_emission(rs, d, &sun);
-            if (sun >= 0 && (mask & classify(n_diffuse, spec_after_diffuse, spec_before_diffuse))) {
+            if (sun >= 0 && within_bounces(n_diffuse, max_diffuse) &&
+                (mask & classify(n_diffuse, spec_after_diffuse, spec_before_diffuse))) {
                 float w = prev_delta ? 1.0f : gk_power_heuristic(prev_pdf, gk_light_pdf(rs, sun, -1, prev_p, prev_p, d));
                 radiance = v3_add(radiance, v3_mul(beta, v3_scale(le, w)));
             }
@@ -80,14 +87,16 @@ vec3 gk_trace_eye(const gk_ref_scene *rs, vec3 o, vec3 d, unsigned mask, int max
         vec3 x = v3_add(o, v3_scale(d, h.t));
         if (h.light >= 0) {
             vec3 le = gk_area_light_emission(rs, h.light, d);
-            if (mask & classify(n_diffuse, spec_after_diffuse, spec_before_diffuse)) {
+            if (within_bounces(n_diffuse, max_diffuse) &&
+                (mask & classify(n_diffuse, spec_after_diffuse, spec_before_diffuse))) {
                 float w = prev_delta ? 1.0f : gk_power_heuristic(prev_pdf, gk_light_pdf(rs, h.light, -1, prev_p, x, d));
                 radiance = v3_add(radiance, v3_mul(beta, v3_scale(le, w)));
             }
             break; /* light geometry is black apart from its emission */
         }
         const gk_ref_tri *tri = &rs->tris[h.tri];
-        if (tri->emissive >= 0 && (mask & classify(n_diffuse, spec_after_diffuse, spec_before_diffuse))) {
+        if (tri->emissive >= 0 && within_bounces(n_diffuse, max_diffuse) &&
+            (mask & classify(n_diffuse, spec_after_diffuse, spec_before_diffuse))) {
             vec3 le = gk_tri_emission(rs, tri, d);
             float w = prev_delta ? 1.0f
                                  : gk_power_heuristic(prev_pdf, gk_light_pdf(rs, rs->mesh_light, h.tri, prev_p, x, d));
@@ -100,7 +109,8 @@ vec3 gk_trace_eye(const gk_ref_scene *rs, vec3 o, vec3 d, unsigned mask, int max
         vec3 wo = v3_scale(d, -1.0f);
 
         /* Next-event estimation: this vertex becomes a D vertex next to the light. */
-        if (gk_surface_has_smooth_part(&sf) && (mask & classify(n_diffuse + 1, false, false))) {
+        if (gk_surface_has_smooth_part(&sf) && within_bounces(n_diffuse + 1, max_diffuse) &&
+            (mask & classify(n_diffuse + 1, false, false))) {
             gk_light_sample ls;
             if (gk_light_sample_from(rs, x, rng, &ls)) {
                 float pdf_b;
@@ -142,9 +152,10 @@ vec3 gk_trace_eye(const gk_ref_scene *rs, vec3 o, vec3 d, unsigned mask, int max
         prev_p = x;
         o = offset_point(rs, x, sf.ng, bs.wi);
         d = bs.wi;
-        /* Paths that can no longer reach a wanted class end early (same stream use either way
-           is not needed past this point: nothing further is accumulated). */
-        if (n_diffuse >= 2 && !(mask & GK_PATH_INDIRECT))
+        /* Paths that can no longer reach a wanted class, or are past the bounce limit, end early
+           (same stream use either way is not needed past this point: nothing further is
+           accumulated). */
+        if ((n_diffuse >= 2 && !(mask & GK_PATH_INDIRECT)) || !within_bounces(n_diffuse, max_diffuse))
             break;
         if (depth + 1 >= rr_depth) {
             float q = fminf(0.95f, v3_maxc(beta));

@@ -17,7 +17,14 @@
  * area lights. So the eye pass drops every caustic path whose first vertex from the eye is D
  * (E D S+ L) and keeps the caustics seen through a mirror or glass (E S+ D S+ L) — nothing is
  * counted twice. Not rendered (known bias, usually tiny): caustics of delta lights seen through a
- * mirror or glass, L_delta S+ D S+ E, which neither pass can connect. */
+ * mirror or glass, L_delta S+ D S+ E, which neither pass can connect.
+ *
+ * Bounce limit (orthogonal to the classes): max_diffuse keeps only paths with at most that many D
+ * vertices, the first surface the eye sees included — 1 = L D S* E + L S* E + L S+ D S* E (direct
+ * light and caustics), 2 = that plus one diffuse bounce (L D D E ...), GK_BOUNCES_UNLIMITED = all.
+ * It restricts the integrand, not the sampling: the random stream is used as without the limit up to
+ * the point where no kept path can follow, so Russian roulette stays unbiased, and a render with a
+ * limit equals the unlimited one minus the dropped paths, sample by sample. */
 #ifndef GK_REF_TRACE_H
 #define GK_REF_TRACE_H
 
@@ -28,6 +35,7 @@
 #include "sample.h"
 
 enum { GK_PATH_DIRECT = 1, GK_PATH_INDIRECT = 2, GK_PATH_CAUSTICS = 4, GK_PATH_ALL = 7 };
+enum { GK_BOUNCES_UNLIMITED = -1 };
 
 typedef struct gk_trace_stats {
     uint64_t rays;   /* closest-hit and shadow rays */
@@ -43,10 +51,11 @@ typedef struct gk_scene_hit {
 bool gk_scene_intersect(const gk_ref_scene *rs, vec3 o, vec3 d, float tmax, gk_scene_hit *h);
 bool gk_scene_occluded(const gk_ref_scene *rs, vec3 o, vec3 d, float tmax);
 
-/* Radiance along one camera ray, restricted to the path classes in mask. Russian roulette
- * (survival min(0.95, max throughput)) applies from path vertex rr_depth on. */
-vec3 gk_trace_eye(const gk_ref_scene *rs, vec3 o, vec3 d, unsigned mask, int max_depth, int rr_depth,
-                  gk_rng *rng, gk_trace_stats *st);
+/* Radiance along one camera ray, restricted to the path classes in mask and to paths with at most
+ * max_diffuse D vertices (GK_BOUNCES_UNLIMITED: no limit). Russian roulette (survival
+ * min(0.95, max throughput)) applies from path vertex rr_depth on. */
+vec3 gk_trace_eye(const gk_ref_scene *rs, vec3 o, vec3 d, unsigned mask, int max_diffuse, int max_depth,
+                  int rr_depth, gk_rng *rng, gk_trace_stats *st);
 
 /* One light path; its camera connections are passed to splat(ctx, px, py, rgb)
  * as image-plane measurement contributions (to be divided by the number of light paths). */

@@ -77,6 +77,8 @@ void gk_renderer_destroy(gk_renderer *r)
     free(r);
 }
 
+void gk_renderer_set_rerender_static_shadows(gk_renderer *r, bool on) { r->opts.rerender_static_shadows = on; }
+
 int gk_renderer_set_scene(gk_renderer *r, gk_scene *s, gk_err *e)
 {
     if (r->have_gpu)

@@ -52,6 +52,9 @@ int gk_renderer_set_scene(gk_renderer *r, gk_scene *s, gk_err *e);
 /* Names of the GI methods that apply to the current scene, "none" first. */
 int gk_renderer_methods(const gk_renderer *r, const char **names, int max);
 
+/* Changes opts.rerender_static_shadows: the bench turns it on while it sweeps shadow knobs. */
+void gk_renderer_set_rerender_static_shadows(gk_renderer *r, bool on);
+
 /* Renders one frame into target_fbo (the platform's framebuffer), fills times. */
 int gk_renderer_draw(gk_renderer *r, const gk_frame_params *fp, unsigned target_fbo, gk_pass_times *times, gk_err *e);
 

@@ -213,7 +213,7 @@ static void find_and_feature_strings(void **state)
     gk_scene *s = load("caustic-ring");
     char f[128];
     gk_scene_features_string(&s->features, f, sizeof f);
-    assert_string_equal(f, "area,specular,caustics");
+    assert_string_equal(f, "specular,caustics");
     gk_scene_free(s);
 }
 
