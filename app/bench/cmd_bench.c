@@ -6,6 +6,7 @@
 #include "../commands.h"
 #include "../core/log.h"
 #include "bench.h"
+#include "../scene/scene.h"
 
 static void usage(FILE *f)
 {
@@ -47,7 +48,7 @@ int gk_cmd_bench(int argc, char **argv)
     o.frames = 5;
     o.warmup = 2;
     o.gles_version = 32;
-    snprintf(o.scenes_dir, sizeof o.scenes_dir, "config/scenes");
+    snprintf(o.scenes_dir, sizeof o.scenes_dir, "%s", gk_scene_default_dir());
     snprintf(o.refs_dir, sizeof o.refs_dir, "tests/references");
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];

@@ -1,5 +1,6 @@
 /* `gikiosk run` argument parsing (see cli.h). */
 #include "cli.h"
+#include "../scene/scene.h"
 
 #include <stdio.h>
 #include <string.h>
@@ -25,7 +26,7 @@ void gk_run_usage(FILE *f)
           "  --gles 3.1|3.2         restrict the renderer to GLES 3.1 (portable path) or allow 3.2\n"
           "  --budget K=V[,K=V]     pin budget knobs (the scheduler leaves them alone)\n"
           "  --shader-dir DIR       read shaders from DIR instead of the embedded copies\n"
-          "  --scenes-dir DIR       scene files (default config/scenes)\n"
+          "  --scenes-dir DIR       scene files (default config/scenes, else the installed share/gikiosk/scenes)\n"
           "  --help                 this text\n"
           "Exit codes: 0 success, 1 runtime failure, 2 bad usage or bad input.\n",
           f);
@@ -39,7 +40,7 @@ static int bad(gk_err *e, const char *opt, const char *val, const char *what)
 int gk_run_parse_args(int argc, char **argv, gk_run_opts *o, gk_err *e)
 {
     memset(o, 0, sizeof *o);
-    o->scenes_dir = "config/scenes";
+    o->scenes_dir = gk_scene_default_dir();
     for (int i = 1; i < argc; i++) {
         const char *arg = argv[i];
         if (!strcmp(arg, "--help") || !strcmp(arg, "-h")) {

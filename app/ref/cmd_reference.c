@@ -89,7 +89,7 @@ static int parse_args(int argc, char **argv, args *a)
     gk_ref_options_default(&a->o);
     a->width = 160;
     a->height = 120;
-    a->dir = "config/scenes";
+    a->dir = gk_scene_default_dir();
     long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
     a->o.threads = ncpu > 0 ? (int)ncpu : 1;
     for (int i = 1; i < argc; i++) {

@@ -13,9 +13,6 @@
 #include "render/render_gi.h"
 #include "scene/scene.h"
 
-#ifndef GK_SHARE_SCENES
-#define GK_SHARE_SCENES "/usr/local/share/gikiosk/scenes"
-#endif
 
 static void usage(FILE *f)
 {
@@ -27,31 +24,7 @@ static void usage(FILE *f)
           f);
 }
 
-static bool is_dir(const char *p)
-{
-    struct stat st;
-    return stat(p, &st) == 0 && S_ISDIR(st.st_mode);
-}
 
-/* config/scenes when run from a checkout, else next to the installed binary, else PREFIX's. */
-static const char *default_dir(char *buf, size_t cap)
-{
-    if (is_dir("config/scenes"))
-        return "config/scenes";
-    char exe[PATH_MAX];
-    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
-    if (n > 0) {
-        exe[n] = '\0';
-        char *slash = strrchr(exe, '/');
-        if (slash) {
-            *slash = '\0';
-            snprintf(buf, cap, "%s/../share/gikiosk/scenes", exe);
-            if (is_dir(buf))
-                return buf;
-        }
-    }
-    return GK_SHARE_SCENES;
-}
 
 /* The methods the kiosk can run on the scene (implemented, needed by the scene, and accepting it),
    then in brackets those the scene needs that are not implemented yet: "none,vct,vpl [+ispm,lgv]". */
@@ -198,6 +171,5 @@ int gk_cmd_scenes(int argc, char **argv)
     }
     if (file)
         return check(file);
-    char buf[PATH_MAX + 64];
-    return list(dir ? dir : default_dir(buf, sizeof buf));
+    return list(dir ? dir : gk_scene_default_dir());
 }

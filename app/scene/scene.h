@@ -182,6 +182,10 @@ int gk_scene_param(const gk_scene *s, const char *key, float *out, int max);
 /* "area,emissive,specular,..." (or "-" for none) for listings. */
 void gk_scene_features_string(const gk_scene_features *f, char *out, int out_len);
 
+/* The scene folder when none is given: config/scenes in a checkout, else the installed
+ * PREFIX/share/gikiosk/scenes next to the binary. */
+const char *gk_scene_default_dir(void);
+
 /* Looks up the scene file for a name ("cornell") in dir (config/scenes): dir/NAME.gltf or .glb. */
 int gk_scene_find(const char *dir, const char *name, char *path_out, int path_len);
 

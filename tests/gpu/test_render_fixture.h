@@ -5,6 +5,7 @@
 #ifndef TEST_RENDER_FIXTURE_H
 #define TEST_RENDER_FIXTURE_H
 
+#include "platform/egl.h"
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 #include <GLES3/gl32.h>
@@ -46,7 +47,7 @@ static inline int fx_gl_open(fx_gl *g, int w, int h)
 {
     memset(g, 0, sizeof *g);
     g->dpy = eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, NULL);
-    if (g->dpy == EGL_NO_DISPLAY || !eglInitialize(g->dpy, NULL, NULL) || !eglBindAPI(EGL_OPENGL_ES_API))
+    if (g->dpy == EGL_NO_DISPLAY || !gk_egl_initialize(g->dpy, NULL, NULL) || !eglBindAPI(EGL_OPENGL_ES_API))
         return -1;
     EGLint ca[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 2, EGL_NONE};
     g->ctx = eglCreateContext(g->dpy, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, ca);

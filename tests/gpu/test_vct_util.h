@@ -6,6 +6,7 @@
 #ifndef TEST_VCT_UTIL_H
 #define TEST_VCT_UTIL_H
 
+#include "platform/egl.h"
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 #include <math.h>
@@ -31,7 +32,7 @@ typedef struct vt_gl {
 static inline int vt_gl_init(vt_gl *g)
 {
     g->dpy = eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, NULL);
-    if (g->dpy == EGL_NO_DISPLAY || !eglInitialize(g->dpy, NULL, NULL) || !eglBindAPI(EGL_OPENGL_ES_API))
+    if (g->dpy == EGL_NO_DISPLAY || !gk_egl_initialize(g->dpy, NULL, NULL) || !eglBindAPI(EGL_OPENGL_ES_API))
         return -1;
     EGLint attr[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 1, EGL_NONE};
     g->ctx = eglCreateContext(g->dpy, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attr);
