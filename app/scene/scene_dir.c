@@ -36,11 +36,13 @@ const char *gk_scene_default_dir(void)
         char *slash = strrchr(exe, '/');
         if (slash) {
             *slash = '\0';
-            char share[PATH_MAX + 32];
-            snprintf(share, sizeof share, "%s/../share/gikiosk/scenes", exe);
-            if (is_dir(share) && strlen(share) < sizeof found) {
-                snprintf(found, sizeof found, "%s", share);
-                return found;
+            static const char rel[] = "/../share/gikiosk/scenes";
+            size_t len = strlen(exe);
+            if (len + sizeof rel <= sizeof found) {
+                memcpy(found, exe, len);
+                memcpy(found + len, rel, sizeof rel);
+                if (is_dir(found))
+                    return found;
             }
         }
     }

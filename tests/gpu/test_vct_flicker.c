@@ -154,7 +154,7 @@ static void moving_object_flicker_and_dirty_update(void **state)
     void *vct = vt_create(&g);
     float *prev = malloc(sizeof(float) * 4 * W * H), *cur = malloc(sizeof(float) * 4 * W * H);
     float *ppos = malloc(sizeof(float) * 4 * W * H), *cpos = malloc(sizeof(float) * 4 * W * H);
-    gk_vct_stats st0, st;
+    gk_vct_stats st0 = {0}, st = {0};
     double worst = 0, total = 0;
     const int frames = 8;
     float x = 0;

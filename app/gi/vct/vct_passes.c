@@ -241,7 +241,7 @@ int vct_pass_trace(gk_vct *v, const gk_gi_frame *f, const vct_budget *b, gk_err 
     bind_tex(p, "u_vox0", 0, GL_TEXTURE_3D, v->vox0, 0);
     if (v->cur.aniso)
         for (int d = 0; d < 6; d++) {
-            char nm[16];
+            char nm[24];
             snprintf(nm, sizeof nm, "u_voxd%d", d);
             bind_tex(p, nm, 1 + d, GL_TEXTURE_3D, v->voxd[d], 0);
         }
