@@ -25,6 +25,10 @@ run_one() { # name, command...
         f=1   # died (or exited non-zero) without saying which case failed
         echo "not ok - $name exited $rc without a failed case" >>"$out"
     fi
+    if grep -q 'runtime error:' "$out"; then
+        f=$((f + 1))   # UBSan reports and goes on: under `make asan` a report is a failure
+        echo "not ok - $name: UndefinedBehaviorSanitizer reported a runtime error" >>"$out"
+    fi
     if [ "$p" -eq 0 ] && [ "$f" -eq 0 ]; then
         f=1
         echo "not ok - $name reported no test" >>"$out"
@@ -39,11 +43,17 @@ run_one() { # name, command...
     fi
 }
 
-for t in $(find "$BUILD/tests/unit" "$BUILD/tests/gpu" -type f -perm -u+x 2>/dev/null | LC_ALL=C sort); do
+# Under `make asan`, GK_MESA_ASAN_OPTIONS applies to the programs that run Mesa (gpu tests and the
+# binary in e2e tests); unit tests keep the full checks, leaks included (see the Makefile).
+mesa_env() { if [ -n "${GK_MESA_ASAN_OPTIONS:-}" ]; then env ASAN_OPTIONS="$GK_MESA_ASAN_OPTIONS" "$@"; else "$@"; fi; }
+for t in $(find "$BUILD/tests/unit" -type f -perm -u+x 2>/dev/null | LC_ALL=C sort); do
     run_one "${t#"$BUILD"/tests/}" "$t"
 done
+for t in $(find "$BUILD/tests/gpu" -type f -perm -u+x 2>/dev/null | LC_ALL=C sort); do
+    run_one "${t#"$BUILD"/tests/}" mesa_env "$t"
+done
 for t in $(find tests/e2e -name '*.sh' ! -name 'lib.sh' 2>/dev/null | LC_ALL=C sort); do
-    run_one "$t" sh "$t"
+    run_one "$t" mesa_env sh "$t"
 done
 if [ -x "$BUILD/fuzz/fuzz_gltf" ]; then
     run_one fuzz/gltf sh tests/fuzz/run_fuzz.sh "$BUILD/fuzz/fuzz_gltf"
