@@ -12,6 +12,7 @@ uniform mediump sampler2D u_gb_albedo;
 uniform highp mat4 u_inv_viewproj;
 uniform ivec2 u_full_size;
 uniform float u_sigma;
+uniform vec3 u_origin;   // u_pos holds positions relative to the bounds centre (gather.frag)
 in vec2 v_uv;
 layout(location = 0) out vec4 o_color;
 
@@ -48,7 +49,7 @@ void main()
     vec4 w = u_inv_viewproj * vec4(vec3(v_uv, depth) * 2.0 - 1.0, 1.0);
     vec3 x = w.xyz / w.w;
     vec3 n = normalize(texelFetch(u_gb_normal, px, 0).xyz);
-    vec3 E = upsample(u_ind, x, n);
+    vec3 E = upsample(u_ind, x - u_origin, n);
     vec4 a = texelFetch(u_gb_albedo, px, 0);
     o_color = vec4((1.0 - a.a) * a.rgb / 3.14159265 * E, 0.0);
 }

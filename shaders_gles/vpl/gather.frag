@@ -30,6 +30,8 @@ uniform highp sampler2D u_val;   // M×4: centre + far, normal + size, t + r_nea
 uniform int u_n;
 uniform int u_block;
 uniform float u_dmin2;
+uniform vec3 u_origin;       // bounds centre: o_pos (and multires T3) store x − u_origin
+uniform float u_out_max;     // 65000 on RGBA16F targets (fp16 saturates at 65504), else no cap
 #if defined(VIS_CSSM)
 uniform sampler2DArray u_bcos, u_bsin, u_bzcos, u_bzsin, u_bz;
 #elif defined(VIS_VSM)
@@ -175,7 +177,7 @@ void main()
         if (!mr_disc(texelFetch(u_mr_p0, p, 0), texelFetch(u_mr_p1, p, 0), texelFetch(u_mr_p2, p, 0)))
             discard;
     }
-    x = texelFetch(u_mr_t3, q, 0).xyz;
+    x = texelFetch(u_mr_t3, q, 0).xyz + u_origin;
     nx = normalize(t1.xyz + t2.xyz);
     int bb = 1, s = 0;   // every region takes every VPL
 #else
@@ -220,13 +222,13 @@ void main()
         removed += dot(full - clamped, vec3(0.2126, 0.7152, 0.0722));
     }
 #ifdef MULTIRES
-    o_ind = vec4(E, 1.0);   // a = hasData
-    o_pos = vec4(removed);
+    o_ind = vec4(min(E, vec3(u_out_max)), 1.0);   // a = hasData
+    o_pos = vec4(min(removed, u_out_max));
     o_nrm = vec4(0.0);
 #else
     float scale = float(bb);
-    o_ind = vec4(E * scale, removed * scale);
-    o_pos = vec4(x, 1.0);
+    o_ind = min(vec4(E * scale, removed * scale), vec4(u_out_max));
+    o_pos = vec4(x - u_origin, 1.0);
     o_nrm = vec4(nx, 1.0);
 #endif
 }

@@ -3,7 +3,8 @@
 // coverage. Level 0 reads the G-buffer at the indirect resolution (one texel per pixel); level l
 // reduces the 2×2 children of level l − 1.
 // T0 = (z_min, z_max, coverage, 0)   coverage = fraction of children with geometry
-// T1 = (n_min.xyz, 0)   T2 = (n_max.xyz, 0)   T3 = (mean position.xyz, coverage)
+// T1 = (n_min.xyz, 0)   T2 = (n_max.xyz, 0)   T3 = (mean position.xyz − bounds centre, coverage)
+// The ±1e30 sentinels become ±inf on RGBA16F targets, which min/max treat the same way.
 // @variant LEVEL0=1
 // @variant LEVELN=1
 precision highp float;
@@ -15,6 +16,7 @@ uniform highp mat4 u_inv_viewproj;
 uniform ivec2 u_full_size;
 uniform ivec2 u_ind_size;
 uniform vec3 u_eye;
+uniform vec3 u_origin;   // T3 stores x − u_origin (bounds centre): fp16 targets keep the precision
 #else
 uniform highp sampler2D u_t0;
 uniform highp sampler2D u_t1;
@@ -46,7 +48,7 @@ void main()
     o_t0 = vec4(z, z, 1.0, 0.0);
     o_t1 = vec4(n, 0.0);
     o_t2 = vec4(n, 0.0);
-    o_t3 = vec4(x, 1.0);
+    o_t3 = vec4(x - u_origin, 1.0);
 #else
     ivec2 size = textureSize(u_t0, 0);
     vec4 t0 = vec4(1e30, -1e30, 0.0, 0.0), t1 = vec4(1e30), t2 = vec4(-1e30), t3 = vec4(0.0);

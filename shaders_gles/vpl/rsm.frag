@@ -16,9 +16,11 @@ uniform float u_cos_inner, u_cos_outer;
 uniform vec2 u_face_origin;    // pixel origin of this face in the atlas
 uniform float u_face_res;
 uniform float u_tan_half;
-layout(location = 0) out vec4 o_pos;   // xyz, a = area covered by this texel (m²)
+uniform vec3 u_origin;         // bounds centre
+uniform vec3 u_code;           // scales of position, area, flux (fp16-safe code, vpl_rsm.c rsm_code)
+layout(location = 0) out vec4 o_pos;   // xyz, a = area covered by this texel (m²), encoded
 layout(location = 1) out vec4 o_nrm;
-layout(location = 2) out vec4 o_flux;  // rgb reflected flux of this texel (W)
+layout(location = 2) out vec4 o_flux;  // rgb reflected flux of this texel (W), encoded
 
 const int MAT_LIGHT_PROXY = 4;
 
@@ -47,7 +49,7 @@ void main()
     }
     vec3 rho = (1.0 - clamp(u_metallic_roughness.x, 0.0, 1.0)) * u_base_color.rgb;
     float cos_y = max(dot(n, l), 0.05);
-    o_pos = vec4(v_world, d2 * dOmega / cos_y);
+    o_pos = vec4((v_world - u_origin) * u_code.x, d2 * dOmega / cos_y * u_code.y);
     o_nrm = vec4(n, 0.0);
-    o_flux = vec4(rho * u_radiant * (I * dOmega), 1.0);
+    o_flux = vec4(rho * u_radiant * (I * dOmega * u_code.z), 1.0);
 }

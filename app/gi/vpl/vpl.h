@@ -42,6 +42,12 @@ typedef struct gk_vpl_stats {
     gk_val vals[GK_VPL_MAX_M];
 } gk_vpl_stats;
 
+/* Render targets: RGBA32F where EXT_color_buffer_float exists, else RGBA16F (the GLES 3.1 floor with
+ * EXT_color_buffer_half_float, or 3.2 core); without either create fails with a clear message.
+ * The environment variable GK_VPL_TARGETS=half forces the RGBA16F path on a driver that has both
+ * (read once by create; tests and the bench use it to exercise the fallback on llvmpipe),
+ * GK_VPL_TARGETS=float insists on RGBA32F. True when this instance runs on RGBA16F targets. */
+bool gk_vpl_half_targets(const void *self);
 void gk_vpl_set_debug(void *self, const gk_vpl_debug *d);
 void gk_vpl_default_debug(gk_vpl_debug *d);
 const gk_vpl_stats *gk_vpl_get_stats(const void *self);

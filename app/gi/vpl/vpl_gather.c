@@ -39,7 +39,7 @@ static int single_fbo(GLuint *fbo, GLuint tex, gk_err *e)
     glBindFramebuffer(GL_FRAMEBUFFER, *fbo);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, tex, 0);
     if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-        return gk_fail(e, GK_ERUNTIME, "vpl: indirect framebuffer (RGBA32F) incomplete");
+        return gk_fail(e, GK_ERUNTIME, "vpl: indirect framebuffer incomplete");
     return 0;
 }
 
@@ -49,13 +49,15 @@ static int ensure_ind(vpl_state *s, int w, int h, gk_err *e)
         return 0;
     free_ind(s);
     s->iw = w, s->ih = h;
-    /* RGBA32F throughout: the removed-energy channel and world positions need the range. */
-    s->ind_tex = tex2d(GL_RGBA32F, w, h);
-    s->pos_tex = tex2d(GL_RGBA32F, w, h);
-    s->nrm_tex = tex2d(GL_RGBA32F, w, h); /* also level 0 of the multires normal minimum */
-    s->blur_tex = tex2d(GL_RGBA32F, w, h);
-    s->out_tex[0] = tex2d(GL_RGBA32F, w, h);
-    s->out_tex[1] = tex2d(GL_RGBA32F, w, h);
+    /* RGBA32F, or RGBA16F without EXT_color_buffer_float: positions are stored relative to the
+       bounds centre and irradiance is capped at vpl_target_max, so both fit fp16. */
+    GLenum fmt = s->tgt_fmt;
+    s->ind_tex = tex2d(fmt, w, h);
+    s->pos_tex = tex2d(fmt, w, h);
+    s->nrm_tex = tex2d(fmt, w, h); /* also level 0 of the multires normal minimum */
+    s->blur_tex = tex2d(fmt, w, h);
+    s->out_tex[0] = tex2d(fmt, w, h);
+    s->out_tex[1] = tex2d(fmt, w, h);
     glGenFramebuffers(1, &s->ind_fbo);
     glBindFramebuffer(GL_FRAMEBUFFER, s->ind_fbo);
     GLuint t[3] = {s->ind_tex, s->pos_tex, s->nrm_tex};
@@ -141,6 +143,8 @@ static int interleaved(vpl_state *s, const gk_gi_frame *f, gk_err *e)
     set_1i(g, "u_n", s->n);
     set_1i(g, "u_block", s->block);
     gk_uniform_1f(g, "u_dmin2", s->clamp ? s->st.dmin * s->st.dmin : 0.0f);
+    gk_uniform_3f(g, "u_origin", s->origin[0], s->origin[1], s->origin[2]);
+    gk_uniform_1f(g, "u_out_max", vpl_target_max(s));
     glDrawArrays(GL_TRIANGLES, 0, 3);
     if (s->dbg.measure)
         measure(s);
@@ -221,6 +225,7 @@ int vpl_gather(vpl_state *s, const gk_gi_frame *f, float fade, gk_err *e)
     gk_uniform_mat4(c, "u_inv_viewproj", f->inv_view_proj.m);
     set_2i(c, "u_full_size", f->width, f->height);
     gk_uniform_1f(c, "u_sigma", 0.05f * s->diam);
+    gk_uniform_3f(c, "u_origin", s->origin[0], s->origin[1], s->origin[2]);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glDisable(GL_BLEND);
     glBindVertexArray(0);

@@ -22,6 +22,12 @@ typedef struct vpl_state {
     bool clamp;
     /* scene */
     float diam;
+    float origin[3];   /* bounds centre: positions in render targets are stored relative to it */
+    /* Render-target format, chosen once at create (vpl_method.c choose_targets): RGBA32F with
+       EXT_color_buffer_float, else RGBA16F (EXT_color_buffer_half_float or 3.2 core); the
+       encodings (vpl_rsm.c, gather.frag) keep every stored value within fp16's range. */
+    GLenum tgt_fmt;
+    bool tgt_half;
     vpl_proxy proxy;
     bool have_proxy;
     /* RSM atlas and VPL generation */
@@ -66,6 +72,8 @@ void vpl_free_gpu(vpl_state *s);
    (plus pos_tex/nrm_tex for the blur), replacing the interleaved gather. */
 int vpl_gather_multires(vpl_state *s, const gk_gi_frame *f, gk_err *e);
 void vpl_free_multires(vpl_state *s);
+/* Largest value an indirect target stores (fp16 saturates at 65504; fp32: no cap). */
+float vpl_target_max(const vpl_state *s);
 /* Binding helpers shared by the gather files. */
 void vpl_bind_tex(int unit, GLenum target, GLuint tex, GLuint prog, const char *name);
 void vpl_bind_visibility(vpl_state *s, GLuint prog);

@@ -66,6 +66,30 @@ void gk_vpl_default_debug(gk_vpl_debug *d)
     d->adaptive_drop = 0.35f;
 }
 
+/* The GLES 3.1 floor has no float colour buffers; RGBA16F ones come with EXT_color_buffer_half_float
+ * (or 3.2 core), RGBA32F ones with EXT_color_buffer_float. GK_VPL_TARGETS (vpl.h) forces a path. */
+static int choose_targets(vpl_state *s, gk_err *e)
+{
+    gk_gl_caps caps;
+    gk_gl_caps_query(&caps, s->ctx.gles_version ? s->ctx.gles_version : 31);
+    const char *force = getenv("GK_VPL_TARGETS");
+    if (force && *force && strcmp(force, "half") && strcmp(force, "float") && strcmp(force, "auto"))
+        return gk_fail(e, GK_EINPUT, "vpl: GK_VPL_TARGETS='%s' is not one of half, float, auto", force);
+    bool want_half = force && strcmp(force, "half") == 0, want_float = force && strcmp(force, "float") == 0;
+    if (caps.color_buffer_float && !want_half) {
+        s->tgt_fmt = GL_RGBA32F, s->tgt_half = false;
+        return 0;
+    }
+    if (want_float)
+        return gk_fail(e, GK_ERUNTIME, "vpl: GK_VPL_TARGETS=float but EXT_color_buffer_float is missing");
+    if (caps.color_buffer_half) {
+        s->tgt_fmt = GL_RGBA16F, s->tgt_half = true;
+        return 0;
+    }
+    return gk_fail(e, GK_ERUNTIME, "vpl: needs RGBA16F or RGBA32F render targets (GLES 3.2, "
+                                   "EXT_color_buffer_half_float or EXT_color_buffer_float); none is available");
+}
+
 static void *create(const gk_gi_context *ctx, gk_err *e)
 {
     vpl_state *s = calloc(1, sizeof *s);
@@ -78,8 +102,7 @@ static void *create(const gk_gi_context *ctx, gk_err *e)
         s->own_cache = gk_program_cache_create(NULL, ctx->gles_version ? ctx->gles_version : 31);
         s->ctx.programs = s->own_cache;
     }
-    if (!gk_gl_has_extension("GL_EXT_color_buffer_float")) {
-        gk_fail(e, GK_ERUNTIME, "vpl: needs EXT_color_buffer_float (RGBA32F RSM and VPL targets)");
+    if (choose_targets(s, e)) {
         if (s->own_cache)
             gk_program_cache_destroy(s->own_cache);
         free(s);
@@ -95,6 +118,8 @@ static int set_scene(void *self, const gk_scene *sc, gk_err *e)
     vpl_state *s = self;
     vec3 ext = v3_sub(sc->bmax, sc->bmin);
     s->diam = v3_len(ext) > 0.0f ? v3_len(ext) : 1.0f;
+    vec3 c = v3_scale(v3_add(sc->bmin, sc->bmax), 0.5f);
+    s->origin[0] = c.x, s->origin[1] = c.y, s->origin[2] = c.z;
     if (s->have_proxy)
         vpl_proxy_free(&s->proxy);
     s->have_proxy = false;
@@ -240,13 +265,14 @@ static long memory_bytes(const void *self)
 {
     const vpl_state *s = self;
     long b = 0;
-    b += (long)s->rsm_w * s->rsm_h * (16 * 3 + 4);
-    b += (long)s->gen_n * 16 * 3 + (long)s->n * 16 * 3 + (long)s->val_tex_w * 64;
+    long px = s->tgt_half ? 8 : 16; /* bytes per RGBA target texel */
+    b += (long)s->rsm_w * s->rsm_h * (px * 3 + 4);
+    b += (long)s->gen_n * px * 3 + (long)s->n * 16 * 3 + (long)s->val_tex_w * 64;
     long texels = (long)s->map_res * s->map_res * s->map_layers;
     long per = s->map_vis == GK_VPL_VIS_CSSM ? 2 + 4 + 4 + 8 + 8 : (s->map_vis == GK_VPL_VIS_VSM ? 2 + 8 : 2);
     b += texels * per * (s->map_vis == GK_VPL_VIS_EXACT ? 3 : 4) / 3; /* mips add ⅓ */
     b += (long)s->map_res * s->map_res * 4;
-    b += (long)s->iw * s->ih * (16 * 5 + 8);
+    b += (long)s->iw * s->ih * (px * 6);
     b += s->proxy.bytes;
     return b;
 }
@@ -262,6 +288,8 @@ static void destroy(void *self)
     free(s);
 }
 
+bool gk_vpl_half_targets(const void *self) { return ((const vpl_state *)self)->tgt_half; }
+float vpl_target_max(const vpl_state *s) { return s->tgt_half ? 65000.0f : 3.0e38f; }
 void gk_vpl_set_debug(void *self, const gk_vpl_debug *d) { ((vpl_state *)self)->dbg = *d; }
 const gk_vpl_stats *gk_vpl_get_stats(const void *self) { return &((const vpl_state *)self)->st; }
 

@@ -18,12 +18,12 @@
 #define TAU_Z 0.05f  /* relative depth range */
 #define TAU_N 0.25f   /* per normal component */
 
-static GLuint tex_rgba32f(int w, int h)
+static GLuint tex_target(GLenum fmt, int w, int h)
 {
     GLuint t;
     glGenTextures(1, &t);
     glBindTexture(GL_TEXTURE_2D, t);
-    glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA32F, w, h);
+    glTexStorage2D(GL_TEXTURE_2D, 1, fmt, w, h);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     return t;
@@ -67,17 +67,18 @@ static int ensure_levels(vpl_state *s, gk_err *e)
     for (int l = 0; l < levels; l++) {
         int w = level_w(s, l), h = level_h(s, l);
         for (int k = 0; k < 4; k++)
-            s->mr_t[l][k] = tex_rgba32f(w, h);
+            s->mr_t[l][k] = tex_target(s->tgt_fmt, w, h);
         if (l == 0) {
             glDeleteTextures(1, &s->mr_t[0][1]);
             glDeleteTextures(1, &s->mr_t[0][3]);
             s->mr_t[0][1] = s->nrm_tex, s->mr_t[0][3] = s->pos_tex;
         }
-        s->mr_rend[l] = tex_rgba32f(w, h);
-        s->mr_sint[l] = l == 0 ? s->ind_tex : tex_rgba32f(w, h);
+        s->mr_rend[l] = tex_target(s->tgt_fmt, w, h);
+        s->mr_sint[l] = l == 0 ? s->ind_tex : tex_target(s->tgt_fmt, w, h);
         attach(&s->mr_fbo[l], s->mr_t[l], 4);
         if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-            return gk_fail(e, GK_ERUNTIME, "vpl: multires level %d framebuffer (4x RGBA32F) incomplete", l);
+            return gk_fail(e, GK_ERUNTIME, "vpl: multires level %d framebuffer (4x %s) incomplete", l,
+                          s->tgt_half ? "RGBA16F" : "RGBA32F");
         attach(&s->mr_rend_fbo[l], &s->mr_rend[l], 1);
         attach(&s->mr_sint_fbo[l], &s->mr_sint[l], 1);
     }
@@ -119,6 +120,7 @@ static int build_mips(vpl_state *s, const gk_gi_frame *f, gk_err *e)
             set_2i(p, "u_full_size", f->width, f->height);
             set_2i(p, "u_ind_size", s->iw, s->ih);
             gk_uniform_3f(p, "u_eye", f->eye.x, f->eye.y, f->eye.z);
+            gk_uniform_3f(p, "u_origin", s->origin[0], s->origin[1], s->origin[2]);
         } else {
             const char *names[4] = {"u_t0", "u_t1", "u_t2", "u_t3"};
             for (int k = 0; k < 4; k++)
@@ -165,6 +167,8 @@ int vpl_gather_multires(vpl_state *s, const gk_gi_frame *f, gk_err *e)
     gk_uniform_1f(g, "u_dmin2", s->clamp ? s->st.dmin * s->st.dmin : 0.0f);
     gk_uniform_1f(g, "u_tau_z", TAU_Z);
     gk_uniform_1f(g, "u_tau_n", TAU_N);
+    gk_uniform_3f(g, "u_origin", s->origin[0], s->origin[1], s->origin[2]);
+    gk_uniform_1f(g, "u_out_max", vpl_target_max(s));
     for (int l = 0; l < s->mr_levels; l++) {
         glBindFramebuffer(GL_FRAMEBUFFER, s->mr_rend_fbo[l]);
         glDrawBuffers(1, b1);

@@ -18,6 +18,8 @@ static const face cube_faces[6] = {
     {{0, -1, 0}, {0, 0, 1}}, {{0, 0, 1}, {0, 1, 0}},
 };
 
+static const char *fmt_name(const vpl_state *s) { return s->tgt_half ? "RGBA16F" : "RGBA32F"; }
+
 static int ensure_rsm(vpl_state *s, int w, int h, gk_err *e)
 {
     if (s->rsm_fbo && s->rsm_w == w && s->rsm_h == h)
@@ -32,7 +34,7 @@ static int ensure_rsm(vpl_state *s, int w, int h, gk_err *e)
     glGenTextures(3, s->rsm_tex);
     for (int i = 0; i < 3; i++) {
         glBindTexture(GL_TEXTURE_2D, s->rsm_tex[i]);
-        glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA32F, w, h);
+        glTexStorage2D(GL_TEXTURE_2D, 1, s->tgt_fmt, w, h);
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + i, GL_TEXTURE_2D, s->rsm_tex[i], 0);
@@ -43,8 +45,7 @@ static int ensure_rsm(vpl_state *s, int w, int h, gk_err *e)
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, s->rsm_depth);
     s->rsm_w = w, s->rsm_h = h;
     if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-        return gk_fail(e, GK_ERUNTIME, "vpl: RSM framebuffer (3x RGBA32F %dx%d) incomplete; the method needs "
-                                       "EXT_color_buffer_float", w, h);
+        return gk_fail(e, GK_ERUNTIME, "vpl: RSM framebuffer (3x %s %dx%d) incomplete", fmt_name(s), w, h);
     return 0;
 }
 
@@ -61,12 +62,12 @@ static int ensure_gen(vpl_state *s, int n, gk_err *e)
     glGenTextures(3, s->gen_tex);
     for (int i = 0; i < 3; i++) {
         glBindTexture(GL_TEXTURE_2D, s->gen_tex[i]);
-        glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA32F, n, 1);
+        glTexStorage2D(GL_TEXTURE_2D, 1, s->tgt_fmt, n, 1);
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + i, GL_TEXTURE_2D, s->gen_tex[i], 0);
     }
     s->gen_n = n;
     if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-        return gk_fail(e, GK_ERUNTIME, "vpl: VPL framebuffer (3x RGBA32F %dx1) incomplete", n);
+        return gk_fail(e, GK_ERUNTIME, "vpl: VPL framebuffer (3x %s %dx1) incomplete", fmt_name(s), n);
     return 0;
 }
 
@@ -101,8 +102,27 @@ static int light_faces(const gk_gi_light *L, const gk_light *sl, face *out, floa
     return 6;
 }
 
+/* How rsm.frag encodes a texel so that it survives RGBA16F targets (fp16: 11-bit mantissa, normal
+ * range 6.1e-5 .. 65504), used on both paths so they differ only in precision:
+ *   position  (p − bounds centre) / (½ scene diameter)  -> |·| ≤ 1 (ulp ≤ 2^-11 of the half-diameter)
+ *   area      area / (diam² · texel²)                     -> (d/diam)²·(1+u²+v²)^-1.5 / cosθ, O(1)
+ *   flux      flux / (max radiant · texel²)               -> ρ·I·(1+u²+v²)^-1.5 ≤ 1
+ * texel = 2·tanΘ/R is the face's texel width on the unit plane; a narrow spot's ΔΩ (~1e-6 sr at
+ * Θ = 3°) would otherwise fall into fp16's subnormals. vpl_gen.frag scales area and flux linearly,
+ * so the VPL row keeps the same code and vpl_generate decodes it per light. */
+typedef struct rsm_code { float pos_scale, area_scale, flux_scale; } rsm_code;
+
+static rsm_code light_code(const vpl_state *s, const gk_gi_light *L, float tan_half)
+{
+    float texel = 2.0f * tan_half / (float)VPL_RSM_RES;
+    float rmax = fmaxf(L->radiant.x, fmaxf(L->radiant.y, L->radiant.z));
+    rsm_code c = {2.0f / s->diam, 1.0f / (s->diam * s->diam * texel * texel),
+                  1.0f / (fmaxf(rmax, 1e-20f) * texel * texel)};
+    return c;
+}
+
 static int render_light_rsm(vpl_state *s, const gk_gi_frame *f, const gk_gi_light *L, const gk_light *sl,
-                            int first, int count, gk_err *e)
+                            int first, int count, rsm_code *code, gk_err *e)
 {
     face faces[6];
     float tan_half;
@@ -140,6 +160,9 @@ static int render_light_rsm(vpl_state *s, const gk_gi_frame *f, const gk_gi_ligh
     gk_uniform_1f(prog, "u_cos_outer", c_out);
     gk_uniform_1f(prog, "u_face_res", (float)R);
     gk_uniform_1f(prog, "u_tan_half", tan_half);
+    *code = light_code(s, L, tan_half);
+    gk_uniform_3f(prog, "u_origin", s->origin[0], s->origin[1], s->origin[2]);
+    gk_uniform_3f(prog, "u_code", code->pos_scale, code->area_scale, code->flux_scale);
     for (int i = 0; i < nf; i++) {
         glViewport(i * R, 0, R, R);
         mat4 view = m4_look_at(L->position, v3_add(L->position, faces[i].dir), faces[i].up);
@@ -195,6 +218,7 @@ int vpl_generate(vpl_state *s, const gk_gi_frame *f, gk_err *e)
     glClearColor(0, 0, 0, 0);
     glClear(GL_COLOR_BUFFER_BIT);
     int lit[64], n_lit = 0;
+    rsm_code code[64];
     for (int i = 0; i < f->n_lights && n_lit < 64; i++) {
         const gk_light *sl = &f->scene->lights[f->lights[i].scene_light];
         if (sl->type != GK_LIGHT_DIRECTIONAL)
@@ -203,7 +227,8 @@ int vpl_generate(vpl_state *s, const gk_gi_frame *f, gk_err *e)
     for (int j = 0; j < n_lit; j++) {
         int first = n * j / n_lit, count = n * (j + 1) / n_lit - first;
         const gk_gi_light *L = &f->lights[lit[j]];
-        if (render_light_rsm(s, f, L, &f->scene->lights[L->scene_light], first, count, e))
+        code[j] = (rsm_code){1, 1, 1};
+        if (render_light_rsm(s, f, L, &f->scene->lights[L->scene_light], first, count, &code[j], e))
             return -1;
     }
     float *buf = malloc((size_t)n * 4 * sizeof(float) * 3);
@@ -216,17 +241,22 @@ int vpl_generate(vpl_state *s, const gk_gi_frame *f, gk_err *e)
     }
     glReadBuffer(GL_COLOR_ATTACHMENT0);
     int valid = 0;
-    for (int i = 0; i < n; i++) {
-        const float *p = buf + i * 4, *nn = buf + n * 4 + i * 4, *fl = buf + 2 * n * 4 + i * 4;
-        gk_vpl *v = &s->st.vpl[i];
-        v->pos = v3(p[0], p[1], p[2]);
-        v->area = p[3];
-        v->nrm = v3_norm(v3(nn[0], nn[1], nn[2]));
-        v->flux = v3(fmaxf(fl[0], 0), fmaxf(fl[1], 0), fmaxf(fl[2], 0));
-        if (!(v->flux.x + v->flux.y + v->flux.z > 0.0f) || v3_len(v->nrm) < 0.5f)
-            v->flux = v3(0, 0, 0);
-        else
-            valid++;
+    for (int j = 0, i = 0; j < (n_lit > 0 ? n_lit : 1); j++) {
+        int end = n_lit > 0 ? n * (j + 1) / n_lit : n;
+        rsm_code c = n_lit > 0 ? code[j] : (rsm_code){1, 1, 1};
+        for (; i < end; i++) {
+            const float *p = buf + i * 4, *nn = buf + n * 4 + i * 4, *fl = buf + 2 * n * 4 + i * 4;
+            gk_vpl *v = &s->st.vpl[i];
+            v->pos = v3(p[0] / c.pos_scale + s->origin[0], p[1] / c.pos_scale + s->origin[1],
+                        p[2] / c.pos_scale + s->origin[2]);
+            v->area = p[3] / c.area_scale;
+            v->nrm = v3_norm(v3(nn[0], nn[1], nn[2]));
+            v->flux = v3(fmaxf(fl[0], 0) / c.flux_scale, fmaxf(fl[1], 0) / c.flux_scale, fmaxf(fl[2], 0) / c.flux_scale);
+            if (!(v->flux.x + v->flux.y + v->flux.z > 0.0f) || v3_len(v->nrm) < 0.5f)
+                v->flux = v3(0, 0, 0);
+            else
+                valid++;
+        }
     }
     free(buf);
     s->st.n = n;

@@ -51,8 +51,9 @@ static void ensure_maps(vpl_state *s, int res, int layers, int vis)
         s->bzcos = array_tex(GL_RGBA16F, res, layers, true);
         s->bzsin = array_tex(GL_RGBA16F, res, layers, true);
     } else if (vis == GK_VPL_VIS_VSM) {
-        /* (z, z²) cancels catastrophically in fp16 (dong-001.md §7.4): 32-bit where filterable. */
-        bool f32 = gk_gl_has_extension("GL_OES_texture_float_linear");
+        /* (z, z²) cancels catastrophically in fp16 (dong-001.md §7.4): 32-bit where filterable
+           and renderable (RG32F needs EXT_color_buffer_float, absent on the RGBA16F path). */
+        bool f32 = !s->tgt_half && gk_gl_has_extension("GL_OES_texture_float_linear");
         s->bmom = array_tex(f32 ? GL_RG32F : GL_RG16F, res, layers, true);
     }
     glGenRenderbuffers(1, &s->map_depth);
