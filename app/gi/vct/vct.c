@@ -72,16 +72,6 @@ static void *vct_create(const gk_gi_context *ctx, gk_err *e)
     }
     v->ctx = *ctx;
     gk_vct_default_options(&v->opt);
-    { /* TEMP-VCT2 experiment overrides */
-        const char *x;
-        if ((x = getenv("VCT2_APEX"))) v->opt.apex_offset = (float)atof(x);
-        if ((x = getenv("VCT2_DIRINJ"))) v->opt.directional_injection = atoi(x);
-        if ((x = getenv("VCT2_SQ"))) v->opt.axis_weight_sq = atoi(x);
-        if ((x = getenv("VCT2_OPC"))) v->opt.opacity_correction = atoi(x);
-        if ((x = getenv("VCT2_CLIP"))) v->opt.clip_cones = atoi(x);
-        if ((x = getenv("VCT2_MAXD"))) v->opt.max_dist = (float)atof(x);
-        if ((x = getenv("VCT2_CONS"))) v->opt.conservative = atoi(x);
-    }
     glGenBuffers(1, &v->tri_ssbo);
     glGenBuffers(1, &v->counter_ssbo);
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, v->counter_ssbo);
