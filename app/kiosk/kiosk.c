@@ -35,14 +35,11 @@ typedef struct kiosk {
     gk_summary summary;
     gk_stats_csv *csv;
     long frame;                          /* frames drawn */
-    int sched_skip;                      /* frames the scheduler does not see (one-off costs, see below) */
+    int sched_skip;                      /* frames the scheduler does not see: the first at a new level */
     bool have_frame;                     /* a frame of the current visit is drawn and not captured */
     long last_frame;
     char last_scene[GK_NAME_LEN], last_method[GK_METHOD_LEN];
 } kiosk;
-
-/* Frames after a scene or method change that the scheduler does not judge (see reset_scheduler). */
-#define SCHED_WARMUP_FRAMES 3
 
 static double wall_ms(void)
 {
@@ -74,11 +71,7 @@ static void reset_scheduler(kiosk *k)
     }
     gk_sched_reset(&k->sched, &k->sched_params, &k->budget, active);
     gk_recent_clear(&k->recent);
-    /* The first frames of a scene or method pay one-off costs (shader compiles, uploads,
-       voxelizing static geometry, first shadow maps): measured on llvmpipe, 1-10 s against a steady
-       30-60 ms. Fed to the scheduler they would drop every budget to its floor at each scene
-       change, to climb back one step per 30 frames. */
-    k->sched_skip = SCHED_WARMUP_FRAMES;
+    k->sched_skip = 0; /* the scheduler's own warm-up (gk_sched_params.warmup) covers a reset */
 }
 
 static int capture(kiosk *k, long frame, const char *scene, const char *method, gk_err *e)
@@ -226,7 +219,8 @@ static int frame(kiosk *k, double now, gk_err *e)
     int n = gk_sched_update(&k->sched, &k->budget, frame_ms, ch, (int)(sizeof ch / sizeof ch[0]));
     log_budget_changes(k, ch, n, frame_ms);
     if (n > 0)
-        k->sched_skip = 1; /* the first frame at a new level pays its own one-off costs */
+        k->sched_skip = 1; /* the first frame at a new level pays one-off costs (shader compiles,
+                              reallocation, re-voxelizing) and would also spoil the step response */
     return 0;
 }
 

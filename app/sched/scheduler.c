@@ -12,6 +12,7 @@ void gk_sched_params_defaults(gk_sched_params *p, double target_ms)
     p->hold_base = 120;
     p->warmup = 3;
     p->learn_rate = 0.3;
+    p->max_down_steps = 2;
 }
 
 void gk_sched_reset(gk_sched *s, const gk_sched_params *p, const gk_budget *b, const bool *active)
@@ -141,8 +142,8 @@ static int step_down(gk_sched *s, gk_budget *b, double ms, gk_sched_change *ch, 
         }
         if (best < 0)
             break; /* everything at its minimum: nothing left to trade */
-        if (n >= max)
-            break;
+        if (n >= max || n >= s->p.max_down_steps)
+            break; /* measure before dropping further: the model may not know the savings yet */
         ch[n++] = (gk_sched_change){best, b->level[best], b->level[best] - 1};
         b->level[best]--;
         predicted -= fmax(best_saved, 0);

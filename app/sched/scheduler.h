@@ -8,7 +8,7 @@
  * keeps the whole prediction calibrated (base and weights move along the feature vector).
  *
  * Control: over target -> step down at once, as many steps as the model predicts are needed to get
- * under target*(1 - margin/2), each time the knob whose step saves the most predicted time per
+ * under target*(1 - margin/2) but at most max_down_steps per measured frame, each time the knob whose step saves the most predicted time per
  * quality lost (quality of a step = 1/(number of values - 1)). Under target*(1 - margin) for
  * up_after consecutive frames -> one step up, the knob that buys the most quality per predicted
  * time, and only if the worst of those frames plus the predicted cost stays under
@@ -29,6 +29,10 @@ typedef struct gk_sched_params {
     int hold_base;        /* frames a reversed knob is blocked from stepping up, doubled per reversal (120) */
     int warmup;           /* frames not measured after a reset (scene upload, shader compiles) (3) */
     double learn_rate;    /* NLMS step size, 0..1 (0.3) */
+    int max_down_steps;   /* steps down per judged frame (2): measured on llvmpipe, a model seeded
+                             with equal shares dropped 15 knobs in one frame (934 ms -> 46 ms at a
+                             400 ms target); a couple of steps, then a new measurement, lands near
+                             the target instead of on the floor */
 } gk_sched_params;
 
 typedef struct gk_sched_change {
