@@ -48,6 +48,19 @@ float gk_spot_falloff(const gk_ref_light *L, vec3 w)
     return t * t;
 }
 
+/* A uniformly distributed point on a disc or rectangle emitter (next-event estimation and light
+   tracing sample the same way). */
+static vec3 planar_emitter_point(const gk_ref_light *L, float u1, float u2)
+{
+    if (L->kind == GK_REF_DISC) {
+        float dx, dy;
+        gk_sample_uniform_disc(u1, u2, &dx, &dy);
+        return v3_add(L->pos, v3_add(v3_scale(L->u, dx * L->radius), v3_scale(L->v, dy * L->radius)));
+    }
+    return v3_add(L->pos, v3_add(v3_scale(L->u, (2.0f * u1 - 1.0f) * L->half_w),
+                                 v3_scale(L->v, (2.0f * u2 - 1.0f) * L->half_h)));
+}
+
 static bool sample_one(const gk_ref_scene *rs, int li, vec3 p, float u1, float u2, float u3, gk_light_sample *s)
 {
     const gk_ref_light *L = &rs->lights[li];
@@ -100,15 +113,7 @@ static bool sample_one(const gk_ref_scene *rs, int li, vec3 p, float u1, float u
     }
     case GK_REF_DISC:
     case GK_REF_RECT: {
-        vec3 x;
-        if (L->kind == GK_REF_DISC) {
-            float dx, dy;
-            gk_sample_uniform_disc(u1, u2, &dx, &dy);
-            x = v3_add(L->pos, v3_add(v3_scale(L->u, dx * L->radius), v3_scale(L->v, dy * L->radius)));
-        } else {
-            x = v3_add(L->pos, v3_add(v3_scale(L->u, (2.0f * u1 - 1.0f) * L->half_w),
-                                      v3_scale(L->v, (2.0f * u2 - 1.0f) * L->half_h)));
-        }
+        vec3 x = planar_emitter_point(L, u1, u2);
         vec3 dv = v3_sub(x, p);
         float d2 = v3_dot(dv, dv);
         if (d2 <= 0.0f)
@@ -339,15 +344,7 @@ bool gk_light_photon(const gk_ref_scene *rs, gk_rng *rng, vec3 *o, vec3 *d, vec3
     }
     case GK_REF_DISC:
     case GK_REF_RECT: {
-        vec3 x;
-        if (L->kind == GK_REF_DISC) {
-            float dx, dy;
-            gk_sample_uniform_disc(u1, u2, &dx, &dy);
-            x = v3_add(L->pos, v3_add(v3_scale(L->u, dx * L->radius), v3_scale(L->v, dy * L->radius)));
-        } else {
-            x = v3_add(L->pos, v3_add(v3_scale(L->u, (2.0f * u1 - 1.0f) * L->half_w),
-                                      v3_scale(L->v, (2.0f * u2 - 1.0f) * L->half_h)));
-        }
+        vec3 x = planar_emitter_point(L, u1, u2);
         *o = v3_add(x, v3_scale(L->axis, eps));
         *d = cosine_about(L->axis, u3, u4);
         *flux = v3_scale(L->radiance, gk_spot_falloff(L, *d) * L->area * GK_PI / pl);

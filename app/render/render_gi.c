@@ -140,15 +140,8 @@ static int render_light_maps(gk_render_gi *g, gk_renderer *r, gk_err *e)
         L->radiant = v3(l->color[0] * l->intensity, l->color[1] * l->intensity, l->color[2] * l->intensity);
         L->shadow_view_proj = light_view_proj(s, l, L->position, L->direction, &L->shadow_near, &L->shadow_far,
                                               &L->shadow_is_perspective);
-        if (!g->depth_tex[k]) {
-            glGenTextures(1, &g->depth_tex[k]);
-            glBindTexture(GL_TEXTURE_2D, g->depth_tex[k]);
-            glTexStorage2D(GL_TEXTURE_2D, 1, GL_DEPTH_COMPONENT32F, GI_LIGHT_MAP_SIZE, GI_LIGHT_MAP_SIZE);
-            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-        }
+        if (!g->depth_tex[k])
+            g->depth_tex[k] = gk_texture_2d(GL_DEPTH_COMPONENT32F, GI_LIGHT_MAP_SIZE, GI_LIGHT_MAP_SIZE, GL_NEAREST);
         L->shadow_depth_tex = g->depth_tex[k];
         glBindFramebuffer(GL_FRAMEBUFFER, g->fbo);
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, g->depth_tex[k], 0);

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "../../core/log.h"
+#include "../../render/gl_target.h"
 #include "vct_internal.h"
 
 #define VCT_MARGIN 2
@@ -144,16 +145,7 @@ int vct_ensure_trace_targets(gk_vct *v, int full_w, int full_h, float scale, gk_
         glDeleteTextures(1, &v->trace_diffuse);
     if (v->trace_spec)
         glDeleteTextures(1, &v->trace_spec);
-    GLuint t[2];
-    glGenTextures(2, t);
-    for (int i = 0; i < 2; i++) {
-        glBindTexture(GL_TEXTURE_2D, t[i]);
-        glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA16F, w, h);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    }
+    GLuint t[2] = {gk_texture_2d(GL_RGBA16F, w, h, GL_NEAREST), gk_texture_2d(GL_RGBA16F, w, h, GL_NEAREST)};
     glBindTexture(GL_TEXTURE_2D, 0);
     if (glGetError() != GL_NO_ERROR)
         return gk_fail(e, GK_ERUNTIME, "vct: allocating %dx%d trace targets failed", w, h);

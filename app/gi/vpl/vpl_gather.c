@@ -4,20 +4,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "../../render/gl_target.h"
 #include "vpl_internal.h"
-
-static GLuint tex2d(GLenum fmt, int w, int h)
-{
-    GLuint t;
-    glGenTextures(1, &t);
-    glBindTexture(GL_TEXTURE_2D, t);
-    glTexStorage2D(GL_TEXTURE_2D, 1, fmt, w, h);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    return t;
-}
 
 static void free_ind(vpl_state *s)
 {
@@ -52,12 +40,12 @@ static int ensure_ind(vpl_state *s, int w, int h, gk_err *e)
     /* RGBA32F, or RGBA16F without EXT_color_buffer_float: positions are stored relative to the
        bounds centre and irradiance is capped at vpl_target_max, so both fit fp16. */
     GLenum fmt = s->tgt_fmt;
-    s->ind_tex = tex2d(fmt, w, h);
-    s->pos_tex = tex2d(fmt, w, h);
-    s->nrm_tex = tex2d(fmt, w, h); /* also level 0 of the multires normal minimum */
-    s->blur_tex = tex2d(fmt, w, h);
-    s->out_tex[0] = tex2d(fmt, w, h);
-    s->out_tex[1] = tex2d(fmt, w, h);
+    s->ind_tex = gk_texture_2d(fmt, w, h, GL_NEAREST);
+    s->pos_tex = gk_texture_2d(fmt, w, h, GL_NEAREST);
+    s->nrm_tex = gk_texture_2d(fmt, w, h, GL_NEAREST); /* also level 0 of the multires normal minimum */
+    s->blur_tex = gk_texture_2d(fmt, w, h, GL_NEAREST);
+    s->out_tex[0] = gk_texture_2d(fmt, w, h, GL_NEAREST);
+    s->out_tex[1] = gk_texture_2d(fmt, w, h, GL_NEAREST);
     glGenFramebuffers(1, &s->ind_fbo);
     glBindFramebuffer(GL_FRAMEBUFFER, s->ind_fbo);
     GLuint t[3] = {s->ind_tex, s->pos_tex, s->nrm_tex};

@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "../../render/gl_target.h"
 #include "vpl_internal.h"
 
 /* Discontinuity thresholds 000 leaves open. §A.1.5 suggests τ_z = 0.02 relative; on T5 at 64²
@@ -17,17 +18,6 @@
    take 0.05. τ_n = 0.25 as suggested. */
 #define TAU_Z 0.05f  /* relative depth range */
 #define TAU_N 0.25f   /* per normal component */
-
-static GLuint tex_target(GLenum fmt, int w, int h)
-{
-    GLuint t;
-    glGenTextures(1, &t);
-    glBindTexture(GL_TEXTURE_2D, t);
-    glTexStorage2D(GL_TEXTURE_2D, 1, fmt, w, h);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    return t;
-}
 
 static void attach(GLuint *fbo, const GLuint *tex, int n)
 {
@@ -67,14 +57,14 @@ static int ensure_levels(vpl_state *s, gk_err *e)
     for (int l = 0; l < levels; l++) {
         int w = level_w(s, l), h = level_h(s, l);
         for (int k = 0; k < 4; k++)
-            s->mr_t[l][k] = tex_target(s->tgt_fmt, w, h);
+            s->mr_t[l][k] = gk_texture_2d(s->tgt_fmt, w, h, GL_NEAREST);
         if (l == 0) {
             glDeleteTextures(1, &s->mr_t[0][1]);
             glDeleteTextures(1, &s->mr_t[0][3]);
             s->mr_t[0][1] = s->nrm_tex, s->mr_t[0][3] = s->pos_tex;
         }
-        s->mr_rend[l] = tex_target(s->tgt_fmt, w, h);
-        s->mr_sint[l] = l == 0 ? s->ind_tex : tex_target(s->tgt_fmt, w, h);
+        s->mr_rend[l] = gk_texture_2d(s->tgt_fmt, w, h, GL_NEAREST);
+        s->mr_sint[l] = l == 0 ? s->ind_tex : gk_texture_2d(s->tgt_fmt, w, h, GL_NEAREST);
         attach(&s->mr_fbo[l], s->mr_t[l], 4);
         if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
             return gk_fail(e, GK_ERUNTIME, "vpl: multires level %d framebuffer (4x %s) incomplete", l,
