@@ -21,6 +21,9 @@ typedef struct gk_knob_def {
     int auto_max_level;                       /* richest level the scheduler may pick by itself (0 = the
                                                  last); richer ones are reference modes, reached only
                                                  through --budget or a [budgets] range */
+    bool fixed;                               /* a variant switch (the document's behaviour or an
+                                                 improvement), not a cost/quality trade: the
+                                                 scheduler never moves it; set with --budget */
 } gk_knob_def;
 
 typedef struct gk_budget {

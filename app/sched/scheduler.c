@@ -34,7 +34,7 @@ static double prior(const gk_budget *b, int k, int level)
 
 static bool movable(const gk_sched *s, const gk_budget *b, int k)
 {
-    return s->active[k] && !b->pinned[k] && b->def[k]->n_values > 1;
+    return s->active[k] && !b->pinned[k] && !b->def[k]->fixed && b->def[k]->n_values > 1;
 }
 
 double gk_sched_predict(const gk_sched *s, const gk_budget *b)

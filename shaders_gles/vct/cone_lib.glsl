@@ -23,6 +23,15 @@ uniform highp sampler3D u_voxd5;
 uniform float u_res_f;      // level-0 resolution
 uniform float u_step_mul;   // step = max(diameter * u_step_mul, 1 voxel): 1 = text/Alg. 1, 0.5 = code
 uniform float u_ao_lambda;  // AO distance falloff (thesis code: 725, d in voxel-space units)
+// Footprint clamp (not in the thesis; gk_vct_options.footprint_clamp): a trilinear sample at the lod
+// of diameter D gathers voxels up to ~1.5 D from its centre, so a wide cone's coarse samples
+// overlap the receiver's own surface once D > h / 1.5 (h = height above the receiver's tangent
+// plane). The surface then lights itself (isotropic radiance) or shadows itself (its dark back),
+// and since h starts at the apex offset, which is in voxels, this begins closer to the receiver on
+// finer grids: the Cornell box's error rose with resolution. With c > 0 the sample diameter is
+// capped at c h (c = 0.5 < 2/3 keeps the receiver out), the cone is narrower near its receiver and
+// takes smaller steps there. 0: off (thesis).
+uniform float u_footprint_clamp;
 
 #if !ISO_MIPS
 vec4 dir_sample(vec3 p, vec3 d, float lod)   // constant sampler indices only (GLSL ES rule)
@@ -50,9 +59,10 @@ vec4 vox_sample(vec3 p, vec3 d, float lod)
 #endif
 }
 
+// plane: the receiver's tangent plane (xyz normal, w offset) in voxel space, for the footprint clamp.
 // Front-to-back accumulation C += (1 - A) C_s, A += (1 - A) a_s; AO ao += (1 - ao) a_s / (1 + d lambda).
 // Returns the premultiplied radiance seen along the cone; ao = accumulated occlusion (0 = open).
-vec4 trace_cone(vec3 apex, vec3 d, float aperture, float max_dist, out float ao, out int steps)
+vec4 trace_cone(vec3 apex, vec3 d, float aperture, float max_dist, vec4 plane, out float ao, out int steps)
 {
     float vs = 1.0 / u_res_f, dst = 0.0, diam = 0.0, ao_acc = 0.0;
     vec4 acc = vec4(0.0);
@@ -62,9 +72,11 @@ vec4 trace_cone(vec3 apex, vec3 d, float aperture, float max_dist, out float ao,
         vec3 p = apex + d * dst;
         // thesis code: only cones narrower than 0.3 stop at the volume border
         if ((CLIP_CONES != 0 || aperture < 0.3) && (any(lessThan(p, vec3(0.0))) || any(greaterThan(p, vec3(1.0))))) break;
-        float lod = max(log2(diam * u_res_f), 0.0);
+        float ds = diam;
+        if (u_footprint_clamp > 0.0) ds = min(ds, u_footprint_clamp * max(dot(plane.xyz, p) + plane.w, 0.0));
+        float lod = max(log2(ds * u_res_f), 0.0);
         vec4 s = vox_sample(p, d, lod);
-        float step_len = max(diam * u_step_mul, vs);
+        float step_len = max(ds * u_step_mul, vs);
 #if OPACITY_CORRECTION
         float a_c = 1.0 - pow(max(1.0 - s.a, 0.0), step_len / (exp2(lod) * vs));
         s = s.a > 1e-6 ? s * (a_c / s.a) : vec4(0.0);

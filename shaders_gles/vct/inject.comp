@@ -106,17 +106,21 @@ void main()
     if (cnt == 0u) { imageStore(u_out, c, vec4(0.0)); return; }
     float inv = 1.0 / (255.0 * float(cnt));
     alb = vec3(float(s[(CH_ALB + 0) * N + i]), float(s[(CH_ALB + 1) * N + i]), float(s[(CH_ALB + 2) * N + i])) * inv;
-    nrm = vec3(float(int(s[(CH_NRM + 0) * N + i])), float(int(s[(CH_NRM + 1) * N + i])), float(int(s[(CH_NRM + 2) * N + i])));
+    nrm = vec3(float(int(s[(CH_NRM + 0) * N + i])), float(int(s[(CH_NRM + 1) * N + i])), float(int(s[(CH_NRM + 2) * N + i]))) / (127.0 * float(cnt));
     frac = vec3(float(s[(CH_POS + 0) * N + i]), float(s[(CH_POS + 1) * N + i]), float(s[(CH_POS + 2) * N + i])) * inv;
 #if EMISSIVE
     emi = vec3(float(s[(CH_EMI + 0) * N + i]), float(s[(CH_EMI + 1) * N + i]), float(s[(CH_EMI + 2) * N + i])) * inv;
 #endif
 #endif
+    // nrm is the MEAN of the fragments' unit normals, not renormalised: for fragments that all face
+    // a light, the mean of their n.l is exactly mean(n).l, so a corner voxel (floor + wall) gets the
+    // average of its faces' irradiance. Opposite faces in one voxel (a wall thinner than a voxel)
+    // cancel to the net orientation; renormalising would light such a voxel fully from whichever
+    // side happened to get a few more fragments, and its isotropic radiance would leak through.
     float nl = length(nrm);
-    // Opposite normals cancel (two faces in one voxel): such a voxel is lit from neither side here.
-    nrm = nl > 1e-6 ? nrm / nl : vec3(0.0);
+    vec3 nd = nl > 1e-6 ? nrm / nl : vec3(0.0);
     vec3 x = u_grid_origin + (vec3(c) + frac) * u_voxel_size;
-    vec3 xs = x + nrm * u_voxel_size;   // shadow lookups one voxel off the surface (no self-shadowing)
+    vec3 xs = x + nd * u_voxel_size;   // shadow lookups one voxel off the surface (no self-shadowing)
     vec3 E = vec3(0.0);
     for (int l = 0; l < MAX_LIGHTS; l++) {
         if (l >= u_n_lights) break;

@@ -55,6 +55,7 @@ void main()
     vec3 B = cross(N, T);
     vec3 pu = (P - u_grid_origin) / u_grid_size;      // voxel space
     vec3 apex = pu + N * (u_apex_offset / u_res_f);
+    vec4 plane = vec4(N, -dot(N, pu));                 // the receiver's tangent plane, voxel space
     vec3 D = vec3(0.0);
     float occ = 0.0;
     int total = 0;
@@ -62,7 +63,7 @@ void main()
         if (k >= u_n_cones) break;
         vec3 d = normalize(T * u_cone_dir[k].x + N * u_cone_dir[k].y + B * u_cone_dir[k].z);
         float ao; int steps;
-        vec4 c = trace_cone(apex, d, u_cone_aperture[k], u_max_dist, ao, steps);
+        vec4 c = trace_cone(apex, d, u_cone_aperture[k], u_max_dist, plane, ao, steps);
         D += u_cone_weight[k] * c.rgb;
         occ += u_cone_weight[k] * ao;
         total += steps;
@@ -73,7 +74,7 @@ void main()
     if (mr.g < 0.5 || mr.r > 0.5) {                   // glossy enough to be worth a cone
         vec3 R = reflect(normalize(P - u_eye), N);
         float ao; int steps;
-        spec = trace_cone(apex, R, u_spec_aperture, u_max_dist, ao, steps);
+        spec = trace_cone(apex, R, u_spec_aperture, u_max_dist, plane, ao, steps);
         total += steps;
     }
 #endif

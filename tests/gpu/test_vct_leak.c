@@ -216,19 +216,37 @@ static void partition_leak_is_small(void **state)
         assert_true(r[i] >= 0);
         assert_true(lit > 0);
     }
-    /* Measured (llvmpipe, this scene): 32^3 6.0%, 64^3 2.9%, 64^3 iso 30.7%, 64^3 at trace scale 0.5
-       2.8%, 4 cones 3.3%, 9 cones 3.7%. P.4 measured 0.3-0.6% in a box whose lit side is lit all
-       over; here only a small spot of floor is lit, so the lit side's indirect light (the
-       denominator) is weaker, and the leak grows with the thesis code's 2.5-voxel apex offset
-       (0.8% with a 1-voxel offset, 0.3% with that and step 0.5; measured once while writing this).
-       Bounds: ~1.5x the measurements, and isotropic mips must leak clearly more than anisotropic
-       ones (the red-green wall problem, Fig. 11b). */
-    assert_true(r[0] < 0.09);
-    assert_true(r[1] < 0.045);
+    /* The thesis's cone sampling (no footprint clamp, wide cones not clipped at the border) */
+    gk_vct_options thesis;
+    gk_vct_default_options(&thesis);
+    thesis.footprint_clamp = 0, thesis.clip_cones = false;
+    double t[3];
+    static const char *res_budgets[3] = {"vct_res=32,vct_trace_scale=1", "vct_res=64,vct_trace_scale=1",
+                                         "vct_res=128,vct_trace_scale=1"};
+    for (int i = 0; i < 3; i++) {
+        t[i] = partition_leak(res_budgets[i], &thesis, &lit);
+        printf("# partition leak %s, thesis cone sampling: dark/lit = %.3f%%\n", res_budgets[i], 100 * t[i]);
+        assert_true(t[i] >= 0);
+    }
+    /* Measured (llvmpipe, this scene), default: 32^3 3.9%, 64^3 4.6%, 64^3 iso 19.5%, 64^3 at trace
+       scale 0.5 4.3%, 4 cones 6.1%, 9 cones 3.5%; thesis cone sampling 6.0% / 2.9% / 1.3% at
+       32^3 / 64^3 / 128^3. P.4 measured 0.3-0.6% in a box whose lit side is lit all over; here only
+       a small spot of floor is lit, 2 voxels (64^3) from the wall, so the lit side's indirect light
+       (the denominator) is weaker. The footprint clamp trades here: its narrow near-field samples
+       cross the one-voxel wall at level 0, where trilinear samples with 1-voxel steps see it only
+       partly opaque (the thin-wall test above), so the default leaks more than the thesis's cones
+       at 64^3 and does not fall with resolution, while it removes self-illumination (test_vct.c)
+       and halves the Cornell box's error (tests/e2e/gi_bounce.sh).
+       Bounds: ~1.5x the measurements; isotropic mips must leak clearly more than anisotropic
+       ones (the red-green wall problem, Fig. 11b); with the thesis's sampling a finer grid leaks
+       less (P.4). */
+    assert_true(r[0] < 0.06);
+    assert_true(r[1] < 0.07);
     assert_true(r[2] > 3 * r[1]);
-    assert_true(r[3] < 0.045);
-    assert_true(r[4] < 0.05 && r[5] < 0.055);
-    assert_true(r[1] < r[0]);   /* finer grid, less leaking (P.4) */
+    assert_true(r[3] < 0.07);
+    assert_true(r[4] < 0.09 && r[5] < 0.055);
+    assert_true(t[0] < 0.09 && t[1] < 0.045 && t[2] < 0.02);
+    assert_true(t[2] < t[1] && t[1] < t[0]);
     /* The same with the optional position and material textures instead of the renderer's layout
        (positions reconstructed from depth): the reconstruction must not change the result. */
     vt_full_gbuffer = true;

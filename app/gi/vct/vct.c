@@ -16,11 +16,15 @@
  * steps ~ 1/ln(1 + m a) for a ~ 1.1 (1/ln 3.2 = 0.86, 1/ln 2.65 = 1.03, 1/ln 2.1 = 1.35,
  * 1/ln 1.55 = 2.28, normalised). Trace scale: traced pixels ~ s^2. Mips: six directions vs one
  * hardware mip chain. */
-static const gk_knob_def knob_res = {"vct_res", "vct", 4, {"32", "64", "128", "256"}, {1, 4, 24, 160}, 1, 2}; /* 256^3 is past the 128 MiB SSBO limit on llvmpipe: a pinned value only */
-static const gk_knob_def knob_cones = {"vct_cones", "vct", 3, {"4", "6", "9"}, {1, 1.5f, 2.25f}, 1, 0};
-static const gk_knob_def knob_step = {"vct_step", "vct", 4, {"2", "1.5", "1", "0.5"}, {1, 1.2f, 1.57f, 2.65f}, 2, 0};
-static const gk_knob_def knob_scale = {"vct_trace_scale", "vct", 3, {"0.25", "0.5", "1"}, {1, 4, 16}, 1, 0};
-static const gk_knob_def knob_mips = {"vct_mips", "vct", 2, {"iso", "aniso"}, {1, 2}, 1, 0};
+static const gk_knob_def knob_res = {"vct_res", "vct", 4, {"32", "64", "128", "256"}, {1, 4, 24, 160}, 1, 2, false}; /* 256^3 is past the 128 MiB SSBO limit on llvmpipe: a pinned value only */
+static const gk_knob_def knob_cones = {"vct_cones", "vct", 3, {"4", "6", "9"}, {1, 1.5f, 2.25f}, 1, 0, false};
+static const gk_knob_def knob_step = {"vct_step", "vct", 4, {"2", "1.5", "1", "0.5"}, {1, 1.2f, 1.57f, 2.65f}, 2, 0, false};
+static const gk_knob_def knob_scale = {"vct_trace_scale", "vct", 3, {"0.25", "0.5", "1"}, {1, 4, 16}, 1, 0, false};
+static const gk_knob_def knob_mips = {"vct_mips", "vct", 2, {"iso", "aniso"}, {1, 2}, 1, 0, false};
+/* default: gk_vct_default_options (conservative voxelization, fixed-point averaging, footprint
+   clamp, ...); thesis: gk_vct_thesis_options, the thesis as published. A switch for measuring one
+   against the other, never a scheduler pick. */
+static const gk_knob_def knob_variant = {"vct_variant", "vct", 2, {"default", "thesis"}, {1, 1}, 0, 0, .fixed = true};
 
 void gk_vct_default_options(gk_vct_options *o)
 {
@@ -31,6 +35,8 @@ void gk_vct_default_options(gk_vct_options *o)
     o->axis_weight_sq = false;
     o->opacity_correction = false;
     o->directional_injection = false;
+    o->clip_cones = true;
+    o->footprint_clamp = 1.0f / 3.0f;
     o->specular = -1;
     o->apex_offset = 2.5f;
     o->max_dist = 1.7320508f;
@@ -46,6 +52,8 @@ void gk_vct_thesis_options(gk_vct_options *o)
     o->average_cas = true;
     o->faithful_weights = true;
     o->directional_injection = false;
+    o->clip_cones = false;
+    o->footprint_clamp = 0.0f;
     o->shadow_ambient = 0.07f;
 }
 
@@ -61,6 +69,7 @@ static void vct_declare_knobs(gk_budget *b)
     gk_budget_add(b, &knob_step);
     gk_budget_add(b, &knob_scale);
     gk_budget_add(b, &knob_mips);
+    gk_budget_add(b, &knob_variant);
 }
 
 static void *vct_create(const gk_gi_context *ctx, gk_err *e)
@@ -72,6 +81,7 @@ static void *vct_create(const gk_gi_context *ctx, gk_err *e)
     }
     v->ctx = *ctx;
     gk_vct_default_options(&v->opt);
+    v->user_opt = v->opt;
     glGenBuffers(1, &v->tri_ssbo);
     glGenBuffers(1, &v->counter_ssbo);
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, v->counter_ssbo);
@@ -106,9 +116,21 @@ static int vct_set_scene(void *self, const gk_scene *s, gk_err *e)
 void gk_vct_set_options(void *self, const gk_vct_options *o)
 {
     gk_vct *v = self;
-    v->opt = *o;
+    v->opt = v->user_opt = *o;
     v->allocated = false;
     v->need_voxelize = v->need_inject = true;
+}
+
+/* Field by field: the structs may differ in their padding bytes. */
+static bool options_equal(const gk_vct_options *a, const gk_vct_options *b)
+{
+    return a->conservative == b->conservative && a->average_cas == b->average_cas &&
+           a->faithful_weights == b->faithful_weights && a->axis_weight_sq == b->axis_weight_sq &&
+           a->opacity_correction == b->opacity_correction && a->directional_injection == b->directional_injection &&
+           a->clip_cones == b->clip_cones && a->footprint_clamp == b->footprint_clamp && a->specular == b->specular &&
+           a->apex_offset == b->apex_offset && a->max_dist == b->max_dist && a->ao_lambda == b->ao_lambda &&
+           a->spec_aperture == b->spec_aperture && a->shadow_ambient == b->shadow_ambient &&
+           memcmp(a->grid_offset, b->grid_offset, sizeof a->grid_offset) == 0;
 }
 
 static void read_budget(const gk_budget *b, vct_budget *out)
@@ -119,6 +141,8 @@ static void read_budget(const gk_budget *b, vct_budget *out)
     out->trace_scale = b ? gk_budget_float(b, "vct_trace_scale", 0.5f) : 0.5f;
     const char *m = b ? gk_budget_value(b, "vct_mips") : NULL;
     out->aniso = !m || strcmp(m, "iso") != 0;
+    const char *variant = b ? gk_budget_value(b, "vct_variant") : NULL;
+    out->thesis = variant && strcmp(variant, "thesis") == 0;
     if (out->res < 8)
         out->res = 64;
     if (out->cones != 4 && out->cones != 9)
@@ -200,6 +224,14 @@ static int vct_render(void *self, const gk_gi_frame *f, gk_pass_times *times, gk
     vct_budget b;
     read_budget(f->budget, &b);
     double t0 = now_ms();
+    gk_vct_options want = v->user_opt;
+    if (b.thesis)
+        gk_vct_thesis_options(&want);
+    if (!options_equal(&want, &v->opt)) {   /* variant switched: rebuild everything */
+        v->opt = want;
+        v->allocated = false;
+        v->need_voxelize = v->need_inject = true;
+    }
 
     if (!v->tris.data || s != v->scene) {           /* first frame of a scene: node matrices are valid now */
         v->scene = s;

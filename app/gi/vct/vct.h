@@ -30,7 +30,11 @@ typedef struct gk_vct_options {
     bool opacity_correction;  /* step-length opacity correction (not in the thesis) */
     bool directional_injection; /* level-1 views show a voxel's radiance only to viewers its normal faces
                                    (not in the thesis). false (default, thesis): lit from every side. */
-    bool clip_cones;          /* stop every cone at the volume border (thesis code: only cones < 0.3) */
+    bool clip_cones;          /* true (default): stop every cone at the volume border; false (thesis code):
+                                 only cones narrower than 0.3 stop, wide ones sample clamped edge texels */
+    float footprint_clamp;    /* c > 0 (default 0.5): a sample's diameter is at most c x its height above
+                                 the receiver's tangent plane, so coarse samples never reach the receiver's
+                                 own surface (not in the thesis); 0: off (thesis) */
     int specular;             /* -1 (default): when the scene has specular materials; 0 off; 1 on */
     float apex_offset;        /* voxels along the normal, thesis code 2.5 */
     float max_dist;           /* voxel-space units, thesis code sqrt(3) */

@@ -16,6 +16,7 @@ typedef struct vct_budget {
     float step;         /* vct_step */
     float trace_scale;  /* vct_trace_scale */
     bool aniso;         /* vct_mips */
+    bool thesis;        /* vct_variant=thesis */
 } vct_budget;
 
 typedef struct vct_tris {
@@ -31,7 +32,8 @@ typedef struct vct_tris {
 
 typedef struct gk_vct {
     gk_gi_context ctx;
-    gk_vct_options opt;
+    gk_vct_options opt;          /* in use: user_opt, or the thesis's with vct_variant=thesis */
+    gk_vct_options user_opt;     /* gk_vct_set_options (defaults unless a test sets them) */
     const gk_scene *scene;
     vct_budget cur;              /* budget the GPU resources were made for */
     bool allocated;

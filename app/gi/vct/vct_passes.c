@@ -268,6 +268,7 @@ int vct_pass_trace(gk_vct *v, const gk_gi_frame *f, const vct_budget *b, gk_err 
     glUniform1f(glGetUniformLocation(p, "u_ao_lambda"), v->opt.ao_lambda);
     glUniform1f(glGetUniformLocation(p, "u_max_dist"), v->opt.max_dist);
     glUniform1f(glGetUniformLocation(p, "u_apex_offset"), v->opt.apex_offset);
+    glUniform1f(glGetUniformLocation(p, "u_footprint_clamp"), v->opt.footprint_clamp);
     glUniform1f(glGetUniformLocation(p, "u_spec_aperture"), v->opt.spec_aperture);
     float dir[VCT_MAX_CONES][3], ap[VCT_MAX_CONES], w[VCT_MAX_CONES];
     int n = vct_cone_set(b->cones, v->opt.faithful_weights, dir, ap, w);

@@ -20,16 +20,16 @@
  *  vpl_gather: multires shades every valid region with all N VPLs instead of N/B² per pixel;
  *              T5 at 64² measured ~1/16 as many regions as pixels, i.e. par with block 4     -> 1, 1.4 */
 static const gk_knob_def knobs[] = {
-    {"vpl_n", "vpl", 3, {"256", "512", "1024"}, {1.0f, 1.69f, 3.07f}, 0, 0},
-    {"vpl_m", "vpl", 6, {"2", "4", "8", "16", "32", "adaptive"}, {1.0f, 1.006f, 1.018f, 1.041f, 1.086f, 1.05f}, 2, 0},
-    {"vpl_val_map", "vpl", 3, {"64", "128", "256"}, {1.0f, 1.02f, 1.11f}, 0, 0},
-    {"vpl_block", "vpl", 3, {"4", "2", "1"}, {1.0f, 3.07f, 11.35f}, 0, 0},
-    {"vpl_res", "vpl", 3, {"0.25", "0.5", "1"}, {1.0f, 3.7f, 14.5f}, 1, 0},
-    {"vpl_blur", "vpl", 3, {"2", "4", "8"}, {1.0f, 1.17f, 1.5f}, 1, 0},
+    {"vpl_n", "vpl", 3, {"256", "512", "1024"}, {1.0f, 1.69f, 3.07f}, 0, 0, false},
+    {"vpl_m", "vpl", 6, {"2", "4", "8", "16", "32", "adaptive"}, {1.0f, 1.006f, 1.018f, 1.041f, 1.086f, 1.05f}, 2, 0, false},
+    {"vpl_val_map", "vpl", 3, {"64", "128", "256"}, {1.0f, 1.02f, 1.11f}, 0, 0, false},
+    {"vpl_block", "vpl", 3, {"4", "2", "1"}, {1.0f, 3.07f, 11.35f}, 0, 0, false},
+    {"vpl_res", "vpl", 3, {"0.25", "0.5", "1"}, {1.0f, 3.7f, 14.5f}, 1, 0, false},
+    {"vpl_blur", "vpl", 3, {"2", "4", "8"}, {1.0f, 1.17f, 1.5f}, 1, 0, false},
     /* exact (one hard map per VPL) is the reference for clustering error, never a scheduler pick. */
     {"vpl_vis", "vpl", 3, {"vsm", "cssm", "exact"}, {1.0f, 1.3f, 20.0f}, 1, .auto_max_level = 1},
-    {"vpl_clamp", "vpl", 2, {"off", "on"}, {1.0f, 1.0f}, 1, 0},
-    {"vpl_gather", "vpl", 2, {"interleaved", "multires"}, {1.0f, 1.4f}, 0, 0},
+    {"vpl_clamp", "vpl", 2, {"off", "on"}, {1.0f, 1.0f}, 1, 0, .fixed = true},
+    {"vpl_gather", "vpl", 2, {"interleaved", "multires"}, {1.0f, 1.4f}, 0, 0, false},
 };
 
 static void declare_knobs(gk_budget *b)

@@ -26,7 +26,7 @@ void main()
     vec3 d = normalize(n * cos(ang) + (t * cos(az) + b * sin(az)) * sin(ang));
     vec3 start = hit - d * (0.5 * u_march * vs);
     float ao; int steps;
-    vec4 c = trace_cone(start, d, 0.0, u_march * vs, ao, steps);
+    vec4 c = trace_cone(start, d, 0.0, u_march * vs, vec4(0.0), ao, steps);
     if (c.a < 0.5) atomicAdd(result.leaked_half, 1u);
     if (c.a < 0.05) atomicAdd(result.leaked_full, 1u);
 }
