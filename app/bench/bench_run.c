@@ -68,6 +68,7 @@ typedef struct bench_run {
     gk_scene *scene;
     gk_image reference;        /* SCENE.exr (all light paths); empty when the scene has none */
     gk_image reference_direct; /* SCENE-direct.exr: what method none computes */
+    gk_image reference_1bounce; /* SCENE-1bounce.exr: direct + one diffuse bounce, what vct and vpl compute */
     int width, height;
 } bench_run;
 
@@ -140,11 +141,15 @@ static int measure(bench_run *b, const char *method, const char *pins, gk_err *e
         snprintf(exr, sizeof exr, "%s/captures/%s-%s-%03d.exr", b->o->out_dir, b->scene->name, method, r->n_rows);
         rc = gk_renderer_capture(b->renderer, NULL, exr, e);
         /* Each method is judged on what it computes: none (direct light only) against the
-           reference's direct component, GI methods against the full image. */
-        bool direct = strcmp(method, "none") == 0 && b->reference_direct.pixels;
-        const gk_image *ref = direct ? &b->reference_direct : &b->reference;
+           reference's direct component; the GI methods, which all compute one diffuse bounce,
+           against the one-bounce reference where the scene has one (summary C.1), else the full
+           image. The reference column says which. */
+        bool none = strcmp(method, "none") == 0;
+        bool direct = none && b->reference_direct.pixels;
+        bool one_bounce = !none && b->reference_1bounce.pixels;
+        const gk_image *ref = direct ? &b->reference_direct : one_bounce ? &b->reference_1bounce : &b->reference;
         snprintf(row->reference, sizeof row->reference, "%s%s", ref->pixels ? b->scene->name : "",
-                 direct ? "-direct" : "");
+                 direct ? "-direct" : one_bounce ? "-1bounce" : "");
         if (rc == 0 && ref->pixels) {
             gk_image test = {0};
             gk_metrics m;
@@ -199,6 +204,11 @@ static int bench_scene(bench_run *b, const char *name, gk_err *e)
         return -1;
     if (load_reference(b, name, "", &b->reference, e) < 0 || load_reference(b, name, "-direct", &b->reference_direct, e) < 0)
         return -1;
+    /* optional: only scenes made to measure one-bounce methods have it (tools/references.sh) */
+    char one[1024];
+    snprintf(one, sizeof one, "%s/%s-1bounce.exr", b->o->refs_dir, name);
+    if (access(one, R_OK) == 0 && load_reference(b, name, "-1bounce", &b->reference_1bounce, e) < 0)
+        return -1;
     int rc = gk_renderer_set_scene(b->renderer, b->scene, e);
     const char *applies[16];
     int n_applies = rc == 0 ? gk_renderer_methods(b->renderer, applies, 16) : 0;
@@ -250,6 +260,7 @@ static int bench_scene(bench_run *b, const char *name, gk_err *e)
         fputc('\n', stderr);
     gk_image_free(&b->reference);
     gk_image_free(&b->reference_direct);
+    gk_image_free(&b->reference_1bounce);
     gk_scene_free(b->scene);
     b->scene = NULL;
     return rc;

@@ -28,6 +28,25 @@ check "pcss is more accurate than hard shadows on shadow-planes" \
 check "chart: speed-accuracy-shadow-planes.png" [ -s "$TMP/b/speed-accuracy-shadow-planes.png" ]
 check "chart: speed-accuracy-shadow-planes.svg" [ -s "$TMP/b/speed-accuracy-shadow-planes.svg" ]
 
+# vct: the variant switch measured side by side, judged against the one-bounce reference (vct
+# computes one diffuse bounce), with the share of each of its passes in the CSV.
+expect_exit 0 "bench: vct default against thesis on cornell" "$GIKIOSK" bench --scenes cornell --methods vct \
+    --sweep "vct_variant=default,thesis" --frames 1 --warmup 1 --out "$TMP/v"
+CSV=$TMP/v/bench.csv
+check "bench.csv (vct): two rows" [ "$(wc -l <"$CSV" 2>/dev/null)" = 3 ]
+check "bench.csv (vct): measured against cornell-1bounce" \
+    sh -c "awk -F, 'NR > 1 && \$0 !~ /,cornell-1bounce,/ { bad = 1 } END { exit bad || NR != 3 }' '$CSV'"
+for pass in vct_voxelize vct_inject vct_mips vct_trace vct_compose; do
+    c=$(col "${pass}_ms")
+    check "bench.csv (vct): column ${pass}_ms, a time in every row" \
+        sh -c "[ -n '$c' ] && awk -F, -v c='$c' 'NR > 1 && !(\$c >= 0 && \$c != \"\") { bad = 1 } END { exit bad }' '$CSV'"
+done
+c_err=$(col rel_rmse)
+c_var=$(col vct_variant)
+# measured 0.099 (default) vs 0.599 (thesis: its cone weights 1/0.607 and alpha_GI add 36% energy)
+check "vct default is more accurate than the thesis variant on cornell" \
+    sh -c "awk -F, -v e=$c_err -v v=$c_var 'NR > 1 { err[\$v] = \$e } END { exit !(err[\"default\"] + 0 > 0 && err[\"default\"] < err[\"thesis\"]) }' '$CSV'"
+
 expect_exit 2 "bench: unknown knob in --sweep exits 2" "$GIKIOSK" bench --scenes shadow-planes --sweep "shadows=hard" --out "$TMP/c"
 stderr_has "unknown knob 'shadows'" "bench: the message names the knob"
 expect_exit 2 "bench: missing --out exits 2" "$GIKIOSK" bench --scenes shadow-planes
