@@ -47,6 +47,13 @@ typedef struct gk_bench_row {
     bool pareto;
 } gk_bench_row;
 
+/* The error a row is charted and ranked by: rel_rmse; for a black reference (light-leak), where the
+   relative error is infinite, the mean radiance of the image (all of it is error); NaN without a
+   reference. */
+double gk_bench_row_error(const gk_bench_row *row);
+/* True when the rows of this scene are measured against a black reference. */
+bool gk_bench_black_reference(const gk_bench_row *rows, int n, const char *scene);
+
 typedef struct gk_bench_result {
     gk_budget budget;          /* the knob set (names, values) the levels refer to */
     int n_passes;

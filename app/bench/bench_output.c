@@ -113,7 +113,7 @@ static int write_scene_chart(const gk_bench_result *r, const char *dir, const ch
     char series[32][64];
     int n_series = 0;
     for (int i = 0; i < r->n_rows; i++) {
-        if (strcmp(r->rows[i].scene, scene) || isnan(r->rows[i].rel_rmse))
+        if (strcmp(r->rows[i].scene, scene) || isnan(gk_bench_row_error(&r->rows[i])))
             continue;
         char key[64];
         int sk;
@@ -130,13 +130,13 @@ static int write_scene_chart(const gk_bench_result *r, const char *dir, const ch
             const gk_bench_row *row = &r->rows[i];
             char key[64], label[128];
             int sk;
-            if (strcmp(row->scene, scene) || isnan(row->rel_rmse))
+            if (strcmp(row->scene, scene) || isnan(gk_bench_row_error(row)))
                 continue;
             row_series(r, i, several_methods, key, sizeof key, &sk);
             if (strcmp(key, series[m]))
                 continue;
             row_label(r, i, sk, label, sizeof label);
-            fprintf(f, "%.6g %.6g \"%s\"\n", row->frame_ms_median, row->rel_rmse, label);
+            fprintf(f, "%.6g %.6g \"%s\"\n", row->frame_ms_median, gk_bench_row_error(row), label);
         }
         fputs("\n\n", f);
     }
@@ -152,7 +152,7 @@ static int write_scene_chart(const gk_bench_result *r, const char *dir, const ch
             idx[b - 1] = t;
         }
     for (int a = 0; a < n; a++)
-        fprintf(f, "%.6g %.6g\n", r->rows[idx[a]].frame_ms_median, r->rows[idx[a]].rel_rmse);
+        fprintf(f, "%.6g %.6g\n", r->rows[idx[a]].frame_ms_median, gk_bench_row_error(&r->rows[idx[a]]));
     fclose(f);
     if (n_series == 0) {
         gk_log("bench: %s has no measured error (no reference): no chart", scene);
@@ -164,8 +164,11 @@ static int write_scene_chart(const gk_bench_result *r, const char *dir, const ch
         return gk_fail(e, GK_ERUNTIME, "%s: %s", gp, strerror(errno));
     fprintf(f, "# Speed against accuracy for %s: regenerate with `gnuplot %s`.\n", scene, gp);
     fprintf(f, "set title \"%s: error against frame time (llvmpipe CPU times: compare as ratios)\"\n", scene);
-    fputs("set xlabel \"frame time, median (ms, log scale)\"\nset ylabel \"relative RMSE vs path-traced reference\"\n"
-          "set logscale xy\nset grid\nset key outside right top\nset offsets graph 0.05, graph 0.05, graph 0.05, graph 0.05\n",
+    fprintf(f, "set xlabel \"frame time, median (ms, log scale)\"\nset ylabel \"%s\"\n",
+            gk_bench_black_reference(r->rows, r->n_rows, scene)
+                ? "mean radiance, nits (the reference is black: all of it is leaked light)"
+                : "relative RMSE vs path-traced reference");
+    fputs("set logscale xy\nset grid\nset key outside right top\nset offsets graph 0.05, graph 0.05, graph 0.05, graph 0.05\n",
           f);
     for (int pass = 0; pass < 2; pass++) {
         if (pass == 0)

@@ -104,16 +104,33 @@ void gk_bench_sweep_pins(const gk_bench_sweep *s, int index, char *out, int out_
     }
 }
 
+double gk_bench_row_error(const gk_bench_row *row)
+{
+    if (isinf(row->rel_rmse) && row->reference[0])
+        return row->test_mean;
+    return row->rel_rmse;
+}
+
+bool gk_bench_black_reference(const gk_bench_row *rows, int n, const char *scene)
+{
+    for (int i = 0; i < n; i++)
+        if (!strcmp(rows[i].scene, scene) && isinf(rows[i].rel_rmse) && rows[i].reference[0])
+            return true;
+    return false;
+}
+
 void gk_bench_mark_pareto(gk_bench_row *rows, int n)
 {
     for (int i = 0; i < n; i++) {
-        rows[i].pareto = !isnan(rows[i].rel_rmse);
+        double err_i = gk_bench_row_error(&rows[i]);
+        rows[i].pareto = !isnan(err_i);
         for (int j = 0; j < n && rows[i].pareto; j++) {
-            if (j == i || isnan(rows[j].rel_rmse) || strcmp(rows[i].scene, rows[j].scene) != 0)
+            double err_j = gk_bench_row_error(&rows[j]);
+            if (j == i || isnan(err_j) || strcmp(rows[i].scene, rows[j].scene) != 0)
                 continue;
             bool faster_eq = rows[j].frame_ms_median <= rows[i].frame_ms_median;
-            bool better_eq = rows[j].rel_rmse <= rows[i].rel_rmse;
-            bool strictly = rows[j].frame_ms_median < rows[i].frame_ms_median || rows[j].rel_rmse < rows[i].rel_rmse;
+            bool better_eq = err_j <= err_i;
+            bool strictly = rows[j].frame_ms_median < rows[i].frame_ms_median || err_j < err_i;
             if (faster_eq && better_eq && strictly)
                 rows[i].pareto = false;
         }

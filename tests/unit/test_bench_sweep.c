@@ -88,6 +88,29 @@ static void pareto_front_keeps_only_undominated_points(void **state)
     assert_false(rows[4].pareto); /* no error measured */
 }
 
+/* light-leak: the reference is black, the relative error infinite; the leaked radiance ranks. */
+static void black_reference_ranks_by_leaked_radiance(void **state)
+{
+    (void)state;
+    gk_bench_row rows[3];
+    memset(rows, 0, sizeof rows);
+    double t[3] = {1, 2, 3}, leak[3] = {0.3, 0.1, 0.2};
+    for (int i = 0; i < 3; i++) {
+        strcpy(rows[i].scene, "light-leak");
+        strcpy(rows[i].reference, "light-leak");
+        rows[i].frame_ms_median = t[i];
+        rows[i].rel_rmse = INFINITY;
+        rows[i].test_mean = leak[i];
+    }
+    assert_true(gk_bench_black_reference(rows, 3, "light-leak"));
+    assert_false(gk_bench_black_reference(rows, 3, "cornell"));
+    assert_true(gk_bench_row_error(&rows[1]) == 0.1);
+    gk_bench_mark_pareto(rows, 3);
+    assert_true(rows[0].pareto);
+    assert_true(rows[1].pareto);
+    assert_false(rows[2].pareto); /* slower and leaks more than row 1 */
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -95,6 +118,7 @@ int main(void)
         cmocka_unit_test(sweep_rejects_unknown_knobs_and_values),
         cmocka_unit_test(default_sweeps_follow_the_method),
         cmocka_unit_test(pareto_front_keeps_only_undominated_points),
+        cmocka_unit_test(black_reference_ranks_by_leaked_radiance),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
