@@ -19,6 +19,8 @@ run shadows --scenes shadow-planes,cornell --methods none
 # Voxel cone tracing: each knob one at a time, on the scenes of its issue.
 if "$BIN" scenes | grep -q 'vct'; then
     run vct --scenes cornell,light-leak,atrium --methods vct
+    # What a moving light or object costs: every pass every frame, per voxel resolution.
+    run vct-rebuild --scenes cornell,atrium --methods vct --sweep 'vct_res=32,64,128' --rebuild-gi
 fi
 # VPLs with clustered virtual area lights: N x M and adaptive M.
 if "$BIN" scenes | grep -q 'vpl'; then

@@ -28,6 +28,7 @@ typedef struct gk_bench_opts {
     char sweep[1024];          /* "KNOB=V1,V2;KNOB=V1,V2" (cartesian); "" = the default per method */
     int width, height;         /* 0 = the reference's size */
     int frames, warmup;        /* timed frames per configuration, untimed frames before them */
+    bool rebuild_gi;           /* GI methods redo their static work (voxelize, inject...) every frame */
     char out_dir[512];
     char scenes_dir[512];
     char refs_dir[512];

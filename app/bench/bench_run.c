@@ -86,7 +86,8 @@ static int measure(bench_run *b, const char *method, const char *pins, gk_err *e
 
     /* The kiosk keeps shadow maps of static scenes between frames; a sweep over shadow knobs must
        pay for them every frame to measure them, any other sweep measures the kiosk's steady state. */
-    gk_renderer_set_rerender_static_shadows(b->renderer, strstr(pins, "shadow") != NULL);
+    gk_renderer_set_rerender_static_shadows(b->renderer, strstr(pins, "shadow") != NULL || b->o->rebuild_gi);
+    gk_renderer_set_rebuild_gi(b->renderer, b->o->rebuild_gi);
     int frames = b->o->frames, total = b->o->warmup + frames;
     double *frame_ms = calloc((size_t)frames, sizeof *frame_ms);
     double *pass_ms = calloc((size_t)frames * GK_MAX_PASSES, sizeof *pass_ms);

@@ -12,7 +12,7 @@ static void usage(FILE *f)
 {
     fputs("usage: gikiosk bench [--scenes LIST] [--methods LIST] [--size WxH] [--frames N] [--warmup N]\n"
           "                     [--sweep KNOB=V1,V2[;KNOB=V1,V2...]] [--scenes-dir DIR] [--references DIR]\n"
-          "                     [--gles 3.1|3.2] [--shader-dir DIR] --out DIR\n"
+          "                     [--gles 3.1|3.2] [--shader-dir DIR] [--rebuild-gi] --out DIR\n"
           "\n"
           "Renders every configuration offscreen (mock platform), measures the frame time (median and p95\n"
           "over --frames frames after --warmup untimed ones) and the error against the path-traced\n"
@@ -21,7 +21,10 @@ static void usage(FILE *f)
           "Defaults: scenes cornell,shadow-planes; every method that applies; for method none the sweep\n"
           "shadow x shadow_map, for a GI method each of its knobs one at a time; size from the reference;\n"
           "5 frames after 2 warm-up frames. On a machine without a GPU the times are llvmpipe CPU times:\n"
-          "read them as ratios between configurations measured in the same run.\n",
+          "read them as ratios between configurations measured in the same run.\n"
+          "--rebuild-gi: the GI methods redo every frame what they otherwise keep between frames of a\n"
+          "static scene (vct: voxelize, inject, mips) and shadow maps are re-rendered: the cost of a\n"
+          "moving light or object, pass by pass.\n",
           f);
 }
 
@@ -55,6 +58,10 @@ int gk_cmd_bench(int argc, char **argv)
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
             usage(stdout);
             return 0;
+        }
+        if (!strcmp(a, "--rebuild-gi")) {
+            o.rebuild_gi = true;
+            continue;
         }
         if (i + 1 >= argc) {
             fprintf(stderr, "gikiosk bench: %s needs a value\n", a);

@@ -83,6 +83,9 @@ typedef struct gk_gi_method {
     int (*render)(void *self, const gk_gi_frame *f, gk_pass_times *times, gk_err *e);
     /* Bytes of GPU memory held at the current budget (reported and asserted in tests). */
     long (*memory_bytes)(const void *self);
+    /* Optional: forget the work cached between frames (vct: voxels and injected light), so the next
+       render redoes it; the bench's --rebuild-gi times those passes with it. */
+    void (*invalidate)(void *self);
     void (*destroy)(void *self);
 } gk_gi_method;
 

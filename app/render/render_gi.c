@@ -224,6 +224,8 @@ int gk_render_gi_run(gk_render_gi *g, gk_renderer *r, const char *method, const 
     f.draw_scene = draw_scene_cb;
     f.draw_ctx = r;
     gk_pass_times own = {0};
+    if (r->opts.rebuild_gi && m[k]->invalidate)
+        m[k]->invalidate(g->state[k]);
     int rc = m[k]->render(g->state[k], &f, &own, e);
     for (int i = 0; times && i < own.n && times->n < GK_MAX_PASSES; i++) {
         times->name[times->n] = own.name[i];

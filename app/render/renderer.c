@@ -78,6 +78,7 @@ void gk_renderer_destroy(gk_renderer *r)
 }
 
 void gk_renderer_set_rerender_static_shadows(gk_renderer *r, bool on) { r->opts.rerender_static_shadows = on; }
+void gk_renderer_set_rebuild_gi(gk_renderer *r, bool on) { r->opts.rebuild_gi = on; }
 
 int gk_renderer_set_scene(gk_renderer *r, gk_scene *s, gk_err *e)
 {

@@ -27,6 +27,8 @@ typedef struct gk_render_opts {
     bool gpu_timer_queries;   /* false on llvmpipe (meaningless there) */
     bool rerender_static_shadows; /* re-render shadow maps every frame even when nothing moved
                                      (the bench, to measure a method's per-frame cost) */
+    bool rebuild_gi;          /* GI methods redo their cached static work every frame (the bench's
+                                 --rebuild-gi: what a moving light or object costs) */
 } gk_render_opts;
 
 typedef struct gk_frame_params {
@@ -54,6 +56,8 @@ int gk_renderer_methods(const gk_renderer *r, const char **names, int max);
 
 /* Changes opts.rerender_static_shadows: the bench turns it on while it sweeps shadow knobs. */
 void gk_renderer_set_rerender_static_shadows(gk_renderer *r, bool on);
+/* Changes opts.rebuild_gi. */
+void gk_renderer_set_rebuild_gi(gk_renderer *r, bool on);
 
 /* Renders one frame into target_fbo (the platform's framebuffer), fills times. */
 int gk_renderer_draw(gk_renderer *r, const gk_frame_params *fp, unsigned target_fbo, gk_pass_times *times, gk_err *e);

@@ -308,6 +308,12 @@ static int vct_render(void *self, const gk_gi_frame *f, gk_pass_times *times, gk
     return 0;
 }
 
+static void vct_invalidate(void *self)
+{
+    gk_vct *v = self;
+    v->need_voxelize = v->need_inject = true;
+}
+
 static long vct_memory_bytes(const void *self)
 {
     const gk_vct *v = self;
@@ -361,5 +367,6 @@ const gk_gi_method gk_gi_vct = {
     .set_scene = vct_set_scene,
     .render = vct_render,
     .memory_bytes = vct_memory_bytes,
+    .invalidate = vct_invalidate,
     .destroy = vct_destroy,
 };
