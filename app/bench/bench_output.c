@@ -167,14 +167,14 @@ static int write_scene_chart(const gk_bench_result *r, const char *dir, const ch
     fprintf(f, "set xlabel \"frame time, median (ms, log scale)\"\nset ylabel \"%s\"\n",
             gk_bench_black_reference(r->rows, r->n_rows, scene)
                 ? "mean radiance, nits (the reference is black: all of it is leaked light)"
-                : "relative RMSE vs path-traced reference");
+                : "relative RMSE vs the path-traced reference (GI methods: one bounce where there is one)");
     fputs("set logscale xy\nset grid\nset key outside right top\nset offsets graph 0.05, graph 0.05, graph 0.05, graph 0.05\n",
           f);
     for (int pass = 0; pass < 2; pass++) {
         if (pass == 0)
-            fprintf(f, "set terminal pngcairo size 1000,640 font \"DejaVu Sans,10\"\nset output \"%s/speed-accuracy-%s.png\"\n", dir, scene);
+            fprintf(f, "set terminal pngcairo size 1000,640 font \"DejaVu Sans,10\" noenhanced\nset output \"%s/speed-accuracy-%s.png\"\n", dir, scene);
         else
-            fprintf(f, "set terminal svg size 1000,640 font \"DejaVu Sans,10\"\nset output \"%s/speed-accuracy-%s.svg\"\n", dir, scene);
+            fprintf(f, "set terminal svg size 1000,640 font \"DejaVu Sans,10\" noenhanced\nset output \"%s/speed-accuracy-%s.svg\"\n", dir, scene);
         fputs("plot ", f);
         for (int m = 0; m < n_series; m++)
             fprintf(f, "\"%s\" index %d using 1:2 with points pt 7 ps 1.2 title \"%s\", \"%s\" index %d using 1:2:3 with labels offset 0,0.8 font \",7\" notitle, ",
