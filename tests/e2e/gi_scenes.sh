@@ -1,6 +1,7 @@
 #!/bin/sh
 # Every implemented GI method adds indirect light in every scene it applies to, on the default and
-# on the --gles 3.1 path, at its cheapest budget and at its default budget: the captured linear
+# on the --gles 3.1 path, at its cheapest budget and at its default budget (vct also at its richest
+# automatic budget and as the thesis variant): the captured linear
 # image must carry more energy than direct light alone (method none) and stay finite. Small images
 # (64x48) keep this to about a minute on llvmpipe; accuracy is measured elsewhere
 # (accuracy.sh, vct_cornell.sh, the bench).
@@ -26,13 +27,18 @@ render() {
 
 CHEAP_vct="vct_res=32,vct_cones=4,vct_step=2,vct_trace_scale=0.25,vct_mips=iso"
 CHEAP_vpl="vpl_n=256,vpl_m=2,vpl_val_map=64,vpl_block=4,vpl_res=0.25,vpl_vis=vsm"
+# vct's richest budget the scheduler may pick, and the thesis variant; vpl's rich end is swept by
+# tests/e2e/gi_bounce.sh and the bench.
+RICH_vct="vct_res=128,vct_cones=9,vct_step=0.5,vct_trace_scale=1,vct_mips=aniso"
+EXTRA_vct="rich|$RICH_vct| thesis|vct_variant=thesis|"
 for method in vct vpl; do
     scenes=$(awk -v m="$method" 'NR > 1 && ("," $5 ",") ~ ("," m ",") { print $1 }' "$TMP/scenes.txt")
     for scene in $scenes; do
         check "$scene none renders" render "$scene" none "shadow=hard"
         mv "$TMP/out.exr" "$TMP/none.exr" 2>/dev/null
         eval cheap=\$CHEAP_$method
-        for variant in "cheap|$cheap|" "default||" "gles31||--gles 3.1"; do
+        eval extra=\$EXTRA_$method
+        for variant in "cheap|$cheap|" "default||" "gles31||--gles 3.1" $extra; do
             name=${variant%%|*}
             rest=${variant#*|}
             budget=${rest%%|*}
