@@ -175,14 +175,16 @@ static int measure(bench_run *b, const char *method, const char *pins, gk_err *e
 }
 
 /* REFS/NAME+SUFFIX.exr into img; a missing or differently sized reference leaves img empty (the
-   bench then measures time only) and says so. */
-static int load_reference(bench_run *b, const char *name, const char *suffix, gk_image *img, gk_err *e)
+   bench then measures time only) and says so, unless the reference is optional. */
+static int load_reference(bench_run *b, const char *name, const char *suffix, bool optional, gk_image *img,
+                          gk_err *e)
 {
     char ref[1024];
     snprintf(ref, sizeof ref, "%s/%s%s.exr", b->o->refs_dir, name, suffix);
     memset(img, 0, sizeof *img);
     if (access(ref, R_OK) != 0) {
-        gk_log("bench: no reference %s (make references): no error from it", ref);
+        if (!optional)
+            gk_log("bench: no reference %s (make references): no error from it", ref);
         return 0;
     }
     if (gk_image_read(ref, img, e) < 0)
@@ -203,12 +205,10 @@ static int bench_scene(bench_run *b, const char *name, gk_err *e)
     b->scene = gk_scene_load(path, e);
     if (!b->scene)
         return -1;
-    if (load_reference(b, name, "", &b->reference, e) < 0 || load_reference(b, name, "-direct", &b->reference_direct, e) < 0)
-        return -1;
-    /* optional: only scenes made to measure one-bounce methods have it (tools/references.sh) */
-    char one[1024];
-    snprintf(one, sizeof one, "%s/%s-1bounce.exr", b->o->refs_dir, name);
-    if (access(one, R_OK) == 0 && load_reference(b, name, "-1bounce", &b->reference_1bounce, e) < 0)
+    /* -1bounce is optional: only scenes made to measure one-bounce methods have it (tools/references.sh) */
+    if (load_reference(b, name, "", false, &b->reference, e) < 0 ||
+        load_reference(b, name, "-direct", false, &b->reference_direct, e) < 0 ||
+        load_reference(b, name, "-1bounce", true, &b->reference_1bounce, e) < 0)
         return -1;
     int rc = gk_renderer_set_scene(b->renderer, b->scene, e);
     const char *applies[16];

@@ -104,17 +104,18 @@ void gk_bench_sweep_pins(const gk_bench_sweep *s, int index, char *out, int out_
     }
 }
 
+/* A reference whose mean is 0 makes the relative error infinite. */
+static bool against_black(const gk_bench_row *row) { return isinf(row->rel_rmse) && row->reference[0]; }
+
 double gk_bench_row_error(const gk_bench_row *row)
 {
-    if (isinf(row->rel_rmse) && row->reference[0])
-        return row->test_mean;
-    return row->rel_rmse;
+    return against_black(row) ? row->test_mean : row->rel_rmse;
 }
 
 bool gk_bench_black_reference(const gk_bench_row *rows, int n, const char *scene)
 {
     for (int i = 0; i < n; i++)
-        if (!strcmp(rows[i].scene, scene) && isinf(rows[i].rel_rmse) && rows[i].reference[0])
+        if (!strcmp(rows[i].scene, scene) && against_black(&rows[i]))
             return true;
     return false;
 }

@@ -23,13 +23,14 @@ uniform highp sampler3D u_voxd5;
 uniform float u_res_f;      // level-0 resolution
 uniform float u_step_mul;   // step = max(diameter * u_step_mul, 1 voxel): 1 = text/Alg. 1, 0.5 = code
 uniform float u_ao_lambda;  // AO distance falloff (thesis code: 725, d in voxel-space units)
-// Footprint clamp (not in the thesis; gk_vct_options.footprint_clamp): a trilinear sample at the lod
-// of diameter D gathers voxels up to ~1.5 D from its centre, so a wide cone's coarse samples
-// overlap the receiver's own surface once D > h / 1.5 (h = height above the receiver's tangent
-// plane). The surface then lights itself (isotropic radiance) or shadows itself (its dark back),
-// and since h starts at the apex offset, which is in voxels, this begins closer to the receiver on
-// finer grids: the Cornell box's error rose with resolution. With c > 0 the sample diameter is
-// capped at c h (c = 0.5 < 2/3 keeps the receiver out), the cone is narrower near its receiver and
+// Footprint clamp (not in the thesis; gk_vct_options.footprint_clamp): a sample of diameter D is
+// read at lod log2(D res), between a level whose texels are <= D and one whose texels are <= 2 D,
+// and a trilinear fetch reads texels up to 1.5 texels from its centre: up to 3 D away. So a wide
+// cone's coarse samples overlap the receiver's own surface once D > h / 3 (h = height above the
+// receiver's tangent plane). The surface then lights itself (isotropic radiance) or shadows itself
+// (its dark back), and since h starts at the apex offset, which is in voxels, this begins closer
+// to the receiver on finer grids: the Cornell box's error rose with resolution. With c > 0 the
+// sample diameter is capped at c h (default c = 1/3), the cone is narrower near its receiver and
 // takes smaller steps there. 0: off (thesis).
 uniform float u_footprint_clamp;
 

@@ -113,24 +113,23 @@ static int vct_set_scene(void *self, const gk_scene *s, gk_err *e)
     return 0;
 }
 
-void gk_vct_set_options(void *self, const gk_vct_options *o)
+/* The options in use: the caller's, or the thesis's under vct_variant=thesis; the next render
+   re-voxelizes with them. */
+static void apply_options(gk_vct *v)
 {
-    gk_vct *v = self;
-    v->opt = v->user_opt = *o;
+    if (v->thesis)
+        gk_vct_thesis_options(&v->opt);
+    else
+        v->opt = v->user_opt;
     v->allocated = false;
     v->need_voxelize = v->need_inject = true;
 }
 
-/* Field by field: the structs may differ in their padding bytes. */
-static bool options_equal(const gk_vct_options *a, const gk_vct_options *b)
+void gk_vct_set_options(void *self, const gk_vct_options *o)
 {
-    return a->conservative == b->conservative && a->average_cas == b->average_cas &&
-           a->faithful_weights == b->faithful_weights && a->axis_weight_sq == b->axis_weight_sq &&
-           a->opacity_correction == b->opacity_correction && a->directional_injection == b->directional_injection &&
-           a->clip_cones == b->clip_cones && a->footprint_clamp == b->footprint_clamp && a->specular == b->specular &&
-           a->apex_offset == b->apex_offset && a->max_dist == b->max_dist && a->ao_lambda == b->ao_lambda &&
-           a->spec_aperture == b->spec_aperture && a->shadow_ambient == b->shadow_ambient &&
-           memcmp(a->grid_offset, b->grid_offset, sizeof a->grid_offset) == 0;
+    gk_vct *v = self;
+    v->user_opt = *o;
+    apply_options(v);
 }
 
 static void read_budget(const gk_budget *b, vct_budget *out)
@@ -224,13 +223,9 @@ static int vct_render(void *self, const gk_gi_frame *f, gk_pass_times *times, gk
     vct_budget b;
     read_budget(f->budget, &b);
     double t0 = now_ms();
-    gk_vct_options want = v->user_opt;
-    if (b.thesis)
-        gk_vct_thesis_options(&want);
-    if (!options_equal(&want, &v->opt)) {   /* variant switched: rebuild everything */
-        v->opt = want;
-        v->allocated = false;
-        v->need_voxelize = v->need_inject = true;
+    if (b.thesis != v->thesis) {   /* variant switched: rebuild everything */
+        v->thesis = b.thesis;
+        apply_options(v);
     }
 
     if (!v->tris.data || s != v->scene) {           /* first frame of a scene: node matrices are valid now */

@@ -32,7 +32,7 @@ typedef struct gk_vct_options {
                                    (not in the thesis). false (default, thesis): lit from every side. */
     bool clip_cones;          /* true (default): stop every cone at the volume border; false (thesis code):
                                  only cones narrower than 0.3 stop, wide ones sample clamped edge texels */
-    float footprint_clamp;    /* c > 0 (default 0.5): a sample's diameter is at most c x its height above
+    float footprint_clamp;    /* c > 0 (default 1/3): a sample's diameter is at most c x its height above
                                  the receiver's tangent plane, so coarse samples never reach the receiver's
                                  own surface (not in the thesis); 0: off (thesis) */
     int specular;             /* -1 (default): when the scene has specular materials; 0 off; 1 on */

@@ -34,6 +34,7 @@ typedef struct gk_vct {
     gk_gi_context ctx;
     gk_vct_options opt;          /* in use: user_opt, or the thesis's with vct_variant=thesis */
     gk_vct_options user_opt;     /* gk_vct_set_options (defaults unless a test sets them) */
+    bool thesis;                 /* vct_variant=thesis in effect */
     const gk_scene *scene;
     vct_budget cur;              /* budget the GPU resources were made for */
     bool allocated;
