@@ -31,8 +31,8 @@ LIBS = $(PKG_LIBS) -lstdc++ -lpthread -lm $(SANITIZE) $(LDFLAGS)
 # The program's sources: everything under app/ and platform/ except main.c, plus the embedded
 # shaders. gpiod_v1.c / gpiod_v2.c: only the one matching the installed libgpiod is built.
 GPIOD_SKIP := $(if $(filter 2,$(GPIOD_MAJOR)),platform/gpiod_v1.c,platform/gpiod_v2.c)
-C_SRCS   := $(filter-out app/main.c $(GPIOD_SKIP),$(shell find app platform -name '*.c' | LC_ALL=C sort))
-CXX_SRCS := $(shell find app platform -name '*.cpp' | LC_ALL=C sort)
+C_SRCS   := $(filter-out app/cli/main.c $(GPIOD_SKIP),$(shell find base app platform -name '*.c' | LC_ALL=C sort))
+CXX_SRCS := $(shell find base app platform -name '*.cpp' | LC_ALL=C sort)
 SHADERS  := $(shell find shaders_gles -type f 2>/dev/null | LC_ALL=C sort)
 GEN_SHADERS := $(BUILD)/gen/shaders_embedded.c
 
@@ -74,7 +74,7 @@ $(LIB): $(OBJS)
 	@rm -f $@
 	ar rcs $@ $^
 
-$(BIN): $(BUILD)/obj/app/main.o $(LIB)
+$(BIN): $(BUILD)/obj/app/cli/main.o $(LIB)
 	$(CC) $^ -o $@ $(LIBS)
 
 $(BUILD)/tests/unit/%: tests/unit/%.c $(LIB) $(FAKE_OBJS) $(TESTLIB_OBJS)
@@ -88,11 +88,11 @@ $(BUILD)/tests/gpu/%: tests/gpu/%.c $(LIB) $(TESTLIB_OBJS)
 # The glTF loader fuzz target (libFuzzer, clang). Built and run briefly by `make test`. Only the
 # loader's modules (scene, core, io) are compiled with clang and the sanitizers, and the C++ shims
 # (tinygltf, OpenImageIO) with clang++: the fuzz build does not depend on the rest of the program
-# (the scene commands, which list GI methods, are left out).
+# (the commands live in app/cli/, so no exclusions are needed).
 FUZZ_BIN  := $(BUILD)/fuzz/fuzz_gltf
-FUZZ_SRCS := $(filter-out app/scene/cmd_%,$(filter app/scene/% app/core/% app/io/%,$(C_SRCS) $(CXX_SRCS)))
+FUZZ_SRCS := $(filter base/% app/scene/% app/core/% app/io/%,$(C_SRCS) $(CXX_SRCS))
 FUZZ_OBJS := $(addprefix $(BUILD)/fuzzobj/obj/,$(addsuffix .o,$(basename $(FUZZ_SRCS))))
-$(FUZZ_BIN): tests/fuzz/fuzz_gltf.c $(FUZZ_SRCS) $(wildcard app/scene/*.h app/core/*.h app/io/*.h)
+$(FUZZ_BIN): tests/fuzz/fuzz_gltf.c $(FUZZ_SRCS) $(wildcard base/*.h app/scene/*.h app/core/*.h app/io/*.h)
 	@mkdir -p $(dir $@)
 	$(MAKE) --no-print-directory BUILD=$(BUILD)/fuzzobj CC=clang CXX=clang++ OPT=-O1 WERROR= \
 		SANITIZE="-fsanitize=fuzzer-no-link,address,undefined" $(FUZZ_OBJS)

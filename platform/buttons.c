@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../app/core/log.h"
+#include "base/log.h"
 
 #define RECONNECT_INTERVAL_S 1.0
 #define MAX_CLOCK_SKEW_S 5.0 /* a kernel timestamp further than this from now is on another clock */

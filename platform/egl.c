@@ -7,7 +7,7 @@
 #include <GLES3/gl32.h>
 #include <GLES2/gl2ext.h>
 
-#include "../app/core/log.h"
+#include "base/log.h"
 
 /* Under AddressSanitizer (make asan), Mesa's driver start-up inside eglInitialize keeps one-time
    state that is never freed, and unloads the driver before the leak report, so the report cannot

@@ -8,7 +8,7 @@
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 
-#include "../app/core/err.h"
+#include "base/err.h"
 
 typedef struct gk_egl {
     EGLDisplay dpy;

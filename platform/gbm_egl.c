@@ -8,7 +8,7 @@
 #include <xf86drm.h>
 #include <xf86drmMode.h>
 
-#include "../app/core/log.h"
+#include "base/log.h"
 
 /* ---- the real GBM / EGL calls ---- */
 

@@ -11,7 +11,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "../app/core/log.h"
+#include "base/log.h"
 
 #define FLIP_TIMEOUT_MS 1000  /* a flip event later than this means the display is gone */
 #define PROBE_INTERVAL_S 1.0

@@ -7,7 +7,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "../app/core/log.h"
+#include "base/log.h"
 
 static uint32_t find_prop(int fd, uint32_t obj, uint32_t type, const char *name, uint64_t *value)
 {

@@ -6,7 +6,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "../app/core/log.h"
+#include "base/log.h"
 
 /* Signals are process-wide, so this flag is the one singleton the platform keeps: the handler
  * only sets it; gk_platform_poll turns it into GK_INPUT_QUIT and the app closes the platform,

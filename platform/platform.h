@@ -7,7 +7,7 @@
 
 #include <stdbool.h>
 
-#include "../app/core/err.h"
+#include "base/err.h"
 
 enum gk_platform_kind { GK_PLATFORM_AUTO, GK_PLATFORM_KMS, GK_PLATFORM_MOCK };
 

@@ -7,7 +7,7 @@
 
 #include <stdbool.h>
 
-#include "../core/err.h"
+#include "base/err.h"
 #include "../render/renderer.h"
 #include "../sched/budget.h"
 

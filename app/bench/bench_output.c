@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../core/log.h"
+#include "base/log.h"
 
 static void put_num(FILE *f, double v)
 {

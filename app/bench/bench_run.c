@@ -11,10 +11,10 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "../core/log.h"
+#include "base/log.h"
 #include "../io/image_io.h"
 #include "../metrics/metrics.h"
-#include "../render/gl.h"
+#include "gl/gl.h"
 #include "../scene/scene.h"
 #include "platform/platform.h"
 

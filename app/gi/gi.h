@@ -11,7 +11,7 @@
 
 #include <stdbool.h>
 
-#include "../core/err.h"
+#include "base/err.h"
 #include "../core/vecmath.h"
 #include "../render/renderer.h"
 #include "../scene/scene.h"

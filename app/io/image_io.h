@@ -4,7 +4,7 @@
 #ifndef GK_IMAGE_IO_H
 #define GK_IMAGE_IO_H
 
-#include "../core/err.h"
+#include "base/err.h"
 
 typedef struct gk_image {
     int width, height, channels; /* channels 1..4 */

@@ -9,7 +9,7 @@
 #include <stdbool.h>
 
 #include "../../platform/platform.h"
-#include "../core/err.h"
+#include "base/err.h"
 #include "../sched/budget.h"
 
 #define GK_MAX_PLAYLIST 32

@@ -3,7 +3,7 @@
 #ifndef GK_KIOSK_FONT_ATLAS_H
 #define GK_KIOSK_FONT_ATLAS_H
 
-#include "../core/err.h"
+#include "base/err.h"
 
 #define GK_FONT_DEFAULT_PATH "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf"
 #define GK_FONT_FIRST 32

@@ -5,9 +5,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../core/log.h"
-#include "../render/gl.h"
-#include "../render/gl_program.h"
+#include "base/log.h"
+#include "gl/gl.h"
+#include "gl/gl_program.h"
 #include "font_atlas.h"
 
 struct gk_hud {

@@ -6,7 +6,7 @@
 #ifndef GK_KIOSK_HUD_H
 #define GK_KIOSK_HUD_H
 
-#include "../core/err.h"
+#include "base/err.h"
 #include "../sched/budget.h"
 #include "stats.h"
 

@@ -11,8 +11,8 @@
 #include <sys/stat.h>
 #include <time.h>
 
-#include "../core/log.h"
-#include "../render/gl.h"
+#include "base/log.h"
+#include "gl/gl.h"
 #include "../render/renderer.h"
 #include "../sched/scheduler.h"
 #include "hud.h"

@@ -2,7 +2,7 @@
 #ifndef GK_KIOSK_H
 #define GK_KIOSK_H
 
-#include "cli.h"
+#include "cli/cli.h"
 #include "config.h"
 
 /* Runs until --frames/--seconds, SIGINT/SIGTERM, or the mock script's end. c->scenes holds the

@@ -28,7 +28,7 @@
 #ifndef GK_METRICS_H
 #define GK_METRICS_H
 
-#include "../core/err.h"
+#include "base/err.h"
 #include "../io/image_io.h"
 
 typedef struct gk_metrics {

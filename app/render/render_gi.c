@@ -15,7 +15,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../core/log.h"
+#include "base/log.h"
 #include "renderer_internal.h"
 
 #define GI_LIGHT_MAP_SIZE 1024

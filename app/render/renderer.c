@@ -3,7 +3,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../core/log.h"
+#include "base/log.h"
 #include "render_gi.h"
 #include "renderer_internal.h"
 

@@ -6,19 +6,11 @@
 
 #include <stdbool.h>
 
-#include "../core/err.h"
+#include "base/err.h"
 #include "../scene/scene.h"
 #include "../sched/budget.h"
+#include "gl/gl_timing.h"
 
-#define GK_MAX_PASSES 16
-
-/* Per-pass timings of one frame, in milliseconds (CPU time around a fence on llvmpipe, GPU timer
- * queries where trustworthy). Pass names are stable: they become `PASS_ms` CSV columns. */
-typedef struct gk_pass_times {
-    int n;
-    const char *name[GK_MAX_PASSES];
-    double ms[GK_MAX_PASSES];
-} gk_pass_times;
 
 typedef struct gk_render_opts {
     int width, height;        /* output (panel or --size) */

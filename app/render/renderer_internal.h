@@ -3,10 +3,10 @@
 #ifndef GK_RENDERER_INTERNAL_H
 #define GK_RENDERER_INTERNAL_H
 
-#include "gl.h"
-#include "gl_program.h"
-#include "gl_target.h"
-#include "gl_timing.h"
+#include "gl/gl.h"
+#include "gl/gl_program.h"
+#include "gl/gl_target.h"
+#include "gl/gl_timing.h"
 #include "renderer.h"
 #include "scene_gpu.h"
 #include "shadow/shadow.h"

@@ -3,8 +3,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "gl_program.h"
-#include "gl_target.h"
+#include "gl/gl_program.h"
+#include "gl/gl_target.h"
 
 int gk_scene_gpu_upload(gk_scene_gpu *g, const gk_scene *s, gk_err *e)
 {

@@ -4,9 +4,9 @@
 #ifndef GK_SCENE_GPU_H
 #define GK_SCENE_GPU_H
 
-#include "../core/err.h"
+#include "base/err.h"
 #include "../scene/scene.h"
-#include "gl.h"
+#include "gl/gl.h"
 
 typedef struct gk_scene_gpu {
     int n_meshes;

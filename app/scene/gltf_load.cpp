@@ -17,7 +17,7 @@
 #include <vector>
 
 extern "C" {
-#include "core/log.h"
+#include "base/log.h"
 #include "scene_internal.h"
 }
 

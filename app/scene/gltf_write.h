@@ -10,7 +10,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "core/err.h"
+#include "base/err.h"
 #include "core/vecmath.h"
 
 /* Triangle geometry under construction (build_geom.c fills it). */

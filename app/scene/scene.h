@@ -23,7 +23,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "../core/err.h"
+#include "base/err.h"
 #include "../core/vecmath.h"
 
 enum gk_light_type { GK_LIGHT_POINT, GK_LIGHT_SPOT, GK_LIGHT_DIRECTIONAL };

@@ -6,7 +6,7 @@
 
 #include <stdbool.h>
 
-#include "../core/err.h"
+#include "base/err.h"
 
 #define GK_MAX_KNOBS 32
 #define GK_MAX_KNOB_VALUES 8

@@ -12,7 +12,7 @@
 
 #include <GLES3/gl32.h>
 
-#include "core/log.h"
+#include "base/log.h"
 #include "platform/platform.h"
 
 static gk_platform *open_mock_quit(const char *script, double period, bool quit_at_end, gk_err *e)

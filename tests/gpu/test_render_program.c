@@ -9,8 +9,8 @@
 #include <unistd.h>
 
 #include "gpu/test_render_fixture.h"
-#include "render/gl_program.h"
-#include "render/shader_source.h"
+#include "gl/gl_program.h"
+#include "gl/shader_source.h"
 
 static fx_gl gl;
 static char dir[256];

@@ -15,8 +15,8 @@
 #include <string.h>
 
 #include "gi/vct/vct.h"
-#include "render/gl.h"
-#include "render/gl_program.h"
+#include "gl/gl.h"
+#include "gl/gl_program.h"
 
 #define VT_MAX_OBJ 64
 

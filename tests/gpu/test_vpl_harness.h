@@ -13,8 +13,8 @@
 
 #include "gi/vpl/vpl.h"
 #include "platform/egl.h"
-#include "render/gl_program.h"
-#include "render/gl_target.h"
+#include "gl/gl_program.h"
+#include "gl/gl_target.h"
 #include "render/scene_gpu.h"
 
 #define H_MAX_MESH 8

@@ -6,7 +6,7 @@
 #include <cmocka.h>
 #include <string.h>
 
-#include "kiosk/cli.h"
+#include "cli/cli.h"
 
 static int parse(gk_run_opts *o, gk_err *e, const char *a0, ...)
 {

@@ -7,7 +7,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "../../core/log.h"
+#include "base/log.h"
 #include "vct_internal.h"
 
 /* Cost priors (summary A.6.3): clear, inject and pre-integration grow with res^3, voxelization with

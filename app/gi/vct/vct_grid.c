@@ -4,8 +4,8 @@
 #include <math.h>
 #include <string.h>
 
-#include "../../core/log.h"
-#include "../../render/gl_target.h"
+#include "base/log.h"
+#include "gl/gl_target.h"
 #include "vct_internal.h"
 
 #define VCT_MARGIN 2

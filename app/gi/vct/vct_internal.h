@@ -2,8 +2,8 @@
 #ifndef GK_VCT_INTERNAL_H
 #define GK_VCT_INTERNAL_H
 
-#include "../../render/gl.h"
-#include "../../render/gl_program.h"
+#include "gl/gl.h"
+#include "gl/gl_program.h"
 #include "vct.h"
 
 #define VCT_MAX_LIGHTS 4

@@ -4,7 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../../render/gl_target.h"
+#include "gl/gl_target.h"
 #include "vpl_internal.h"
 
 static void free_ind(vpl_state *s)

@@ -2,8 +2,8 @@
 #ifndef GK_VPL_INTERNAL_H
 #define GK_VPL_INTERNAL_H
 
-#include "../../render/gl.h"
-#include "../../render/gl_program.h"
+#include "gl/gl.h"
+#include "gl/gl_program.h"
 #include "vpl.h"
 #include "vpl_proxy.h"
 

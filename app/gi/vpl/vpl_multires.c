@@ -9,7 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../../render/gl_target.h"
+#include "gl/gl_target.h"
 #include "vpl_internal.h"
 
 /* Discontinuity thresholds 000 leaves open. §A.1.5 suggests τ_z = 0.02 relative; on T5 at 64²

@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../../render/gl_program.h"
+#include "gl/gl_program.h"
 
 static float node_scale(const gk_node *n)
 {

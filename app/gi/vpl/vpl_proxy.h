@@ -6,8 +6,8 @@
 #ifndef GK_VPL_PROXY_H
 #define GK_VPL_PROXY_H
 
-#include "../../core/err.h"
-#include "../../render/gl.h"
+#include "base/err.h"
+#include "gl/gl.h"
 #include "../../scene/scene.h"
 
 typedef struct vpl_proxy_draw {

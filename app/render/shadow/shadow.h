@@ -21,11 +21,11 @@
 
 #include <stdbool.h>
 
-#include "../../core/err.h"
+#include "base/err.h"
 #include "../../scene/scene.h"
 #include "../../sched/budget.h"
-#include "../gl.h"
-#include "../gl_program.h"
+#include "gl/gl.h"
+#include "gl/gl_program.h"
 #include "../scene_gpu.h"
 
 #define GK_SHADOW_MAX_LIGHTS 8   /* lights past this are unshadowed */

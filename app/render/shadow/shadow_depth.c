@@ -6,7 +6,7 @@
 
 #include <stdio.h>
 
-#include "../gl_target.h"
+#include "gl/gl_target.h"
 
 static int ensure_texture(gk_shadow_maps *m, int slot, int size, int layers, gk_err *e)
 {

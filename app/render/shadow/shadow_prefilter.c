@@ -2,7 +2,7 @@
  * shadow_prefilter.h and shaders_gles/shadow/vssm_{linearize,hsm,sat}.comp). */
 #include "shadow_prefilter.h"
 
-#include "../gl_target.h"
+#include "gl/gl_target.h"
 
 #include <math.h>
 #include <stdio.h>

@@ -7,7 +7,7 @@
 #ifndef GK_SHADER_SOURCE_H
 #define GK_SHADER_SOURCE_H
 
-#include "../core/err.h"
+#include "base/err.h"
 
 #define GK_SHADER_MAX_FILES 32
 

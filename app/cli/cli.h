@@ -6,7 +6,7 @@
 #include <stdbool.h>
 #include <stdio.h>
 
-#include "config.h"
+#include "kiosk/config.h"
 
 typedef struct gk_run_opts {
     const char *config_path;        /* NULL: config/kiosk.ini if it exists, else built-in defaults */

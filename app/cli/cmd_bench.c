@@ -3,10 +3,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../commands.h"
-#include "../core/log.h"
-#include "bench.h"
-#include "../scene/scene.h"
+#include "cli/commands.h"
+#include "base/log.h"
+#include "bench/bench.h"
+#include "scene/scene.h"
 
 static void usage(FILE *f)
 {

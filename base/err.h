@@ -1,4 +1,5 @@
-/* Error reporting shared by every module: a failing function fills a gk_err with a message that
+/* Error reporting shared by every module, the platform layer included (base/ sits below both
+ * platform/ and app/, so the platform reports errors without reaching up into app/): a failing function fills a gk_err with a message that
  * names what is wrong and where (file:line when there is one) and the exit class it belongs to.
  * main() prints the message and exits with the code: 2 for bad usage or bad input, 1 for runtime
  * failures (GPU, display, I/O). */

@@ -2,7 +2,7 @@
 #ifndef GK_GL_TARGET_H
 #define GK_GL_TARGET_H
 
-#include "../core/err.h"
+#include "base/err.h"
 #include "gl.h"
 
 #define GK_TARGET_MAX_COLOR 4

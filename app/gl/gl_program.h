@@ -5,7 +5,7 @@
 #ifndef GK_GL_PROGRAM_H
 #define GK_GL_PROGRAM_H
 
-#include "../core/err.h"
+#include "base/err.h"
 #include "gl.h"
 
 typedef struct gk_program_cache gk_program_cache;

@@ -5,11 +5,11 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "../commands.h"
-#include "../scene/scene.h"
-#include "cli.h"
-#include "config.h"
-#include "kiosk.h"
+#include "cli/commands.h"
+#include "scene/scene.h"
+#include "cli/cli.h"
+#include "kiosk/config.h"
+#include "kiosk/kiosk.h"
 
 static int cmp_names(const void *a, const void *b) { return strcmp((const char *)a, (const char *)b); }
 

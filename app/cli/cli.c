@@ -1,6 +1,6 @@
 /* `gikiosk run` argument parsing (see cli.h). */
-#include "cli.h"
-#include "../scene/scene.h"
+#include "cli/cli.h"
+#include "scene/scene.h"
 
 #include <stdio.h>
 #include <string.h>

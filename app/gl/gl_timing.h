@@ -10,9 +10,18 @@
 #include <stdbool.h>
 
 #include "gl.h"
-#include "renderer.h"
 
 #define GK_TIMER_LAG 3
+
+#define GK_MAX_PASSES 16
+
+/* Per-pass timings of one frame, in milliseconds (CPU time around a fence on llvmpipe, GPU timer
+ * queries where trustworthy). Pass names are stable: they become `PASS_ms` CSV columns. */
+typedef struct gk_pass_times {
+    int n;
+    const char *name[GK_MAX_PASSES];
+    double ms[GK_MAX_PASSES];
+} gk_pass_times;
 
 typedef struct gk_timer gk_timer;
 

@@ -1,4 +1,5 @@
-/* One line per event to stderr, never per frame. */
+/* One line per event to stderr, never per frame. In base/ (below platform/ and app/) so both log
+ * the same way. */
 #ifndef GK_LOG_H
 #define GK_LOG_H
 

@@ -10,7 +10,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "commands.h"
+#include "cli/commands.h"
 #include "io/image_io.h"
 #include "ref/render.h"
 #include "scene/scene.h"
