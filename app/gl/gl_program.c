@@ -1,5 +1,7 @@
 #include "gl_program.h"
 
+#include <ctype.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -7,10 +9,18 @@
 #include "shader_source.h"
 
 #define MAX_PROGRAMS 96
+#define MAX_UNIFORM_BLOCKS 4 /* uniform structs per program (a program shared by two passes) */
+
+typedef struct uniform_block {
+    const gk_uniform_field *fields;
+    void *values;
+} uniform_block;
 
 typedef struct cached_program {
     char *key;
     GLuint prog;
+    char *source;       /* every stage's expanded source: the misspelt-uniform check reads it */
+    uniform_block block[MAX_UNIFORM_BLOCKS];
 } cached_program;
 
 struct gk_program_cache {
@@ -37,16 +47,34 @@ void gk_program_cache_destroy(gk_program_cache *c)
     for (int i = 0; i < c->n; i++) {
         glDeleteProgram(c->p[i].prog);
         free(c->p[i].key);
+        free(c->p[i].source);
+        for (int b = 0; b < MAX_UNIFORM_BLOCKS; b++)
+            free(c->p[i].block[b].values);
     }
     free(c->shader_dir);
     free(c);
 }
 
-static GLuint compile(gk_program_cache *c, GLenum stage, const char *path, const char *defines, gk_err *e)
+/* Appends text to *acc (malloc'd); best effort: the check it serves is skipped when it fails. */
+static void append_source(char **acc, const char *text)
+{
+    size_t a = *acc ? strlen(*acc) : 0, b = strlen(text);
+    char *s = realloc(*acc, a + b + 2);
+    if (!s)
+        return;
+    memcpy(s + a, text, b);
+    s[a + b] = '\n';
+    s[a + b + 1] = '\0';
+    *acc = s;
+}
+
+static GLuint compile(gk_program_cache *c, GLenum stage, const char *path, const char *defines, char **source,
+                      gk_err *e)
 {
     gk_shader_text t;
     if (gk_shader_expand(c->shader_dir, path, c->gles, defines, &t, e) != 0)
         return 0;
+    append_source(source, t.text);
     GLuint sh = glCreateShader(stage);
     const char *src = t.text;
     glShaderSource(sh, 1, &src, NULL);
@@ -96,12 +124,16 @@ static GLuint lookup(gk_program_cache *c, const char *key)
     return 0;
 }
 
-static GLuint remember(gk_program_cache *c, const char *key, GLuint prog)
+static GLuint remember(gk_program_cache *c, const char *key, GLuint prog, char *source)
 {
     if (prog && c->n < MAX_PROGRAMS) {
+        memset(&c->p[c->n], 0, sizeof c->p[c->n]);
         c->p[c->n].key = strdup(key);
         c->p[c->n].prog = prog;
+        c->p[c->n].source = source;
         c->n++;
+    } else {
+        free(source);
     }
     /* Past MAX_PROGRAMS the program still works; it is just compiled again next time (and
        leaked until the context goes): a hint that variants are exploding, not a failure. */
@@ -116,15 +148,19 @@ GLuint gk_program_get(gk_program_cache *c, const char *vert, const char *frag, c
     if (prog)
         return prog;
     GLuint sh[2];
-    if (!(sh[0] = compile(c, GL_VERTEX_SHADER, vert, defines, e)))
+    char *source = NULL;
+    if (!(sh[0] = compile(c, GL_VERTEX_SHADER, vert, defines, &source, e))) {
+        free(source);
         return 0;
-    if (!(sh[1] = compile(c, GL_FRAGMENT_SHADER, frag, defines, e))) {
+    }
+    if (!(sh[1] = compile(c, GL_FRAGMENT_SHADER, frag, defines, &source, e))) {
         glDeleteShader(sh[0]);
+        free(source);
         return 0;
     }
     char what[300];
     snprintf(what, sizeof what, "%s + %s", vert, frag);
-    return remember(c, key, link_program(sh, 2, what, e));
+    return remember(c, key, link_program(sh, 2, what, e), source);
 }
 
 GLuint gk_program_get_compute(gk_program_cache *c, const char *comp, const char *defines, gk_err *e)
@@ -135,9 +171,75 @@ GLuint gk_program_get_compute(gk_program_cache *c, const char *comp, const char 
     if (prog)
         return prog;
     GLuint sh[1];
-    if (!(sh[0] = compile(c, GL_COMPUTE_SHADER, comp, defines, e)))
+    char *source = NULL;
+    if (!(sh[0] = compile(c, GL_COMPUTE_SHADER, comp, defines, &source, e))) {
+        free(source);
         return 0;
-    return remember(c, key, link_program(sh, 1, comp, e));
+    }
+    return remember(c, key, link_program(sh, 1, comp, e), source);
+}
+
+/* True when the identifier `name` (up to '[') occurs in source as a whole word. */
+static bool names_in_source(const char *source, const char *name)
+{
+    size_t len = strcspn(name, "[");
+    for (const char *p = source; (p = strstr(p, name)) != NULL; p++) {
+        bool start = p == source || !(isalnum((unsigned char)p[-1]) || p[-1] == '_');
+        char after = p[len];
+        bool end = !(isalnum((unsigned char)after) || after == '_');
+        if (start && end && strncmp(p, name, len) == 0)
+            return true;
+    }
+    return false;
+}
+
+int gk_uniforms_resolve(GLuint prog, const char *source, const gk_uniform_field *fields, int n, void *out, gk_err *e)
+{
+    for (int i = 0; i < n; i++) {
+        if (source && !names_in_source(source, fields[i].name))
+            return gk_fail(e, GK_ERUNTIME, "uniform '%s' occurs nowhere in program %u's shaders (misspelt?)",
+                           fields[i].name, prog);
+        GLint loc = glGetUniformLocation(prog, fields[i].name);
+        memcpy((char *)out + fields[i].offset, &loc, sizeof loc);
+    }
+    return 0;
+}
+
+const void *gk_program_uniforms(gk_program_cache *c, GLuint prog, const gk_uniform_field *fields, int n, size_t size,
+                                gk_err *e)
+{
+    cached_program *p = NULL;
+    for (int i = 0; i < c->n && !p; i++)
+        if (c->p[i].prog == prog)
+            p = &c->p[i];
+    if (!p) {
+        gk_fail(e, GK_ERUNTIME, "uniforms: program %u is not in this cache", prog);
+        return NULL;
+    }
+    int free_slot = -1;
+    for (int b = 0; b < MAX_UNIFORM_BLOCKS; b++) {
+        if (p->block[b].fields == fields)
+            return p->block[b].values;
+        if (!p->block[b].fields && free_slot < 0)
+            free_slot = b;
+    }
+    if (free_slot < 0) {
+        gk_fail(e, GK_ERUNTIME, "uniforms: more than %d uniform structs for program %s", MAX_UNIFORM_BLOCKS, p->key);
+        return NULL;
+    }
+    void *values = calloc(1, size);
+    if (!values) {
+        gk_fail(e, GK_ERUNTIME, "uniforms: out of memory");
+        return NULL;
+    }
+    if (gk_uniforms_resolve(prog, p->source, fields, n, values, e) != 0) {
+        gk_fail_prefix(e, "%s: ", p->key);
+        free(values);
+        return NULL;
+    }
+    p->block[free_slot].fields = fields;
+    p->block[free_slot].values = values;
+    return values;
 }
 
 void gk_uniform_1i(GLuint prog, const char *name, int v) { glUniform1i(glGetUniformLocation(prog, name), v); }
