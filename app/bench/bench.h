@@ -58,7 +58,7 @@ bool gk_bench_black_reference(const gk_bench_row *rows, int n, const char *scene
 typedef struct gk_bench_result {
     gk_budget budget;          /* the knob set (names, values) the levels refer to */
     int n_passes;
-    char pass_names[GK_MAX_PASSES][24];
+    char pass_names[GK_MAX_PASSES][GK_PASS_PATH_LEN]; /* dotted report paths: "shadow", "gi.vct_trace" */
     int n_rows;
     gk_bench_row rows[GK_BENCH_MAX_ROWS];
 } gk_bench_result;

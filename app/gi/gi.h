@@ -13,15 +13,13 @@
 
 #include "base/err.h"
 #include "../core/vecmath.h"
-#include "../render/renderer.h"
 #include "../scene/scene.h"
 #include "../sched/budget.h"
-
-typedef struct gk_program_cache gk_program_cache; /* app/render/gl_program.h */
+#include "gl/pass.h"
 
 /* What the renderer lends a method for its whole life. */
 typedef struct gk_gi_context {
-    gk_program_cache *programs;  /* load shaders by path under shaders_gles/ */
+    gk_program_cache *programs;  /* load shaders by path under shaders_gles/ (app/gl/gl_program.h) */
     int gles_version;            /* 31: portable path only; 32: capability-checked fast paths allowed */
 } gk_gi_context;
 
@@ -41,6 +39,11 @@ typedef struct gk_gi_light {
 
 /* Everything a method needs for one frame. Textures are GL names; sizes in pixels. */
 typedef struct gk_gi_frame {
+    /* The renderer's pass context: the one clock (a method marks each of its passes with
+       gk_pass_begin/gk_pass_end; they nest under the renderer's `gi` pass in the frame report and
+       the method never times itself), programs, capabilities, knobs. NULL when a test drives a
+       method without a renderer: the passes then run untimed. */
+    const gk_pass_ctx *pass;
     const gk_scene *scene;       /* evaluated at time_s (node world matrices valid) */
     double time_s;
     bool scene_changed;          /* first frame of a new scene or geometry moved (dirty regions) */
@@ -80,7 +83,7 @@ typedef struct gk_gi_method {
     void (*declare_knobs)(gk_budget *b);                   /* knobs with cost priors */
     void *(*create)(const gk_gi_context *ctx, gk_err *e);
     int (*set_scene)(void *self, const gk_scene *s, gk_err *e);  /* static data (voxelize once...) */
-    int (*render)(void *self, const gk_gi_frame *f, gk_pass_times *times, gk_err *e);
+    int (*render)(void *self, const gk_gi_frame *f, gk_err *e);
     /* Bytes of GPU memory held at the current budget (reported and asserted in tests). */
     long (*memory_bytes)(const void *self);
     /* Optional: forget the work cached between frames (vct: voxels and injected light), so the next

@@ -9,10 +9,8 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#include <time.h>
 
 #include "base/log.h"
-#include "gl/gl.h"
 #include "../render/renderer.h"
 #include "../sched/scheduler.h"
 #include "hud.h"
@@ -37,16 +35,10 @@ typedef struct kiosk {
     long frame;                          /* frames drawn */
     int sched_skip;                      /* frames the scheduler does not see: the first at a new level */
     bool have_frame;                     /* a frame of the current visit is drawn and not captured */
+    double last_frame_ms;                /* newest measured frame (the HUD's number) */
     long last_frame;
     char last_scene[GK_NAME_LEN], last_method[GK_METHOD_LEN];
 } kiosk;
-
-static double wall_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
-}
 
 static const char *button_name(enum gk_button b)
 {
@@ -170,38 +162,68 @@ static void log_budget_changes(kiosk *k, const gk_sched_change *ch, int n, doubl
     }
 }
 
-/* One frame: draw, HUD, present, record. */
+/* The HUD, drawn by the renderer as the frame's last pass (`hud`, on its clock). It shows the
+ * newest complete frame report: the previous frame's (or older with GPU timer queries). */
+static void draw_hud(void *user, const gk_pass_ctx *ctx, unsigned fbo)
+{
+    (void)ctx;
+    kiosk *k = user;
+    gk_hud_info info = {
+        .scene = gk_playlist_scene(&k->pl), .method = gk_playlist_method(&k->pl), .frame_ms = k->last_frame_ms,
+        .median_ms = gk_recent_percentile(&k->recent, 0.5f), .p95_ms = gk_recent_percentile(&k->recent, 0.95f),
+        .target_ms = k->c->target_ms, .recent = &k->recent, .budget = &k->budget,
+    };
+    gk_hud_draw(k->hud, fbo, &info);
+}
+
+/* A GI method that failed on this scene (logged once by the renderer) leaves the scene's method
+ * list for this visit, so the HUD, the stats and the scheduler name what is really shown. */
+static void drop_failed_method(kiosk *k)
+{
+    const char *method = gk_playlist_method(&k->pl);
+    if (strcmp(method, "none") == 0 || !gk_renderer_gi_failed(k->r, method))
+        return;
+    char methods[GK_PL_MAX_METHODS][GK_METHOD_LEN];
+    int n = 0;
+    for (int i = 0; i < k->pl.n_methods; i++)
+        if (strcmp(k->pl.methods[i], method) != 0)
+            snprintf(methods[n++], GK_METHOD_LEN, "%s", k->pl.methods[i]);
+    if (n == 0) /* the failed method was forced (--method): show the scene with direct light */
+        snprintf(methods[n++], GK_METHOD_LEN, "none");
+    gk_log("scene %s: method %s failed, showing the scene with %s", gk_playlist_scene(&k->pl), method,
+           n ? methods[0] : "none");
+    gk_playlist_set_methods(&k->pl, methods, n, 0);
+    reset_scheduler(k);
+}
+
+/* One frame: draw (HUD included), present, record. */
 static int frame(kiosk *k, double now, gk_err *e)
 {
     const char *scene = gk_playlist_scene(&k->pl), *method = gk_playlist_method(&k->pl);
     gk_frame_params fp = {.time_s = now - k->pl.visit_start_s, .method = method, .budget = &k->budget};
-    gk_pass_times times = {0};
-    unsigned fbo = gk_platform_framebuffer(k->plat);
-    double t0 = wall_ms();
-    if (gk_renderer_draw(k->r, &fp, fbo, &times, e))
-        return -1;
-    double draw_ms = wall_ms() - t0;
-    /* The frame's cost is the sum of its measured passes (GPU time where the renderer trusts timer
-     * queries, CPU time around a fence elsewhere); the wall time of the draw call only when the
-     * renderer reported no passes. Present is left out: on KMS it waits for the flip. */
-    double frame_ms = 0;
-    for (int i = 0; i < times.n; i++)
-        frame_ms += times.ms[i];
-    if (times.n == 0)
-        frame_ms = draw_ms;
-    gk_recent_push(&k->recent, (float)frame_ms);
     if (k->hud && k->pl.hud_visible) {
-        gk_hud_info info = {
-            .scene = scene, .method = method, .frame_ms = frame_ms,
-            .median_ms = gk_recent_percentile(&k->recent, 0.5f), .p95_ms = gk_recent_percentile(&k->recent, 0.95f),
-            .target_ms = k->c->target_ms, .recent = &k->recent, .budget = &k->budget,
-        };
-        gk_hud_draw(k->hud, fbo, &info);
+        fp.overlay = draw_hud;
+        fp.overlay_user = k;
+    }
+    gk_frame_report report;
+    unsigned fbo = gk_platform_framebuffer(k->plat);
+    if (gk_renderer_draw(k->r, &fp, fbo, &report, e))
+        return -1;
+    /* The frame's cost is the report's total: the sum of the top-level passes on the renderer's one
+     * clock (GPU time where it trusts timer queries, CPU time around a fence elsewhere). Present is
+     * left out: on KMS it waits for the flip. With GPU timer queries the first GK_TIMER_LAG
+     * reports are empty; those frames are not recorded as measured. */
+    double frame_ms = report.total_ms;
+    bool measured = report.n > 0;
+    if (measured) {
+        gk_recent_push(&k->recent, (float)frame_ms);
+        k->last_frame_ms = frame_ms;
     }
     if (gk_platform_present(k->plat, e))
         return -1;
-    gk_summary_add(&k->summary, scene, method, frame_ms, &k->budget);
-    if (k->csv && gk_stats_csv_row(k->csv, k->frame, now, scene, method, frame_ms, &times, &k->budget, e))
+    if (measured)
+        gk_summary_add(&k->summary, scene, method, frame_ms, &k->budget);
+    if (k->csv && gk_stats_csv_row(k->csv, k->frame, now, scene, method, &report, &k->budget, e))
         return -1;
     k->have_frame = true;
     k->last_frame = k->frame;
@@ -211,6 +233,9 @@ static int frame(kiosk *k, double now, gk_err *e)
         capture(k, k->frame, scene, method, e))
         return -1;
     k->frame++;
+    drop_failed_method(k);
+    if (!measured)
+        return 0;
     if (k->sched_skip > 0) {
         k->sched_skip--;
         return 0;

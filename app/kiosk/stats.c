@@ -109,7 +109,7 @@ struct gk_stats_csv {
     char path[512], spool_path[520];
     FILE *spool;
     int n_pass;
-    char pass[MAX_PASS_NAMES][48];
+    char pass[MAX_PASS_NAMES][GK_PASS_PATH_LEN];
 };
 
 gk_stats_csv *gk_stats_csv_open(const char *path, gk_err *e)
@@ -145,15 +145,19 @@ static int pass_index(gk_stats_csv *c, const char *name)
     return c->n_pass++;
 }
 
-/* Spool line: "frame,time_s,scene,method,frame_ms\tIDX=MS IDX=MS\tLEVEL LEVEL ...". */
+/* Spool line: "frame,time_s,scene,method,frame_ms\tIDX=MS IDX=MS\tLEVEL LEVEL ...". frame_ms is
+ * the report's total (the sum of its top-level passes); every pass of the report is a column named
+ * by its dotted path ("gi.vct_trace"), so a nested pass is never mistaken for a top-level one. */
 int gk_stats_csv_row(gk_stats_csv *c, long frame, double time_s, const char *scene, const char *method,
-                     double frame_ms, const gk_pass_times *passes, const gk_budget *b, gk_err *e)
+                     const gk_frame_report *report, const gk_budget *b, gk_err *e)
 {
-    fprintf(c->spool, "%ld,%.6f,%s,%s,%.3f\t", frame, time_s, scene, method, frame_ms);
-    for (int i = 0; passes && i < passes->n; i++) {
-        int k = pass_index(c, passes->name[i] ? passes->name[i] : "unnamed");
+    fprintf(c->spool, "%ld,%.6f,%s,%s,%.3f\t", frame, time_s, scene, method, report->total_ms);
+    for (int i = 0; i < report->n; i++) {
+        char path[GK_PASS_PATH_LEN];
+        gk_frame_report_path(report, i, path, sizeof path);
+        int k = pass_index(c, path);
         if (k >= 0)
-            fprintf(c->spool, "%d=%.3f ", k, passes->ms[i]);
+            fprintf(c->spool, "%d=%.3f ", k, report->pass[i].ms);
     }
     fputc('\t', c->spool);
     for (int i = 0; i < b->n; i++)

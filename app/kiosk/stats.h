@@ -54,7 +54,7 @@ typedef struct gk_stats_csv gk_stats_csv;
 
 gk_stats_csv *gk_stats_csv_open(const char *path, gk_err *e);
 int gk_stats_csv_row(gk_stats_csv *c, long frame, double time_s, const char *scene, const char *method,
-                     double frame_ms, const gk_pass_times *passes, const gk_budget *b, gk_err *e);
+                     const gk_frame_report *report, const gk_budget *b, gk_err *e);
 /* Writes the CSV from the spool (the knob columns are b's knobs) and removes the spool. */
 int gk_stats_csv_close(gk_stats_csv *c, const gk_budget *b, gk_err *e);
 

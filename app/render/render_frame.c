@@ -1,5 +1,7 @@
 /* One frame: shadow maps -> G-buffer -> direct light (emission, then one additive full-screen
- * pass per light) -> GI (none yet) -> compose/tonemap into the caller's framebuffer. */
+ * pass per light) -> GI method (adds indirect light; its passes nest under `gi`) ->
+ * compose/tonemap into the caller's framebuffer -> overlay (the kiosk's HUD). Every pass is timed
+ * by the renderer's one timer through the pass context lent to it. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -226,10 +228,32 @@ static void measure_exposure(gk_renderer *r)
         r->exposure = (float)(0.18 / mean);
 }
 
-int gk_renderer_draw(gk_renderer *r, const gk_frame_params *fp, unsigned target_fbo, gk_pass_times *times, gk_err *e)
+bool gk_renderer_gi_failed(const gk_renderer *r, const char *method)
 {
-    if (times)
-        memset(times, 0, sizeof *times);
+    return gk_render_gi_failed(r->gi, r, method);
+}
+
+/* Runs the GI method as the `gi` pass. A method that fails is logged once (render_gi.c then skips
+   it until the next scene) and the frame keeps its direct light: a kiosk keeps showing something. */
+static void pass_gi(gk_renderer *r, const gk_frame_params *fp, const gk_pass_ctx *ctx)
+{
+    const char *method = fp ? fp->method : NULL;
+    if (!method || strcmp(method, "none") == 0)
+        return;
+    gk_err gi_err = {0};
+    gk_pass_begin(ctx, "gi");
+    int rc = gk_render_gi_run(r->gi, r, method, ctx, &gi_err);
+    gk_pass_end(ctx);
+    if (rc != 0)
+        gk_log("renderer: GI method %s failed on scene %s, showing it without GI: %s", method,
+               r->scene->name[0] ? r->scene->name : "?", gi_err.msg);
+}
+
+int gk_renderer_draw(gk_renderer *r, const gk_frame_params *fp, unsigned target_fbo, gk_frame_report *report,
+                     gk_err *e)
+{
+    if (report)
+        memset(report, 0, sizeof *report);
     if (!r->scene)
         return gk_fail(e, GK_ERUNTIME, "renderer: draw without a scene");
     const gk_budget *b = fp ? fp->budget : NULL;
@@ -247,11 +271,16 @@ int gk_renderer_draw(gk_renderer *r, const gk_frame_params *fp, unsigned target_
 
     gk_scene *s = r->scene;
     gk_scene_evaluate(s, fp ? (float)fp->time_s : 0.0f);
-    mat4 view, proj;
-    vec3 eye;
-    gk_scene_camera(s, (float)r->opts.width / (float)r->opts.height, &view, &proj, &eye);
-    mat4 viewproj = m4_mul(proj, view);
-    mat4 inv_viewproj = m4_inverse(viewproj);
+    gk_gbuffer_view gb = {
+        .albedo = r->gbuf.color[0], .normal = r->gbuf.color[1], .emission = r->gbuf.color[2],
+        .depth = r->gbuf.depth, .width = r->render_w, .height = r->render_h,
+    };
+    gk_scene_camera(s, (float)r->opts.width / (float)r->opts.height, &gb.view, &gb.proj, &gb.eye);
+    gb.view_proj = m4_mul(gb.proj, gb.view);
+    gb.inv_view_proj = m4_inverse(gb.view_proj);
+    gk_pass_ctx ctx = {
+        .timer = r->timer, .programs = r->progs, .caps = &r->caps, .budget = b, .scene = s, .gbuffer = &gb,
+    };
 
     frame_light fl[64];
     int n = 0;
@@ -259,47 +288,39 @@ int gk_renderer_draw(gk_renderer *r, const gk_frame_params *fp, unsigned target_
         if (s->nodes[i].light >= 0 && s->nodes[i].light < s->n_lights)
             fl[n++] = (frame_light){.node = i};
 
-    gk_pass_times gi_times = {0};
     while (glGetError() != GL_NO_ERROR) {
     }
     gk_timer_frame_begin(r->timer);
-    gk_timer_pass_begin(r->timer, "shadow");
+    gk_pass_begin(&ctx, "shadow");
     int rc = pass_shadows(r, m, map_size, b, fl, n, e);
-    gk_timer_pass_end(r->timer);
+    gk_pass_end(&ctx);
     if (rc == 0) {
-        gk_timer_pass_begin(r->timer, "gbuffer");
-        rc = pass_gbuffer(r, &viewproj, eye, e);
-        gk_timer_pass_end(r->timer);
+        gk_pass_begin(&ctx, "gbuffer");
+        rc = pass_gbuffer(r, &gb.view_proj, gb.eye, e);
+        gk_pass_end(&ctx);
     }
     if (rc == 0) {
-        gk_timer_pass_begin(r->timer, "direct");
-        rc = pass_direct(r, m, fl, n, &inv_viewproj, eye, e);
-        gk_timer_pass_end(r->timer);
+        gk_pass_begin(&ctx, "direct");
+        rc = pass_direct(r, m, fl, n, &gb.inv_view_proj, gb.eye, e);
+        gk_pass_end(&ctx);
     }
     if (rc == 0) {
-        /* The GI method adds indirect light into the HDR target ("gi" pass, plus the method's
-           own pass columns); "none" adds nothing. A method that fails is logged and the frame
-           keeps its direct light (render_gi.c then skips the broken method): a kiosk keeps
-           showing something. */
-        gk_timer_pass_begin(r->timer, "gi");
-        gk_err gi_err = {0};
-        if (gk_render_gi_run(r->gi, r, fp ? fp->method : NULL, b, &view, &proj, eye, &gi_times, &gi_err) != 0)
-            gk_log("renderer: GI method %s failed, showing direct light only: %s", fp->method, gi_err.msg);
-        gk_timer_pass_end(r->timer);
+        pass_gi(r, fp, &ctx);
         if (!r->exposure_known)
-            measure_exposure(r);
-        gk_timer_pass_begin(r->timer, "compose");
+            measure_exposure(r); /* once per scene, outside every pass: a one-off read-back */
+        gk_pass_begin(&ctx, "compose");
         rc = gk_render_compose(r, target_fbo, r->opts.width, r->opts.height, false, e);
-        gk_timer_pass_end(r->timer);
+        gk_pass_end(&ctx);
     }
-    gk_pass_times t;
+    if (rc == 0 && fp && fp->overlay) {
+        gk_pass_begin(&ctx, "hud");
+        fp->overlay(fp->overlay_user, &ctx, target_fbo);
+        gk_pass_end(&ctx);
+    }
+    gk_frame_report t;
     gk_timer_frame_end(r->timer, &t);
-    for (int i = 0; i < gi_times.n && t.n < GK_MAX_PASSES; i++) {
-        t.name[t.n] = gi_times.name[i];
-        t.ms[t.n++] = gi_times.ms[i];
-    }
-    if (times)
-        *times = t;
+    if (report)
+        *report = t;
     glUseProgram(0);
     glBindFramebuffer(GL_FRAMEBUFFER, target_fbo);
     if (rc != 0)

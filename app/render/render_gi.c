@@ -24,7 +24,8 @@
 struct gk_render_gi {
     void *state[GI_MAX_METHODS];             /* per registered method, created on first use */
     unsigned generation_of[GI_MAX_METHODS];  /* renderer scene generation each state last saw (0 = none) */
-    bool failed[GI_MAX_METHODS];             /* creation or set_scene failed: do not retry each frame */
+    unsigned failed_on[GI_MAX_METHODS];      /* scene generation on which the method failed (0 = none):
+                                                skipped until the next scene, never retried per frame */
     GLuint depth_tex[GK_GI_MAX_LIGHTS];
     GLuint fbo;
     gk_gi_light lights[GK_GI_MAX_LIGHTS];
@@ -169,68 +170,83 @@ static void draw_scene_cb(void *ctx, unsigned program)
     gk_scene_gpu_draw(&r->gpu, r->scene, program, GK_DRAW_MATERIALS | GK_DRAW_SKIP_PROXIES);
 }
 
-int gk_render_gi_run(gk_render_gi *g, gk_renderer *r, const char *method, const gk_budget *b,
-                     const mat4 *view, const mat4 *proj, vec3 eye, gk_pass_times *times, gk_err *e)
+static int method_index(const char *method)
+{
+    int count;
+    const gk_gi_method *const *m = gk_gi_methods(&count);
+    for (int i = 0; method && i < count && i < GI_MAX_METHODS; i++)
+        if (strcmp(m[i]->name, method) == 0)
+            return i;
+    return -1;
+}
+
+bool gk_render_gi_failed(const gk_render_gi *g, const gk_renderer *r, const char *method)
+{
+    int k = method_index(method);
+    return k >= 0 && g->failed_on[k] == r->scene_generation;
+}
+
+/* Creates the method's state on first use and hands it each new scene once. */
+static int prepare(gk_render_gi *g, gk_renderer *r, const gk_gi_method *m, int k, bool *changed, gk_err *e)
+{
+    if (!g->state[k]) {
+        gk_gi_context ctx = {.programs = r->progs, .gles_version = r->caps.gles};
+        if (!(g->state[k] = m->create(&ctx, e)))
+            return -1;
+    }
+    *changed = g->generation_of[k] != r->scene_generation;
+    if (*changed) {
+        if (m->set_scene(g->state[k], r->scene, e) != 0)
+            return -1;
+        g->generation_of[k] = r->scene_generation;
+    }
+    return 0;
+}
+
+int gk_render_gi_run(gk_render_gi *g, gk_renderer *r, const char *method, const gk_pass_ctx *ctx, gk_err *e)
 {
     if (!method || strcmp(method, "none") == 0)
         return 0;
+    int k = method_index(method);
+    if (k < 0 || g->failed_on[k] == r->scene_generation)
+        return 0; /* unknown, or broken on this scene: direct light only (the kiosk keeps showing something) */
     int count;
-    const gk_gi_method *const *m = gk_gi_methods(&count);
-    int k = -1;
-    for (int i = 0; i < count && i < GI_MAX_METHODS; i++)
-        if (strcmp(m[i]->name, method) == 0)
-            k = i;
-    if (k < 0 || g->failed[k])
-        return 0; /* unknown or broken method: direct light only (the kiosk keeps showing something) */
-    if (!g->state[k]) {
-        gk_gi_context ctx = {.programs = r->progs, .gles_version = r->caps.gles};
-        g->state[k] = m[k]->create(&ctx, e);
-        if (!g->state[k]) {
-            g->failed[k] = true;
-            return -1;
-        }
-    }
-    bool changed = g->generation_of[k] != r->scene_generation;
-    if (changed) {
-        if (m[k]->set_scene(g->state[k], r->scene, e) != 0) {
-            g->failed[k] = true;
-            return -1;
-        }
-        g->generation_of[k] = r->scene_generation;
-    }
-    if (render_light_maps(g, r, e) != 0)
+    const gk_gi_method *m = gk_gi_methods(&count)[k];
+    bool changed = false;
+    if (prepare(g, r, m, k, &changed, e) != 0 || render_light_maps(g, r, e) != 0) {
+        g->failed_on[k] = r->scene_generation;
         return -1;
+    }
 
+    const gk_gbuffer_view *gb = ctx->gbuffer;
     gk_gi_frame f;
     memset(&f, 0, sizeof f);
+    f.pass = ctx;
     f.scene = r->scene;
     f.scene_changed = changed || r->scene->features.has_animation;
-    f.width = r->render_w;
-    f.height = r->render_h;
-    f.view = *view;
-    f.proj = *proj;
-    f.view_proj = m4_mul(*proj, *view);
-    f.inv_view_proj = m4_inverse(f.view_proj);
-    f.eye = eye;
-    f.gbuf_albedo = r->gbuf.color[0];
-    f.gbuf_normal = r->gbuf.color[1];
-    f.gbuf_emission = r->gbuf.color[2];
-    f.gbuf_depth = r->gbuf.depth;
+    f.width = gb->width;
+    f.height = gb->height;
+    f.view = gb->view;
+    f.proj = gb->proj;
+    f.view_proj = gb->view_proj;
+    f.inv_view_proj = gb->inv_view_proj;
+    f.eye = gb->eye;
+    f.gbuf_albedo = gb->albedo;
+    f.gbuf_normal = gb->normal;
+    f.gbuf_emission = gb->emission;
+    f.gbuf_depth = gb->depth;
     f.direct_tex = 0; /* the method adds into the same HDR target: reading it would be a feedback loop */
     f.hdr_fbo = r->hdr.fbo;
     f.n_lights = g->n_lights;
     f.lights = g->lights;
-    f.budget = b;
+    f.budget = ctx->budget;
     f.draw_scene = draw_scene_cb;
     f.draw_ctx = r;
-    gk_pass_times own = {0};
-    if (r->opts.rebuild_gi && m[k]->invalidate)
-        m[k]->invalidate(g->state[k]);
-    int rc = m[k]->render(g->state[k], &f, &own, e);
-    for (int i = 0; times && i < own.n && times->n < GK_MAX_PASSES; i++) {
-        times->name[times->n] = own.name[i];
-        times->ms[times->n++] = own.ms[i];
-    }
+    if (r->opts.rebuild_gi && m->invalidate)
+        m->invalidate(g->state[k]);
+    int rc = m->render(g->state[k], &f, e);
+    if (rc != 0)
+        g->failed_on[k] = r->scene_generation;
     glBindFramebuffer(GL_FRAMEBUFFER, r->hdr.fbo);
     glViewport(0, 0, r->render_w, r->render_h);
     glDisable(GL_BLEND);

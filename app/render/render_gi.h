@@ -15,10 +15,13 @@ void gk_render_gi_destroy(gk_render_gi *g);
 void gk_render_gi_declare_knobs(gk_budget *b);
 /* "none" + the implemented methods the scene needs and that apply to it. */
 int gk_render_gi_methods(const gk_scene *s, const char **names, int max);
-/* Adds the method's indirect light to the renderer's HDR target; the method's own pass times
- * are appended to times. "none" or an unknown method add nothing. */
-int gk_render_gi_run(gk_render_gi *g, gk_renderer *r, const char *method, const gk_budget *b,
-                     const mat4 *view, const mat4 *proj, vec3 eye, gk_pass_times *times, gk_err *e);
+/* Adds the method's indirect light to the renderer's HDR target; the method times its passes on
+ * ctx's clock (nested under the caller's `gi` pass). "none" or an unknown method add nothing. A
+ * method that fails (create, scene upload or a frame) returns -1 once with e filled and is then
+ * skipped -- not retried, not logged again -- until the renderer gets another scene. */
+int gk_render_gi_run(gk_render_gi *g, gk_renderer *r, const char *method, const gk_pass_ctx *ctx, gk_err *e);
+/* True when `method` failed on the current scene (the kiosk then shows the scene without it). */
+bool gk_render_gi_failed(const gk_render_gi *g, const gk_renderer *r, const char *method);
 /* GPU memory of a method's state at its current budget (0 when not created). */
 long gk_render_gi_memory(const gk_render_gi *g, const char *method);
 

@@ -9,7 +9,8 @@
 #include "base/err.h"
 #include "../scene/scene.h"
 #include "../sched/budget.h"
-#include "gl/gl_timing.h"
+#include "gl/frame_report.h"
+#include "gl/pass.h"
 
 
 typedef struct gk_render_opts {
@@ -23,12 +24,17 @@ typedef struct gk_render_opts {
                                  --rebuild-gi: what a moving light or object costs) */
 } gk_render_opts;
 
+/* Drawn over the finished frame in target_fbo as the frame's last pass (`hud`), on the renderer's
+ * clock: the kiosk's HUD. Never part of captures (they read the HDR image). */
+typedef void (*gk_overlay_fn)(void *user, const gk_pass_ctx *ctx, unsigned target_fbo);
+
 typedef struct gk_frame_params {
     double time_s;            /* animation time */
     const char *method;       /* GI method: "none", "vct", ... */
     const gk_budget *budget;  /* current knob levels */
+    gk_overlay_fn overlay;    /* optional */
+    void *overlay_user;
 } gk_frame_params;
-/* The HUD is not the renderer's: the kiosk draws it over target_fbo after gk_renderer_draw. */
 
 typedef struct gk_renderer gk_renderer;
 
@@ -51,8 +57,16 @@ void gk_renderer_set_rerender_static_shadows(gk_renderer *r, bool on);
 /* Changes opts.rebuild_gi. */
 void gk_renderer_set_rebuild_gi(gk_renderer *r, bool on);
 
-/* Renders one frame into target_fbo (the platform's framebuffer), fills times. */
-int gk_renderer_draw(gk_renderer *r, const gk_frame_params *fp, unsigned target_fbo, gk_pass_times *times, gk_err *e);
+/* Renders one frame into target_fbo (the platform's framebuffer) and fills the frame report
+ * (report may be NULL): top-level passes shadow, gbuffer, direct, gi (the GI method's passes nested
+ * under it), compose, hud; total_ms is their sum. On llvmpipe the report is this frame's; with GPU
+ * timer queries it is GK_TIMER_LAG frames old. A GI method that fails is reported once through
+ * gk_renderer_gi_failed and the frame keeps its direct light. */
+int gk_renderer_draw(gk_renderer *r, const gk_frame_params *fp, unsigned target_fbo, gk_frame_report *report,
+                     gk_err *e);
+/* True when the GI method failed on the current scene (logged once by the renderer; it is not
+ * run again until the next scene). */
+bool gk_renderer_gi_failed(const gk_renderer *r, const char *method);
 
 /* Writes the last frame: png_path display-referred (tonemapped, as shown), exr_path linear scene
  * radiance before exposure (either may be NULL). */

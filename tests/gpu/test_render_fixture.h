@@ -208,7 +208,7 @@ static inline int fx_render(fx_gl *g, fx_scene *f, int gles, const char *budget,
     gk_renderer_declare_knobs(r, &b);
     int rc = budget ? gk_budget_pin_list(&b, budget, e) : 0;
     gk_frame_params fp = {.time_s = 0, .method = "none", .budget = &b};
-    gk_pass_times t;
+    gk_frame_report t;
     if (rc == 0)
         rc = gk_renderer_set_scene(r, &f->s, e);
     if (rc == 0)

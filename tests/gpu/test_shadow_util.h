@@ -234,7 +234,7 @@ static inline int sx_draw(sx_session *x, const char *pins, float *out)
         return -1;
     }
     gk_frame_params fp = {.time_s = 0, .method = "none", .budget = &x->b};
-    gk_pass_times t;
+    gk_frame_report t;
     gk_image img = {0};
     if (gk_renderer_draw(x->r, &fp, x->gl.fbo, &t, &e) != 0 || gk_renderer_read_linear(x->r, &img, &e) != 0) {
         fprintf(stderr, "draw %s: %s\n", pins, e.msg);

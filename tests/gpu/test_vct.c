@@ -407,14 +407,14 @@ static void pass_costs_and_work_counters(void **state)
                pass again, warm */
             assert_int_equal(vt_render(vct, &f, &sc, &b, &L, 1, NULL, NULL), 0);
             gk_vct_set_options(vct, &o);
-            gk_pass_times t = {0};
+            gk_frame_report t = {0};
             assert_int_equal(vt_render(vct, &f, &sc, &b, &L, 1, NULL, &t), 0);
             gk_vct_stats st;
             gk_vct_get_stats(vct, &st);
             char line[512];
             int used = snprintf(line, sizeof line, "# costs %s%s:", budgets[i], mode ? " (thesis options)" : "");
             for (int k = 0; k < t.n; k++)
-                used += snprintf(line + used, sizeof line - (size_t)used, " %s %.1f ms", t.name[k], t.ms[k]);
+                used += snprintf(line + used, sizeof line - (size_t)used, " %s %.1f ms", t.pass[k].name, t.pass[k].ms);
             double spp = (double)st.last_trace_steps / (st.trace_w * st.trace_h);
             printf("%s; %.1f samples/traced px\n", line, spp);
             assert_int_equal(t.n, 5);

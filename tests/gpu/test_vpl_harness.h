@@ -37,7 +37,7 @@ typedef struct vpl_h {
     const gk_gi_method *m;
     void *self;
     float *img;          /* w*h*4 indirect radiance of the last frame */
-    gk_pass_times times; /* the method's pass timings of the last frame */
+    gk_frame_report times; /* the method's pass timings of the last frame */
 } vpl_h;
 
 static inline void h_quad(gk_mesh *m, vec3 o, vec3 a, vec3 b, vec3 n, int mat)
@@ -257,9 +257,13 @@ static inline int h_frame(vpl_h *h, double t)
     glClearColor(0, 0, 0, 0);
     glClear(GL_COLOR_BUFFER_BIT);
     gk_err e = {0};
-    gk_pass_times pt = {0};
-    int rc = h->m->render(h->self, &f, &pt, &e);
-    h->times = pt;
+    gk_timer *timer = gk_timer_create(false); /* the renderer's clock, as it would time the passes */
+    gk_pass_ctx ctx = {.timer = timer, .budget = &h->budget};
+    f.pass = &ctx;
+    gk_timer_frame_begin(timer);
+    int rc = h->m->render(h->self, &f, &e);
+    gk_timer_frame_end(timer, &h->times);
+    gk_timer_destroy(timer);
     if (rc) {
         fprintf(stderr, "render: %s\n", e.msg);
         return -1;

@@ -62,14 +62,14 @@ static void test_cornell_spot(void **state)
     char line[256] = "";
     for (int i = 0; i < H.times.n; i++) {
         size_t used = strlen(line);
-        snprintf(line + used, sizeof line - used, " %s %.2f", H.times.name[i], H.times.ms[i]);
+        snprintf(line + used, sizeof line - used, " %s %.2f", H.times.pass[i].name, H.times.pass[i].ms);
     }
     print_message("# pass ms (llvmpipe, 64x64, second frame after warm-up below):%s\n", line);
     assert_int_equal(h_frame(&H, 0), 0);
     line[0] = '\0';
     for (int i = 0; i < H.times.n; i++) {
         size_t used = strlen(line);
-        snprintf(line + used, sizeof line - used, " %s %.2f", H.times.name[i], H.times.ms[i]);
+        snprintf(line + used, sizeof line - used, " %s %.2f", H.times.pass[i].name, H.times.pass[i].ms);
     }
     print_message("# pass ms warm:%s\n", line);
     assert_int_equal(H.times.n, 4);

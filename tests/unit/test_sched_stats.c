@@ -49,21 +49,24 @@ static void csv_has_pass_union_and_knob_columns(void **state)
     gk_err e = {0};
     gk_stats_csv *c = gk_stats_csv_open(path, &e);
     assert_non_null(c);
-    gk_pass_times t1 = {.n = 2, .name = {"gbuffer", "direct"}, .ms = {1.5, 2.25}};
-    gk_pass_times t2 = {.n = 2, .name = {"gbuffer", "vct_trace"}, .ms = {1.0, 7.0}};
-    assert_int_equal(gk_stats_csv_row(c, 0, 0.0, "cornell", "none", 4.0, &t1, &b, &e), 0);
+    /* Frame 1 nests vct_trace under gi: its column is "gi.vct_trace_ms", and frame_ms is the total
+       of the top-level passes (1 + 7.5), not a sum over every column (which would add 7 twice). */
+    gk_frame_report t1 = {.total_ms = 3.75, .n = 2, .pass = {{"gbuffer", -1, 1.5}, {"direct", -1, 2.25}}};
+    gk_frame_report t2 = {.total_ms = 8.5, .n = 3, .pass = {{"gbuffer", -1, 1.0}, {"gi", -1, 7.5}, {"vct_trace", 1, 7.0}}};
+    assert_int_equal(gk_stats_csv_row(c, 0, 0.0, "cornell", "none", &t1, &b, &e), 0);
     b.level[0] = 0;
-    assert_int_equal(gk_stats_csv_row(c, 1, 1 / 60.0, "cornell", "vct", 9.0, &t2, &b, &e), 0);
+    assert_int_equal(gk_stats_csv_row(c, 1, 1 / 60.0, "cornell", "vct", &t2, &b, &e), 0);
     assert_int_equal(gk_stats_csv_close(c, &b, &e), 0);
     FILE *f = fopen(path, "r");
     assert_non_null(f);
     char line[512];
     assert_non_null(fgets(line, sizeof line, f));
-    assert_string_equal(line, "frame,time_s,scene,method,frame_ms,gbuffer_ms,direct_ms,vct_trace_ms,render_scale\n");
+    assert_string_equal(line,
+                        "frame,time_s,scene,method,frame_ms,gbuffer_ms,direct_ms,gi_ms,gi.vct_trace_ms,render_scale\n");
     assert_non_null(fgets(line, sizeof line, f));
-    assert_string_equal(line, "0,0.000000,cornell,none,4.000,1.500,2.250,,1\n");
+    assert_string_equal(line, "0,0.000000,cornell,none,3.750,1.500,2.250,,,1\n");
     assert_non_null(fgets(line, sizeof line, f));
-    assert_string_equal(line, "1,0.016667,cornell,vct,9.000,1.000,,7.000,0.5\n");
+    assert_string_equal(line, "1,0.016667,cornell,vct,8.500,1.000,,7.500,7.000,0.5\n");
     assert_null(fgets(line, sizeof line, f));
     fclose(f);
     char spool[600];

@@ -5,7 +5,6 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "base/log.h"
 #include "vct_internal.h"
@@ -163,33 +162,6 @@ static unsigned long light_hash(const gk_gi_frame *f)
     return h ^ (unsigned long)f->n_lights;
 }
 
-static double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
-}
-
-/* CPU time around glFinish (llvmpipe; DESIGN §6). Only when the caller asks for timings. */
-static void time_pass(gk_pass_times *t, const char *name, double *t0)
-{
-    if (!t)
-        return;
-    glFinish();
-    double t1 = now_ms();
-    for (int i = 0; i < t->n; i++)
-        if (t->name[i] == name) {
-            t->ms[i] += t1 - *t0;
-            *t0 = t1;
-            return;
-        }
-    if (t->n < GK_MAX_PASSES) {
-        t->name[t->n] = name;
-        t->ms[t->n++] = t1 - *t0;
-    }
-    *t0 = t1;
-}
-
 static void to_voxels(const gk_vct *v, vec3 lo, vec3 hi, int rlo[3], int rhi[3])
 {
     const float *o = v->origin;
@@ -214,7 +186,7 @@ static int upload_tris(gk_vct *v, int first, int count)
     return 0;
 }
 
-static int vct_render(void *self, const gk_gi_frame *f, gk_pass_times *times, gk_err *e)
+static int vct_render(void *self, const gk_gi_frame *f, gk_err *e)
 {
     gk_vct *v = self;
     const gk_scene *s = f->scene ? f->scene : v->scene;
@@ -222,7 +194,6 @@ static int vct_render(void *self, const gk_gi_frame *f, gk_pass_times *times, gk
         return gk_fail(e, GK_ERUNTIME, "vct: render without a scene");
     vct_budget b;
     read_budget(f->budget, &b);
-    double t0 = now_ms();
     if (b.thesis != v->thesis) {   /* variant switched: rebuild everything */
         v->thesis = b.thesis;
         apply_options(v);
@@ -257,8 +228,14 @@ static int vct_render(void *self, const gk_gi_frame *f, gk_pass_times *times, gk
     v->stats.n_dynamic_triangles = v->tris.n - v->tris.n_static;
 
     int lo[3] = {0, 0, 0}, hi[3] = {v->res - 1, v->res - 1, v->res - 1};
+    /* Each pass of the thesis is a pass of the renderer's clock (nested under `gi`); a pass that
+       has nothing to do this frame (static voxels, unchanged light) is not begun, so its column
+       is empty rather than a measured zero. */
     if (v->need_voxelize) {
-        if (vct_pass_voxelize(v, lo, hi, e) != 0)
+        gk_pass_begin(f->pass, "vct_voxelize");
+        int rc = vct_pass_voxelize(v, lo, hi, e);
+        gk_pass_end(f->pass);
+        if (rc != 0)
             return -1;
         v->need_voxelize = false;
         v->need_inject = true;
@@ -266,37 +243,44 @@ static int vct_render(void *self, const gk_gi_frame *f, gk_pass_times *times, gk
     } else if (v->tris.n > v->tris.n_static) {
         vec3 dlo, dhi;
         if (vct_tris_update(&v->tris, s, &dlo, &dhi)) {
+            gk_pass_begin(f->pass, "vct_voxelize");
             upload_tris(v, v->tris.n_static, v->tris.n - v->tris.n_static);
             to_voxels(v, dlo, dhi, lo, hi);
-            if (vct_pass_voxelize(v, lo, hi, e) != 0)
+            int rc = vct_pass_voxelize(v, lo, hi, e);
+            gk_pass_end(f->pass);
+            if (rc != 0)
                 return -1;
             v->need_inject = true;   /* the moved object's shadows change everywhere */
         }
     }
-    time_pass(times, "vct_voxelize", &t0);
 
     unsigned long lh = light_hash(f);
     if (lh != v->light_hash)
         v->need_inject = true;
     if (v->need_inject) {
-        if (vct_pass_inject(v, f, e) != 0)
+        gk_pass_begin(f->pass, "vct_inject");
+        int rc = vct_pass_inject(v, f, e);
+        gk_pass_end(f->pass);
+        if (rc != 0)
             return -1;
-        time_pass(times, "vct_inject", &t0);
-        if (vct_pass_mips(v, e) != 0)
+        gk_pass_begin(f->pass, "vct_mips");
+        rc = vct_pass_mips(v, e);
+        gk_pass_end(f->pass);
+        if (rc != 0)
             return -1;
-        time_pass(times, "vct_mips", &t0);
         v->need_inject = false;
         v->light_hash = lh;
-    } else {
-        time_pass(times, "vct_inject", &t0);
-        time_pass(times, "vct_mips", &t0);
     }
-    if (vct_pass_trace(v, f, &b, e) != 0)
+    gk_pass_begin(f->pass, "vct_trace");
+    int rc = vct_pass_trace(v, f, &b, e);
+    gk_pass_end(f->pass);
+    if (rc != 0)
         return -1;
-    time_pass(times, "vct_trace", &t0);
-    if (vct_pass_compose(v, f, e) != 0)
+    gk_pass_begin(f->pass, "vct_compose");
+    rc = vct_pass_compose(v, f, e);
+    gk_pass_end(f->pass);
+    if (rc != 0)
         return -1;
-    time_pass(times, "vct_compose", &t0);
     GLenum err = glGetError();
     if (err != GL_NO_ERROR)
         return gk_fail(e, GK_ERUNTIME, "vct: GL error 0x%x during the frame", err);

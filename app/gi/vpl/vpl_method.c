@@ -3,7 +3,6 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "vpl_internal.h"
 
@@ -162,24 +161,6 @@ static void read_budget(vpl_state *s, const gk_budget *b)
     s->multires = g && strcmp(g, "multires") == 0;
 }
 
-static double now_ms(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
-}
-
-static void pass_time(gk_pass_times *times, const char *name, double *t0)
-{
-    glFinish();
-    double t = now_ms();
-    if (times && times->n < GK_MAX_PASSES) {
-        times->name[times->n] = name;
-        times->ms[times->n++] = t - *t0;
-    }
-    *t0 = t;
-}
-
 static void cluster(vpl_state *s)
 {
     gk_kmeans_opts o = {s->dbg.w_pos, s->dbg.w_nrm, s->diam, 16, s->dbg.warm_start && s->prev_m > 0};
@@ -202,24 +183,31 @@ static void cluster(vpl_state *s)
         s->prev_m = r.m;
 }
 
-static int render(void *self, const gk_gi_frame *f, gk_pass_times *times, gk_err *e)
+static int render(void *self, const gk_gi_frame *f, gk_err *e)
 {
     vpl_state *s = self;
     if (!s->have_proxy && set_scene(s, f->scene, e))
         return -1;
     read_budget(s, f->budget);
-    double t0 = now_ms();
-    if (vpl_generate(s, f, e) < 0)
+    /* The document's passes, each a pass of the renderer's clock (nested under `gi`). */
+    gk_pass_begin(f->pass, "vpl_rsm");
+    int rc = vpl_generate(s, f, e) < 0 ? -1 : 0;
+    gk_pass_end(f->pass);
+    if (rc)
         return -1;
-    pass_time(times, "vpl_rsm", &t0);
 
     gk_vpl_stats *st = &s->st;
     const gk_val *emitters = st->vals;
+    int n_emitters = st->m;
+    gk_val *ev = NULL;
+    gk_pass_begin(f->pass, "vpl_cluster");
     if (s->vis == GK_VPL_VIS_EXACT) {
         /* Instant radiosity reference: every VPL is its own emitter with a hard map. */
-        gk_val *ev = calloc((size_t)s->n, sizeof *ev);
-        if (!ev)
+        ev = calloc((size_t)s->n, sizeof *ev);
+        if (!ev) {
+            gk_pass_end(f->pass);
             return gk_fail(e, GK_ERUNTIME, "vpl: out of memory");
+        }
         for (int i = 0; i < s->n; i++) {
             bool ok = st->vpl[i].flux.x + st->vpl[i].flux.y + st->vpl[i].flux.z > 0.0f;
             st->labels[i] = ok ? i : -1;
@@ -227,33 +215,33 @@ static int render(void *self, const gk_gi_frame *f, gk_pass_times *times, gk_err
             gk_val_frame_area(st->vpl, s->n, st->labels, i, &ev[i]);
         }
         st->m = s->n, st->empty = 0, st->iters = 0, st->cluster_error = 0.0;
-        st->spacing = gk_vpl_mean_spacing(st->vpl, s->n);
-        st->dmin = s->dbg.clamp_scale * st->spacing;
-        pass_time(times, "vpl_cluster", &t0);
-        int rc = vpl_build_maps(s, f, ev, s->n, e);
-        if (!rc)
-            vpl_upload(s, ev, s->n);
-        free(ev);
-        if (rc)
-            return -1;
+        emitters = ev;
     } else {
         cluster(s);
-        st->spacing = gk_vpl_mean_spacing(st->vpl, s->n);
-        st->dmin = s->dbg.clamp_scale * st->spacing;
-        pass_time(times, "vpl_cluster", &t0);
-        if (vpl_build_maps(s, f, emitters, st->m, e))
-            return -1;
-        vpl_upload(s, emitters, st->m);
     }
-    pass_time(times, "vpl_valsm", &t0);
+    n_emitters = st->m;
+    st->spacing = gk_vpl_mean_spacing(st->vpl, s->n);
+    st->dmin = s->dbg.clamp_scale * st->spacing;
+    gk_pass_end(f->pass);
+
+    gk_pass_begin(f->pass, "vpl_valsm");
+    rc = vpl_build_maps(s, f, emitters, n_emitters, e);
+    if (!rc)
+        vpl_upload(s, emitters, n_emitters);
+    gk_pass_end(f->pass);
+    free(ev);
+    if (rc)
+        return -1;
     float fade = 1.0f;
     if (st->fade_left > 0 && s->dbg.fade_frames > 0) {
         fade = (float)(s->dbg.fade_frames - st->fade_left + 1) / (float)(s->dbg.fade_frames + 1);
         st->fade_left--;
     }
-    if (vpl_gather(s, f, fade, e))
+    gk_pass_begin(f->pass, "vpl_gather");
+    rc = vpl_gather(s, f, fade, e);
+    gk_pass_end(f->pass);
+    if (rc)
         return -1;
-    pass_time(times, "vpl_gather", &t0);
     s->frame_index++;
     GLenum err = glGetError();
     if (err != GL_NO_ERROR)
