@@ -1,0 +1,45 @@
+#!/bin/sh
+# The one frame report as a user sees it in `run --stats` (issue: GI frames were counted 1.7x):
+# on cornell with vct and with vpl, every row's frame_ms equals the sum of the top-level pass
+# columns (names without a dot) within 1%; the GI method's passes are nested columns `gi.NAME_ms`
+# that add up to no more than `gi_ms` (they are inside it, not beside it), so the sum of every
+# column is larger than frame_ms by exactly the nested ones -- a pass counted twice would break
+# one of the two. Got another way: the frames' total cannot exceed the wall time of the whole run.
+. tests/e2e/lib.sh
+export EGL_PLATFORM=surfaceless
+
+# Columns: checks every data row of CSV $1; prints the failures, exits non-zero on any.
+rows_add_up() {
+    awk -F, '
+        NR == 1 { for (i = 1; i <= NF; i++) { name[i] = $i; if ($i == "frame_ms") fcol = i }
+                  for (i = 1; i <= NF; i++) if (name[i] ~ /_ms$/ && i != fcol) {
+                      if (name[i] ~ /\./) nested[i] = 1; else top[i] = 1
+                      if (name[i] == "gi_ms") gcol = i } next }
+        {
+            t = 0; n = 0; g = 0
+            for (i in top) t += $i
+            for (i in nested) { n += $i; if (name[i] ~ /^gi\./) g += $i }
+            if ($fcol <= 0) { print "# row " NR ": frame_ms " $fcol; bad++ }
+            d = $fcol - t; if (d < 0) d = -d
+            if (d > 0.01 * $fcol + 0.002) { print "# row " NR ": frame_ms " $fcol " != top-level sum " t; bad++ }
+            if (gcol && g > $gcol * 1.001 + 0.002) { print "# row " NR ": gi.* sum " g " > gi_ms " $gcol; bad++ }
+            if (n <= 0) { print "# row " NR ": no nested GI pass"; bad++ }
+            rows++
+        }
+        END { if (rows < 1) { print "# no rows"; bad++ } exit bad > 0 }' "$1"
+}
+
+for m in vct vpl; do
+    csv=$TMP/$m.csv
+    t0=$(date +%s.%N)
+    check "run --stats cornell $m" "$GIKIOSK" run --platform mock --size 96x72 --scene cornell --method $m \
+        --frames 5 --target-ms 1000 --stats "$csv"
+    t1=$(date +%s.%N)
+    head -1 "$csv" | sed 's/^/# /'
+    check "$m: nested GI columns are named gi.NAME_ms" grep -q ",gi_ms,gi\.${m}_[a-z]*_ms" "$csv"
+    check "$m: frame_ms is the sum of the top-level passes in every row, gi.* within gi" rows_add_up "$csv"
+    total=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "frame_ms") c = i; next } { s += $c } END { print s }' "$csv")
+    check "$m: frames ($total ms) fit in the run's wall time" \
+        awk -v s="$total" -v a="$t0" -v b="$t1" 'BEGIN { exit !(s > 0 && s <= (b - a) * 1000) }'
+done
+finish
