@@ -45,9 +45,11 @@ typedef struct frame_light {
     gk_shadow_view view;
 } frame_light;
 
-static int pass_shadows(gk_renderer *r, const gk_shadow_method *m, int map_size, const gk_budget *b, frame_light *fl,
-                        int n, gk_err *e)
+static int pass_shadows(gk_renderer *r, const gk_frame_knobs *fk, const gk_pass_ctx *pctx, frame_light *fl, int n,
+                        gk_err *e)
 {
+    const gk_shadow_method *m = fk->shadow;
+    int map_size = fk->shadow_map;
     if (!m)
         return 0;
     int mi = method_index(m);
@@ -55,18 +57,16 @@ static int pass_shadows(gk_renderer *r, const gk_shadow_method *m, int map_size,
         return gk_fail(e, GK_ERUNTIME, "shadow method %s is not in gk_shadow_methods[]", m->name);
     if (!r->shadow_state[mi] && !(r->shadow_state[mi] = m->create()))
         return gk_fail(e, GK_ERUNTIME, "shadow method %s: out of memory", m->name);
-    gk_shadow_ctx ctx = {.progs = r->progs, .scene = r->scene, .gpu = &r->gpu, .caps = &r->caps, .budget = b};
+    gk_shadow_ctx ctx = {.progs = r->progs, .scene = r->scene, .gpu = &r->gpu, .caps = &r->caps,
+                         .subdiv = fk->shadow_subdiv, .pass = pctx};
     /* Static scene, same lights, same shadow knobs: the maps of the last frame are still right, so
        only the views are rebuilt (they are cheap and the lighting pass binds them). Most kiosk
        scenes are static, and the prefiltered maps (SAT, Fourier bases) cost more than the rest of
        the frame. The bench turns this off to measure a method's per-frame cost. */
-    char key[sizeof r->shadow_cache_key];
-    char knobs[400] = "";
-    if (b)
-        gk_budget_format_active(b, "render", knobs, sizeof knobs);
-    snprintf(key, sizeof key, "%u|%s|%d|%s", r->scene_generation, m->name, map_size, knobs);
+    gk_shadow_cache_key key = {.scene_generation = r->scene_generation, .method = m, .map_size = map_size,
+                               .subdiv = fk->shadow_subdiv};
     bool reuse = !r->opts.rerender_static_shadows && !r->scene->features.has_animation &&
-                 strcmp(key, r->shadow_cache_key) == 0;
+                 memcmp(&key, &r->shadow_cache, sizeof key) == 0;
     int slot = 0;
     for (int i = 0; i < n && slot < GK_SHADOW_MAX_LIGHTS; i++) {
         int size = map_size;
@@ -76,13 +76,13 @@ static int pass_shadows(gk_renderer *r, const gk_shadow_method *m, int map_size,
         if (!gk_shadow_view_for_light(r->scene, fl[i].node, size, &fl[i].view))
             continue;
         if (!reuse && m->render(r->shadow_state[mi], &ctx, slot, &fl[i].view, e) != 0) {
-            r->shadow_cache_key[0] = '\0';
+            memset(&r->shadow_cache, 0, sizeof r->shadow_cache);
             return -1;
         }
         fl[i].shadowed = true;
         slot++;
     }
-    snprintf(r->shadow_cache_key, sizeof r->shadow_cache_key, "%s", key);
+    r->shadow_cache = key;
     return 0;
 }
 
@@ -257,13 +257,10 @@ int gk_renderer_draw(gk_renderer *r, const gk_frame_params *fp, unsigned target_
     if (!r->scene)
         return gk_fail(e, GK_ERUNTIME, "renderer: draw without a scene");
     const gk_budget *b = fp ? fp->budget : NULL;
-    float scale = b ? gk_budget_float(b, "render_scale", 1.0f) : 1.0f;
-    const char *shadow_name = b ? gk_budget_value(b, "shadow") : NULL;
-    int map_size = b ? (int)gk_budget_float(b, "shadow_map", 1024.0f) : 1024;
-    const gk_shadow_method *m = gk_shadow_method_find(shadow_name ? shadow_name : "pcss");
-    if (scale <= 0.0f || scale > 1.0f)
-        scale = 1.0f;
-    int w = (int)lroundf((float)r->opts.width * scale), h = (int)lroundf((float)r->opts.height * scale);
+    gk_frame_knobs fk;
+    gk_render_knobs_read(&r->knobs, b, &fk);
+    const gk_shadow_method *m = fk.shadow;
+    int w = (int)lroundf((float)r->opts.width * fk.render_scale), h = (int)lroundf((float)r->opts.height * fk.render_scale);
     if (w < 1) w = 1;
     if (h < 1) h = 1;
     if (ensure_targets(r, w, h, e) != 0)
@@ -292,7 +289,7 @@ int gk_renderer_draw(gk_renderer *r, const gk_frame_params *fp, unsigned target_
     }
     gk_timer_frame_begin(r->timer);
     gk_pass_begin(&ctx, "shadow");
-    int rc = pass_shadows(r, m, map_size, b, fl, n, e);
+    int rc = pass_shadows(r, &fk, &ctx, fl, n, e);
     gk_pass_end(&ctx);
     if (rc == 0) {
         gk_pass_begin(&ctx, "gbuffer");

@@ -35,6 +35,7 @@ gk_renderer *gk_renderer_create(const gk_render_opts *opts, gk_err *e)
     r->progs = gk_program_cache_create(r->shader_dir, r->caps.gles >= 32 ? 32 : 31);
     r->timer = gk_timer_create(opts->gpu_timer_queries && r->caps.timer_query);
     r->gi = gk_render_gi_create();
+    gk_render_knobs_init(&r->knobs);
     glGenVertexArrays(1, &r->empty_vao);
     if (!r->progs || !r->timer || !r->gi) {
         gk_renderer_destroy(r);
@@ -88,7 +89,7 @@ int gk_renderer_set_scene(gk_renderer *r, gk_scene *s, gk_err *e)
     r->scene = NULL;
     /* A new scene may live at the address of the old one: caches key on the generation. */
     r->scene_generation++;
-    r->shadow_cache_key[0] = '\0';
+    memset(&r->shadow_cache, 0, sizeof r->shadow_cache);
     r->have_frame = false;
     r->exposure_known = false;
     if (!s)

@@ -16,6 +16,28 @@
 /* Texture units of the lighting passes. */
 enum { UNIT_ALBEDO = 0, UNIT_NORMAL = 1, UNIT_EMISSION = 2, UNIT_DEPTH = 3, UNIT_SHADOW = 4 };
 
+/* The renderer's knobs, read each frame through handles (no names in the frame loop). */
+typedef struct gk_render_knobs {
+    gk_knob scale, shadow, shadow_map, shadow_subdiv;
+    const gk_shadow_method *shadow_of_level[GK_MAX_KNOB_VALUES]; /* knob `shadow` level -> method */
+    const gk_shadow_method *shadow_without_budget;               /* PCSS, the framework reference */
+} gk_render_knobs;
+
+/* The renderer's knob values for one frame. */
+typedef struct gk_frame_knobs {
+    float render_scale;
+    const gk_shadow_method *shadow;
+    int shadow_map;
+    int shadow_subdiv;          /* level of shadow_subdiv (VSSM) */
+} gk_frame_knobs;
+
+/* The shadow maps of a static scene are kept while this stays the same (compared by value). */
+typedef struct gk_shadow_cache_key {
+    unsigned scene_generation;  /* 0: nothing cached */
+    const gk_shadow_method *method;
+    int map_size, subdiv;
+} gk_shadow_cache_key;
+
 struct gk_renderer {
     gk_render_opts opts;
     char *shader_dir;
@@ -34,13 +56,18 @@ struct gk_renderer {
     int render_w, render_h;     /* render size (output * render_scale) */
 
     struct gk_render_gi *gi;    /* GI methods (render_gi.c) */
-    char shadow_cache_key[512]; /* scene|method|size|knobs of the maps now in shadow_state ("" = none) */
+    gk_render_knobs knobs;      /* handles of the renderer's knobs (renderer_knobs.c) */
+    gk_shadow_cache_key shadow_cache; /* what the maps now in shadow_state were rendered for */
     void *shadow_state[GK_MAX_SHADOW_METHODS]; /* per method of gk_shadow_methods[], created on first use */
 
     float exposure;             /* display scale, fixed per scene (tonemap.h) */
     bool exposure_known;
     bool have_frame;            /* hdr holds a finished frame for capture */
 };
+
+/* renderer_knobs.c: handles set up at creation; the frame's values from budget b (NULL: defaults). */
+void gk_render_knobs_init(gk_render_knobs *k);
+void gk_render_knobs_read(gk_render_knobs *k, const gk_budget *b, gk_frame_knobs *out);
 
 /* Light kind numbers of shaders_gles/common/lights.glsl. */
 int gk_render_light_kind(const gk_light *l);

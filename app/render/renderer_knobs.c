@@ -40,6 +40,28 @@ static const gk_knob_def knob_shadow_subdiv = {
     .auto_max_level = 3,
 };
 
+void gk_render_knobs_init(gk_render_knobs *k)
+{
+    k->scale = (gk_knob){&knob_render_scale, -1};
+    k->shadow = (gk_knob){&knob_shadow, -1};
+    k->shadow_map = (gk_knob){&knob_shadow_map, -1};
+    k->shadow_subdiv = (gk_knob){&knob_shadow_subdiv, -1};
+    for (int i = 0; i < knob_shadow.n_values; i++)
+        k->shadow_of_level[i] = gk_shadow_method_find(knob_shadow.values[i]);
+    k->shadow_without_budget = gk_shadow_method_find("pcss");
+}
+
+void gk_render_knobs_read(gk_render_knobs *k, const gk_budget *b, gk_frame_knobs *out)
+{
+    out->render_scale = gk_knob_number(b, &k->scale, 1.0f);
+    if (!(out->render_scale > 0.0f) || out->render_scale > 1.0f)
+        out->render_scale = 1.0f;
+    int shadow = gk_knob_level(b, &k->shadow, -1);
+    out->shadow = shadow >= 0 ? k->shadow_of_level[shadow] : k->shadow_without_budget;
+    out->shadow_map = (int)gk_knob_number(b, &k->shadow_map, 1024.0f);
+    out->shadow_subdiv = gk_knob_level(b, &k->shadow_subdiv, knob_shadow_subdiv.default_level);
+}
+
 void gk_renderer_declare_knobs(gk_renderer *r, gk_budget *b)
 {
     (void)r;

@@ -1,5 +1,6 @@
 #include "budget.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -23,12 +24,52 @@ int gk_budget_add(gk_budget *b, const gk_knob_def *def)
         return -1;
     i = b->n++;
     b->def[i] = def;
+    for (int k = 0; k < GK_MAX_KNOB_VALUES; k++) {
+        char *end = NULL;
+        float v = k < def->n_values ? strtof(def->values[k], &end) : NAN;
+        b->number[i][k] = k < def->n_values && end != def->values[k] && *end == '\0' ? v : NAN;
+    }
     b->level[i] = def->default_level;
     b->pinned[i] = false;
     b->min_level[i] = 0;
     b->max_level[i] = def->auto_max_level > 0 && def->auto_max_level < def->n_values ? def->auto_max_level
                                                                                    : def->n_values - 1;
     return i;
+}
+
+gk_knob gk_budget_knob(const gk_budget *b, const gk_knob_def *def)
+{
+    gk_knob k = {def, -1};
+    gk_knob_resolve(b, &k);
+    return k;
+}
+
+bool gk_knob_resolve(const gk_budget *b, gk_knob *k)
+{
+    if (!b)
+        return false;
+    if (k->index >= 0 && k->index < b->n && b->def[k->index] == k->def)
+        return true;
+    k->index = -1;
+    for (int i = 0; i < b->n; i++)
+        if (b->def[i] == k->def) {
+            k->index = i;
+            return true;
+        }
+    return false;
+}
+
+int gk_knob_level(const gk_budget *b, gk_knob *k, int fallback)
+{
+    return gk_knob_resolve(b, k) ? b->level[k->index] : fallback;
+}
+
+float gk_knob_number(const gk_budget *b, gk_knob *k, float fallback)
+{
+    if (!gk_knob_resolve(b, k))
+        return fallback;
+    float v = b->number[k->index][b->level[k->index]];
+    return isnan(v) ? fallback : v;
 }
 
 const char *gk_budget_value(const gk_budget *b, const char *name)

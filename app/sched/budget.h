@@ -30,9 +30,19 @@ typedef struct gk_budget {
     int n;
     const gk_knob_def *def[GK_MAX_KNOBS];
     int level[GK_MAX_KNOBS];                  /* index into def->values */
+    float number[GK_MAX_KNOBS][GK_MAX_KNOB_VALUES]; /* each value parsed once when declared (NaN: not a number) */
     bool pinned[GK_MAX_KNOBS];
     int min_level[GK_MAX_KNOBS], max_level[GK_MAX_KNOBS]; /* from [budgets] in the config */
 } gk_budget;
+
+/* A knob handle: the frame loop reads knob levels through it -- an index checked by one pointer
+ * comparison -- never by name. A module keeps one per knob it reads, {&its_def, -1} until
+ * resolved; gk_knob_resolve finds the index once (by the def's address, no strings) and again
+ * only if it is handed a budget whose layout differs. */
+typedef struct gk_knob {
+    const gk_knob_def *def;
+    int index;
+} gk_knob;
 
 void gk_budget_init(gk_budget *b);
 /* Adds a knob at its default level (no-op if already there). Returns its index or -1 if full. */
@@ -51,6 +61,16 @@ int gk_budget_set_range(gk_budget *b, const char *name, const char *min_value, c
 void gk_budget_format(const gk_budget *b, char *out, int out_len);
 /* Only the knobs in play for a GI method: the renderer's own ("render") and the method's. */
 void gk_budget_format_active(const gk_budget *b, const char *method, char *out, int out_len);
+/* Handle of def in b (index -1 when b lacks it). */
+gk_knob gk_budget_knob(const gk_budget *b, const gk_knob_def *def);
+/* Re-points k at b when b's layout differs from what k was resolved against. False when b lacks it. */
+bool gk_knob_resolve(const gk_budget *b, gk_knob *k);
+/* Level of the knob in b, or fallback when b is NULL or lacks it. */
+int gk_knob_level(const gk_budget *b, gk_knob *k, int fallback);
+/* The knob's current value as a number (parsed at declaration), or fallback when b is NULL, lacks
+ * the knob, or the value is not a number ("adaptive"). */
+float gk_knob_number(const gk_budget *b, gk_knob *k, float fallback);
+
 /* True when knob i matters for method (owner "render" or the method itself). */
 bool gk_budget_knob_active(const gk_budget *b, int i, const char *method);
 

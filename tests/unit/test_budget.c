@@ -3,6 +3,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <cmocka.h>
+#include <math.h>
 #include <string.h>
 
 #include "sched/budget.h"
@@ -62,12 +63,46 @@ static void range_clamps_and_rejects_inverted(void **state)
     assert_non_null(strstr(e.msg, "richer"));
 }
 
+static const gk_knob_def vpl_m = {
+    .name = "vpl_m", .owner = "vpl", .n_values = 3, .values = {"2", "8", "adaptive"}, .cost = {1, 1, 1}, .default_level = 1,
+};
+
+/* Knob handles: the frame loop's typed joint. Resolved by the def's address once; a budget with
+ * another layout (the bench declares knobs per configuration) re-resolves; values are numbers
+ * parsed at declaration; a knob the budget lacks, or no budget, gives the fallback. */
+static void knob_handles_resolve_and_read(void **state)
+{
+    (void)state;
+    gk_budget a, b;
+    gk_budget_init(&a);
+    gk_budget_init(&b);
+    gk_budget_add(&a, &shadow_map);
+    gk_budget_add(&a, &vpl_m);
+    gk_budget_add(&b, &vpl_m); /* another layout: vpl_m is knob 0 here, knob 1 in a */
+    gk_knob k = gk_budget_knob(&a, &vpl_m);
+    assert_int_equal(k.index, 1);
+    assert_int_equal(gk_knob_level(&a, &k, -1), 1);
+    assert_true(gk_knob_number(&a, &k, -1) == 8.0f);
+    a.level[1] = 2; /* "adaptive" is not a number */
+    assert_true(gk_knob_number(&a, &k, -1) == -1.0f);
+    assert_true(isnan(a.number[1][2]) && a.number[1][0] == 2.0f);
+    b.level[0] = 0;
+    assert_int_equal(gk_knob_level(&b, &k, -1), 0); /* re-resolved against b */
+    assert_int_equal(k.index, 0);
+    assert_true(gk_knob_number(&b, &k, -1) == 2.0f);
+    gk_knob missing = {&scale, -1};
+    assert_int_equal(gk_knob_level(&a, &missing, 7), 7);
+    assert_true(gk_knob_number(NULL, &missing, 0.25f) == 0.25f);
+    assert_false(gk_knob_resolve(&a, &missing));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(pin_sets_level_and_pins),
         cmocka_unit_test(pin_rejects_unknown_knob_and_value),
         cmocka_unit_test(range_clamps_and_rejects_inverted),
+        cmocka_unit_test(knob_handles_resolve_and_read),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

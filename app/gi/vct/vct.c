@@ -25,6 +25,10 @@ static const gk_knob_def knob_mips = {"vct_mips", "vct", 2, {"iso", "aniso"}, {1
    against the other, never a scheduler pick. */
 static const gk_knob_def knob_variant = {"vct_variant", "vct", 2, {"default", "thesis"}, {1, 1}, 0, 0, .fixed = true};
 
+/* Levels of the variant knobs, in the order of their values above. */
+enum { MIPS_ISO, MIPS_ANISO };
+enum { VARIANT_DEFAULT, VARIANT_THESIS };
+
 void gk_vct_default_options(gk_vct_options *o)
 {
     memset(o, 0, sizeof *o);
@@ -78,6 +82,12 @@ static void *vct_create(const gk_gi_context *ctx, gk_err *e)
         gk_fail(e, GK_ERUNTIME, "vct: out of memory");
         return NULL;
     }
+    v->k_res = (gk_knob){&knob_res, -1};
+    v->k_cones = (gk_knob){&knob_cones, -1};
+    v->k_step = (gk_knob){&knob_step, -1};
+    v->k_scale = (gk_knob){&knob_scale, -1};
+    v->k_mips = (gk_knob){&knob_mips, -1};
+    v->k_variant = (gk_knob){&knob_variant, -1};
     v->ctx = *ctx;
     gk_vct_default_options(&v->opt);
     v->user_opt = v->opt;
@@ -131,16 +141,14 @@ void gk_vct_set_options(void *self, const gk_vct_options *o)
     apply_options(v);
 }
 
-static void read_budget(const gk_budget *b, vct_budget *out)
+static void read_budget(gk_vct *v, const gk_budget *b, vct_budget *out)
 {
-    out->res = b ? (int)gk_budget_float(b, "vct_res", 64) : 64;
-    out->cones = b ? (int)gk_budget_float(b, "vct_cones", 6) : 6;
-    out->step = b ? gk_budget_float(b, "vct_step", 1.0f) : 1.0f;
-    out->trace_scale = b ? gk_budget_float(b, "vct_trace_scale", 0.5f) : 0.5f;
-    const char *m = b ? gk_budget_value(b, "vct_mips") : NULL;
-    out->aniso = !m || strcmp(m, "iso") != 0;
-    const char *variant = b ? gk_budget_value(b, "vct_variant") : NULL;
-    out->thesis = variant && strcmp(variant, "thesis") == 0;
+    out->res = (int)gk_knob_number(b, &v->k_res, 64);
+    out->cones = (int)gk_knob_number(b, &v->k_cones, 6);
+    out->step = gk_knob_number(b, &v->k_step, 1.0f);
+    out->trace_scale = gk_knob_number(b, &v->k_scale, 0.5f);
+    out->aniso = gk_knob_level(b, &v->k_mips, MIPS_ANISO) == MIPS_ANISO;
+    out->thesis = gk_knob_level(b, &v->k_variant, VARIANT_DEFAULT) == VARIANT_THESIS;
     if (out->res < 8)
         out->res = 64;
     if (out->cones != 4 && out->cones != 9)
@@ -193,7 +201,7 @@ static int vct_render(void *self, const gk_gi_frame *f, gk_err *e)
     if (!s)
         return gk_fail(e, GK_ERUNTIME, "vct: render without a scene");
     vct_budget b;
-    read_budget(f->budget, &b);
+    read_budget(v, f->budget, &b);
     if (b.thesis != v->thesis) {   /* variant switched: rebuild everything */
         v->thesis = b.thesis;
         apply_options(v);

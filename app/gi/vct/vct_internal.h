@@ -37,6 +37,7 @@ typedef struct gk_vct {
     bool thesis;                 /* vct_variant=thesis in effect */
     const gk_scene *scene;
     vct_budget cur;              /* budget the GPU resources were made for */
+    gk_knob k_res, k_cones, k_step, k_scale, k_mips, k_variant; /* knob handles (vct.c) */
     bool allocated;
     bool need_voxelize, need_inject;
     bool emissive, specular;

@@ -11,11 +11,14 @@
 #define VPL_EXACT_RES 64     /* per-VPL hard shadow maps of the exact-visibility reference */
 #define VPL_MR_MAX_LEVELS 6  /* 000: coarsest regions 32×32 pixels (16×16 of them at 512²) */
 
+#define VPL_KNOBS 9               /* knobs declared by vpl_method.c */
+
 typedef struct vpl_state {
     gk_gi_context ctx;
     gk_program_cache *own_cache;   /* when the renderer lent none */
     gk_vpl_debug dbg;
     gk_vpl_stats st;
+    gk_knob knob[VPL_KNOBS];     /* handles of vpl_method.c's knobs (no names in the frame loop) */
     /* budget this frame */
     int n, m_knob, val_res, block, blur_radius, vis;
     float res_scale;

@@ -18,7 +18,12 @@
  *  vpl_clamp: one max() per VPL                               -> 1, 1
  *  vpl_gather: multires shades every valid region with all N VPLs instead of N/B² per pixel;
  *              T5 at 64² measured ~1/16 as many regions as pixels, i.e. par with block 4     -> 1, 1.4 */
-static const gk_knob_def knobs[] = {
+enum { K_N, K_M, K_VAL_MAP, K_BLOCK, K_RES, K_BLUR, K_VIS, K_CLAMP, K_GATHER, K_COUNT };
+/* Levels of the variant knobs, in the order of their values below. */
+_Static_assert(K_COUNT == VPL_KNOBS, "vpl_internal.h's VPL_KNOBS counts the knobs");
+enum { VIS_VSM, VIS_CSSM, VIS_EXACT };
+enum { GATHER_INTERLEAVED, GATHER_MULTIRES };
+static const gk_knob_def knobs[K_COUNT] = {
     {"vpl_n", "vpl", 3, {"256", "512", "1024"}, {1.0f, 1.69f, 3.07f}, 0, 0, false},
     {"vpl_m", "vpl", 6, {"2", "4", "8", "16", "32", "adaptive"}, {1.0f, 1.006f, 1.018f, 1.041f, 1.086f, 1.05f}, 2, 0, false},
     {"vpl_val_map", "vpl", 3, {"64", "128", "256"}, {1.0f, 1.02f, 1.11f}, 0, 0, false},
@@ -97,6 +102,8 @@ static void *create(const gk_gi_context *ctx, gk_err *e)
         return NULL;
     }
     s->ctx = *ctx;
+    for (int i = 0; i < K_COUNT; i++)
+        s->knob[i] = (gk_knob){&knobs[i], -1};
     if (!s->ctx.programs) {
         s->own_cache = gk_program_cache_create(NULL, ctx->gles_version ? ctx->gles_version : 31);
         s->ctx.programs = s->own_cache;
@@ -133,32 +140,28 @@ static int set_scene(void *self, const gk_scene *sc, gk_err *e)
     return 0;
 }
 
-static int knob_int(const gk_budget *b, const char *name, int fallback)
+static int knob_int(vpl_state *s, const gk_budget *b, int k, int fallback)
 {
-    const char *v = b ? gk_budget_value(b, name) : NULL;
-    return v ? atoi(v) : fallback;
+    return (int)gk_knob_number(b, &s->knob[k], (float)fallback);
 }
 
 static void read_budget(vpl_state *s, const gk_budget *b)
 {
-    s->n = knob_int(b, "vpl_n", 256);
+    s->n = knob_int(s, b, K_N, 256);
     s->n = s->n < 16 ? 16 : (s->n > GK_VPL_MAX_N ? GK_VPL_MAX_N : s->n);
-    s->m_knob = knob_int(b, "vpl_m", 8); /* "adaptive" -> 0 */
-    s->val_res = knob_int(b, "vpl_val_map", 64);
-    s->block = knob_int(b, "vpl_block", 4);
+    s->m_knob = gk_knob_level(b, &s->knob[K_M], -1) == knobs[K_M].n_values - 1 ? 0 /* adaptive */
+                                                                                : knob_int(s, b, K_M, 8);
+    s->val_res = knob_int(s, b, K_VAL_MAP, 64);
+    s->block = knob_int(s, b, K_BLOCK, 4);
     s->block = s->block < 1 ? 1 : s->block;
-    s->blur_radius = knob_int(b, "vpl_blur", 4);
-    s->res_scale = b && gk_budget_value(b, "vpl_res") ? gk_budget_float(b, "vpl_res", 0.5f) : 0.5f;
-    const char *vis = b ? gk_budget_value(b, "vpl_vis") : NULL;
-    s->vis = !vis || strcmp(vis, "cssm") == 0 ? GK_VPL_VIS_CSSM
-           : strcmp(vis, "vsm") == 0          ? GK_VPL_VIS_VSM
-                                              : GK_VPL_VIS_EXACT;
+    s->blur_radius = knob_int(s, b, K_BLUR, 4);
+    s->res_scale = gk_knob_number(b, &s->knob[K_RES], 0.5f);
+    int vis = gk_knob_level(b, &s->knob[K_VIS], VIS_CSSM);
+    s->vis = vis == VIS_VSM ? GK_VPL_VIS_VSM : vis == VIS_EXACT ? GK_VPL_VIS_EXACT : GK_VPL_VIS_CSSM;
     if (s->dbg.vis_override >= 0)
         s->vis = s->dbg.vis_override;
-    const char *cl = b ? gk_budget_value(b, "vpl_clamp") : NULL;
-    s->clamp = !cl || strcmp(cl, "on") == 0;
-    const char *g = b ? gk_budget_value(b, "vpl_gather") : NULL;
-    s->multires = g && strcmp(g, "multires") == 0;
+    s->clamp = gk_knob_level(b, &s->knob[K_CLAMP], 1) == 1;
+    s->multires = gk_knob_level(b, &s->knob[K_GATHER], GATHER_INTERLEAVED) == GATHER_MULTIRES;
 }
 
 static void cluster(vpl_state *s)

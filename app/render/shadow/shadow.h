@@ -51,7 +51,8 @@ typedef struct gk_shadow_ctx {
     const gk_scene *scene;
     const gk_scene_gpu *gpu;
     const gk_gl_caps *caps;
-    const gk_budget *budget;      /* the frame's knobs (method-specific ones such as shadow_subdiv); may be NULL */
+    int subdiv;                   /* level of the knob shadow_subdiv (VSSM), resolved by the renderer */
+    const struct gk_pass_ctx *pass; /* the renderer's pass context (its clock); NULL in tests */
 } gk_shadow_ctx;
 
 typedef struct gk_shadow_method {

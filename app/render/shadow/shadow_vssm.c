@@ -10,7 +10,7 @@
  *   savsm           no subdivision: a non-planar kernel counts as lit (summed-area VSM,
  *                   [Lauritzen07]) -- the baseline of failure test F1
  *   vssm_nocontact  without the |z_occ - d| < eps contact PCF -- the baseline of F7
- * Subdivision depth: the budget knob shadow_subdiv (renderer_knobs.c), read from ctx->budget at
+ * Subdivision depth: the budget knob shadow_subdiv (renderer_knobs.c), read from ctx->subdiv at
  * render time, picks (m, H) = the blocker search's m x m grid and the adaptive quadtree's height:
  *   0: (1, 0)  a non-planar kernel is one 2x2 point-sample PCF (cheapest that still sees it)
  *   1: (2, 1)   2: (3, 2)   3: (5, 3) the thesis's values (default: no knob -> level 3)
@@ -73,15 +73,6 @@ static void *vssm_create(void)
     return st;
 }
 
-/* The knob's level from its value string ("0".."4"); the default when there is no budget or knob. */
-static int subdiv_level(const gk_budget *b)
-{
-    const char *v = b ? gk_budget_value(b, "shadow_subdiv") : NULL;
-    if (!v || !*v || v[1] != '\0' || v[0] < '0' || v[0] >= '0' + SUBDIV_LEVELS)
-        return SUBDIV_DEFAULT;
-    return v[0] - '0';
-}
-
 static void vssm_destroy(void *self)
 {
     vssm_state *st = self;
@@ -104,7 +95,7 @@ static float scene_radius_norm(const gk_shadow_view *v, const gk_scene *s)
 static int vssm_render(void *self, const gk_shadow_ctx *ctx, int slot, const gk_shadow_view *v, gk_err *e)
 {
     vssm_state *st = self;
-    st->subdiv = subdiv_level(ctx->budget);
+    st->subdiv = ctx->subdiv >= 0 && ctx->subdiv < SUBDIV_LEVELS ? ctx->subdiv : SUBDIV_DEFAULT;
     if (gk_shadow_maps_render(&st->maps, ctx, slot, v, e) != 0)
         return -1;
     vssm_slot *s = &st->slot[slot];
