@@ -20,6 +20,7 @@ enum { UNIT_ALBEDO = 0, UNIT_NORMAL = 1, UNIT_EMISSION = 2, UNIT_DEPTH = 3, UNIT
 typedef struct gk_render_knobs {
     gk_knob scale, shadow, shadow_map, shadow_subdiv;
     const gk_shadow_method *shadow_of_level[GK_MAX_KNOB_VALUES]; /* knob `shadow` level -> method */
+    const gk_knob_def *shadow_table_def; /* the definition shadow_of_level was built from */
     const gk_shadow_method *shadow_without_budget;               /* PCSS, the framework reference */
 } gk_render_knobs;
 

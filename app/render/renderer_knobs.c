@@ -46,8 +46,7 @@ void gk_render_knobs_init(gk_render_knobs *k)
     k->shadow = (gk_knob){&knob_shadow, -1};
     k->shadow_map = (gk_knob){&knob_shadow_map, -1};
     k->shadow_subdiv = (gk_knob){&knob_shadow_subdiv, -1};
-    for (int i = 0; i < knob_shadow.n_values; i++)
-        k->shadow_of_level[i] = gk_shadow_method_find(knob_shadow.values[i]);
+    k->shadow_table_def = NULL;
     k->shadow_without_budget = gk_shadow_method_find("pcss");
 }
 
@@ -56,7 +55,15 @@ void gk_render_knobs_read(gk_render_knobs *k, const gk_budget *b, gk_frame_knobs
     out->render_scale = gk_knob_number(b, &k->scale, 1.0f);
     if (!(out->render_scale > 0.0f) || out->render_scale > 1.0f)
         out->render_scale = 1.0f;
-    int shadow = gk_knob_level(b, &k->shadow, -1);
+    /* The level -> method table is built by name once per definition of the knob: the renderer's
+       own, or a test's with extra variants (shadow_variants.c) */
+    const gk_knob_def *d = gk_knob_def_in(b, &k->shadow);
+    if (d && d != k->shadow_table_def) {
+        for (int i = 0; i < d->n_values; i++)
+            k->shadow_of_level[i] = gk_shadow_method_find(d->values[i]);
+        k->shadow_table_def = d;
+    }
+    int shadow = d ? gk_knob_level(b, &k->shadow, -1) : -1;
     out->shadow = shadow >= 0 ? k->shadow_of_level[shadow] : k->shadow_without_budget;
     out->shadow_map = (int)gk_knob_number(b, &k->shadow_map, 1024.0f);
     out->shadow_subdiv = gk_knob_level(b, &k->shadow_subdiv, knob_shadow_subdiv.default_level);

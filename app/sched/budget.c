@@ -50,13 +50,22 @@ bool gk_knob_resolve(const gk_budget *b, gk_knob *k)
         return false;
     if (k->index >= 0 && k->index < b->n && b->def[k->index] == k->def)
         return true;
+    /* By address; then by name, for a budget whose knob of that name has another definition (a
+       test's extended variant list): resolution runs only when the layout changes, never per frame
+       once resolved. */
     k->index = -1;
     for (int i = 0; i < b->n; i++)
         if (b->def[i] == k->def) {
             k->index = i;
             return true;
         }
-    return false;
+    k->index = gk_budget_find(b, k->def->name);
+    return k->index >= 0;
+}
+
+const gk_knob_def *gk_knob_def_in(const gk_budget *b, gk_knob *k)
+{
+    return gk_knob_resolve(b, k) ? b->def[k->index] : NULL;
 }
 
 int gk_knob_level(const gk_budget *b, gk_knob *k, int fallback)

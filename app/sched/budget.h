@@ -37,8 +37,9 @@ typedef struct gk_budget {
 
 /* A knob handle: the frame loop reads knob levels through it -- an index checked by one pointer
  * comparison -- never by name. A module keeps one per knob it reads, {&its_def, -1} until
- * resolved; gk_knob_resolve finds the index once (by the def's address, no strings) and again
- * only if it is handed a budget whose layout differs. */
+ * resolved; gk_knob_resolve finds the index once (by the def's address, else by its name) and
+ * again only if it is handed a budget whose layout differs. The level indexes b->def[index]'s
+ * values, which may be another definition of the same name: see gk_knob_def_in. */
 typedef struct gk_knob {
     const gk_knob_def *def;
     int index;
@@ -65,6 +66,8 @@ void gk_budget_format_active(const gk_budget *b, const char *method, char *out, 
 gk_knob gk_budget_knob(const gk_budget *b, const gk_knob_def *def);
 /* Re-points k at b when b's layout differs from what k was resolved against. False when b lacks it. */
 bool gk_knob_resolve(const gk_budget *b, gk_knob *k);
+/* The definition the resolved handle reads in b (k->def, or a same-named one), NULL if absent. */
+const gk_knob_def *gk_knob_def_in(const gk_budget *b, gk_knob *k);
 /* Level of the knob in b, or fallback when b is NULL or lacks it. */
 int gk_knob_level(const gk_budget *b, gk_knob *k, int fallback);
 /* The knob's current value as a number (parsed at declaration), or fallback when b is NULL, lacks
