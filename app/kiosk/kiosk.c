@@ -12,6 +12,7 @@
 #include <time.h>
 
 #include "base/log.h"
+#include "gi/gi_catalogue.h"
 #include "gl/gl.h"
 #include "../render/renderer.h"
 #include "../sched/scheduler.h"
@@ -67,7 +68,7 @@ static void reset_scheduler(kiosk *k)
     const char *method = gk_playlist_method(&k->pl);
     for (int i = 0; i < k->budget.n; i++) {
         const char *owner = k->budget.def[i]->owner ? k->budget.def[i]->owner : "";
-        active[i] = !gk_method_is_known(owner) || !strcmp(owner, method);
+        active[i] = !gk_gi_is_method(owner) || !strcmp(owner, method);
     }
     gk_sched_reset(&k->sched, &k->sched_params, &k->budget, active);
     gk_recent_clear(&k->recent);
