@@ -21,7 +21,7 @@
 #include "stats.h"
 
 typedef struct kiosk {
-    const gk_run_opts *o;
+    const gk_kiosk_opts *o;
     const gk_kiosk_config *c;
     gk_platform *plat;
     gk_renderer *r;
@@ -326,7 +326,7 @@ static int open_renderer(kiosk *k, gk_err *e)
     return 0;
 }
 
-int gk_kiosk_run(const gk_run_opts *o, const gk_kiosk_config *c, gk_err *e)
+int gk_kiosk_run(const gk_kiosk_opts *o, const gk_kiosk_config *c, gk_err *e)
 {
     kiosk *k = calloc(1, sizeof *k);
     if (!k)
