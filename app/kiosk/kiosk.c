@@ -61,7 +61,8 @@ static const char *kind_name(enum gk_input_kind k)
     return k >= 0 && k <= GK_INPUT_QUIT ? n[k] : "?";
 }
 
-/* Knobs that affect frames now: the renderer's own and those of the current method. */
+/* Knobs that affect frames now: the renderer's own and those of the current method (a knob whose
+ * owner is a method name of the catalogue belongs to that method). */
 static void reset_scheduler(kiosk *k)
 {
     bool active[GK_MAX_KNOBS];

@@ -1,5 +1,5 @@
 /* One frame: shadow maps -> G-buffer -> direct light (emission, then one additive full-screen
- * pass per light) -> GI (none yet) -> compose/tonemap into the caller's framebuffer. */
+ * pass per light) -> GI method (render_gi.c) -> compose/tonemap into the caller's framebuffer. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
