@@ -88,11 +88,12 @@ $(BUILD)/tests/gpu/%: tests/gpu/%.c $(LIB) $(TESTLIB_OBJS)
 # The glTF loader fuzz target (libFuzzer, clang). Built and run briefly by `make test`. Only the
 # loader's modules (scene, core, io) are compiled with clang and the sanitizers, and the C++ shims
 # (tinygltf, OpenImageIO) with clang++: the fuzz build does not depend on the rest of the program
-# (the commands live in app/cli/, so no exclusions are needed).
+# (the commands live in app/cli/, so no exclusions are needed). Of app/gi/ only the catalogue of
+# method names comes along: a leaf without GL that scene/ reads to derive a scene's methods.
 FUZZ_BIN  := $(BUILD)/fuzz/fuzz_gltf
-FUZZ_SRCS := $(filter base/% app/scene/% app/core/% app/io/%,$(C_SRCS) $(CXX_SRCS))
+FUZZ_SRCS := $(filter base/% app/scene/% app/core/% app/io/% app/gi/gi_catalogue.c,$(C_SRCS) $(CXX_SRCS))
 FUZZ_OBJS := $(addprefix $(BUILD)/fuzzobj/obj/,$(addsuffix .o,$(basename $(FUZZ_SRCS))))
-$(FUZZ_BIN): tests/fuzz/fuzz_gltf.c $(FUZZ_SRCS) $(wildcard base/*.h app/scene/*.h app/core/*.h app/io/*.h)
+$(FUZZ_BIN): tests/fuzz/fuzz_gltf.c $(FUZZ_SRCS) $(wildcard base/*.h app/scene/*.h app/core/*.h app/io/*.h) app/gi/gi_catalogue.h
 	@mkdir -p $(dir $@)
 	$(MAKE) --no-print-directory BUILD=$(BUILD)/fuzzobj CC=clang CXX=clang++ OPT=-O1 WERROR= \
 		SANITIZE="-fsanitize=fuzzer-no-link,address,undefined" $(FUZZ_OBJS)

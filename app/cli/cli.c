@@ -1,5 +1,6 @@
 /* `gikiosk run` argument parsing (see cli.h). */
 #include "cli/cli.h"
+#include "gi/gi_catalogue.h"
 #include "scene/scene.h"
 
 #include <stdio.h>
@@ -13,9 +14,12 @@ void gk_run_usage(FILE *f)
           "  --config FILE          kiosk config (INI); default config/kiosk.ini when present\n"
           "  --platform P           auto | kms | mock (auto: KMS when a display is connected)\n"
           "  --size WxH             render size on mock; mode choice on KMS\n"
-          "  --scene NAME[,NAME]    show these scenes instead of the config's playlist\n"
-          "  --method NAME          force a GI method: none vct vpl ispm lgv lightmap volcaustics\n"
-          "  --frames N             stop after N frames\n"
+          "  --scene NAME[,NAME]    show these scenes instead of the config's playlist\n",
+          f);
+    char methods[256];
+    gk_gi_method_names(methods, sizeof methods, " ");
+    fprintf(f, "  --method NAME          force a GI method: %s\n", methods);
+    fputs("  --frames N             stop after N frames\n"
           "  --seconds S            stop after S seconds (virtual seconds on mock)\n"
           "  --target-ms MS         frame-time target of the scheduler (config [frame] target_ms)\n"
           "  --script FILE          mock platform: button script (TIME_S BUTTON click|press|release|hold MS)\n"
@@ -95,8 +99,12 @@ int gk_run_parse_args(int argc, char **argv, gk_run_opts *o, gk_err *e)
         } else if (!strcmp(opt, "--scene"))
             o->scene = val;
         else if (!strcmp(opt, "--method")) {
-            if (!gk_method_is_known(val))
-                return bad(e, opt, val, "is not a method (none, vct, vpl, ispm, lgv, lightmap, volcaustics)");
+            if (!gk_gi_is_method(val)) {
+                char names[200], what[256];
+                gk_gi_method_names(names, sizeof names, ", ");
+                snprintf(what, sizeof what, "is not a method (%s)", names);
+                return bad(e, opt, val, what);
+            }
             o->method = val;
         } else if (!strcmp(opt, "--frames")) {
             if (gk_parse_int(val, &n) || n < 1)

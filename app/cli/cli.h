@@ -1,7 +1,7 @@
 /* `gikiosk run` command line (DESIGN §3). Parsing is separate from running so it is unit-tested;
  * values given on the command line override the config file. */
-#ifndef GK_KIOSK_CLI_H
-#define GK_KIOSK_CLI_H
+#ifndef GK_CLI_H
+#define GK_CLI_H
 
 #include <stdbool.h>
 #include <stdio.h>

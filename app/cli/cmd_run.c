@@ -70,7 +70,13 @@ static int run(int argc, char **argv, gk_err *e)
     } else if (c.n_scenes == 0 && list_scenes(o.scenes_dir, &c, e)) {
         return -1;
     }
-    return gk_kiosk_run(&o, &c, e);
+    gk_kiosk_opts ko = {
+        .size_set = o.size_set, .frames = o.frames, .seconds = o.seconds, .method = o.method,
+        .script = o.script, .capture_dir = o.capture_dir, .capture_every = o.capture_every, .hdr = o.hdr,
+        .stats_path = o.stats_path, .gles = o.gles, .budget_pins = o.budget_pins,
+        .shader_dir = o.shader_dir, .scenes_dir = o.scenes_dir,
+    };
+    return gk_kiosk_run(&ko, &c, e);
 }
 
 int gk_cmd_run(int argc, char **argv)

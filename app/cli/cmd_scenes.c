@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "cli/commands.h"
+#include "gi/gi_catalogue.h"
 #include "render/render_gi.h"
 #include "scene/scene.h"
 
@@ -23,8 +24,6 @@ static void usage(FILE *f)
           "file, validates it and prints its summary.\n",
           f);
 }
-
-
 
 /* The methods the kiosk can run on the scene (implemented, needed by the scene, and accepting it),
    then in brackets those the scene needs that are not implemented yet: "none,vct,vpl [+ispm,lgv]". */
@@ -40,7 +39,7 @@ static void methods_string(const gk_scene *s, char *out, size_t cap)
         bool runs_it = false;
         for (int k = 0; k < n_runs; k++)
             runs_it |= strcmp(runs[k], needs[i]) == 0;
-        if (runs_it || gk_gi_find(needs[i]))
+        if (runs_it || gk_gi_catalogue_find(needs[i])->implemented)
             continue; /* running, or implemented but declining this scene (e.g. vpl without lights) */
         len += snprintf(out + len, cap - (size_t)len, "%s%s", missing++ ? "," : " [+", needs[i]);
     }

@@ -1,5 +1,6 @@
-/* The implemented GI methods, in the order the kiosk offers them after "none". A method file
- * defines `const gk_gi_method gk_gi_NAME;` and is listed here. */
+/* The implemented GI methods' vtables, in the order the kiosk offers them after "none". A method
+ * file defines `const gk_gi_method gk_gi_NAME;` and is listed here, and its catalogue entry
+ * (gi_catalogue.c) says implemented; tests/unit/test_gi_catalogue.c checks the two agree. */
 #include "gi.h"
 
 #include <string.h>
@@ -10,7 +11,7 @@ extern const gk_gi_method gk_gi_vpl;
 static const gk_gi_method *const registry[] = {
     &gk_gi_vct,
     &gk_gi_vpl,
-    NULL, /* sentinel: keeps the array non-empty while no method is registered */
+    NULL, /* sentinel: keeps the array valid C even with no method registered */
 };
 
 const gk_gi_method *const *gk_gi_methods(int *count)

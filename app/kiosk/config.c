@@ -13,15 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-const char *const gk_known_methods[] = {"none", "vct", "vpl", "ispm", "lgv", "lightmap", "volcaustics", NULL};
-
-bool gk_method_is_known(const char *name)
-{
-    for (int i = 0; gk_known_methods[i]; i++)
-        if (!strcmp(gk_known_methods[i], name))
-            return true;
-    return false;
-}
+#include "gi/gi_catalogue.h"
 
 static char *trim(char *s)
 {
@@ -41,10 +33,11 @@ int gk_method_list_check(const char *list, const char *what, gk_err *e)
     int n = 0;
     for (char *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
         tok = trim(tok);
-        if (!gk_method_is_known(tok))
-            return gk_fail(e, GK_EINPUT,
-                           "%s: unknown method '%s' (known: none, vct, vpl, ispm, lgv, lightmap, volcaustics)",
-                           what, tok);
+        if (!gk_gi_is_method(tok)) {
+            char known[256];
+            gk_gi_method_names(known, sizeof known, ", ");
+            return gk_fail(e, GK_EINPUT, "%s: unknown method '%s' (known: %s)", what, tok, known);
+        }
         n++;
     }
     if (n == 0)

@@ -15,10 +15,8 @@
 #define GK_MAX_PLAYLIST 32
 #define GK_NAME_LEN 64
 
-/* The GI method names of DESIGN §5, in that order; NULL-terminated. */
-extern const char *const gk_known_methods[];
-bool gk_method_is_known(const char *name);
-/* Checks a comma list of method names ("vct,none"); what = context for the message. */
+/* Checks a comma list of method names ("vct,none") against the catalogue (app/gi/gi_catalogue.h);
+ * what = context for the message. */
 int gk_method_list_check(const char *list, const char *what, gk_err *e);
 
 typedef struct gk_method_entry {       /* [playlist] methods.SCENE = vct,none */

@@ -11,6 +11,7 @@
 #include <sys/stat.h>
 
 #include "base/log.h"
+#include "gi/gi_catalogue.h"
 #include "../render/renderer.h"
 #include "../sched/scheduler.h"
 #include "hud.h"
@@ -18,7 +19,7 @@
 #include "stats.h"
 
 typedef struct kiosk {
-    const gk_run_opts *o;
+    const gk_kiosk_opts *o;
     const gk_kiosk_config *c;
     gk_platform *plat;
     gk_renderer *r;
@@ -52,14 +53,15 @@ static const char *kind_name(enum gk_input_kind k)
     return k >= 0 && k <= GK_INPUT_QUIT ? n[k] : "?";
 }
 
-/* Knobs that affect frames now: the renderer's own and those of the current method. */
+/* Knobs that affect frames now: the renderer's own and those of the current method (a knob whose
+ * owner is a method name of the catalogue belongs to that method). */
 static void reset_scheduler(kiosk *k)
 {
     bool active[GK_MAX_KNOBS];
     const char *method = gk_playlist_method(&k->pl);
     for (int i = 0; i < k->budget.n; i++) {
         const char *owner = k->budget.def[i]->owner ? k->budget.def[i]->owner : "";
-        active[i] = !gk_method_is_known(owner) || !strcmp(owner, method);
+        active[i] = !gk_gi_is_method(owner) || !strcmp(owner, method);
     }
     gk_sched_reset(&k->sched, &k->sched_params, &k->budget, active);
     gk_recent_clear(&k->recent);
@@ -350,7 +352,7 @@ static int open_renderer(kiosk *k, gk_err *e)
     return 0;
 }
 
-int gk_kiosk_run(const gk_run_opts *o, const gk_kiosk_config *c, gk_err *e)
+int gk_kiosk_run(const gk_kiosk_opts *o, const gk_kiosk_config *c, gk_err *e)
 {
     kiosk *k = calloc(1, sizeof *k);
     if (!k)

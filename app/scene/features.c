@@ -1,13 +1,13 @@
 /* What a scene contains (gk_scene_features) and which GI methods it therefore needs
- * (gk_scene_methods): "model no more than a scene needs". */
+ * (gk_scene_methods): "model no more than a scene needs". The method names and what each needs
+ * come from the catalogue (app/gi/gi_catalogue.h, a GL-free leaf the fuzz build links too); this
+ * file only says which needs a scene has (gk_scene_gi_needs). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "gi/gi_catalogue.h"
 #include "scene_internal.h"
-
-const char *const gk_scene_method_names[] = {"none", "vct", "vpl", "ispm", "lgv", "lightmap", "volcaustics"};
-const int gk_scene_n_method_names = (int)(sizeof gk_scene_method_names / sizeof gk_scene_method_names[0]);
 
 static bool material_drawn(const gk_scene *s, int mat)
 {
@@ -100,6 +100,25 @@ static bool scene_is_closed(const gk_scene *s)
     return closed;
 }
 
+/* Light can bounce between diffuse surfaces: some source (light or emitter) and some drawn,
+ * non-black, mostly non-metallic surface that is not a light proxy. */
+static bool has_interreflection(const gk_scene *s, bool has_emissive)
+{
+    bool source = has_emissive;
+    for (int i = 0; i < s->n_nodes; i++)
+        if (s->nodes[i].light >= 0 && s->lights[s->nodes[i].light].intensity > 0)
+            source = true;
+    if (!source)
+        return false;
+    for (int m = 0; m < s->n_materials; m++) {
+        const gk_material *mat = &s->materials[m];
+        if (!mat->light_proxy && mat->metallic < 0.5f && mat->transmission < 1.0f &&
+            v3_maxc(v3(mat->base_color[0], mat->base_color[1], mat->base_color[2])) > 0 && material_drawn(s, m))
+            return true;
+    }
+    return false;
+}
+
 void gk_scene_derive_features(gk_scene *s)
 {
     gk_scene_features f = {0};
@@ -123,26 +142,8 @@ void gk_scene_derive_features(gk_scene *s)
     f.has_caustics = specular_or_glass && (node_has_light(s, GK_LIGHT_POINT) || node_has_light(s, GK_LIGHT_SPOT));
     f.has_animation = s->n_channels > 0;
     f.is_closed = scene_is_closed(s);
+    f.has_interreflection = has_interreflection(s, f.has_emissive);
     s->features = f;
-}
-
-/* Light can bounce between diffuse surfaces: some source (light or emitter) and some drawn,
- * non-black, mostly non-metallic surface that is not a light proxy. */
-static bool has_interreflection(const gk_scene *s)
-{
-    bool source = s->features.has_emissive;
-    for (int i = 0; i < s->n_nodes; i++)
-        if (s->nodes[i].light >= 0 && s->lights[s->nodes[i].light].intensity > 0)
-            source = true;
-    if (!source)
-        return false;
-    for (int m = 0; m < s->n_materials; m++) {
-        const gk_material *mat = &s->materials[m];
-        if (!mat->light_proxy && mat->metallic < 0.5f && mat->transmission < 1.0f &&
-            v3_maxc(v3(mat->base_color[0], mat->base_color[1], mat->base_color[2])) > 0 && material_drawn(s, m))
-            return true;
-    }
-    return false;
 }
 
 static int add_method(const char **names, int n, int max, const char *name)
@@ -155,31 +156,40 @@ static int add_method(const char **names, int n, int max, const char *name)
     return n;
 }
 
+unsigned gk_scene_gi_needs(const gk_scene_features *f)
+{
+    unsigned needs = 0;
+    if (f->has_interreflection)
+        needs |= GK_GI_NEEDS_INTERREFLECTION;
+    if (f->has_caustics)
+        needs |= GK_GI_NEEDS_CAUSTICS;
+    if (!f->has_animation)
+        needs |= GK_GI_NEEDS_STATIC;
+    /* GK_GI_NEEDS_MEDIA: the scene model has no participating medium yet, so never. */
+    return needs;
+}
+
 int gk_scene_methods(const gk_scene *s, const char **names, int max)
 {
+    int count;
+    const gk_gi_entry *cat = gk_gi_catalogue(&count);
     int n = add_method(names, 0, max, "none");
     if (s->methods[0]) {
-        /* The scene's own list wins (names were checked at load); keep the canonical strings. */
-        for (int k = 1; k < gk_scene_n_method_names; k++) {
+        /* The scene's own list wins (names were checked at load); keep the catalogue's strings, in
+           the catalogue's order. */
+        for (int k = 0; k < count; k++) {
             char list[sizeof s->methods];
             memcpy(list, s->methods, sizeof list);
             for (char *save = NULL, *tok = strtok_r(list, ", ", &save); tok; tok = strtok_r(NULL, ", ", &save))
-                if (!strcmp(tok, gk_scene_method_names[k]))
-                    n = add_method(names, n, max, gk_scene_method_names[k]);
+                if (!strcmp(tok, cat[k].name))
+                    n = add_method(names, n, max, cat[k].name);
         }
         return n;
     }
-    if (has_interreflection(s)) {
-        n = add_method(names, n, max, "vct");
-        n = add_method(names, n, max, "vpl");
-    }
-    if (s->features.has_caustics) {
-        n = add_method(names, n, max, "ispm");
-        n = add_method(names, n, max, "lgv");
-    }
-    if (!s->features.has_animation)
-        n = add_method(names, n, max, "lightmap");
-    /* volcaustics needs a participating medium; the scene model has none yet. */
+    unsigned has = gk_scene_gi_needs(&s->features);
+    for (int k = 0; k < count; k++)
+        if (cat[k].needs && (cat[k].needs & has) == cat[k].needs)
+            n = add_method(names, n, max, cat[k].name);
     return n;
 }
 

@@ -111,6 +111,8 @@ typedef struct gk_scene_features {
     bool has_caustics;         /* specular/transmissive surfaces lit by point/spot lights */
     bool has_animation;
     bool is_closed;            /* every edge shared by two triangles (furnace-type scenes) */
+    bool has_interreflection;  /* light can bounce between diffuse surfaces: a light or emitter and a
+                                  drawn, non-black, non-metallic surface that is not a light proxy */
 } gk_scene_features;
 
 typedef struct gk_scene {
@@ -164,16 +166,16 @@ void gk_scene_light_frame(const gk_scene *s, int light_node, vec3 *pos, vec3 *di
 gk_scene *gk_scene_load_memory(const void *data, size_t size, const char *path, const char *base_dir,
                                gk_err *e);
 
-/* The GI methods (DESIGN §5 names) that apply to a scene, written to names[0..max), returns the
- * count. The rule (model no more than a scene needs), see features.c:
- *   "none" always, first;
- *   "vct" and "vpl" when light can bounce between diffuse surfaces (a light or emitter and a
- *   non-black, non-metallic surface that is not a light proxy);
- *   "ispm" and "lgv" when features.has_caustics;
- *   "lightmap" when the scene is static (no animation);
- *   "volcaustics" only with a participating medium (no scene has one yet, so never).
+/* The GI methods that apply to a scene, written to names[0..max), returns the count. The rule
+ * (model no more than a scene needs): "none" always, first; then, in the catalogue's order, every
+ * method of the catalogue (app/gi/gi_catalogue.h) whose needs the scene all has
+ * (gk_scene_gi_needs): vct, vpl and radiosity when light bounces between diffuse surfaces
+ * (features.has_interreflection), ispm and lgv with caustics, lightmap when the scene is static,
+ * volcaustics with a participating medium (none in the scene model yet, so never).
  * The scene's extras "methods" list, when given, replaces the derived list ("none" stays first). */
 int gk_scene_methods(const gk_scene *s, const char **names, int max);
+/* The GK_GI_NEEDS_* bits (app/gi/gi_catalogue.h) a scene with these features has. */
+unsigned gk_scene_gi_needs(const gk_scene_features *f);
 
 /* A named number (or up to 4) from the scene's extras params: returns how many values were copied
  * to out (at most max), or -1 if the scene has no such key. */

@@ -34,10 +34,6 @@ int gk_scene_load_textures(gk_scene *s, const char *base_dir, const int *tex_usa
 /* features.c */
 void gk_scene_derive_features(gk_scene *s);
 
-/* Known GI method names, in DESIGN §5 order (features.c). */
-extern const char *const gk_scene_method_names[];
-extern const int gk_scene_n_method_names;
-
 #ifdef __cplusplus
 }
 #endif

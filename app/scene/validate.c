@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "gi/gi_catalogue.h"
 #include "scene_internal.h"
 
 static bool all_finite(const float *v, size_t n)
@@ -246,14 +247,12 @@ int gk_scene_validate_methods(const gk_scene *s, gk_err *e)
     char list[sizeof s->methods];
     memcpy(list, s->methods, sizeof list);
     for (char *save = NULL, *tok = strtok_r(list, ", ", &save); tok; tok = strtok_r(NULL, ", ", &save)) {
-        bool known = false;
-        for (int k = 0; k < gk_scene_n_method_names; k++)
-            known = known || !strcmp(tok, gk_scene_method_names[k]);
-        if (!known)
-            return gk_fail(e, GK_EINPUT,
-                           "%s: extras gikiosk.methods: unknown method '%s' (known: none, vct, vpl, ispm, lgv, "
-                           "lightmap, volcaustics)",
-                           s->path, tok);
+        if (!gk_gi_is_method(tok)) {
+            char known[256];
+            gk_gi_method_names(known, sizeof known, ", ");
+            return gk_fail(e, GK_EINPUT, "%s: extras gikiosk.methods: unknown method '%s' (known: %s)", s->path, tok,
+                           known);
+        }
     }
     return 0;
 }

@@ -95,7 +95,7 @@ static void bad_values_name_option_and_value(void **state)
     (void)state;
     expect("--size: '12x' is not WxH", "--size", "12x", NULL);
     expect("--platform: 'wayland' is not auto, kms or mock", "--platform=wayland", NULL);
-    expect("--method: 'rtx' is not a method (none, vct, vpl, ispm, lgv, lightmap, volcaustics)", "--method", "rtx", NULL);
+    expect("--method: 'rtx' is not a method (none, vct, vpl, ispm, lgv, lightmap, volcaustics, radiosity)", "--method", "rtx", NULL);
     expect("--frames: '0' is not a positive integer", "--frames", "0", NULL);
     expect("--frames: '3x' is not a positive integer", "--frames", "3x", NULL);
     expect("--seconds: '-1' is not a positive number of seconds", "--seconds", "-1", NULL);

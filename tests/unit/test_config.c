@@ -85,7 +85,7 @@ static void errors_name_file_and_line(void **state)
     expect_error("[buttons]\nkey_next = KEY_BANANA\n",
                  "config/kiosk.ini:2: key_next: 'KEY_BANANA' is not a key code (0..767 or a KEY_ name such as KEY_RIGHT)");
     expect_error("[playlist]\n\nmethods.cornell = vct,rtx\n",
-                 "config/kiosk.ini:3: methods.cornell: unknown method 'rtx' (known: none, vct, vpl, ispm, lgv, lightmap, volcaustics)");
+                 "config/kiosk.ini:3: methods.cornell: unknown method 'rtx' (known: none, vct, vpl, ispm, lgv, lightmap, volcaustics, radiosity)");
     expect_error("[budgets]\nshadow_map = 512\n", "config/kiosk.ini:2: budget 'shadow_map': '512' is not MIN..MAX");
     expect_error("target_ms = 3\n", "config/kiosk.ini:1: key 'target_ms' outside any section");
     /* inih's own syntax errors keep their line too */
