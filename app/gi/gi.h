@@ -15,6 +15,7 @@
 #include "../core/vecmath.h"
 #include "../scene/scene.h"
 #include "../sched/budget.h"
+#include "gl/gbuffer_bind.h"
 #include "gl/pass.h"
 
 /* What the renderer lends a method for its whole life. */
@@ -70,10 +71,12 @@ typedef struct gk_gi_frame {
     int n_lights;
     const gk_gi_light *lights;
     const gk_budget *budget;
-    /* Draws every mesh of the scene with `program` bound; sets the uniform `u_model` (mat4) per
-       node and, if present, `u_base_color` (vec4), `u_emissive` (vec3), `u_metallic_roughness` (vec2)
-       per material. Attribute locations: 0 position, 1 normal, 2 uv. */
-    void (*draw_scene)(void *draw_ctx, unsigned program);
+    /* Draws every mesh of the scene with `program` (bound, and from gk_gi_context.programs); sets
+       the uniform `u_model` (mat4) per node and `u_base_color` (vec4), `u_emissive` (vec3),
+       `u_metallic_roughness` (vec2), `u_mat_flags` (int) per material: the program's source must
+       declare all five (the compiler may drop the ones it does not use). Returns -1 with e filled
+       when it does not. Attribute locations: 0 position, 1 normal, 2 uv. */
+    int (*draw_scene)(void *draw_ctx, unsigned program, gk_err *e);
     void *draw_ctx;
 } gk_gi_frame;
 
@@ -95,5 +98,15 @@ typedef struct gk_gi_method {
 /* The registry of implemented methods (app/gi/gi_registry.c). */
 const gk_gi_method *const *gk_gi_methods(int *count);
 const gk_gi_method *gk_gi_find(const char *name);
+
+/* The frame's G-buffer for gk_gbuffer_bind (app/gl/gbuffer_bind.h; the GLSL side is
+ * shaders_gles/common/gbuffer.glsl). */
+static inline gk_gbuffer_view gk_gi_gbuffer(const gk_gi_frame *f)
+{
+    return (gk_gbuffer_view){.albedo = f->gbuf_albedo, .normal = f->gbuf_normal, .emission = f->gbuf_emission,
+                             .depth = f->gbuf_depth, .width = f->width, .height = f->height, .view = f->view,
+                             .proj = f->proj, .view_proj = f->view_proj, .inv_view_proj = f->inv_view_proj,
+                             .eye = f->eye};
+}
 
 #endif

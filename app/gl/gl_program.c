@@ -227,11 +227,12 @@ const void *gk_program_uniforms(gk_program_cache *c, GLuint prog, const gk_unifo
         gk_fail(e, GK_ERUNTIME, "uniforms: more than %d uniform structs for program %s", MAX_UNIFORM_BLOCKS, p->key);
         return NULL;
     }
-    void *values = calloc(1, size);
+    void *values = malloc(size ? size : 1);
     if (!values) {
         gk_fail(e, GK_ERUNTIME, "uniforms: out of memory");
         return NULL;
     }
+    memset(values, 0xff, size); /* every GLint -1: a field the table does not list is "absent" */
     if (gk_uniforms_resolve(prog, p->source, fields, n, values, e) != 0) {
         gk_fail_prefix(e, "%s: ", p->key);
         free(values);

@@ -43,7 +43,9 @@ typedef struct gk_uniform_field {
 #define GK_UNIFORM_AS(type, field, glsl_name) {glsl_name, offsetof(type, field)}
 #define GK_FIELDS(table) (table), (int)(sizeof(table) / sizeof((table)[0]))
 
-/* Returns the cached block (size bytes, GLint fields) or NULL with e filled. */
+/* Returns the cached block (size bytes, GLint fields) or NULL with e filled. Fields of the struct
+ * that the table does not list are -1 (so a struct shared by variants, or embedding another
+ * struct of locations, may leave some out). */
 const void *gk_program_uniforms(gk_program_cache *c, GLuint prog, const gk_uniform_field *fields, int n,
                                 size_t size, gk_err *e);
 /* The same check without a cache, for a program and its source text (tests; programs built

@@ -7,23 +7,13 @@
 #define GK_PASS_H
 
 #include "core/vecmath.h"
+#include "gbuffer_bind.h"
 #include "gl.h"
 #include "gl_program.h"
 #include "gl_timing.h"
 
 struct gk_budget;
 struct gk_scene;
-
-/* The frame's G-buffer (written by the renderer's gbuffer pass) and the view it was drawn with.
- * Layout: depth DEPTH_COMPONENT32F window depth of proj (world = inv_view_proj * (uv, depth)*2-1);
- * albedo RGBA8 (rgb base colour, a metallic); normal RGBA16F (xyz world normal, w roughness);
- * emission RGBA16F (emitted radiance, nits). */
-typedef struct gk_gbuffer_view {
-    GLuint albedo, normal, emission, depth;
-    int width, height;                 /* internal render size (after render_scale) */
-    mat4 view, proj, view_proj, inv_view_proj;
-    vec3 eye;
-} gk_gbuffer_view;
 
 typedef struct gk_pass_ctx {
     gk_timer *timer;                   /* NULL: passes are not timed (tests driving one method) */

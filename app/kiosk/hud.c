@@ -10,10 +10,17 @@
 #include "gl/gl_program.h"
 #include "font_atlas.h"
 
+/* hud/hud.{vert,frag} */
+typedef struct hud_uniforms {
+    GLint u_viewport, u_atlas;
+} hud_uniforms;
+static const gk_uniform_field hud_fields[] = {GK_UNIFORM(hud_uniforms, u_viewport), GK_UNIFORM(hud_uniforms, u_atlas)};
+
 struct gk_hud {
     int width, height;
     gk_program_cache *programs;
     GLuint program, vao, vbo, atlas_tex;
+    const hud_uniforms *u;         /* resolved with the program, kept by the cache */
     gk_font_atlas font;
     int has_text;
     float *verts;                  /* x y u v r g b a per vertex */
@@ -50,6 +57,10 @@ gk_hud *gk_hud_create(int width, int height, const char *shader_dir, int gles, c
             gk_fail(e, GK_ERUNTIME, "HUD: shader program failed");
         else if (!h->programs)
             gk_fail(e, GK_ERUNTIME, "HUD: cannot create the program cache");
+        gk_hud_destroy(h);
+        return NULL;
+    }
+    if (!(h->u = gk_program_uniforms(h->programs, h->program, GK_FIELDS(hud_fields), sizeof *h->u, e))) {
         gk_hud_destroy(h);
         return NULL;
     }
@@ -265,8 +276,8 @@ void gk_hud_draw(gk_hud *h, unsigned fbo, const gk_hud_info *in)
     /* Colour blends over the image; the destination alpha (opaque panel) is kept. */
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
     glUseProgram(h->program);
-    gk_uniform_2f(h->program, "u_viewport", (float)h->width, (float)h->height);
-    gk_uniform_1i(h->program, "u_atlas", 0);
+    glUniform2f(h->u->u_viewport, (float)h->width, (float)h->height);
+    glUniform1i(h->u->u_atlas, 0);
     glBindTexture(GL_TEXTURE_2D, h->atlas_tex);
     glBindVertexArray(h->vao);
     glBindBuffer(GL_ARRAY_BUFFER, h->vbo);

@@ -9,6 +9,7 @@
 
 #include "base/log.h"
 #include "../core/tonemap.h"
+#include "gl/gbuffer_bind.h"
 #include "render_gi.h"
 #include "renderer_internal.h"
 
@@ -86,10 +87,64 @@ static int pass_shadows(gk_renderer *r, const gk_frame_knobs *fk, const gk_pass_
     return 0;
 }
 
+/* gbuffer/gbuffer.{vert,frag} */
+typedef struct gbuffer_uniforms {
+    GLint u_viewproj, u_eye;
+    gk_draw_uniforms draw;
+} gbuffer_uniforms;
+static const gk_uniform_field gbuffer_fields[] = {
+    GK_UNIFORM(gbuffer_uniforms, u_viewproj),
+    GK_UNIFORM(gbuffer_uniforms, u_eye),
+    GK_UNIFORM_AS(gbuffer_uniforms, draw.u_model, "u_model"),
+    GK_UNIFORM_AS(gbuffer_uniforms, draw.u_normal_matrix, "u_normal_matrix"),
+    GK_UNIFORM_AS(gbuffer_uniforms, draw.u_base_color, "u_base_color"),
+    GK_UNIFORM_AS(gbuffer_uniforms, draw.u_metallic_roughness, "u_metallic_roughness"),
+    GK_UNIFORM_AS(gbuffer_uniforms, draw.u_emissive, "u_emissive"),
+    GK_UNIFORM_AS(gbuffer_uniforms, draw.u_mat_flags, "u_mat_flags"),
+    GK_UNIFORM_AS(gbuffer_uniforms, draw.u_base_tex, "u_base_tex"),
+    GK_UNIFORM_AS(gbuffer_uniforms, draw.u_mr_tex, "u_mr_tex"),
+};
+
+/* direct/emission.frag */
+typedef struct emission_uniforms {
+    gk_gbuffer_uniforms gb;
+} emission_uniforms;
+static const gk_uniform_field emission_fields[] = {GK_GBUFFER_FIELDS(emission_uniforms, gb)};
+
+/* direct/light.frag, every light kind and shadow variant (the shadow method's own uniforms are
+   resolved by its bind) */
+typedef struct light_uniforms {
+    gk_gbuffer_uniforms gb;
+    GLint u_light_pos, u_light_dir, u_light_u, u_light_v, u_light_color, u_light_range, u_light_cone,
+        u_light_radius, u_light_size;
+} light_uniforms;
+static const gk_uniform_field light_fields[] = {
+    GK_GBUFFER_FIELDS(light_uniforms, gb),
+    GK_UNIFORM(light_uniforms, u_light_pos),
+    GK_UNIFORM(light_uniforms, u_light_dir),
+    GK_UNIFORM(light_uniforms, u_light_u),
+    GK_UNIFORM(light_uniforms, u_light_v),
+    GK_UNIFORM(light_uniforms, u_light_color),
+    GK_UNIFORM(light_uniforms, u_light_range),
+    GK_UNIFORM(light_uniforms, u_light_cone),
+    GK_UNIFORM(light_uniforms, u_light_radius),
+    GK_UNIFORM(light_uniforms, u_light_size),
+};
+
+/* compose/compose.frag */
+typedef struct compose_uniforms {
+    GLint u_hdr, u_exposure;
+} compose_uniforms;
+static const gk_uniform_field compose_fields[] = {GK_UNIFORM(compose_uniforms, u_hdr),
+                                                  GK_UNIFORM(compose_uniforms, u_exposure)};
+
 static int pass_gbuffer(gk_renderer *r, const mat4 *viewproj, vec3 eye, gk_err *e)
 {
     GLuint prog = gk_program_get(r->progs, "gbuffer/gbuffer.vert", "gbuffer/gbuffer.frag", NULL, e);
     if (!prog)
+        return -1;
+    const gbuffer_uniforms *u = gk_program_uniforms(r->progs, prog, GK_FIELDS(gbuffer_fields), sizeof *u, e);
+    if (!u)
         return -1;
     glBindFramebuffer(GL_FRAMEBUFFER, r->gbuf.fbo);
     glViewport(0, 0, r->render_w, r->render_h);
@@ -105,42 +160,28 @@ static int pass_gbuffer(gk_renderer *r, const mat4 *viewproj, vec3 eye, gk_err *
     glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
     glClear(GL_DEPTH_BUFFER_BIT);
     glUseProgram(prog);
-    gk_uniform_mat4(prog, "u_viewproj", viewproj->m);
-    gk_uniform_3f(prog, "u_eye", eye.x, eye.y, eye.z);
-    gk_scene_gpu_draw(&r->gpu, r->scene, prog, GK_DRAW_MATERIALS);
+    glUniformMatrix4fv(u->u_viewproj, 1, GL_FALSE, viewproj->m);
+    glUniform3f(u->u_eye, eye.x, eye.y, eye.z);
+    gk_scene_gpu_draw(&r->gpu, r->scene, &u->draw, GK_DRAW_MATERIALS);
     return 0;
 }
 
-static void bind_gbuffer(gk_renderer *r, GLuint prog, const mat4 *inv_viewproj, vec3 eye)
+static void set_light_uniforms(const light_uniforms *lu, const gk_light *l, vec3 pos, vec3 dir, vec3 u, vec3 v)
 {
-    const GLuint tex[4] = {r->gbuf.color[0], r->gbuf.color[1], r->gbuf.color[2], r->gbuf.depth};
-    const char *names[4] = {"u_gb_albedo", "u_gb_normal", "u_gb_emission", "u_gb_depth"};
-    for (int i = 0; i < 4; i++) {
-        glActiveTexture(GL_TEXTURE0 + UNIT_ALBEDO + (GLenum)i);
-        glBindTexture(GL_TEXTURE_2D, tex[i]);
-        gk_uniform_1i(prog, names[i], UNIT_ALBEDO + i);
-    }
-    gk_uniform_mat4(prog, "u_inv_viewproj", inv_viewproj->m);
-    gk_uniform_3f(prog, "u_eye", eye.x, eye.y, eye.z);
-    gk_uniform_2f(prog, "u_viewport", (float)r->render_w, (float)r->render_h);
-}
-
-static void set_light_uniforms(GLuint prog, const gk_light *l, vec3 pos, vec3 dir, vec3 u, vec3 v)
-{
-    gk_uniform_3f(prog, "u_light_pos", pos.x, pos.y, pos.z);
-    gk_uniform_3f(prog, "u_light_dir", dir.x, dir.y, dir.z);
-    gk_uniform_3f(prog, "u_light_u", u.x, u.y, u.z);
-    gk_uniform_3f(prog, "u_light_v", v.x, v.y, v.z);
-    gk_uniform_3f(prog, "u_light_color", l->color[0] * l->intensity, l->color[1] * l->intensity,
-                  l->color[2] * l->intensity);
-    gk_uniform_1f(prog, "u_light_range", l->range);
-    gk_uniform_2f(prog, "u_light_cone", cosf(l->outer_cone), cosf(l->inner_cone));
-    gk_uniform_1f(prog, "u_light_radius", l->radius);
-    gk_uniform_2f(prog, "u_light_size", l->size[0], l->size[1]);
+    glUniform3f(lu->u_light_pos, pos.x, pos.y, pos.z);
+    glUniform3f(lu->u_light_dir, dir.x, dir.y, dir.z);
+    glUniform3f(lu->u_light_u, u.x, u.y, u.z);
+    glUniform3f(lu->u_light_v, v.x, v.y, v.z);
+    glUniform3f(lu->u_light_color, l->color[0] * l->intensity, l->color[1] * l->intensity,
+                l->color[2] * l->intensity);
+    glUniform1f(lu->u_light_range, l->range);
+    glUniform2f(lu->u_light_cone, cosf(l->outer_cone), cosf(l->inner_cone));
+    glUniform1f(lu->u_light_radius, l->radius);
+    glUniform2f(lu->u_light_size, l->size[0], l->size[1]);
 }
 
 static int pass_direct(gk_renderer *r, const gk_shadow_method *m, const frame_light *fl, int n,
-                       const mat4 *inv_viewproj, vec3 eye, gk_err *e)
+                       const gk_gbuffer_view *gbuf, gk_err *e)
 {
     glBindFramebuffer(GL_FRAMEBUFFER, r->hdr.fbo);
     glViewport(0, 0, r->render_w, r->render_h);
@@ -150,8 +191,11 @@ static int pass_direct(gk_renderer *r, const gk_shadow_method *m, const frame_li
     GLuint prog = gk_program_get(r->progs, "common/fullscreen.vert", "direct/emission.frag", NULL, e);
     if (!prog)
         return -1;
+    const emission_uniforms *eu = gk_program_uniforms(r->progs, prog, GK_FIELDS(emission_fields), sizeof *eu, e);
+    if (!eu)
+        return -1;
     glUseProgram(prog);
-    bind_gbuffer(r, prog, inv_viewproj, eye);
+    gk_gbuffer_bind(gbuf, &eu->gb, UNIT_ALBEDO, 0);
     gk_render_fullscreen(r);
 
     glEnable(GL_BLEND);
@@ -167,17 +211,21 @@ static int pass_direct(gk_renderer *r, const gk_shadow_method *m, const frame_li
                  l->type == GK_LIGHT_SPOT ? "#define GK_LIGHT_SPOT 1\n" : "",
                  fl[i].shadowed ? m->glsl_define : "");
         prog = gk_program_get(r->progs, "common/fullscreen.vert", "direct/light.frag", defines, e);
-        if (!prog) {
+        const light_uniforms *lu = prog ? gk_program_uniforms(r->progs, prog, GK_FIELDS(light_fields), sizeof *lu, e) : NULL;
+        if (!lu) {
             glDisable(GL_BLEND);
             return -1;
         }
         glUseProgram(prog);
-        bind_gbuffer(r, prog, inv_viewproj, eye);
+        gk_gbuffer_bind(gbuf, &lu->gb, UNIT_ALBEDO, 0);
         vec3 pos, dir, u, v;
         gk_scene_light_frame(s, fl[i].node, &pos, &dir, &u, &v);
-        set_light_uniforms(prog, l, pos, dir, u, v);
-        if (fl[i].shadowed)
-            m->bind(r->shadow_state[mi], slot++, &fl[i].view, prog, UNIT_SHADOW);
+        set_light_uniforms(lu, l, pos, dir, u, v);
+        if (fl[i].shadowed &&
+            m->bind(r->shadow_state[mi], r->progs, slot++, &fl[i].view, prog, UNIT_SHADOW, e) != 0) {
+            glDisable(GL_BLEND);
+            return -1;
+        }
         gk_render_fullscreen(r);
     }
     glDisable(GL_BLEND);
@@ -188,7 +236,8 @@ int gk_render_compose(gk_renderer *r, GLuint fbo, int w, int h, bool linear_out,
 {
     GLuint prog = gk_program_get(r->progs, "common/fullscreen.vert", "compose/compose.frag",
                                  linear_out ? "#define GK_LINEAR_OUT 1\n" : NULL, e);
-    if (!prog)
+    const compose_uniforms *u = prog ? gk_program_uniforms(r->progs, prog, GK_FIELDS(compose_fields), sizeof *u, e) : NULL;
+    if (!u)
         return -1;
     glBindFramebuffer(GL_FRAMEBUFFER, fbo);
     glViewport(0, 0, w, h);
@@ -197,8 +246,8 @@ int gk_render_compose(gk_renderer *r, GLuint fbo, int w, int h, bool linear_out,
     glUseProgram(prog);
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, r->hdr.color[0]);
-    gk_uniform_1i(prog, "u_hdr", 0);
-    gk_uniform_1f(prog, "u_exposure", r->exposure);
+    glUniform1i(u->u_hdr, 0);
+    glUniform1f(u->u_exposure, r->exposure);
     gk_render_fullscreen(r);
     return 0;
 }
@@ -298,7 +347,7 @@ int gk_renderer_draw(gk_renderer *r, const gk_frame_params *fp, unsigned target_
     }
     if (rc == 0) {
         gk_pass_begin(&ctx, "direct");
-        rc = pass_direct(r, m, fl, n, &gb.inv_view_proj, gb.eye, e);
+        rc = pass_direct(r, m, fl, n, &gb, e);
         gk_pass_end(&ctx);
     }
     if (rc == 0) {

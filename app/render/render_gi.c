@@ -115,6 +115,23 @@ static mat4 light_view_proj(const gk_scene *s, const gk_light *l, vec3 pos, vec3
     return m4_mul(m4_perspective(fov, 1.0f, *znear, *zfar), m4_look_at(pos, v3_add(pos, dir), up));
 }
 
+/* shadow/depth.{vert,frag} for the GI light maps */
+typedef struct light_map_uniforms {
+    GLint u_viewproj;
+    gk_draw_uniforms draw;
+} light_map_uniforms;
+static const gk_uniform_field light_map_fields[] = {GK_UNIFORM(light_map_uniforms, u_viewproj),
+                                                    GK_UNIFORM_AS(light_map_uniforms, draw.u_model, "u_model")};
+
+/* What gk_gi_frame.draw_scene sets in a method's program (gi.h) */
+static const gk_uniform_field draw_scene_fields[] = {
+    GK_UNIFORM(gk_draw_uniforms, u_model),
+    GK_UNIFORM(gk_draw_uniforms, u_base_color),
+    GK_UNIFORM(gk_draw_uniforms, u_metallic_roughness),
+    GK_UNIFORM(gk_draw_uniforms, u_emissive),
+    GK_UNIFORM(gk_draw_uniforms, u_mat_flags),
+};
+
 static int render_light_maps(gk_render_gi *g, gk_renderer *r, gk_err *e)
 {
     const gk_scene *s = r->scene;
@@ -122,7 +139,8 @@ static int render_light_maps(gk_render_gi *g, gk_renderer *r, gk_err *e)
     if (g->maps_generation == r->scene_generation && !dynamic)
         return 0;
     GLuint prog = gk_program_get(r->progs, "shadow/depth.vert", "shadow/depth.frag", NULL, e);
-    if (!prog)
+    const light_map_uniforms *u = prog ? gk_program_uniforms(r->progs, prog, GK_FIELDS(light_map_fields), sizeof *u, e) : NULL;
+    if (!u)
         return -1;
     if (!g->fbo)
         glGenFramebuffers(1, &g->fbo);
@@ -156,18 +174,22 @@ static int render_light_maps(gk_render_gi *g, gk_renderer *r, gk_err *e)
         glDisable(GL_BLEND);
         glClear(GL_DEPTH_BUFFER_BIT);
         glUseProgram(prog);
-        gk_uniform_mat4(prog, "u_viewproj", L->shadow_view_proj.m);
-        gk_scene_gpu_draw(&r->gpu, s, prog, GK_DRAW_SKIP_PROXIES);
+        glUniformMatrix4fv(u->u_viewproj, 1, GL_FALSE, L->shadow_view_proj.m);
+        gk_scene_gpu_draw(&r->gpu, s, &u->draw, GK_DRAW_SKIP_PROXIES);
     }
     glDisable(GL_DEPTH_TEST);
     g->maps_generation = r->scene_generation;
     return 0;
 }
 
-static void draw_scene_cb(void *ctx, unsigned program)
+static int draw_scene_cb(void *ctx, unsigned program, gk_err *e)
 {
     gk_renderer *r = ctx;
-    gk_scene_gpu_draw(&r->gpu, r->scene, program, GK_DRAW_MATERIALS | GK_DRAW_SKIP_PROXIES);
+    const gk_draw_uniforms *u = gk_program_uniforms(r->progs, program, GK_FIELDS(draw_scene_fields), sizeof *u, e);
+    if (!u)
+        return -1;
+    gk_scene_gpu_draw(&r->gpu, r->scene, u, GK_DRAW_MATERIALS | GK_DRAW_SKIP_PROXIES);
+    return 0;
 }
 
 static int method_index(const char *method)

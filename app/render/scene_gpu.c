@@ -97,7 +97,7 @@ void gk_scene_gpu_free(gk_scene_gpu *g)
     memset(g, 0, sizeof *g);
 }
 
-static void set_material(const gk_scene_gpu *g, const gk_scene *s, GLuint prog, const gk_material *m)
+static void set_material(const gk_scene_gpu *g, const gk_scene *s, const gk_draw_uniforms *u, const gk_material *m)
 {
     int flags = 0;
     GLuint base = g->white_tex, mr = g->white_tex;
@@ -117,20 +117,32 @@ static void set_material(const gk_scene_gpu *g, const gk_scene *s, GLuint prog, 
     glBindTexture(GL_TEXTURE_2D, base);
     glActiveTexture(GL_TEXTURE1);
     glBindTexture(GL_TEXTURE_2D, mr);
-    gk_uniform_4f(prog, "u_base_color", m->base_color[0], m->base_color[1], m->base_color[2], m->base_color[3]);
-    gk_uniform_2f(prog, "u_metallic_roughness", m->metallic, m->roughness);
-    gk_uniform_3f(prog, "u_emissive", m->emissive[0], m->emissive[1], m->emissive[2]);
-    gk_uniform_1i(prog, "u_mat_flags", flags);
+    glUniform4f(u->u_base_color, m->base_color[0], m->base_color[1], m->base_color[2], m->base_color[3]);
+    glUniform2f(u->u_metallic_roughness, m->metallic, m->roughness);
+    glUniform3f(u->u_emissive, m->emissive[0], m->emissive[1], m->emissive[2]);
+    glUniform1i(u->u_mat_flags, flags);
 }
 
-void gk_scene_gpu_draw(const gk_scene_gpu *g, const gk_scene *s, GLuint prog, int flags)
+void gk_draw_uniforms_lookup(GLuint prog, gk_draw_uniforms *u)
+{
+    u->u_model = glGetUniformLocation(prog, "u_model");
+    u->u_normal_matrix = glGetUniformLocation(prog, "u_normal_matrix");
+    u->u_base_color = glGetUniformLocation(prog, "u_base_color");
+    u->u_metallic_roughness = glGetUniformLocation(prog, "u_metallic_roughness");
+    u->u_emissive = glGetUniformLocation(prog, "u_emissive");
+    u->u_mat_flags = glGetUniformLocation(prog, "u_mat_flags");
+    u->u_base_tex = glGetUniformLocation(prog, "u_base_tex");
+    u->u_mr_tex = glGetUniformLocation(prog, "u_mr_tex");
+}
+
+void gk_scene_gpu_draw(const gk_scene_gpu *g, const gk_scene *s, const gk_draw_uniforms *u, int flags)
 {
     if (flags & GK_DRAW_MATERIALS) {
-        gk_uniform_1i(prog, "u_base_tex", 0);
-        gk_uniform_1i(prog, "u_mr_tex", 1);
+        glUniform1i(u->u_base_tex, 0);
+        glUniform1i(u->u_mr_tex, 1);
     }
-    GLint loc_model = glGetUniformLocation(prog, "u_model");
-    GLint loc_normal = glGetUniformLocation(prog, "u_normal_matrix");
+    GLint loc_model = u->u_model;
+    GLint loc_normal = u->u_normal_matrix;
     for (int n = 0; n < s->n_nodes; n++) {
         const gk_node *node = &s->nodes[n];
         if (node->mesh_count <= 0)
@@ -146,7 +158,7 @@ void gk_scene_gpu_draw(const gk_scene_gpu *g, const gk_scene *s, GLuint prog, in
             if ((flags & GK_DRAW_SKIP_PROXIES) && mat->light_proxy)
                 continue;
             if (flags & GK_DRAW_MATERIALS)
-                set_material(g, s, prog, mat);
+                set_material(g, s, u, mat);
             glBindVertexArray(g->vao[k]);
             glDrawElements(GL_TRIANGLES, g->index_count[k], GL_UNSIGNED_INT, NULL);
         }

@@ -7,6 +7,7 @@
 #include "base/err.h"
 #include "../scene/scene.h"
 #include "gl/gl.h"
+#include "gl/gl_program.h"
 
 typedef struct gk_scene_gpu {
     int n_meshes;
@@ -33,8 +34,19 @@ enum {
     GK_MAT_DOUBLE_SIDED = 8,
 };
 
+/* The uniforms gk_scene_gpu_draw sets, by location (-1: the program has no such uniform). A pass
+ * embeds this struct in its own uniform struct and lists the fields its shaders declare, e.g.
+ * GK_UNIFORM_AS(gbuffer_uniforms, draw.u_model, "u_model"). */
+typedef struct gk_draw_uniforms {
+    GLint u_model, u_normal_matrix;                                       /* per node */
+    GLint u_base_color, u_metallic_roughness, u_emissive, u_mat_flags;    /* per material (GK_DRAW_MATERIALS) */
+    GLint u_base_tex, u_mr_tex;                                           /* samplers (GK_DRAW_MATERIALS) */
+} gk_draw_uniforms;
+
 /* Draws every node's meshes (after gk_scene_evaluate) with the bound program: sets u_model and
  * u_normal_matrix per node; textures on units 0 (base colour) and 1 (metallic-roughness). */
-void gk_scene_gpu_draw(const gk_scene_gpu *g, const gk_scene *s, GLuint prog, int flags);
+void gk_scene_gpu_draw(const gk_scene_gpu *g, const gk_scene *s, const gk_draw_uniforms *u, int flags);
+/* The locations by name, for tests and programs built outside a program cache (never per frame). */
+void gk_draw_uniforms_lookup(GLuint prog, gk_draw_uniforms *u);
 
 #endif

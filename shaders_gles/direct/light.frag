@@ -15,17 +15,16 @@
 precision highp float;
 precision highp int;
 #include "common/brdf.glsl"
-#include "common/gbuffer_read.glsl"
+#include "common/gbuffer.glsl"
 #include "common/lights.glsl"
 #include "shadow/shadow.glsl"
 
-uniform vec2 u_viewport;
 out vec4 o_color;
 
 void main()
 {
     ivec2 px = ivec2(gl_FragCoord.xy);
-    gk_surface s = gk_read_surface(px, (vec2(px) + 0.5) / u_viewport);
+    gk_surface s = gk_read_surface(px);
     if (s.unlit)
         discard;
     vec3 radiance = gk_light_radiance(s);

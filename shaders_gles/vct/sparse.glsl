@@ -9,19 +9,26 @@ ivec2 sparse_pixel(ivec2 q, int B, ivec2 full_size)
     return min(q * B + off, full_size - 1);
 }
 
-vec3 gbuf_world_position(highp sampler2D depth_tex, highp sampler2D pos_tex, bool has_pos, mat4 inv_vp, ivec2 px, ivec2 size)
+// The G-buffer (common/gbuffer.glsl) plus what a vct test may give instead of the renderer's
+// layout: a world-position texture and a metallic/roughness texture (gi.h gbuf_position,
+// gbuf_material; 0 from the renderer).
+#define GB_ALBEDO_PRECISION highp
+#include "common/gbuffer.glsl"
+uniform highp sampler2D u_gb_position;
+uniform highp sampler2D u_gb_material;
+uniform bool u_has_position;
+uniform bool u_has_material;
+
+highp vec3 vct_world_position(ivec2 px)
 {
-    if (has_pos) return texelFetch(pos_tex, px, 0).xyz;
-    float z = texelFetch(depth_tex, px, 0).r;
-    vec2 uv = (vec2(px) + 0.5) / vec2(size);
-    vec4 w = inv_vp * vec4(uv * 2.0 - 1.0, z * 2.0 - 1.0, 1.0);
-    return w.xyz / w.w;
+    if (u_has_position) return texelFetch(u_gb_position, px, 0).xyz;
+    return gb_world_position(px);
 }
 
 // Metallic and roughness: from the material texture when a caller gives one (tests), else from the
 // renderer's G-buffer (albedo.a = metallic, normal.w = roughness; gi.h).
-vec2 gbuf_metallic_roughness(highp sampler2D mat_tex, highp sampler2D albedo_tex, highp sampler2D normal_tex, bool has_mat, ivec2 px)
+vec2 vct_metallic_roughness(ivec2 px)
 {
-    if (has_mat) return texelFetch(mat_tex, px, 0).rg;
-    return vec2(texelFetch(albedo_tex, px, 0).a, texelFetch(normal_tex, px, 0).w);
+    if (u_has_material) return texelFetch(u_gb_material, px, 0).rg;
+    return vec2(gb_albedo_metallic(px).a, gb_roughness(px));
 }

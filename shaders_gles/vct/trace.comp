@@ -15,16 +15,6 @@ layout(binding = 1, rgba16f) writeonly uniform highp image2D u_out_spec;
 layout(std430, binding = 2) buffer Counters { uint total_steps; } counters;
 
 #define MAX_CONES 9
-uniform highp sampler2D u_gbuf_depth;
-uniform highp sampler2D u_gbuf_normal;
-uniform highp sampler2D u_gbuf_position;
-uniform highp sampler2D u_gbuf_material;
-uniform highp sampler2D u_gbuf_albedo;
-uniform bool u_has_position;
-uniform bool u_has_material;
-uniform mat4 u_inv_view_proj;
-uniform vec3 u_eye;
-uniform ivec2 u_full_size;
 uniform ivec2 u_low_size;
 uniform int u_block;
 uniform vec3 u_grid_origin;
@@ -41,15 +31,14 @@ void main()
 {
     ivec2 q = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(q, u_low_size))) return;
-    ivec2 px = sparse_pixel(q, u_block, u_full_size);
-    float z = texelFetch(u_gbuf_depth, px, 0).r;
-    if (z >= 1.0) {                                   // background
+    ivec2 px = sparse_pixel(q, u_block, ivec2(u_viewport));
+    if (gb_background(gb_depth(px))) {                                   // background
         imageStore(u_out_diffuse, q, vec4(0.0, 0.0, 0.0, 1.0));
         imageStore(u_out_spec, q, vec4(0.0));
         return;
     }
-    vec3 P = gbuf_world_position(u_gbuf_depth, u_gbuf_position, u_has_position, u_inv_view_proj, px, u_full_size);
-    vec3 N = normalize(texelFetch(u_gbuf_normal, px, 0).xyz);
+    vec3 P = vct_world_position(px);
+    vec3 N = gb_normal(px);
     vec3 up = abs(N.y) < 0.99 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
     vec3 T = normalize(cross(up, N));
     vec3 B = cross(N, T);
@@ -70,7 +59,7 @@ void main()
     }
     vec4 spec = vec4(0.0);
 #if SPECULAR
-    vec2 mr = gbuf_metallic_roughness(u_gbuf_material, u_gbuf_albedo, u_gbuf_normal, u_has_material, px);
+    vec2 mr = vct_metallic_roughness(px);
     if (mr.g < 0.5 || mr.r > 0.5) {                   // glossy enough to be worth a cone
         vec3 R = reflect(normalize(P - u_eye), N);
         float ao; int steps;

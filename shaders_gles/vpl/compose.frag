@@ -6,11 +6,7 @@ precision highp int;
 uniform highp sampler2D u_ind;
 uniform highp sampler2D u_pos;
 uniform highp sampler2D u_nrm;
-uniform highp sampler2D u_gb_depth;
-uniform highp sampler2D u_gb_normal;
-uniform mediump sampler2D u_gb_albedo;
-uniform highp mat4 u_inv_viewproj;
-uniform ivec2 u_full_size;
+#include "common/gbuffer.glsl"
 uniform float u_sigma;
 uniform vec3 u_origin;   // u_pos holds positions relative to the bounds centre (gather.frag)
 in vec2 v_uv;
@@ -43,13 +39,12 @@ vec3 upsample(highp sampler2D tex, vec3 x, vec3 n)
 void main()
 {
     ivec2 px = ivec2(gl_FragCoord.xy);
-    float depth = texelFetch(u_gb_depth, px, 0).r;
-    if (depth >= 1.0)
+    float depth = gb_depth(px);
+    if (gb_background(depth))
         discard;
-    vec4 w = u_inv_viewproj * vec4(vec3(v_uv, depth) * 2.0 - 1.0, 1.0);
-    vec3 x = w.xyz / w.w;
-    vec3 n = normalize(texelFetch(u_gb_normal, px, 0).xyz);
+    vec3 x = gb_world_at(v_uv, depth);
+    vec3 n = gb_normal(px);
     vec3 E = upsample(u_ind, x - u_origin, n);
-    vec4 a = texelFetch(u_gb_albedo, px, 0);
+    vec4 a = gb_albedo_metallic(px);
     o_color = vec4((1.0 - a.a) * a.rgb / 3.14159265 * E, 0.0);
 }

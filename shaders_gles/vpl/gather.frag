@@ -18,12 +18,9 @@
 precision highp float;
 precision highp int;
 precision highp sampler2DArray;
-uniform highp sampler2D u_gb_depth;
-uniform highp sampler2D u_gb_normal;
-uniform highp sampler2D u_gb_position;
+#include "common/gbuffer.glsl"
+uniform highp sampler2D u_gb_position;   // a test's world positions (gi.h gbuf_position) when u_has_position
 uniform int u_has_position;
-uniform highp mat4 u_inv_viewproj;
-uniform ivec2 u_full_size;
 uniform ivec2 u_ind_size;
 uniform highp sampler2D u_vpl;   // N×3: pos + label, nrm + area, flux
 uniform highp sampler2D u_val;   // M×4: centre + far, normal + size, t + r_near, b + map res
@@ -181,22 +178,17 @@ void main()
     nx = normalize(t1.xyz + t2.xyz);
     int bb = 1, s = 0;   // every region takes every VPL
 #else
-    ivec2 px = min(ivec2((vec2(q) + 0.5) * vec2(u_full_size) / vec2(u_ind_size)), u_full_size - 1);
-    float depth = texelFetch(u_gb_depth, px, 0).r;
-    if (depth >= 1.0) {
+    ivec2 full_size = ivec2(u_viewport);
+    ivec2 px = min(ivec2((vec2(q) + 0.5) * u_viewport / vec2(u_ind_size)), full_size - 1);
+    float depth = gb_depth(px);
+    if (gb_background(depth)) {
         o_ind = vec4(0.0);
         o_pos = vec4(0.0);
         o_nrm = vec4(0.0);
         return;
     }
-    if (u_has_position != 0) {
-        x = texelFetch(u_gb_position, px, 0).xyz;
-    } else {
-        vec2 uv = (vec2(px) + 0.5) / vec2(u_full_size);
-        vec4 w = u_inv_viewproj * vec4(vec3(uv, depth) * 2.0 - 1.0, 1.0);
-        x = w.xyz / w.w;
-    }
-    nx = normalize(texelFetch(u_gb_normal, px, 0).xyz);
+    x = u_has_position != 0 ? texelFetch(u_gb_position, px, 0).xyz : gb_world_position(px);
+    nx = gb_normal(px);
     int bb = u_block * u_block;
     int s = (q.y % u_block) * u_block + (q.x % u_block);
 #endif

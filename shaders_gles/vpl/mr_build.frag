@@ -10,12 +10,8 @@
 precision highp float;
 precision highp int;
 #ifdef LEVEL0
-uniform highp sampler2D u_gb_depth;
-uniform highp sampler2D u_gb_normal;
-uniform highp mat4 u_inv_viewproj;
-uniform ivec2 u_full_size;
+#include "common/gbuffer.glsl"
 uniform ivec2 u_ind_size;
-uniform vec3 u_eye;
 uniform vec3 u_origin;   // T3 stores x − u_origin (bounds centre): fp16 targets keep the precision
 #else
 uniform highp sampler2D u_t0;
@@ -31,19 +27,17 @@ void main()
 {
     ivec2 q = ivec2(gl_FragCoord.xy);
 #ifdef LEVEL0
-    ivec2 px = min(ivec2((vec2(q) + 0.5) * vec2(u_full_size) / vec2(u_ind_size)), u_full_size - 1);
-    float depth = texelFetch(u_gb_depth, px, 0).r;
-    if (depth >= 1.0) {
+    ivec2 px = min(ivec2((vec2(q) + 0.5) * u_viewport / vec2(u_ind_size)), ivec2(u_viewport) - 1);
+    float depth = gb_depth(px);
+    if (gb_background(depth)) {
         o_t0 = vec4(1e30, -1e30, 0.0, 0.0);
         o_t1 = vec4(1e30);
         o_t2 = vec4(-1e30);
         o_t3 = vec4(0.0);
         return;
     }
-    vec2 uv = (vec2(px) + 0.5) / vec2(u_full_size);
-    vec4 w = u_inv_viewproj * vec4(vec3(uv, depth) * 2.0 - 1.0, 1.0);
-    vec3 x = w.xyz / w.w;
-    vec3 n = normalize(texelFetch(u_gb_normal, px, 0).xyz);
+    vec3 x = gb_world_position(px);
+    vec3 n = gb_normal(px);
     float z = length(x - u_eye);
     o_t0 = vec4(z, z, 1.0, 0.0);
     o_t1 = vec4(n, 0.0);

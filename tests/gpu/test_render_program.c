@@ -1,6 +1,7 @@
-/* The shader loader and program cache (app/render/shader_source.c, gl_program.c): #include
- * expansion with the once-per-program guard, cycle and missing-file errors naming file:line, and
- * GL compile errors mapped back to the shader file and line. */
+/* The shader loader and program cache (app/gl/shader_source.c, gl_program.c): #include
+ * expansion with the once-per-program guard, cycle and missing-file errors naming file:line,
+ * GL compile errors mapped back to the shader file and line, and uniform locations resolved once
+ * per program (a misspelt name fails, an optimised-away one is -1, the block is cached). */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -9,6 +10,7 @@
 #include <unistd.h>
 
 #include "gpu/test_render_fixture.h"
+#include "gl/gbuffer_bind.h"
 #include "gl/gl_program.h"
 #include "gl/shader_source.h"
 
@@ -124,6 +126,112 @@ static void embedded_shaders_all_present(void **state)
     gk_program_cache_destroy(c);
 }
 
+/* A program with one used uniform (u_tint) and one the compiler drops (u_unused). */
+typedef struct tint_uniforms {
+    GLint u_tint, u_unused, u_not_listed;
+} tint_uniforms;
+static const gk_uniform_field tint_fields[] = {GK_UNIFORM(tint_uniforms, u_tint),
+                                               GK_UNIFORM(tint_uniforms, u_unused)};
+static const gk_uniform_field misspelt_fields[] = {GK_UNIFORM(tint_uniforms, u_tint),
+                                                   GK_UNIFORM_AS(tint_uniforms, u_unused, "u_tnit")};
+
+static GLuint tint_program(gk_program_cache *c)
+{
+    write_file("tint.vert", "layout(location = 0) in vec4 a_pos;\nvoid main() { gl_Position = a_pos; }\n");
+    write_file("tint.frag", "precision highp float;\nuniform vec4 u_tint;\nuniform float u_unused;\nout vec4 o;\n"
+                            "void main() { o = u_tint; }\n");
+    gk_err e = {0};
+    GLuint p = gk_program_get(c, "tint.vert", "tint.frag", NULL, &e);
+    if (!p)
+        fail_msg("%s", e.msg);
+    return p;
+}
+
+static void misspelt_uniform_fails_naming_it(void **state)
+{
+    (void)state;
+    gk_program_cache *c = gk_program_cache_create(dir, 31);
+    GLuint p = tint_program(c);
+    gk_err e = {0};
+    const tint_uniforms *u = gk_program_uniforms(c, p, GK_FIELDS(misspelt_fields), sizeof *u, &e);
+    printf("# %s\n", e.msg);
+    assert_null(u);
+    assert_int_equal(e.code, GK_ERUNTIME);
+    assert_non_null(strstr(e.msg, "'u_tnit'"));
+    assert_non_null(strstr(e.msg, "tint.frag")); /* and the program it was looked up in */
+    /* A failed table is not cached: it fails again, and the correct table still resolves. */
+    gk_err e2 = {0};
+    assert_null(gk_program_uniforms(c, p, GK_FIELDS(misspelt_fields), sizeof(tint_uniforms), &e2));
+    assert_int_equal(e2.code, GK_ERUNTIME);
+    gk_err e3 = {0};
+    assert_non_null(gk_program_uniforms(c, p, GK_FIELDS(tint_fields), sizeof(tint_uniforms), &e3));
+    assert_int_equal(e3.code, 0);
+    gk_program_cache_destroy(c);
+}
+
+static void optimised_away_uniform_is_minus_one(void **state)
+{
+    (void)state;
+    gk_program_cache *c = gk_program_cache_create(dir, 31);
+    GLuint p = tint_program(c);
+    gk_err e = {0};
+    const tint_uniforms *u = gk_program_uniforms(c, p, GK_FIELDS(tint_fields), sizeof *u, &e);
+    if (!u)
+        fail_msg("%s", e.msg);
+    assert_int_equal(e.code, 0);
+    assert_int_equal(u->u_tint, glGetUniformLocation(p, "u_tint"));
+    assert_true(u->u_tint >= 0);
+    assert_int_equal(u->u_unused, -1); /* declared, unused: dropped by the compiler, not an error */
+    assert_int_equal(u->u_not_listed, -1); /* not in the table */
+    gk_program_cache_destroy(c);
+}
+
+static void uniform_block_is_cached(void **state)
+{
+    (void)state;
+    gk_program_cache *c = gk_program_cache_create(dir, 31);
+    GLuint p = tint_program(c);
+    gk_err e = {0};
+    const tint_uniforms *a = gk_program_uniforms(c, p, GK_FIELDS(tint_fields), sizeof *a, &e);
+    const tint_uniforms *b = gk_program_uniforms(c, p, GK_FIELDS(tint_fields), sizeof *b, &e);
+    assert_non_null(a);
+    assert_ptr_equal(a, b);
+    /* Another program has its own block. */
+    GLuint q = gk_program_get(c, "tint.vert", "tint.frag", "#define OTHER 1\n", &e);
+    assert_true(q != 0 && q != p);
+    const tint_uniforms *d = gk_program_uniforms(c, q, GK_FIELDS(tint_fields), sizeof *d, &e);
+    assert_non_null(d);
+    assert_ptr_not_equal(a, d);
+    gk_program_cache_destroy(c);
+}
+
+/* The G-buffer contract (common/gbuffer.glsl) resolves in every program that includes it: the
+   emission pass uses only u_gb_emission, the rest is -1, nothing is misspelt. */
+typedef struct gb_only_uniforms {
+    gk_gbuffer_uniforms gb;
+} gb_only_uniforms;
+static const gk_uniform_field gb_only_fields[] = {GK_GBUFFER_FIELDS(gb_only_uniforms, gb)};
+
+static void gbuffer_contract_resolves(void **state)
+{
+    (void)state;
+    gk_program_cache *c = gk_program_cache_create(NULL, 31);
+    gk_err e = {0};
+    GLuint p = gk_program_get(c, "common/fullscreen.vert", "direct/emission.frag", NULL, &e);
+    const gb_only_uniforms *u = p ? gk_program_uniforms(c, p, GK_FIELDS(gb_only_fields), sizeof *u, &e) : NULL;
+    if (!u)
+        fail_msg("%s", e.msg);
+    assert_true(u->gb.u_gb_emission >= 0);
+    assert_int_equal(u->gb.u_inv_viewproj, -1);
+    assert_int_equal(u->gb.u_gb_depth, -1);
+    GLuint l = gk_program_get(c, "common/fullscreen.vert", "direct/light.frag", "#define GK_LIGHT_KIND 0\n", &e);
+    const gb_only_uniforms *ul = l ? gk_program_uniforms(c, l, GK_FIELDS(gb_only_fields), sizeof *ul, &e) : NULL;
+    if (!ul)
+        fail_msg("%s", e.msg);
+    assert_true(ul->gb.u_gb_depth >= 0 && ul->gb.u_inv_viewproj >= 0 && ul->gb.u_viewport >= 0);
+    gk_program_cache_destroy(c);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -131,6 +239,10 @@ int main(void)
         cmocka_unit_test(include_cycle_and_missing_file_are_errors),
         cmocka_unit_test(compile_errors_name_file_and_line),
         cmocka_unit_test(embedded_shaders_all_present),
+        cmocka_unit_test(misspelt_uniform_fails_naming_it),
+        cmocka_unit_test(optimised_away_uniform_is_minus_one),
+        cmocka_unit_test(uniform_block_is_cached),
+        cmocka_unit_test(gbuffer_contract_resolves),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

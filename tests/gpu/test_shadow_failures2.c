@@ -312,7 +312,7 @@ static void f7_sat_exact_readback(void **state)
     GLuint rows = gk_program_get_compute(progs, "shadow/vssm_sat.comp", "#define SAT_ROWS 1\n#define SAT_BASIS 0\n", &e);
     assert_true(rows != 0);
     glUseProgram(rows);
-    gk_pf_bind(rows, "u_z", z, 0);
+    gk_pf_bind(glGetUniformLocation(rows, "u_z"), z, 0);
     gk_uniform_1i(rows, "u_size", MAP);
     gk_uniform_1f(rows, "u_q", q);
     gk_uniform_1f(rows, "u_range", 1.0f);

@@ -79,10 +79,14 @@ static inline void h_box(gk_mesh *m, vec3 mn, vec3 sz, int mat)
     }
 }
 
-static inline void h_draw_scene(void *ctx, unsigned prog)
+static inline int h_draw_scene(void *ctx, unsigned prog, gk_err *e)
 {
     vpl_h *h = ctx;
-    gk_scene_gpu_draw(&h->gpu, &h->scene, prog, GK_DRAW_MATERIALS);
+    (void)e;
+    gk_draw_uniforms u;
+    gk_draw_uniforms_lookup(prog, &u);
+    gk_scene_gpu_draw(&h->gpu, &h->scene, &u, GK_DRAW_MATERIALS);
+    return 0;
 }
 
 /* Points the spot at target (world) and refreshes the frame's light. */
@@ -222,7 +226,9 @@ static inline int h_init_with(vpl_h *h, bool with_boxes, int w, int hh, gk_scene
     glUseProgram(gp);
     gk_uniform_mat4(gp, "u_viewproj", h->vp.m);
     gk_uniform_3f(gp, "u_eye", h->eye.x, h->eye.y, h->eye.z);
-    gk_scene_gpu_draw(&h->gpu, s, gp, GK_DRAW_MATERIALS);
+    gk_draw_uniforms du;
+    gk_draw_uniforms_lookup(gp, &du);
+    gk_scene_gpu_draw(&h->gpu, s, &du, GK_DRAW_MATERIALS);
     glDisable(GL_DEPTH_TEST);
     return 0;
 }

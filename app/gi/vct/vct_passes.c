@@ -13,39 +13,160 @@ static void defines_common(const gk_vct *v, char *out, size_t n)
 
 static int groups(int n, int g) { return (n + g - 1) / g; }
 
+/* Uniform locations, one struct per shader (all its variants), resolved once per program. */
+
+/* vct/clear.comp */
+typedef struct clear_uniforms {
+    GLint u_res, u_region_lo, u_region_size, u_channels;
+} clear_uniforms;
+static const gk_uniform_field clear_fields[] = {
+    GK_UNIFORM(clear_uniforms, u_res), GK_UNIFORM(clear_uniforms, u_region_lo),
+    GK_UNIFORM(clear_uniforms, u_region_size), GK_UNIFORM(clear_uniforms, u_channels)};
+
+/* vct/voxelize.comp */
+typedef struct voxelize_uniforms {
+    GLint u_res, u_grid_origin, u_voxel_size, u_region_lo, u_region_hi, u_emission_scale, u_tri_first, u_tri_count;
+} voxelize_uniforms;
+static const gk_uniform_field voxelize_fields[] = {
+    GK_UNIFORM(voxelize_uniforms, u_res),          GK_UNIFORM(voxelize_uniforms, u_grid_origin),
+    GK_UNIFORM(voxelize_uniforms, u_voxel_size),   GK_UNIFORM(voxelize_uniforms, u_region_lo),
+    GK_UNIFORM(voxelize_uniforms, u_region_hi),    GK_UNIFORM(voxelize_uniforms, u_emission_scale),
+    GK_UNIFORM(voxelize_uniforms, u_tri_first),    GK_UNIFORM(voxelize_uniforms, u_tri_count)};
+
+/* vct/inject.comp (arrays: the location of element 0, set with glUniform*v) */
+typedef struct inject_uniforms {
+    GLint u_res, u_region_lo, u_region_size, u_grid_origin, u_voxel_size, u_emission_max, u_shadow_ambient,
+        u_shadow_bias, u_n_lights;
+    GLint u_shadow[VCT_MAX_LIGHTS];
+    GLint u_light_type, u_light_pos, u_light_dir, u_light_radiant, u_light_spot, u_light_lambert, u_light_shadow,
+        u_shadow_vp;
+} inject_uniforms;
+static const gk_uniform_field inject_fields[] = {
+    GK_UNIFORM(inject_uniforms, u_res),
+    GK_UNIFORM(inject_uniforms, u_region_lo),
+    GK_UNIFORM(inject_uniforms, u_region_size),
+    GK_UNIFORM(inject_uniforms, u_grid_origin),
+    GK_UNIFORM(inject_uniforms, u_voxel_size),
+    GK_UNIFORM(inject_uniforms, u_emission_max),
+    GK_UNIFORM(inject_uniforms, u_shadow_ambient),
+    GK_UNIFORM(inject_uniforms, u_shadow_bias),
+    GK_UNIFORM(inject_uniforms, u_n_lights),
+    GK_UNIFORM_AS(inject_uniforms, u_shadow[0], "u_shadow0"),
+    GK_UNIFORM_AS(inject_uniforms, u_shadow[1], "u_shadow1"),
+    GK_UNIFORM_AS(inject_uniforms, u_shadow[2], "u_shadow2"),
+    GK_UNIFORM_AS(inject_uniforms, u_shadow[3], "u_shadow3"),
+    GK_UNIFORM(inject_uniforms, u_light_type),
+    GK_UNIFORM(inject_uniforms, u_light_pos),
+    GK_UNIFORM(inject_uniforms, u_light_dir),
+    GK_UNIFORM(inject_uniforms, u_light_radiant),
+    GK_UNIFORM(inject_uniforms, u_light_spot),
+    GK_UNIFORM(inject_uniforms, u_light_lambert),
+    GK_UNIFORM(inject_uniforms, u_light_shadow),
+    GK_UNIFORM(inject_uniforms, u_shadow_vp),
+};
+_Static_assert(VCT_MAX_LIGHTS == 4, "inject_fields lists u_shadow0..3 (shaders_gles/vct/inject.comp)");
+
+/* vct/mip_aniso.comp */
+typedef struct mip_uniforms {
+    GLint u_res, u_dst_res, u_from_level0, u_dir;
+} mip_uniforms;
+static const gk_uniform_field mip_fields[] = {GK_UNIFORM(mip_uniforms, u_res), GK_UNIFORM(mip_uniforms, u_dst_res),
+                                              GK_UNIFORM(mip_uniforms, u_from_level0), GK_UNIFORM(mip_uniforms, u_dir)};
+
+/* The G-buffer extras of vct/sparse.glsl (a test's position and material textures) */
+typedef struct vct_gbuffer_uniforms {
+    gk_gbuffer_uniforms gb;
+    GLint u_gb_position, u_gb_material, u_has_position, u_has_material;
+} vct_gbuffer_uniforms;
+#define VCT_GBUFFER_FIELDS(type, member)                                                                               \
+    GK_GBUFFER_FIELDS(type, member.gb), GK_UNIFORM_AS(type, member.u_gb_position, "u_gb_position"),                    \
+        GK_UNIFORM_AS(type, member.u_gb_material, "u_gb_material"),                                                    \
+        GK_UNIFORM_AS(type, member.u_has_position, "u_has_position"),                                                  \
+        GK_UNIFORM_AS(type, member.u_has_material, "u_has_material")
+
+/* vct/trace.comp */
+typedef struct trace_uniforms {
+    vct_gbuffer_uniforms g;
+    GLint u_vox0, u_voxd[6];
+    GLint u_low_size, u_block, u_res, u_res_f, u_grid_origin, u_grid_size, u_step_mul, u_ao_lambda, u_max_dist,
+        u_apex_offset, u_footprint_clamp, u_spec_aperture, u_n_cones, u_cone_dir, u_cone_aperture, u_cone_weight;
+} trace_uniforms;
+static const gk_uniform_field trace_fields[] = {
+    VCT_GBUFFER_FIELDS(trace_uniforms, g),
+    GK_UNIFORM(trace_uniforms, u_vox0),
+    GK_UNIFORM_AS(trace_uniforms, u_voxd[0], "u_voxd0"),
+    GK_UNIFORM_AS(trace_uniforms, u_voxd[1], "u_voxd1"),
+    GK_UNIFORM_AS(trace_uniforms, u_voxd[2], "u_voxd2"),
+    GK_UNIFORM_AS(trace_uniforms, u_voxd[3], "u_voxd3"),
+    GK_UNIFORM_AS(trace_uniforms, u_voxd[4], "u_voxd4"),
+    GK_UNIFORM_AS(trace_uniforms, u_voxd[5], "u_voxd5"),
+    GK_UNIFORM(trace_uniforms, u_low_size),
+    GK_UNIFORM(trace_uniforms, u_block),
+    GK_UNIFORM(trace_uniforms, u_res),
+    GK_UNIFORM(trace_uniforms, u_res_f),
+    GK_UNIFORM(trace_uniforms, u_grid_origin),
+    GK_UNIFORM(trace_uniforms, u_grid_size),
+    GK_UNIFORM(trace_uniforms, u_step_mul),
+    GK_UNIFORM(trace_uniforms, u_ao_lambda),
+    GK_UNIFORM(trace_uniforms, u_max_dist),
+    GK_UNIFORM(trace_uniforms, u_apex_offset),
+    GK_UNIFORM(trace_uniforms, u_footprint_clamp),
+    GK_UNIFORM(trace_uniforms, u_spec_aperture),
+    GK_UNIFORM(trace_uniforms, u_n_cones),
+    GK_UNIFORM(trace_uniforms, u_cone_dir),
+    GK_UNIFORM(trace_uniforms, u_cone_aperture),
+    GK_UNIFORM(trace_uniforms, u_cone_weight),
+};
+
+/* vct/compose.{vert,frag} */
+typedef struct compose_uniforms {
+    vct_gbuffer_uniforms g;
+    GLint u_diffuse_lo, u_spec_lo, u_low_size, u_block, u_voxel_world, u_spec_enabled;
+} compose_uniforms;
+static const gk_uniform_field compose_fields[] = {
+    VCT_GBUFFER_FIELDS(compose_uniforms, g),
+    GK_UNIFORM(compose_uniforms, u_diffuse_lo),
+    GK_UNIFORM(compose_uniforms, u_spec_lo),
+    GK_UNIFORM(compose_uniforms, u_low_size),
+    GK_UNIFORM(compose_uniforms, u_block),
+    GK_UNIFORM(compose_uniforms, u_voxel_world),
+    GK_UNIFORM(compose_uniforms, u_spec_enabled),
+};
+
 int vct_pass_voxelize(gk_vct *v, const int lo[3], const int hi[3], gk_err *e)
 {
     char defs[256];
     defines_common(v, defs, sizeof defs);
     GLuint clear = gk_program_get_compute(v->ctx.programs, "vct/clear.comp", defs, e);
     GLuint vox = clear ? gk_program_get_compute(v->ctx.programs, "vct/voxelize.comp", defs, e) : 0;
-    if (!vox)
+    const clear_uniforms *uc = vox ? gk_program_uniforms(v->ctx.programs, clear, GK_FIELDS(clear_fields), sizeof *uc, e) : NULL;
+    const voxelize_uniforms *uv = uc ? gk_program_uniforms(v->ctx.programs, vox, GK_FIELDS(voxelize_fields), sizeof *uv, e) : NULL;
+    if (!uv)
         return -1;
     int size[3] = {hi[0] - lo[0] + 1, hi[1] - lo[1] + 1, hi[2] - lo[2] + 1};
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, v->tri_ssbo);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, v->scratch_ssbo);
 
     glUseProgram(clear);
-    glUniform1i(glGetUniformLocation(clear, "u_res"), v->res);
-    glUniform3i(glGetUniformLocation(clear, "u_region_lo"), lo[0], lo[1], lo[2]);
-    glUniform3i(glGetUniformLocation(clear, "u_region_size"), size[0], size[1], size[2]);
-    glUniform1i(glGetUniformLocation(clear, "u_channels"), gk_vct_channels(v->emissive));
+    glUniform1i(uc->u_res, v->res);
+    glUniform3i(uc->u_region_lo, lo[0], lo[1], lo[2]);
+    glUniform3i(uc->u_region_size, size[0], size[1], size[2]);
+    glUniform1i(uc->u_channels, gk_vct_channels(v->emissive));
     glDispatchCompute((GLuint)groups(size[0], 4), (GLuint)groups(size[1], 4), (GLuint)groups(size[2], 4));
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 
     glUseProgram(vox);
-    glUniform1i(glGetUniformLocation(vox, "u_res"), v->res);
-    glUniform3f(glGetUniformLocation(vox, "u_grid_origin"), v->origin[0], v->origin[1], v->origin[2]);
-    glUniform1f(glGetUniformLocation(vox, "u_voxel_size"), v->voxel);
-    glUniform3i(glGetUniformLocation(vox, "u_region_lo"), lo[0], lo[1], lo[2]);
-    glUniform3i(glGetUniformLocation(vox, "u_region_hi"), hi[0], hi[1], hi[2]);
-    glUniform1f(glGetUniformLocation(vox, "u_emission_scale"),
-                v->tris.max_emission > 0 ? 1.0f / v->tris.max_emission : 0.0f);
+    glUniform1i(uv->u_res, v->res);
+    glUniform3f(uv->u_grid_origin, v->origin[0], v->origin[1], v->origin[2]);
+    glUniform1f(uv->u_voxel_size, v->voxel);
+    glUniform3i(uv->u_region_lo, lo[0], lo[1], lo[2]);
+    glUniform3i(uv->u_region_hi, hi[0], hi[1], hi[2]);
+    glUniform1f(uv->u_emission_scale, v->tris.max_emission > 0 ? 1.0f / v->tris.max_emission : 0.0f);
     /* at most 65535 groups of 64 per dispatch */
     for (int first = 0; first < v->tris.n; first += 65535 * 64) {
         int count = v->tris.n - first < 65535 * 64 ? v->tris.n - first : 65535 * 64;
-        glUniform1i(glGetUniformLocation(vox, "u_tri_first"), first);
-        glUniform1i(glGetUniformLocation(vox, "u_tri_count"), count);
+        glUniform1i(uv->u_tri_first, first);
+        glUniform1i(uv->u_tri_count, count);
         glDispatchCompute((GLuint)groups(count, 64), 1, 1);
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
@@ -54,36 +175,32 @@ int vct_pass_voxelize(gk_vct *v, const int lo[3], const int hi[3], gk_err *e)
     return 0;
 }
 
-static void uniform_at(GLuint p, const char *name, int i, char *buf, size_t n)
-{
-    snprintf(buf, n, "%s[%d]", name, i);
-    (void)p;
-}
-
 int vct_pass_inject(gk_vct *v, const gk_gi_frame *f, gk_err *e)
 {
     char defs[256];
     defines_common(v, defs, sizeof defs);
     GLuint p = gk_program_get_compute(v->ctx.programs, "vct/inject.comp", defs, e);
-    if (!p)
+    const inject_uniforms *u = p ? gk_program_uniforms(v->ctx.programs, p, GK_FIELDS(inject_fields), sizeof *u, e) : NULL;
+    if (!u)
         return -1;
     glUseProgram(p);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, v->scratch_ssbo);
     glBindImageTexture(0, v->vox0, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glUniform1i(glGetUniformLocation(p, "u_res"), v->res);
-    glUniform3i(glGetUniformLocation(p, "u_region_lo"), 0, 0, 0);
-    glUniform3i(glGetUniformLocation(p, "u_region_size"), v->res, v->res, v->res);
-    glUniform3f(glGetUniformLocation(p, "u_grid_origin"), v->origin[0], v->origin[1], v->origin[2]);
-    glUniform1f(glGetUniformLocation(p, "u_voxel_size"), v->voxel);
-    glUniform1f(glGetUniformLocation(p, "u_emission_max"), v->tris.max_emission);
-    glUniform1f(glGetUniformLocation(p, "u_shadow_ambient"), v->opt.shadow_ambient);
-    glUniform1f(glGetUniformLocation(p, "u_shadow_bias"), 0.0015f);
+    glUniform1i(u->u_res, v->res);
+    glUniform3i(u->u_region_lo, 0, 0, 0);
+    glUniform3i(u->u_region_size, v->res, v->res, v->res);
+    glUniform3f(u->u_grid_origin, v->origin[0], v->origin[1], v->origin[2]);
+    glUniform1f(u->u_voxel_size, v->voxel);
+    glUniform1f(u->u_emission_max, v->tris.max_emission);
+    glUniform1f(u->u_shadow_ambient, v->opt.shadow_ambient);
+    glUniform1f(u->u_shadow_bias, 0.0015f);
     int n = f->n_lights < VCT_MAX_LIGHTS ? f->n_lights : VCT_MAX_LIGHTS;
-    glUniform1i(glGetUniformLocation(p, "u_n_lights"), n);
-    char nm[64];
+    glUniform1i(u->u_n_lights, n);
+    GLint type_of[VCT_MAX_LIGHTS], lambert_of[VCT_MAX_LIGHTS], shadow_of[VCT_MAX_LIGHTS];
+    float pos[VCT_MAX_LIGHTS][3], dir[VCT_MAX_LIGHTS][3], radiant[VCT_MAX_LIGHTS][3], spot[VCT_MAX_LIGHTS][2];
+    float vp[VCT_MAX_LIGHTS][16];
     for (int i = 0; i < VCT_MAX_LIGHTS; i++) {
-        snprintf(nm, sizeof nm, "u_shadow%d", i);
-        glUniform1i(glGetUniformLocation(p, nm), 8 + i);
+        glUniform1i(u->u_shadow[i], 8 + i);
         glActiveTexture(GL_TEXTURE8 + (GLenum)i);
         glBindTexture(GL_TEXTURE_2D, i < n ? f->lights[i].shadow_depth_tex : 0);
         glBindSampler(8 + (GLuint)i, v->nearest_sampler);
@@ -96,22 +213,24 @@ int vct_pass_inject(gk_vct *v, const gk_gi_frame *f, gk_err *e)
         float ci = sl ? cosf(sl->inner_cone) : 1.0f, co = sl ? cosf(sl->outer_cone) : 0.0f;
         float scale = 1.0f / fmaxf(0.001f, ci - co);
         int lambert = sl && (sl->shape == GK_SHAPE_RECT || sl->shape == GK_SHAPE_DISC) && type != 2;
-        uniform_at(p, "u_light_type", i, nm, sizeof nm);
-        glUniform1i(glGetUniformLocation(p, nm), type);
-        uniform_at(p, "u_light_pos", i, nm, sizeof nm);
-        glUniform3f(glGetUniformLocation(p, nm), L->position.x, L->position.y, L->position.z);
-        uniform_at(p, "u_light_dir", i, nm, sizeof nm);
-        glUniform3f(glGetUniformLocation(p, nm), L->direction.x, L->direction.y, L->direction.z);
-        uniform_at(p, "u_light_radiant", i, nm, sizeof nm);
-        glUniform3f(glGetUniformLocation(p, nm), L->radiant.x, L->radiant.y, L->radiant.z);
-        uniform_at(p, "u_light_spot", i, nm, sizeof nm);
-        glUniform2f(glGetUniformLocation(p, nm), scale, -co * scale);
-        uniform_at(p, "u_light_lambert", i, nm, sizeof nm);
-        glUniform1i(glGetUniformLocation(p, nm), lambert);
-        uniform_at(p, "u_light_shadow", i, nm, sizeof nm);
-        glUniform1i(glGetUniformLocation(p, nm), L->shadow_depth_tex != 0);
-        uniform_at(p, "u_shadow_vp", i, nm, sizeof nm);
-        glUniformMatrix4fv(glGetUniformLocation(p, nm), 1, GL_FALSE, L->shadow_view_proj.m);
+        type_of[i] = type;
+        memcpy(pos[i], (float[3]){L->position.x, L->position.y, L->position.z}, sizeof pos[i]);
+        memcpy(dir[i], (float[3]){L->direction.x, L->direction.y, L->direction.z}, sizeof dir[i]);
+        memcpy(radiant[i], (float[3]){L->radiant.x, L->radiant.y, L->radiant.z}, sizeof radiant[i]);
+        spot[i][0] = scale, spot[i][1] = -co * scale;
+        lambert_of[i] = lambert;
+        shadow_of[i] = L->shadow_depth_tex != 0;
+        memcpy(vp[i], L->shadow_view_proj.m, sizeof vp[i]);
+    }
+    if (n > 0) {
+        glUniform1iv(u->u_light_type, n, type_of);
+        glUniform3fv(u->u_light_pos, n, &pos[0][0]);
+        glUniform3fv(u->u_light_dir, n, &dir[0][0]);
+        glUniform3fv(u->u_light_radiant, n, &radiant[0][0]);
+        glUniform2fv(u->u_light_spot, n, &spot[0][0]);
+        glUniform1iv(u->u_light_lambert, n, lambert_of);
+        glUniform1iv(u->u_light_shadow, n, shadow_of);
+        glUniformMatrix4fv(u->u_shadow_vp, n, GL_FALSE, &vp[0][0]);
     }
     glDispatchCompute((GLuint)groups(v->res, 4), (GLuint)groups(v->res, 4), (GLuint)groups(v->res, 4));
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
@@ -139,22 +258,23 @@ int vct_pass_mips(gk_vct *v, gk_err *e)
     size_t used = strlen(defs);
     snprintf(defs + used, sizeof defs - used, "#define DIRECTIONAL_INJECTION %d\n", v->opt.directional_injection ? 1 : 0);
     GLuint p = gk_program_get_compute(v->ctx.programs, "vct/mip_aniso.comp", defs, e);
-    if (!p)
+    const mip_uniforms *u = p ? gk_program_uniforms(v->ctx.programs, p, GK_FIELDS(mip_fields), sizeof *u, e) : NULL;
+    if (!u)
         return -1;
     glUseProgram(p);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, v->scratch_ssbo);
-    glUniform1i(glGetUniformLocation(p, "u_res"), v->res);
+    glUniform1i(u->u_res, v->res);
     for (int l = 1; l < v->levels; l++) {
         int dst_res = v->res >> l;
-        glUniform1i(glGetUniformLocation(p, "u_dst_res"), dst_res);
-        glUniform1i(glGetUniformLocation(p, "u_from_level0"), l == 1);
+        glUniform1i(u->u_dst_res, dst_res);
+        glUniform1i(u->u_from_level0, l == 1);
         for (int d = 0; d < 6; d++) {
             if (l == 1)
                 glBindImageTexture(0, v->vox0, 0, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA16F);
             else
                 glBindImageTexture(0, v->voxd[d], l - 2, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA16F);
             glBindImageTexture(1, v->voxd[d], l - 1, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-            glUniform1i(glGetUniformLocation(p, "u_dir"), d);
+            glUniform1i(u->u_dir, d);
             glDispatchCompute((GLuint)groups(dst_res, 4), (GLuint)groups(dst_res, 4), (GLuint)groups(dst_res, 4));
         }
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
@@ -207,13 +327,28 @@ int vct_cone_set(int n, bool faithful, float dir[][3], float aperture[], float w
     return k;
 }
 
-static void bind_tex(GLuint prog, const char *name, int unit, GLenum target, GLuint tex, GLuint sampler)
+static void bind_tex(GLint loc, int unit, GLenum target, GLuint tex, GLuint sampler)
 {
     glActiveTexture(GL_TEXTURE0 + (GLenum)unit);
     glBindTexture(target, tex);
     glBindSampler((GLuint)unit, sampler);
-    glUniform1i(glGetUniformLocation(prog, name), unit);
+    glUniform1i(loc, unit);
 }
+
+/* The G-buffer on units first.. first + 3 (gk_gbuffer_bind), a test's position and material
+   textures on first + 4, first + 5 (the depth texture stands in when there are none). */
+static void bind_gbuffer(const vct_gbuffer_uniforms *u, const gk_gi_frame *f, int first, GLuint sampler)
+{
+    gk_gbuffer_view gb = gk_gi_gbuffer(f);
+    gk_gbuffer_bind(&gb, &u->gb, first, sampler);
+    bind_tex(u->u_gb_position, first + GK_GBUFFER_UNITS, GL_TEXTURE_2D,
+             f->gbuf_position ? f->gbuf_position : f->gbuf_depth, sampler);
+    bind_tex(u->u_gb_material, first + GK_GBUFFER_UNITS + 1, GL_TEXTURE_2D,
+             f->gbuf_material ? f->gbuf_material : f->gbuf_depth, sampler);
+    glUniform1i(u->u_has_position, f->gbuf_position != 0);
+    glUniform1i(u->u_has_material, f->gbuf_material != 0);
+}
+#define VCT_GBUFFER_UNITS (GK_GBUFFER_UNITS + 2)
 
 static void unbind_units(int n)
 {
@@ -235,47 +370,34 @@ int vct_pass_trace(gk_vct *v, const gk_gi_frame *f, const vct_budget *b, gk_err 
              v->cur.aniso ? 0 : 1, v->opt.axis_weight_sq ? 1 : 0, v->opt.opacity_correction ? 1 : 0,
              v->specular ? 1 : 0, v->opt.clip_cones ? 1 : 0);
     GLuint p = gk_program_get_compute(v->ctx.programs, "vct/trace.comp", defs, e);
-    if (!p)
+    const trace_uniforms *u = p ? gk_program_uniforms(v->ctx.programs, p, GK_FIELDS(trace_fields), sizeof *u, e) : NULL;
+    if (!u)
         return -1;
     glUseProgram(p);
-    bind_tex(p, "u_vox0", 0, GL_TEXTURE_3D, v->vox0, 0);
+    bind_tex(u->u_vox0, 0, GL_TEXTURE_3D, v->vox0, 0);
     if (v->cur.aniso)
-        for (int d = 0; d < 6; d++) {
-            char nm[24];
-            snprintf(nm, sizeof nm, "u_voxd%d", d);
-            bind_tex(p, nm, 1 + d, GL_TEXTURE_3D, v->voxd[d], 0);
-        }
-    GLuint pos_tex = f->gbuf_position ? f->gbuf_position : f->gbuf_depth;
-    bind_tex(p, "u_gbuf_depth", 7, GL_TEXTURE_2D, f->gbuf_depth, v->nearest_sampler);
-    bind_tex(p, "u_gbuf_normal", 8, GL_TEXTURE_2D, f->gbuf_normal, v->nearest_sampler);
-    bind_tex(p, "u_gbuf_position", 9, GL_TEXTURE_2D, pos_tex, v->nearest_sampler);
-    bind_tex(p, "u_gbuf_material", 10, GL_TEXTURE_2D, f->gbuf_material ? f->gbuf_material : f->gbuf_depth,
-             v->nearest_sampler);
-    bind_tex(p, "u_gbuf_albedo", 11, GL_TEXTURE_2D, f->gbuf_albedo, v->nearest_sampler);
-    glUniform1i(glGetUniformLocation(p, "u_has_position"), f->gbuf_position != 0);
-    glUniform1i(glGetUniformLocation(p, "u_has_material"), f->gbuf_material != 0);
-    glUniformMatrix4fv(glGetUniformLocation(p, "u_inv_view_proj"), 1, GL_FALSE, f->inv_view_proj.m);
-    glUniform3f(glGetUniformLocation(p, "u_eye"), f->eye.x, f->eye.y, f->eye.z);
-    glUniform2i(glGetUniformLocation(p, "u_full_size"), f->width, f->height);
-    glUniform2i(glGetUniformLocation(p, "u_low_size"), v->trace_w, v->trace_h);
+        for (int d = 0; d < 6; d++)
+            bind_tex(u->u_voxd[d], 1 + d, GL_TEXTURE_3D, v->voxd[d], 0);
+    bind_gbuffer(&u->g, f, 7, v->nearest_sampler);
+    glUniform2i(u->u_low_size, v->trace_w, v->trace_h);
     int block = (int)lroundf(1.0f / b->trace_scale);
-    glUniform1i(glGetUniformLocation(p, "u_block"), block < 1 ? 1 : block);
-    glUniform1i(glGetUniformLocation(p, "u_res"), v->res);
-    glUniform1f(glGetUniformLocation(p, "u_res_f"), (float)v->res);
-    glUniform3f(glGetUniformLocation(p, "u_grid_origin"), v->origin[0], v->origin[1], v->origin[2]);
-    glUniform1f(glGetUniformLocation(p, "u_grid_size"), v->size);
-    glUniform1f(glGetUniformLocation(p, "u_step_mul"), b->step);
-    glUniform1f(glGetUniformLocation(p, "u_ao_lambda"), v->opt.ao_lambda);
-    glUniform1f(glGetUniformLocation(p, "u_max_dist"), v->opt.max_dist);
-    glUniform1f(glGetUniformLocation(p, "u_apex_offset"), v->opt.apex_offset);
-    glUniform1f(glGetUniformLocation(p, "u_footprint_clamp"), v->opt.footprint_clamp);
-    glUniform1f(glGetUniformLocation(p, "u_spec_aperture"), v->opt.spec_aperture);
+    glUniform1i(u->u_block, block < 1 ? 1 : block);
+    glUniform1i(u->u_res, v->res);
+    glUniform1f(u->u_res_f, (float)v->res);
+    glUniform3f(u->u_grid_origin, v->origin[0], v->origin[1], v->origin[2]);
+    glUniform1f(u->u_grid_size, v->size);
+    glUniform1f(u->u_step_mul, b->step);
+    glUniform1f(u->u_ao_lambda, v->opt.ao_lambda);
+    glUniform1f(u->u_max_dist, v->opt.max_dist);
+    glUniform1f(u->u_apex_offset, v->opt.apex_offset);
+    glUniform1f(u->u_footprint_clamp, v->opt.footprint_clamp);
+    glUniform1f(u->u_spec_aperture, v->opt.spec_aperture);
     float dir[VCT_MAX_CONES][3], ap[VCT_MAX_CONES], w[VCT_MAX_CONES];
     int n = vct_cone_set(b->cones, v->opt.faithful_weights, dir, ap, w);
-    glUniform1i(glGetUniformLocation(p, "u_n_cones"), n);
-    glUniform3fv(glGetUniformLocation(p, "u_cone_dir"), n, &dir[0][0]);
-    glUniform1fv(glGetUniformLocation(p, "u_cone_aperture"), n, ap);
-    glUniform1fv(glGetUniformLocation(p, "u_cone_weight"), n, w);
+    glUniform1i(u->u_n_cones, n);
+    glUniform3fv(u->u_cone_dir, n, &dir[0][0]);
+    glUniform1fv(u->u_cone_aperture, n, ap);
+    glUniform1fv(u->u_cone_weight, n, w);
     static const GLuint zero = 0;
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, v->counter_ssbo);
     glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof zero, &zero);
@@ -284,7 +406,7 @@ int vct_pass_trace(gk_vct *v, const gk_gi_frame *f, const vct_budget *b, gk_err 
     glBindImageTexture(1, v->trace_spec, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glDispatchCompute((GLuint)groups(v->trace_w, 8), (GLuint)groups(v->trace_h, 8), 1);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-    unbind_units(12);
+    unbind_units(7 + VCT_GBUFFER_UNITS);
     v->stats.trace_runs++;
     return 0;
 }
@@ -293,7 +415,8 @@ int vct_pass_compose(gk_vct *v, const gk_gi_frame *f, gk_err *e)
 {
     GLuint p = gk_program_get(v->ctx.programs, "vct/compose.vert", "vct/compose.frag",
                               v->opt.faithful_weights ? "#define FAITHFUL_COMPOSE 1\n" : "#define FAITHFUL_COMPOSE 0\n", e);
-    if (!p)
+    const compose_uniforms *u = p ? gk_program_uniforms(v->ctx.programs, p, GK_FIELDS(compose_fields), sizeof *u, e) : NULL;
+    if (!u)
         return -1;
     /* save the state this pass changes */
     GLint fbo = 0, vp[4], prog = 0, vao = 0, src_rgb, dst_rgb, src_a, dst_a;
@@ -318,28 +441,18 @@ int vct_pass_compose(gk_vct *v, const gk_gi_frame *f, gk_err *e)
     /* hdr' = rgb + hdr * a (see compose.frag); alpha channel of the HDR image left as it was */
     glBlendFuncSeparate(GL_ONE, GL_SRC_ALPHA, GL_ZERO, GL_ONE);
     glUseProgram(p);
-    bind_tex(p, "u_diffuse_lo", 0, GL_TEXTURE_2D, v->trace_diffuse, v->nearest_sampler);
-    bind_tex(p, "u_spec_lo", 1, GL_TEXTURE_2D, v->trace_spec, v->nearest_sampler);
-    bind_tex(p, "u_gbuf_depth", 2, GL_TEXTURE_2D, f->gbuf_depth, v->nearest_sampler);
-    bind_tex(p, "u_gbuf_normal", 3, GL_TEXTURE_2D, f->gbuf_normal, v->nearest_sampler);
-    bind_tex(p, "u_gbuf_position", 4, GL_TEXTURE_2D, f->gbuf_position ? f->gbuf_position : f->gbuf_depth,
-             v->nearest_sampler);
-    bind_tex(p, "u_gbuf_albedo", 5, GL_TEXTURE_2D, f->gbuf_albedo, v->nearest_sampler);
-    bind_tex(p, "u_gbuf_material", 6, GL_TEXTURE_2D, f->gbuf_material ? f->gbuf_material : f->gbuf_depth,
-             v->nearest_sampler);
-    glUniform1i(glGetUniformLocation(p, "u_has_position"), f->gbuf_position != 0);
-    glUniform1i(glGetUniformLocation(p, "u_has_material"), f->gbuf_material != 0);
-    glUniformMatrix4fv(glGetUniformLocation(p, "u_inv_view_proj"), 1, GL_FALSE, f->inv_view_proj.m);
-    glUniform2i(glGetUniformLocation(p, "u_full_size"), f->width, f->height);
-    glUniform2i(glGetUniformLocation(p, "u_low_size"), v->trace_w, v->trace_h);
+    bind_tex(u->u_diffuse_lo, 0, GL_TEXTURE_2D, v->trace_diffuse, v->nearest_sampler);
+    bind_tex(u->u_spec_lo, 1, GL_TEXTURE_2D, v->trace_spec, v->nearest_sampler);
+    bind_gbuffer(&u->g, f, 2, v->nearest_sampler);
+    glUniform2i(u->u_low_size, v->trace_w, v->trace_h);
     int block = (int)lroundf(1.0f / v->cur.trace_scale);
-    glUniform1i(glGetUniformLocation(p, "u_block"), block < 1 ? 1 : block);
-    glUniform1f(glGetUniformLocation(p, "u_voxel_world"), v->voxel);
-    glUniform1f(glGetUniformLocation(p, "u_spec_enabled"), v->specular ? 1.0f : 0.0f);
+    glUniform1i(u->u_block, block < 1 ? 1 : block);
+    glUniform1f(u->u_voxel_world, v->voxel);
+    glUniform1f(u->u_spec_enabled, v->specular ? 1.0f : 0.0f);
     glBindVertexArray(v->vao);
     glDrawArrays(GL_TRIANGLES, 0, 3);
 
-    unbind_units(7);
+    unbind_units(2 + VCT_GBUFFER_UNITS);
     glBindVertexArray((GLuint)vao);
     glUseProgram((GLuint)prog);
     glBlendFuncSeparate((GLenum)src_rgb, (GLenum)dst_rgb, (GLenum)src_a, (GLenum)dst_a);

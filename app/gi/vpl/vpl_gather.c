@@ -59,26 +59,68 @@ static int ensure_ind(vpl_state *s, int w, int h, gk_err *e)
     return 0;
 }
 
-void vpl_bind_tex(int unit, GLenum target, GLuint tex, GLuint prog, const char *name)
+void vpl_bind_tex(int unit, GLenum target, GLuint tex, GLint loc)
 {
     glActiveTexture(GL_TEXTURE0 + unit);
     glBindTexture(target, tex);
-    gk_uniform_1i(prog, name, unit);
+    glUniform1i(loc, unit);
 }
 
-static void set_2i(GLuint prog, const char *name, int x, int y)
+static const gk_uniform_field gather_fields[] = {
+    GK_GBUFFER_FIELDS(vpl_gather_uniforms, gb),
+    GK_UNIFORM(vpl_gather_uniforms, u_gb_position),
+    GK_UNIFORM(vpl_gather_uniforms, u_has_position),
+    GK_UNIFORM(vpl_gather_uniforms, u_ind_size),
+    GK_UNIFORM(vpl_gather_uniforms, u_vpl),
+    GK_UNIFORM(vpl_gather_uniforms, u_val),
+    GK_UNIFORM(vpl_gather_uniforms, u_n),
+    GK_UNIFORM(vpl_gather_uniforms, u_block),
+    GK_UNIFORM(vpl_gather_uniforms, u_dmin2),
+    GK_UNIFORM(vpl_gather_uniforms, u_origin),
+    GK_UNIFORM(vpl_gather_uniforms, u_out_max),
+    GK_UNIFORM(vpl_gather_uniforms, u_bcos),
+    GK_UNIFORM(vpl_gather_uniforms, u_bsin),
+    GK_UNIFORM(vpl_gather_uniforms, u_bzcos),
+    GK_UNIFORM(vpl_gather_uniforms, u_bzsin),
+    GK_UNIFORM(vpl_gather_uniforms, u_bz),
+    GK_UNIFORM(vpl_gather_uniforms, u_bmom),
+    GK_UNIFORM_AS(vpl_gather_uniforms, u_mr_t[0], "u_mr_t0"),
+    GK_UNIFORM_AS(vpl_gather_uniforms, u_mr_t[1], "u_mr_t1"),
+    GK_UNIFORM_AS(vpl_gather_uniforms, u_mr_t[2], "u_mr_t2"),
+    GK_UNIFORM_AS(vpl_gather_uniforms, u_mr_t[3], "u_mr_t3"),
+    GK_UNIFORM_AS(vpl_gather_uniforms, u_mr_p[0], "u_mr_p0"),
+    GK_UNIFORM_AS(vpl_gather_uniforms, u_mr_p[1], "u_mr_p1"),
+    GK_UNIFORM_AS(vpl_gather_uniforms, u_mr_p[2], "u_mr_p2"),
+    GK_UNIFORM(vpl_gather_uniforms, u_mr_level),
+    GK_UNIFORM(vpl_gather_uniforms, u_mr_top),
+    GK_UNIFORM(vpl_gather_uniforms, u_tau_z),
+    GK_UNIFORM(vpl_gather_uniforms, u_tau_n),
+};
+
+const vpl_gather_uniforms *vpl_gather_uniforms_of(vpl_state *s, GLuint prog, gk_err *e)
 {
-    GLint loc = glGetUniformLocation(prog, name);
-    if (loc >= 0)
-        glUniform2i(loc, x, y);
+    return gk_program_uniforms(s->ctx.programs, prog, GK_FIELDS(gather_fields), sizeof(vpl_gather_uniforms), e);
 }
 
-static void set_1i(GLuint prog, const char *name, int x)
-{
-    GLint loc = glGetUniformLocation(prog, name);
-    if (loc >= 0)
-        glUniform1i(loc, x);
-}
+/* vpl/blur.frag */
+typedef struct blur_uniforms {
+    GLint u_ind, u_pos, u_nrm, u_dir, u_radius, u_sigma, u_alpha, u_hist, u_fade;
+} blur_uniforms;
+static const gk_uniform_field blur_fields[] = {
+    GK_UNIFORM(blur_uniforms, u_ind),    GK_UNIFORM(blur_uniforms, u_pos),   GK_UNIFORM(blur_uniforms, u_nrm),
+    GK_UNIFORM(blur_uniforms, u_dir),    GK_UNIFORM(blur_uniforms, u_radius), GK_UNIFORM(blur_uniforms, u_sigma),
+    GK_UNIFORM(blur_uniforms, u_alpha),  GK_UNIFORM(blur_uniforms, u_hist),  GK_UNIFORM(blur_uniforms, u_fade),
+};
+
+/* vpl/compose.frag */
+typedef struct compose_uniforms {
+    gk_gbuffer_uniforms gb;
+    GLint u_ind, u_pos, u_nrm, u_sigma, u_origin;
+} compose_uniforms;
+static const gk_uniform_field compose_fields[] = {
+    GK_GBUFFER_FIELDS(compose_uniforms, gb), GK_UNIFORM(compose_uniforms, u_ind),   GK_UNIFORM(compose_uniforms, u_pos),
+    GK_UNIFORM(compose_uniforms, u_nrm),     GK_UNIFORM(compose_uniforms, u_sigma), GK_UNIFORM(compose_uniforms, u_origin),
+};
 
 /* Mean over pixels of gathered and removed luminance -> stats.clamp_removed (tests only). */
 static void measure(vpl_state *s)
@@ -113,46 +155,45 @@ static int interleaved(vpl_state *s, const gk_gi_frame *f, gk_err *e)
 {
     int iw = s->iw, ih = s->ih;
     GLuint g = gk_program_get(s->ctx.programs, "common/fullscreen.vert", "vpl/gather.frag", vpl_vis_define(s->vis), e);
-    if (!g)
+    const vpl_gather_uniforms *u = g ? vpl_gather_uniforms_of(s, g, e) : NULL;
+    if (!u)
         return -1;
     glBindFramebuffer(GL_FRAMEBUFFER, s->ind_fbo);
     const GLenum b3[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
     glDrawBuffers(3, b3);
     glViewport(0, 0, iw, ih);
     glUseProgram(g);
-    vpl_bind_tex(0, GL_TEXTURE_2D, f->gbuf_depth, g, "u_gb_depth");
-    vpl_bind_tex(1, GL_TEXTURE_2D, f->gbuf_normal, g, "u_gb_normal");
-    vpl_bind_tex(2, GL_TEXTURE_2D, f->gbuf_position ? f->gbuf_position : f->gbuf_normal, g, "u_gb_position");
-    vpl_bind_visibility(s, g);
-    set_1i(g, "u_has_position", f->gbuf_position != 0);
-    gk_uniform_mat4(g, "u_inv_viewproj", f->inv_view_proj.m);
-    set_2i(g, "u_full_size", f->width, f->height);
-    set_2i(g, "u_ind_size", iw, ih);
-    set_1i(g, "u_n", s->n);
-    set_1i(g, "u_block", s->block);
-    gk_uniform_1f(g, "u_dmin2", s->clamp ? s->st.dmin * s->st.dmin : 0.0f);
-    gk_uniform_3f(g, "u_origin", s->origin[0], s->origin[1], s->origin[2]);
-    gk_uniform_1f(g, "u_out_max", vpl_target_max(s));
+    gk_gbuffer_view gb = gk_gi_gbuffer(f);
+    gk_gbuffer_bind(&gb, &u->gb, VPL_GATHER_GBUFFER_UNIT, 0);
+    vpl_bind_tex(2, GL_TEXTURE_2D, f->gbuf_position ? f->gbuf_position : f->gbuf_normal, u->u_gb_position);
+    vpl_bind_visibility(s, u);
+    glUniform1i(u->u_has_position, f->gbuf_position != 0);
+    glUniform2i(u->u_ind_size, iw, ih);
+    glUniform1i(u->u_n, s->n);
+    glUniform1i(u->u_block, s->block);
+    glUniform1f(u->u_dmin2, s->clamp ? s->st.dmin * s->st.dmin : 0.0f);
+    glUniform3f(u->u_origin, s->origin[0], s->origin[1], s->origin[2]);
+    glUniform1f(u->u_out_max, vpl_target_max(s));
     glDrawArrays(GL_TRIANGLES, 0, 3);
     if (s->dbg.measure)
         measure(s);
     return 0;
 }
 
-void vpl_bind_visibility(vpl_state *s, GLuint g)
+void vpl_bind_visibility(vpl_state *s, const vpl_gather_uniforms *u)
 {
-    vpl_bind_tex(3, GL_TEXTURE_2D, s->vpl_tex, g, "u_vpl");
-    vpl_bind_tex(4, GL_TEXTURE_2D, s->val_tex, g, "u_val");
+    vpl_bind_tex(3, GL_TEXTURE_2D, s->vpl_tex, u->u_vpl);
+    vpl_bind_tex(4, GL_TEXTURE_2D, s->val_tex, u->u_val);
     if (s->vis == GK_VPL_VIS_CSSM) {
-        vpl_bind_tex(5, GL_TEXTURE_2D_ARRAY, s->bcos, g, "u_bcos");
-        vpl_bind_tex(6, GL_TEXTURE_2D_ARRAY, s->bsin, g, "u_bsin");
-        vpl_bind_tex(7, GL_TEXTURE_2D_ARRAY, s->bzcos, g, "u_bzcos");
-        vpl_bind_tex(8, GL_TEXTURE_2D_ARRAY, s->bzsin, g, "u_bzsin");
-        vpl_bind_tex(9, GL_TEXTURE_2D_ARRAY, s->z_arr, g, "u_bz");
+        vpl_bind_tex(5, GL_TEXTURE_2D_ARRAY, s->bcos, u->u_bcos);
+        vpl_bind_tex(6, GL_TEXTURE_2D_ARRAY, s->bsin, u->u_bsin);
+        vpl_bind_tex(7, GL_TEXTURE_2D_ARRAY, s->bzcos, u->u_bzcos);
+        vpl_bind_tex(8, GL_TEXTURE_2D_ARRAY, s->bzsin, u->u_bzsin);
+        vpl_bind_tex(9, GL_TEXTURE_2D_ARRAY, s->z_arr, u->u_bz);
     } else if (s->vis == GK_VPL_VIS_VSM) {
-        vpl_bind_tex(5, GL_TEXTURE_2D_ARRAY, s->bmom, g, "u_bmom");
+        vpl_bind_tex(5, GL_TEXTURE_2D_ARRAY, s->bmom, u->u_bmom);
     } else if (s->vis == GK_VPL_VIS_EXACT) {
-        vpl_bind_tex(9, GL_TEXTURE_2D_ARRAY, s->z_arr, g, "u_bz");
+        vpl_bind_tex(9, GL_TEXTURE_2D_ARRAY, s->z_arr, u->u_bz);
     }
 }
 
@@ -173,29 +214,31 @@ int vpl_gather(vpl_state *s, const gk_gi_frame *f, float fade, gk_err *e)
 
     /* Geometry-aware blur, horizontal into blur_tex, vertical into out_tex[cur]. */
     GLuint b = gk_program_get(s->ctx.programs, "common/fullscreen.vert", "vpl/blur.frag", NULL, e);
-    if (!b)
+    const blur_uniforms *ub = b ? gk_program_uniforms(s->ctx.programs, b, GK_FIELDS(blur_fields), sizeof *ub, e) : NULL;
+    if (!ub)
         return -1;
     glUseProgram(b);
     const GLenum b1[1] = {GL_COLOR_ATTACHMENT0};
-    vpl_bind_tex(1, GL_TEXTURE_2D, s->pos_tex, b, "u_pos");
-    vpl_bind_tex(2, GL_TEXTURE_2D, s->nrm_tex, b, "u_nrm");
-    set_1i(b, "u_radius", s->blur_radius);
-    gk_uniform_1f(b, "u_sigma", 0.1f * s->diam);  /* σ = 10% of the scene extent (§6.5) */
-    gk_uniform_1f(b, "u_alpha", 0.8f);            /* α = 0.8 */
+    vpl_bind_tex(1, GL_TEXTURE_2D, s->pos_tex, ub->u_pos);
+    vpl_bind_tex(2, GL_TEXTURE_2D, s->nrm_tex, ub->u_nrm);
+    glUniform1i(ub->u_radius, s->blur_radius);
+    glUniform1f(ub->u_sigma, 0.1f * s->diam);  /* σ = 10% of the scene extent (§6.5) */
+    glUniform1f(ub->u_alpha, 0.8f);            /* α = 0.8 */
     int cur = s->cur;
     for (int pass = 0; pass < 2; pass++) {
         glBindFramebuffer(GL_FRAMEBUFFER, pass == 0 ? s->blur_fbo : s->out_fbo[cur]);
         glDrawBuffers(1, b1);
-        vpl_bind_tex(0, GL_TEXTURE_2D, pass == 0 ? s->ind_tex : s->blur_tex, b, "u_ind");
-        set_2i(b, "u_dir", pass == 0, pass == 1);
-        vpl_bind_tex(3, GL_TEXTURE_2D, s->out_tex[1 - cur], b, "u_hist");
-        gk_uniform_1f(b, "u_fade", pass == 1 && s->have_hist ? fade : 1.0f);
+        vpl_bind_tex(0, GL_TEXTURE_2D, pass == 0 ? s->ind_tex : s->blur_tex, ub->u_ind);
+        glUniform2i(ub->u_dir, pass == 0, pass == 1);
+        vpl_bind_tex(3, GL_TEXTURE_2D, s->out_tex[1 - cur], ub->u_hist);
+        glUniform1f(ub->u_fade, pass == 1 && s->have_hist ? fade : 1.0f);
         glDrawArrays(GL_TRIANGLES, 0, 3);
     }
 
     /* Compose: L += ρ_d/π · E into the renderer's HDR image. */
     GLuint c = gk_program_get(s->ctx.programs, "common/fullscreen.vert", "vpl/compose.frag", NULL, e);
-    if (!c)
+    const compose_uniforms *uc = c ? gk_program_uniforms(s->ctx.programs, c, GK_FIELDS(compose_fields), sizeof *uc, e) : NULL;
+    if (!uc)
         return -1;
     glBindFramebuffer(GL_FRAMEBUFFER, f->hdr_fbo);
     glDrawBuffers(1, b1);
@@ -204,16 +247,13 @@ int vpl_gather(vpl_state *s, const gk_gi_frame *f, float fade, gk_err *e)
     glBlendEquation(GL_FUNC_ADD);
     glBlendFunc(GL_ONE, GL_ONE);
     glUseProgram(c);
-    vpl_bind_tex(0, GL_TEXTURE_2D, s->out_tex[cur], c, "u_ind");
-    vpl_bind_tex(2, GL_TEXTURE_2D, s->pos_tex, c, "u_pos");
-    vpl_bind_tex(3, GL_TEXTURE_2D, s->nrm_tex, c, "u_nrm");
-    vpl_bind_tex(4, GL_TEXTURE_2D, f->gbuf_depth, c, "u_gb_depth");
-    vpl_bind_tex(5, GL_TEXTURE_2D, f->gbuf_normal, c, "u_gb_normal");
-    vpl_bind_tex(6, GL_TEXTURE_2D, f->gbuf_albedo, c, "u_gb_albedo");
-    gk_uniform_mat4(c, "u_inv_viewproj", f->inv_view_proj.m);
-    set_2i(c, "u_full_size", f->width, f->height);
-    gk_uniform_1f(c, "u_sigma", 0.05f * s->diam);
-    gk_uniform_3f(c, "u_origin", s->origin[0], s->origin[1], s->origin[2]);
+    vpl_bind_tex(0, GL_TEXTURE_2D, s->out_tex[cur], uc->u_ind);
+    vpl_bind_tex(2, GL_TEXTURE_2D, s->pos_tex, uc->u_pos);
+    vpl_bind_tex(3, GL_TEXTURE_2D, s->nrm_tex, uc->u_nrm);
+    gk_gbuffer_view gb = gk_gi_gbuffer(f);
+    gk_gbuffer_bind(&gb, &uc->gb, 4, 0);
+    glUniform1f(uc->u_sigma, 0.05f * s->diam);
+    glUniform3f(uc->u_origin, s->origin[0], s->origin[1], s->origin[2]);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glDisable(GL_BLEND);
     glBindVertexArray(0);

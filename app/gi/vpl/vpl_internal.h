@@ -77,9 +77,20 @@ int vpl_gather_multires(vpl_state *s, const gk_gi_frame *f, gk_err *e);
 void vpl_free_multires(vpl_state *s);
 /* Largest value an indirect target stores (fp16 saturates at 65504; fp32: no cap). */
 float vpl_target_max(const vpl_state *s);
+/* vpl/gather.frag in every variant (visibility defines, dense and MULTIRES): its uniform locations,
+   resolved once per program (vpl_gather.c). */
+/* Units of the dense gather: G-buffer 10..13, position 2, visibility 3..9. */
+#define VPL_GATHER_GBUFFER_UNIT 10
+typedef struct vpl_gather_uniforms {
+    gk_gbuffer_uniforms gb;
+    GLint u_gb_position, u_has_position, u_ind_size, u_vpl, u_val, u_n, u_block, u_dmin2, u_origin, u_out_max;
+    GLint u_bcos, u_bsin, u_bzcos, u_bzsin, u_bz, u_bmom;
+    GLint u_mr_t[4], u_mr_p[3], u_mr_level, u_mr_top, u_tau_z, u_tau_n;
+} vpl_gather_uniforms;
+const vpl_gather_uniforms *vpl_gather_uniforms_of(vpl_state *s, GLuint prog, gk_err *e);
 /* Binding helpers shared by the gather files. */
-void vpl_bind_tex(int unit, GLenum target, GLuint tex, GLuint prog, const char *name);
-void vpl_bind_visibility(vpl_state *s, GLuint prog);
+void vpl_bind_tex(int unit, GLenum target, GLuint tex, GLint loc);
+void vpl_bind_visibility(vpl_state *s, const vpl_gather_uniforms *u);
 const char *vpl_vis_define(int vis);
 
 /* Emitter geometry shared by the map pass and the gather (centre offset, near radius, far). */

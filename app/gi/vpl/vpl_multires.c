@@ -76,25 +76,36 @@ static int ensure_levels(vpl_state *s, gk_err *e)
     return 0;
 }
 
-static void set_i(GLuint p, const char *n, int v)
-{
-    GLint loc = glGetUniformLocation(p, n);
-    if (loc >= 0)
-        glUniform1i(loc, v);
-}
+/* vpl/mr_build.frag, LEVEL0 and coarser levels */
+typedef struct mr_build_uniforms {
+    gk_gbuffer_uniforms gb;
+    GLint u_ind_size, u_origin, u_t[4];
+} mr_build_uniforms;
+static const gk_uniform_field mr_build_fields[] = {
+    GK_GBUFFER_FIELDS(mr_build_uniforms, gb),
+    GK_UNIFORM(mr_build_uniforms, u_ind_size),
+    GK_UNIFORM(mr_build_uniforms, u_origin),
+    GK_UNIFORM_AS(mr_build_uniforms, u_t[0], "u_t0"),
+    GK_UNIFORM_AS(mr_build_uniforms, u_t[1], "u_t1"),
+    GK_UNIFORM_AS(mr_build_uniforms, u_t[2], "u_t2"),
+    GK_UNIFORM_AS(mr_build_uniforms, u_t[3], "u_t3"),
+};
 
-static void set_2i(GLuint p, const char *n, int x, int y)
-{
-    GLint loc = glGetUniformLocation(p, n);
-    if (loc >= 0)
-        glUniform2i(loc, x, y);
-}
+/* vpl/mr_interp.frag */
+typedef struct mr_interp_uniforms {
+    GLint u_rendered, u_coarse, u_top;
+} mr_interp_uniforms;
+static const gk_uniform_field mr_interp_fields[] = {GK_UNIFORM(mr_interp_uniforms, u_rendered),
+                                                    GK_UNIFORM(mr_interp_uniforms, u_coarse),
+                                                    GK_UNIFORM(mr_interp_uniforms, u_top)};
 
 static int build_mips(vpl_state *s, const gk_gi_frame *f, gk_err *e)
 {
     GLuint p0 = gk_program_get(s->ctx.programs, "common/fullscreen.vert", "vpl/mr_build.frag", "#define LEVEL0 1\n", e);
     GLuint pn = gk_program_get(s->ctx.programs, "common/fullscreen.vert", "vpl/mr_build.frag", NULL, e);
-    if (!p0 || !pn)
+    const mr_build_uniforms *u0 = p0 && pn ? gk_program_uniforms(s->ctx.programs, p0, GK_FIELDS(mr_build_fields), sizeof *u0, e) : NULL;
+    const mr_build_uniforms *un = u0 ? gk_program_uniforms(s->ctx.programs, pn, GK_FIELDS(mr_build_fields), sizeof *un, e) : NULL;
+    if (!un)
         return -1;
     const GLenum b4[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3};
     for (int l = 0; l < s->mr_levels; l++) {
@@ -104,17 +115,13 @@ static int build_mips(vpl_state *s, const gk_gi_frame *f, gk_err *e)
         glViewport(0, 0, level_w(s, l), level_h(s, l));
         glUseProgram(p);
         if (l == 0) {
-            vpl_bind_tex(0, GL_TEXTURE_2D, f->gbuf_depth, p, "u_gb_depth");
-            vpl_bind_tex(1, GL_TEXTURE_2D, f->gbuf_normal, p, "u_gb_normal");
-            gk_uniform_mat4(p, "u_inv_viewproj", f->inv_view_proj.m);
-            set_2i(p, "u_full_size", f->width, f->height);
-            set_2i(p, "u_ind_size", s->iw, s->ih);
-            gk_uniform_3f(p, "u_eye", f->eye.x, f->eye.y, f->eye.z);
-            gk_uniform_3f(p, "u_origin", s->origin[0], s->origin[1], s->origin[2]);
+            gk_gbuffer_view gb = gk_gi_gbuffer(f);
+            gk_gbuffer_bind(&gb, &u0->gb, 0, 0);
+            glUniform2i(u0->u_ind_size, s->iw, s->ih);
+            glUniform3f(u0->u_origin, s->origin[0], s->origin[1], s->origin[2]);
         } else {
-            const char *names[4] = {"u_t0", "u_t1", "u_t2", "u_t3"};
             for (int k = 0; k < 4; k++)
-                vpl_bind_tex(k, GL_TEXTURE_2D, s->mr_t[l - 1][k], p, names[k]);
+                vpl_bind_tex(k, GL_TEXTURE_2D, s->mr_t[l - 1][k], un->u_t[k]);
         }
         glDrawArrays(GL_TRIANGLES, 0, 3);
     }
@@ -147,32 +154,32 @@ int vpl_gather_multires(vpl_state *s, const gk_gi_frame *f, gk_err *e)
     snprintf(defs, sizeof defs, "%s#define MULTIRES 1\n", vpl_vis_define(s->vis));
     GLuint g = gk_program_get(s->ctx.programs, "common/fullscreen.vert", "vpl/gather.frag", defs, e);
     GLuint ip = gk_program_get(s->ctx.programs, "common/fullscreen.vert", "vpl/mr_interp.frag", NULL, e);
-    if (!g || !ip)
+    const vpl_gather_uniforms *u = g && ip ? vpl_gather_uniforms_of(s, g, e) : NULL;
+    const mr_interp_uniforms *ui = u ? gk_program_uniforms(s->ctx.programs, ip, GK_FIELDS(mr_interp_fields), sizeof *ui, e) : NULL;
+    if (!ui)
         return -1;
     const GLenum b1[1] = {GL_COLOR_ATTACHMENT0};
     const GLfloat zero[4] = {0, 0, 0, 0};
     glUseProgram(g);
-    vpl_bind_visibility(s, g);
-    set_i(g, "u_n", s->n);
-    gk_uniform_1f(g, "u_dmin2", s->clamp ? s->st.dmin * s->st.dmin : 0.0f);
-    gk_uniform_1f(g, "u_tau_z", TAU_Z);
-    gk_uniform_1f(g, "u_tau_n", TAU_N);
-    gk_uniform_3f(g, "u_origin", s->origin[0], s->origin[1], s->origin[2]);
-    gk_uniform_1f(g, "u_out_max", vpl_target_max(s));
+    vpl_bind_visibility(s, u);
+    glUniform1i(u->u_n, s->n);
+    glUniform1f(u->u_dmin2, s->clamp ? s->st.dmin * s->st.dmin : 0.0f);
+    glUniform1f(u->u_tau_z, TAU_Z);
+    glUniform1f(u->u_tau_n, TAU_N);
+    glUniform3f(u->u_origin, s->origin[0], s->origin[1], s->origin[2]);
+    glUniform1f(u->u_out_max, vpl_target_max(s));
     for (int l = 0; l < s->mr_levels; l++) {
         glBindFramebuffer(GL_FRAMEBUFFER, s->mr_rend_fbo[l]);
         glDrawBuffers(1, b1);
         glViewport(0, 0, level_w(s, l), level_h(s, l));
         glClearBufferfv(GL_COLOR, 0, zero);
-        const char *cur[4] = {"u_mr_t0", "u_mr_t1", "u_mr_t2", "u_mr_t3"};
         for (int k = 0; k < 4; k++)
-            vpl_bind_tex(10 + k, GL_TEXTURE_2D, s->mr_t[l][k], g, cur[k]);
+            vpl_bind_tex(10 + k, GL_TEXTURE_2D, s->mr_t[l][k], u->u_mr_t[k]);
         bool top = l == s->mr_levels - 1;
-        const char *par[3] = {"u_mr_p0", "u_mr_p1", "u_mr_p2"};
         for (int k = 0; k < 3; k++)
-            vpl_bind_tex(k, GL_TEXTURE_2D, s->mr_t[top ? l : l + 1][k], g, par[k]); /* G-buffer units are free */
-        set_i(g, "u_mr_level", l);
-        set_i(g, "u_mr_top", top);
+            vpl_bind_tex(k, GL_TEXTURE_2D, s->mr_t[top ? l : l + 1][k], u->u_mr_p[k]); /* G-buffer units are free */
+        glUniform1i(u->u_mr_level, l);
+        glUniform1i(u->u_mr_top, top);
         glDrawArrays(GL_TRIANGLES, 0, 3);
     }
     if (s->dbg.measure)
@@ -182,9 +189,9 @@ int vpl_gather_multires(vpl_state *s, const gk_gi_frame *f, gk_err *e)
         glBindFramebuffer(GL_FRAMEBUFFER, s->mr_sint_fbo[l]);
         glDrawBuffers(1, b1);
         glViewport(0, 0, level_w(s, l), level_h(s, l));
-        vpl_bind_tex(0, GL_TEXTURE_2D, s->mr_rend[l], ip, "u_rendered");
-        vpl_bind_tex(1, GL_TEXTURE_2D, s->mr_sint[l == s->mr_levels - 1 ? l : l + 1], ip, "u_coarse");
-        set_i(ip, "u_top", l == s->mr_levels - 1);
+        vpl_bind_tex(0, GL_TEXTURE_2D, s->mr_rend[l], ui->u_rendered);
+        vpl_bind_tex(1, GL_TEXTURE_2D, s->mr_sint[l == s->mr_levels - 1 ? l : l + 1], ui->u_coarse);
+        glUniform1i(ui->u_top, l == s->mr_levels - 1);
         glDrawArrays(GL_TRIANGLES, 0, 3);
     }
     return 0;

@@ -141,11 +141,11 @@ void vpl_proxy_free(vpl_proxy *p)
     memset(p, 0, sizeof *p);
 }
 
-void vpl_proxy_draw_all(const vpl_proxy *p, const gk_scene *s, GLuint prog)
+void vpl_proxy_draw_all(const vpl_proxy *p, const gk_scene *s, GLint u_model)
 {
     for (int i = 0; i < p->n_draws; i++) {
         const vpl_proxy_draw *d = &p->draws[i];
-        gk_uniform_mat4(prog, "u_model", s->nodes[d->node].world.m);
+        glUniformMatrix4fv(u_model, 1, GL_FALSE, s->nodes[d->node].world.m);
         glBindVertexArray(d->vao);
         glDrawArrays(GL_TRIANGLES, 0, d->vertices);
     }

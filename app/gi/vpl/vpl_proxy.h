@@ -26,7 +26,8 @@ typedef struct vpl_proxy {
 /* max_edge: world-space edge bound (m); the total is capped at max_triangles by raising the bound. */
 int vpl_proxy_build(vpl_proxy *p, const gk_scene *s, float max_edge, long max_triangles, gk_err *e);
 void vpl_proxy_free(vpl_proxy *p);
-/* Draws every proxy with the bound program, setting u_model to the node's world matrix. */
-void vpl_proxy_draw_all(const vpl_proxy *p, const gk_scene *s, GLuint prog);
+/* Draws every proxy with the bound program, setting the mat4 uniform at location u_model to the
+ * node's world matrix. */
+void vpl_proxy_draw_all(const vpl_proxy *p, const gk_scene *s, GLint u_model);
 
 #endif

@@ -121,6 +121,30 @@ static rsm_code light_code(const vpl_state *s, const gk_gi_light *L, float tan_h
     return c;
 }
 
+/* vpl/rsm.{vert,frag} (u_model and the material uniforms are gk_gi_frame.draw_scene's) */
+typedef struct rsm_uniforms {
+    GLint u_light_pos, u_light_dir, u_radiant, u_light_kind, u_cos_inner, u_cos_outer, u_face_res, u_tan_half,
+        u_origin, u_code, u_light_vp, u_face_origin;
+} rsm_uniforms;
+static const gk_uniform_field rsm_fields[] = {
+    GK_UNIFORM(rsm_uniforms, u_light_pos), GK_UNIFORM(rsm_uniforms, u_light_dir),
+    GK_UNIFORM(rsm_uniforms, u_radiant),   GK_UNIFORM(rsm_uniforms, u_light_kind),
+    GK_UNIFORM(rsm_uniforms, u_cos_inner), GK_UNIFORM(rsm_uniforms, u_cos_outer),
+    GK_UNIFORM(rsm_uniforms, u_face_res),  GK_UNIFORM(rsm_uniforms, u_tan_half),
+    GK_UNIFORM(rsm_uniforms, u_origin),    GK_UNIFORM(rsm_uniforms, u_code),
+    GK_UNIFORM(rsm_uniforms, u_light_vp),  GK_UNIFORM(rsm_uniforms, u_face_origin),
+};
+
+/* vpl/vpl_gen.frag */
+typedef struct gen_uniforms {
+    GLint u_rsm_pos, u_rsm_nrm, u_rsm_flux, u_atlas_size, u_first, u_weight, u_rotation;
+} gen_uniforms;
+static const gk_uniform_field gen_fields[] = {
+    GK_UNIFORM(gen_uniforms, u_rsm_pos),    GK_UNIFORM(gen_uniforms, u_rsm_nrm), GK_UNIFORM(gen_uniforms, u_rsm_flux),
+    GK_UNIFORM(gen_uniforms, u_atlas_size), GK_UNIFORM(gen_uniforms, u_first),   GK_UNIFORM(gen_uniforms, u_weight),
+    GK_UNIFORM(gen_uniforms, u_rotation),
+};
+
 static int render_light_rsm(vpl_state *s, const gk_gi_frame *f, const gk_gi_light *L, const gk_light *sl,
                             int first, int count, rsm_code *code, gk_err *e)
 {
@@ -134,7 +158,8 @@ static int render_light_rsm(vpl_state *s, const gk_gi_frame *f, const gk_gi_ligh
     if (ensure_rsm(s, nf * R, R, e))
         return -1;
     GLuint prog = gk_program_get(s->ctx.programs, "vpl/rsm.vert", "vpl/rsm.frag", NULL, e);
-    if (!prog)
+    const rsm_uniforms *u = prog ? gk_program_uniforms(s->ctx.programs, prog, GK_FIELDS(rsm_fields), sizeof *u, e) : NULL;
+    if (!u)
         return -1;
     glBindFramebuffer(GL_FRAMEBUFFER, s->rsm_fbo);
     const GLenum bufs[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
@@ -151,30 +176,32 @@ static int render_light_rsm(vpl_state *s, const gk_gi_frame *f, const gk_gi_ligh
     glUseProgram(prog);
     float near = 0.002f * s->diam, far = 2.5f * s->diam;
     float c_in = cosf(sl->inner_cone), c_out = cosf(sl->outer_cone);
-    gk_uniform_3f(prog, "u_light_pos", L->position.x, L->position.y, L->position.z);
+    glUniform3f(u->u_light_pos, L->position.x, L->position.y, L->position.z);
     vec3 d = v3_norm(L->direction);
-    gk_uniform_3f(prog, "u_light_dir", d.x, d.y, d.z);
-    gk_uniform_3f(prog, "u_radiant", L->radiant.x, L->radiant.y, L->radiant.z);
-    gk_uniform_1i(prog, "u_light_kind", kind);
-    gk_uniform_1f(prog, "u_cos_inner", c_in);
-    gk_uniform_1f(prog, "u_cos_outer", c_out);
-    gk_uniform_1f(prog, "u_face_res", (float)R);
-    gk_uniform_1f(prog, "u_tan_half", tan_half);
+    glUniform3f(u->u_light_dir, d.x, d.y, d.z);
+    glUniform3f(u->u_radiant, L->radiant.x, L->radiant.y, L->radiant.z);
+    glUniform1i(u->u_light_kind, kind);
+    glUniform1f(u->u_cos_inner, c_in);
+    glUniform1f(u->u_cos_outer, c_out);
+    glUniform1f(u->u_face_res, (float)R);
+    glUniform1f(u->u_tan_half, tan_half);
     *code = light_code(s, L, tan_half);
-    gk_uniform_3f(prog, "u_origin", s->origin[0], s->origin[1], s->origin[2]);
-    gk_uniform_3f(prog, "u_code", code->pos_scale, code->area_scale, code->flux_scale);
+    glUniform3f(u->u_origin, s->origin[0], s->origin[1], s->origin[2]);
+    glUniform3f(u->u_code, code->pos_scale, code->area_scale, code->flux_scale);
     for (int i = 0; i < nf; i++) {
         glViewport(i * R, 0, R, R);
         mat4 view = m4_look_at(L->position, v3_add(L->position, faces[i].dir), faces[i].up);
         mat4 proj = m4_perspective(2.0f * atanf(tan_half), 1.0f, near, far);
         mat4 vp = m4_mul(proj, view);
-        gk_uniform_mat4(prog, "u_light_vp", vp.m);
-        gk_uniform_2f(prog, "u_face_origin", (float)(i * R), 0.0f);
-        f->draw_scene(f->draw_ctx, prog);
+        glUniformMatrix4fv(u->u_light_vp, 1, GL_FALSE, vp.m);
+        glUniform2f(u->u_face_origin, (float)(i * R), 0.0f);
+        if (f->draw_scene(f->draw_ctx, prog, e) != 0)
+            return -1;
     }
     /* VPL generation over [first, first + count) of the VPL row. */
     GLuint gen = gk_program_get(s->ctx.programs, "common/fullscreen.vert", "vpl/vpl_gen.frag", NULL, e);
-    if (!gen)
+    const gen_uniforms *g = gen ? gk_program_uniforms(s->ctx.programs, gen, GK_FIELDS(gen_fields), sizeof *g, e) : NULL;
+    if (!g)
         return -1;
     glBindFramebuffer(GL_FRAMEBUFFER, s->gen_fbo);
     glDrawBuffers(3, bufs);
@@ -185,14 +212,12 @@ static int render_light_rsm(vpl_state *s, const gk_gi_frame *f, const gk_gi_ligh
         glActiveTexture(GL_TEXTURE0 + i);
         glBindTexture(GL_TEXTURE_2D, s->rsm_tex[i]);
     }
-    gk_uniform_1i(gen, "u_rsm_pos", 0);
-    gk_uniform_1i(gen, "u_rsm_nrm", 1);
-    gk_uniform_1i(gen, "u_rsm_flux", 2);
-    GLint loc = glGetUniformLocation(gen, "u_atlas_size");
-    glUniform2i(loc, s->rsm_w, s->rsm_h);
-    loc = glGetUniformLocation(gen, "u_first");
-    glUniform1i(loc, first);
-    gk_uniform_1f(gen, "u_weight", (float)(s->rsm_w * s->rsm_h) / (float)count);
+    glUniform1i(g->u_rsm_pos, 0);
+    glUniform1i(g->u_rsm_nrm, 1);
+    glUniform1i(g->u_rsm_flux, 2);
+    glUniform2i(g->u_atlas_size, s->rsm_w, s->rsm_h);
+    glUniform1i(g->u_first, first);
+    glUniform1f(g->u_weight, (float)(s->rsm_w * s->rsm_h) / (float)count);
     float rot[2] = {0, 0};
     if (s->dbg.random_pattern) { /* per-frame Cranley–Patterson rotation (F8 oracle) */
         unsigned h = s->frame_index * 2654435761u + 12345u;
@@ -200,7 +225,7 @@ static int render_light_rsm(vpl_state *s, const gk_gi_frame *f, const gk_gi_ligh
         h = h * 1103515245u + 12345u;
         rot[1] = (float)((h >> 8) & 0xffff) / 65536.0f;
     }
-    gk_uniform_2f(gen, "u_rotation", rot[0], rot[1]);
+    glUniform2f(g->u_rotation, rot[0], rot[1]);
     glBindVertexArray(s->empty_vao);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     return 0;

@@ -79,6 +79,23 @@ void vpl_emitter_params(const vpl_state *s, const gk_val *v, bool exact, float o
     *far = 1.1f * s->diam + lift; /* every receiver at d = r/far < 0.91: inside the Fourier period */
 }
 
+/* vpl/val_depth.{vert,frag} */
+typedef struct val_depth_uniforms {
+    GLint u_model, u_c, u_t, u_b, u_n, u_far, u_rnear;
+} val_depth_uniforms;
+static const gk_uniform_field val_depth_fields[] = {
+    GK_UNIFORM(val_depth_uniforms, u_model), GK_UNIFORM(val_depth_uniforms, u_c),   GK_UNIFORM(val_depth_uniforms, u_t),
+    GK_UNIFORM(val_depth_uniforms, u_b),     GK_UNIFORM(val_depth_uniforms, u_n),   GK_UNIFORM(val_depth_uniforms, u_far),
+    GK_UNIFORM(val_depth_uniforms, u_rnear),
+};
+
+/* vpl/val_basis.frag (CSSM and VSM variants) */
+typedef struct val_basis_uniforms {
+    GLint u_z, u_layer;
+} val_basis_uniforms;
+static const gk_uniform_field val_basis_fields[] = {GK_UNIFORM(val_basis_uniforms, u_z),
+                                                    GK_UNIFORM(val_basis_uniforms, u_layer)};
+
 int vpl_build_maps(vpl_state *s, const gk_gi_frame *f, const gk_val *em, int count, gk_err *e)
 {
     if (s->vis == GK_VPL_VIS_NONE || count == 0)
@@ -87,7 +104,8 @@ int vpl_build_maps(vpl_state *s, const gk_gi_frame *f, const gk_val *em, int cou
     int res = exact ? VPL_EXACT_RES : s->val_res;
     ensure_maps(s, res, exact ? s->n : GK_VPL_MAX_M, s->vis);
     GLuint prog = gk_program_get(s->ctx.programs, "vpl/val_depth.vert", "vpl/val_depth.frag", NULL, e);
-    if (!prog)
+    const val_depth_uniforms *u = prog ? gk_program_uniforms(s->ctx.programs, prog, GK_FIELDS(val_depth_fields), sizeof *u, e) : NULL;
+    if (!u)
         return -1;
     glBindFramebuffer(GL_FRAMEBUFFER, s->map_fbo);
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, s->map_depth);
@@ -109,13 +127,13 @@ int vpl_build_maps(vpl_state *s, const gk_gi_frame *f, const gk_val *em, int cou
         glClear(GL_DEPTH_BUFFER_BIT);
         float c[3], rnear, far;
         vpl_emitter_params(s, &em[k], exact, c, &rnear, &far);
-        gk_uniform_3f(prog, "u_c", c[0], c[1], c[2]);
-        gk_uniform_3f(prog, "u_t", em[k].t.x, em[k].t.y, em[k].t.z);
-        gk_uniform_3f(prog, "u_b", em[k].b.x, em[k].b.y, em[k].b.z);
-        gk_uniform_3f(prog, "u_n", em[k].normal.x, em[k].normal.y, em[k].normal.z);
-        gk_uniform_1f(prog, "u_far", far);
-        gk_uniform_1f(prog, "u_rnear", rnear);
-        vpl_proxy_draw_all(&s->proxy, f->scene, prog);
+        glUniform3f(u->u_c, c[0], c[1], c[2]);
+        glUniform3f(u->u_t, em[k].t.x, em[k].t.y, em[k].t.z);
+        glUniform3f(u->u_b, em[k].b.x, em[k].b.y, em[k].b.z);
+        glUniform3f(u->u_n, em[k].normal.x, em[k].normal.y, em[k].normal.z);
+        glUniform1f(u->u_far, far);
+        glUniform1f(u->u_rnear, rnear);
+        vpl_proxy_draw_all(&s->proxy, f->scene, u->u_model);
     }
     glDisable(GL_DEPTH_TEST);
     if (exact)
@@ -123,7 +141,8 @@ int vpl_build_maps(vpl_state *s, const gk_gi_frame *f, const gk_val *em, int cou
     bool vsm = s->vis == GK_VPL_VIS_VSM;
     GLuint bp = gk_program_get(s->ctx.programs, "common/fullscreen.vert", "vpl/val_basis.frag",
                                vsm ? "#define VIS_VSM 1\n" : NULL, e);
-    if (!bp)
+    const val_basis_uniforms *ub = bp ? gk_program_uniforms(s->ctx.programs, bp, GK_FIELDS(val_basis_fields), sizeof *ub, e) : NULL;
+    if (!ub)
         return -1;
     glBindFramebuffer(GL_FRAMEBUFFER, s->basis_fbo);
     const GLenum b4[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3};
@@ -131,7 +150,7 @@ int vpl_build_maps(vpl_state *s, const gk_gi_frame *f, const gk_val *em, int cou
     glUseProgram(bp);
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D_ARRAY, s->z_arr);
-    gk_uniform_1i(bp, "u_z", 0);
+    glUniform1i(ub->u_z, 0);
     glBindVertexArray(s->empty_vao);
     for (int k = 0; k < count; k++) {
         if (vsm) {
@@ -144,7 +163,7 @@ int vpl_build_maps(vpl_state *s, const gk_gi_frame *f, const gk_val *em, int cou
         if (k == 0 && glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
             return gk_fail(e, GK_ERUNTIME, "vpl: %s basis framebuffer incomplete (needs RGBA16F/RG32F "
                                            "colour-renderable)", vsm ? "VSM" : "CSSM");
-        gk_uniform_1i(bp, "u_layer", k);
+        glUniform1i(ub->u_layer, k);
         glDrawArrays(GL_TRIANGLES, 0, 3);
     }
     /* Mips over all layers: unused layers keep stale data but are never sampled. */

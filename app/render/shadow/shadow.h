@@ -6,7 +6,8 @@
  *   light's size for soft shadows)
  *   method->render(self, ctx, slot, view)   renders what the method needs for that light into its
  *                                           per-slot storage (maps persist between frames)
- *   method->bind(self, slot, view, prog, unit)  binds it for the lighting program
+ *   method->bind(self, progs, slot, view, prog, unit, e)  binds it for the lighting program `prog`
+ *                                           (from `progs`, which resolves its uniform locations)
  *   GLSL: the lighting pass is compiled with method->glsl_define and calls
  *         highp float shadow_visibility(highp vec3 world_pos, highp vec3 world_normal)
  *         from shaders_gles/shadow/<method>.glsl (selected in shaders_gles/shadow/shadow.glsl).
@@ -61,7 +62,8 @@ typedef struct gk_shadow_method {
     void *(*create)(void);
     void (*destroy)(void *self);
     int (*render)(void *self, const gk_shadow_ctx *ctx, int slot, const gk_shadow_view *v, gk_err *e);
-    void (*bind)(void *self, int slot, const gk_shadow_view *v, GLuint prog, int unit);
+    int (*bind)(void *self, gk_program_cache *progs, int slot, const gk_shadow_view *v, GLuint prog, int unit,
+                gk_err *e);
 } gk_shadow_method;
 
 /* The methods, NULL-terminated (shadow_methods.c). */
@@ -81,8 +83,10 @@ typedef struct gk_shadow_maps {
 } gk_shadow_maps;
 
 int gk_shadow_maps_render(gk_shadow_maps *m, const gk_shadow_ctx *ctx, int slot, const gk_shadow_view *v, gk_err *e);
-/* Binds the slot's map on `unit` and sets the u_shadow_* uniforms of shaders_gles/shadow/common.glsl. */
-void gk_shadow_maps_bind(const gk_shadow_maps *m, int slot, const gk_shadow_view *v, GLuint prog, int unit);
+/* Binds the slot's map on `unit` and sets the u_shadow_* uniforms of shaders_gles/shadow/common.glsl
+ * in `prog` (a program of `progs`). Returns -1 with e filled when they do not resolve. */
+int gk_shadow_maps_bind(const gk_shadow_maps *m, gk_program_cache *progs, int slot, const gk_shadow_view *v,
+                        GLuint prog, int unit, gk_err *e);
 void gk_shadow_maps_free(gk_shadow_maps *m);
 
 #endif

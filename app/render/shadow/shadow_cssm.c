@@ -88,24 +88,48 @@ static void cssm_destroy(void *self)
     free(st);
 }
 
+/* shadow/cssm_basis.comp, both passes */
+typedef struct basis_uniforms {
+    GLint u_z, u_size, u_range;
+} basis_uniforms;
+static const gk_uniform_field basis_fields[] = {GK_UNIFORM(basis_uniforms, u_z), GK_UNIFORM(basis_uniforms, u_size),
+                                                GK_UNIFORM(basis_uniforms, u_range)};
+
+/* shaders_gles/shadow/cssm.glsl, in the lighting program (mipmap and SAT variants) */
+typedef struct cssm_uniforms {
+    GLint u_cssm_basis[6]; /* cos, sin, zcos, zsin, z, z2 */
+    GLint u_cssm;
+} cssm_uniforms;
+static const gk_uniform_field cssm_fields[] = {
+    GK_UNIFORM_AS(cssm_uniforms, u_cssm_basis[0], "u_cssm_cos"),
+    GK_UNIFORM_AS(cssm_uniforms, u_cssm_basis[1], "u_cssm_sin"),
+    GK_UNIFORM_AS(cssm_uniforms, u_cssm_basis[2], "u_cssm_zcos"),
+    GK_UNIFORM_AS(cssm_uniforms, u_cssm_basis[3], "u_cssm_zsin"),
+    GK_UNIFORM_AS(cssm_uniforms, u_cssm_basis[4], "u_cssm_z"),
+    GK_UNIFORM_AS(cssm_uniforms, u_cssm_basis[5], "u_cssm_z2"),
+    GK_UNIFORM(cssm_uniforms, u_cssm),
+};
+
 static int basis_mipmaps(gk_program_cache *progs, cssm_slot *s, gk_err *e)
 {
     GLuint p0 = gk_program_get_compute(progs, "shadow/cssm_basis.comp", "#define CSSM_PASS 0\n", e);
     GLuint p1 = p0 ? gk_program_get_compute(progs, "shadow/cssm_basis.comp", "#define CSSM_PASS 1\n", e) : 0;
-    if (!p1)
+    const basis_uniforms *u0 = p1 ? gk_program_uniforms(progs, p0, GK_FIELDS(basis_fields), sizeof *u0, e) : NULL;
+    const basis_uniforms *u1 = u0 ? gk_program_uniforms(progs, p1, GK_FIELDS(basis_fields), sizeof *u1, e) : NULL;
+    if (!u1)
         return -1;
     GLuint groups = (GLuint)((s->size + 7) / 8);
     glUseProgram(p0);
-    gk_pf_bind(p0, "u_z", s->zlin, 0);
-    gk_uniform_1i(p0, "u_size", s->size);
-    gk_uniform_1f(p0, "u_range", CSSM_RANGE);
+    gk_pf_bind(u0->u_z, s->zlin, 0);
+    glUniform1i(u0->u_size, s->size);
+    glUniform1f(u0->u_range, CSSM_RANGE);
     for (int i = 0; i < 4; i++)
         glBindImageTexture((GLuint)i, s->basis[B_COS + i], 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glDispatchCompute(groups, groups, (GLuint)s->layers);
     glUseProgram(p1);
-    gk_pf_bind(p1, "u_z", s->zlin, 0);
-    gk_uniform_1i(p1, "u_size", s->size);
-    gk_uniform_1f(p1, "u_range", CSSM_RANGE);
+    gk_pf_bind(u1->u_z, s->zlin, 0);
+    glUniform1i(u1->u_size, s->size);
+    glUniform1f(u1->u_range, CSSM_RANGE);
     glBindImageTexture(0, s->basis[B_Z], 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glDispatchCompute(groups, groups, (GLuint)s->layers);
     glMemoryBarrier(GL_ALL_BARRIER_BITS);
@@ -143,17 +167,20 @@ static int cssm_render(void *self, const gk_shadow_ctx *ctx, int slot, const gk_
     return rc;
 }
 
-static void cssm_bind(void *self, int slot, const gk_shadow_view *v, GLuint prog, int unit)
+static int cssm_bind(void *self, gk_program_cache *progs, int slot, const gk_shadow_view *v, GLuint prog, int unit,
+                     gk_err *e)
 {
     cssm_state *st = self;
     cssm_slot *s = &st->slot[slot];
-    gk_shadow_maps_bind(&st->maps, slot, v, prog, unit);
-    static const char *const names[] = {"u_cssm_cos", "u_cssm_sin", "u_cssm_zcos", "u_cssm_zsin", "u_cssm_z", "u_cssm_z2"};
+    const cssm_uniforms *u = gk_program_uniforms(progs, prog, GK_FIELDS(cssm_fields), sizeof *u, e);
+    if (!u || gk_shadow_maps_bind(&st->maps, progs, slot, v, prog, unit, e) != 0)
+        return -1;
     int n = st->sat ? 6 : 5;
     for (int i = 0; i < n; i++)
-        gk_pf_bind(prog, names[i], s->basis[i], unit + 1 + i);
+        gk_pf_bind(u->u_cssm_basis[i], s->basis[i], unit + 1 + i);
     float q = (float)((1u << gk_sat_bits(s->size)) - 1u);
-    gk_uniform_4f(prog, "u_cssm", CSSM_RANGE, CSSM_SHIFT, 1.0f / q, 0.0f);
+    glUniform4f(u->u_cssm, CSSM_RANGE, CSSM_SHIFT, 1.0f / q, 0.0f);
+    return 0;
 }
 
 const gk_shadow_method gk_shadow_cssm = {

@@ -37,6 +37,26 @@ static int ensure_texture(gk_shadow_maps *m, int slot, int size, int layers, gk_
     return 0;
 }
 
+/* shadow/depth.{vert,frag} */
+typedef struct depth_uniforms {
+    GLint u_viewproj;
+    gk_draw_uniforms draw;
+} depth_uniforms;
+static const gk_uniform_field depth_fields[] = {GK_UNIFORM(depth_uniforms, u_viewproj),
+                                                GK_UNIFORM_AS(depth_uniforms, draw.u_model, "u_model")};
+
+/* shaders_gles/shadow/common.glsl, in the lighting program */
+typedef struct maps_uniforms {
+    GLint u_shadow_map, u_shadow_viewproj, u_shadow_inv_viewproj, u_shadow_pos, u_shadow_axis, u_shadow_basis,
+        u_shadow_proj, u_shadow_light;
+} maps_uniforms;
+static const gk_uniform_field maps_fields[] = {
+    GK_UNIFORM(maps_uniforms, u_shadow_map),   GK_UNIFORM(maps_uniforms, u_shadow_viewproj),
+    GK_UNIFORM(maps_uniforms, u_shadow_inv_viewproj), GK_UNIFORM(maps_uniforms, u_shadow_pos),
+    GK_UNIFORM(maps_uniforms, u_shadow_axis),  GK_UNIFORM(maps_uniforms, u_shadow_basis),
+    GK_UNIFORM(maps_uniforms, u_shadow_proj),  GK_UNIFORM(maps_uniforms, u_shadow_light),
+};
+
 int gk_shadow_maps_render(gk_shadow_maps *m, const gk_shadow_ctx *ctx, int slot, const gk_shadow_view *v, gk_err *e)
 {
     if (slot < 0 || slot >= GK_SHADOW_MAX_LIGHTS)
@@ -44,7 +64,8 @@ int gk_shadow_maps_render(gk_shadow_maps *m, const gk_shadow_ctx *ctx, int slot,
     if (ensure_texture(m, slot, v->map_size, v->n_faces, e) != 0)
         return -1;
     GLuint prog = gk_program_get(ctx->progs, "shadow/depth.vert", "shadow/depth.frag", NULL, e);
-    if (!prog)
+    const depth_uniforms *u = prog ? gk_program_uniforms(ctx->progs, prog, GK_FIELDS(depth_fields), sizeof *u, e) : NULL;
+    if (!u)
         return -1;
     if (!m->fbo)
         glGenFramebuffers(1, &m->fbo);
@@ -72,31 +93,36 @@ int gk_shadow_maps_render(gk_shadow_maps *m, const gk_shadow_ctx *ctx, int slot,
             return -1;
         }
         glClear(GL_DEPTH_BUFFER_BIT);
-        gk_uniform_mat4(prog, "u_viewproj", v->viewproj[f].m);
-        gk_scene_gpu_draw(ctx->gpu, ctx->scene, prog, GK_DRAW_SKIP_PROXIES);
+        glUniformMatrix4fv(u->u_viewproj, 1, GL_FALSE, v->viewproj[f].m);
+        gk_scene_gpu_draw(ctx->gpu, ctx->scene, &u->draw, GK_DRAW_SKIP_PROXIES);
     }
     glDisable(GL_POLYGON_OFFSET_FILL);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     return 0;
 }
 
-void gk_shadow_maps_bind(const gk_shadow_maps *m, int slot, const gk_shadow_view *v, GLuint prog, int unit)
+int gk_shadow_maps_bind(const gk_shadow_maps *m, gk_program_cache *progs, int slot, const gk_shadow_view *v,
+                        GLuint prog, int unit, gk_err *e)
 {
+    const maps_uniforms *u = gk_program_uniforms(progs, prog, GK_FIELDS(maps_fields), sizeof *u, e);
+    if (!u)
+        return -1;
     glActiveTexture(GL_TEXTURE0 + (GLenum)unit);
     glBindTexture(GL_TEXTURE_2D_ARRAY, m->tex[slot]);
-    gk_uniform_1i(prog, "u_shadow_map", unit);
-    gk_uniform_mat4v(prog, "u_shadow_viewproj", v->n_faces, v->viewproj[0].m);
+    glUniform1i(u->u_shadow_map, unit);
+    glUniformMatrix4fv(u->u_shadow_viewproj, v->n_faces, GL_FALSE, v->viewproj[0].m);
     mat4 inv[GK_SHADOW_MAX_FACES];
     for (int f = 0; f < v->n_faces; f++)
         inv[f] = m4_inverse(v->viewproj[f]);
-    gk_uniform_mat4v(prog, "u_shadow_inv_viewproj", v->n_faces, inv[0].m);
-    gk_uniform_3f(prog, "u_shadow_pos", v->pos.x, v->pos.y, v->pos.z);
-    gk_uniform_3f(prog, "u_shadow_axis", v->axis.x, v->axis.y, v->axis.z);
+    glUniformMatrix4fv(u->u_shadow_inv_viewproj, v->n_faces, GL_FALSE, inv[0].m);
+    glUniform3f(u->u_shadow_pos, v->pos.x, v->pos.y, v->pos.z);
+    glUniform3f(u->u_shadow_axis, v->axis.x, v->axis.y, v->axis.z);
     const float basis[9] = {v->basis[0].x, v->basis[0].y, v->basis[0].z, v->basis[1].x, v->basis[1].y,
                             v->basis[1].z, v->basis[2].x, v->basis[2].y, v->basis[2].z};
-    glUniformMatrix3fv(glGetUniformLocation(prog, "u_shadow_basis"), 1, GL_FALSE, basis);
-    gk_uniform_4f(prog, "u_shadow_proj", v->znear, v->zfar, v->ortho ? 1.0f : 0.0f, (float)v->n_faces);
-    gk_uniform_4f(prog, "u_shadow_light", v->size_u, v->size_v, v->tan_half_fov, (float)v->map_size);
+    glUniformMatrix3fv(u->u_shadow_basis, 1, GL_FALSE, basis);
+    glUniform4f(u->u_shadow_proj, v->znear, v->zfar, v->ortho ? 1.0f : 0.0f, (float)v->n_faces);
+    glUniform4f(u->u_shadow_light, v->size_u, v->size_v, v->tan_half_fov, (float)v->map_size);
+    return 0;
 }
 
 void gk_shadow_maps_free(gk_shadow_maps *m)

@@ -20,9 +20,10 @@ static int pcss_render(void *self, const gk_shadow_ctx *ctx, int slot, const gk_
     return gk_shadow_maps_render(self, ctx, slot, v, e);
 }
 
-static void pcss_bind(void *self, int slot, const gk_shadow_view *v, GLuint prog, int unit)
+static int pcss_bind(void *self, gk_program_cache *progs, int slot, const gk_shadow_view *v, GLuint prog, int unit,
+                gk_err *e)
 {
-    gk_shadow_maps_bind(self, slot, v, prog, unit);
+    return gk_shadow_maps_bind(self, progs, slot, v, prog, unit, e);
 }
 
 const gk_shadow_method gk_shadow_pcss = {

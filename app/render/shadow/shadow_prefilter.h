@@ -36,7 +36,7 @@ int gk_pf_hsm(gk_program_cache *progs, GLuint zmin, GLuint zmax, int size, int l
 int gk_pf_sat(gk_program_cache *progs, int basis, GLuint z, int size, int layers, float q, float range, GLuint out0,
               GLuint out1, GLuint tmp0, GLuint tmp1, gk_err *e);
 
-/* Binds a 2D array texture on a unit and sets the sampler uniform. */
-void gk_pf_bind(GLuint prog, const char *name, GLuint tex, int unit);
+/* Binds a 2D array texture on a unit and sets the sampler uniform at location loc. */
+void gk_pf_bind(GLint loc, GLuint tex, int unit);
 
 #endif

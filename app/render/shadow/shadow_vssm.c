@@ -111,22 +111,36 @@ static int vssm_render(void *self, const gk_shadow_ctx *ctx, int slot, const gk_
     return 0;
 }
 
-static void vssm_bind(void *self, int slot, const gk_shadow_view *v, GLuint prog, int unit)
+/* shaders_gles/shadow/vssm.glsl, in the lighting program */
+typedef struct vssm_uniforms {
+    GLint u_vssm_sat_z, u_vssm_sat_z2, u_vssm_zmin, u_vssm_zmax, u_vssm, u_vssm_sub;
+} vssm_uniforms;
+static const gk_uniform_field vssm_fields[] = {
+    GK_UNIFORM(vssm_uniforms, u_vssm_sat_z), GK_UNIFORM(vssm_uniforms, u_vssm_sat_z2),
+    GK_UNIFORM(vssm_uniforms, u_vssm_zmin),  GK_UNIFORM(vssm_uniforms, u_vssm_zmax),
+    GK_UNIFORM(vssm_uniforms, u_vssm),       GK_UNIFORM(vssm_uniforms, u_vssm_sub),
+};
+
+static int vssm_bind(void *self, gk_program_cache *progs, int slot, const gk_shadow_view *v, GLuint prog, int unit,
+                     gk_err *e)
 {
     vssm_state *st = self;
     vssm_slot *s = &st->slot[slot];
-    gk_shadow_maps_bind(&st->maps, slot, v, prog, unit);
-    gk_pf_bind(prog, "u_vssm_sat_z", s->sat_z, unit + 1);
-    gk_pf_bind(prog, "u_vssm_sat_z2", s->sat_z2, unit + 2);
-    gk_pf_bind(prog, "u_vssm_zmin", s->zmin, unit + 3);
-    gk_pf_bind(prog, "u_vssm_zmax", s->zmax, unit + 4);
+    const vssm_uniforms *u = gk_program_uniforms(progs, prog, GK_FIELDS(vssm_fields), sizeof *u, e);
+    if (!u || gk_shadow_maps_bind(&st->maps, progs, slot, v, prog, unit, e) != 0)
+        return -1;
+    gk_pf_bind(u->u_vssm_sat_z, s->sat_z, unit + 1);
+    gk_pf_bind(u->u_vssm_sat_z2, s->sat_z2, unit + 2);
+    gk_pf_bind(u->u_vssm_zmin, s->zmin, unit + 3);
+    gk_pf_bind(u->u_vssm_zmax, s->zmax, unit + 4);
     float q = (float)((1u << gk_sat_bits(v->map_size)) - 1u);
     /* eps = 0.01 r_sc (thesis); Threshold on sigma^2: the thesis's "0.0001 r_sc" read as
        (0.01 r_sc)^2 = eps^2 in normalised depth^2 units, i.e. "depth spread below the contact
        epsilon" -- the dimensionally consistent reading (recorded, dong-001.md §14.3). */
     float eps = 0.01f * s->rsc;
-    gk_uniform_4f(prog, "u_vssm", 1.0f / q, (float)(gk_pf_levels(s->size) - 1), eps, eps * eps);
-    gk_uniform_2f(prog, "u_vssm_sub", (float)subdiv_m[st->subdiv], (float)subdiv_h[st->subdiv]);
+    glUniform4f(u->u_vssm, 1.0f / q, (float)(gk_pf_levels(s->size) - 1), eps, eps * eps);
+    glUniform2f(u->u_vssm_sub, (float)subdiv_m[st->subdiv], (float)subdiv_h[st->subdiv]);
+    return 0;
 }
 
 #define VSSM_METHOD(ident, name_, defines)                                                                             \

@@ -1,0 +1,69 @@
+// The G-buffer contract (app/gi/gi.h; written by gbuffer/gbuffer.frag), read the same way by direct
+// light, vct and vpl. The C side binds it with gk_gbuffer_bind (app/gl/gbuffer_bind.h):
+//   u_gb_depth      DEPTH_COMPONENT32F window depth: ndc = (uv, depth) * 2 - 1,
+//                   world = u_inv_viewproj * ndc (highp: positions in metres and 32-bit depth)
+//   u_gb_albedo     RGBA8: rgb = base colour, a = metallic
+//   u_gb_normal     RGBA16F: xyz = world normal, w = roughness
+//   u_gb_emission   RGBA16F: rgb = emitted radiance (nits), a > 0.5 = light proxy
+//   u_inv_viewproj  inverse of the camera's projection * view
+//   u_eye           camera position (world)
+//   u_viewport      G-buffer size in pixels
+// The albedo is 8-bit: mediump suffices and is the default; an includer that has always read it at
+// highp (vct) defines GB_ALBEDO_PRECISION highp first (mediump may round k/255 to fp16).
+#ifndef GB_ALBEDO_PRECISION
+#define GB_ALBEDO_PRECISION mediump
+#endif
+uniform GB_ALBEDO_PRECISION sampler2D u_gb_albedo;
+uniform highp sampler2D u_gb_normal;
+uniform highp sampler2D u_gb_emission;
+uniform highp sampler2D u_gb_depth;
+uniform highp mat4 u_inv_viewproj;
+uniform highp vec3 u_eye;
+uniform highp vec2 u_viewport;
+
+highp float gb_depth(ivec2 px) { return texelFetch(u_gb_depth, px, 0).r; }
+
+// Window depth 1 (the clear value): nothing was drawn there.
+bool gb_background(highp float depth) { return depth >= 1.0; }
+
+// World position of window point uv (0..1) at window depth `depth`.
+highp vec3 gb_world_at(highp vec2 uv, highp float depth)
+{
+    highp vec4 w = u_inv_viewproj * vec4(uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
+    return w.xyz / w.w;
+}
+
+// World position of pixel px (its centre) from the depth buffer.
+highp vec3 gb_world_position(ivec2 px) { return gb_world_at((vec2(px) + 0.5) / u_viewport, gb_depth(px)); }
+
+highp vec3 gb_normal(ivec2 px) { return normalize(texelFetch(u_gb_normal, px, 0).xyz); }
+highp float gb_roughness(ivec2 px) { return texelFetch(u_gb_normal, px, 0).w; }
+// rgb = base colour, a = metallic
+GB_ALBEDO_PRECISION vec4 gb_albedo_metallic(ivec2 px) { return texelFetch(u_gb_albedo, px, 0); }
+highp vec4 gb_emission(ivec2 px) { return texelFetch(u_gb_emission, px, 0); }
+
+struct gk_surface {
+    highp vec3 p;       // world position
+    highp vec3 n;       // unit normal facing the viewer
+    highp vec3 v;       // unit direction to the eye
+    highp vec3 base;
+    highp float metallic;
+    highp float roughness;
+    bool unlit;         // background or light proxy
+};
+
+gk_surface gk_read_surface(ivec2 px)
+{
+    gk_surface s;
+    highp float depth = gb_depth(px);
+    s.p = gb_world_at((vec2(px) + 0.5) / u_viewport, depth);
+    GB_ALBEDO_PRECISION vec4 a = gb_albedo_metallic(px);
+    highp vec4 nr = texelFetch(u_gb_normal, px, 0);
+    s.n = normalize(nr.xyz);
+    s.v = normalize(u_eye - s.p);
+    s.base = a.rgb;
+    s.metallic = a.a;
+    s.roughness = nr.a;
+    s.unlit = gb_background(depth) || gb_emission(px).a > 0.5;
+    return s;
+}
