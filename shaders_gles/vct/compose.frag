@@ -19,11 +19,7 @@ uniform highp sampler2D u_diffuse_lo;
 uniform highp sampler2D u_spec_lo;
 uniform highp sampler2D u_gbuf_depth;
 uniform highp sampler2D u_gbuf_normal;
-uniform highp sampler2D u_gbuf_position;
 uniform highp sampler2D u_gbuf_albedo;
-uniform highp sampler2D u_gbuf_material;
-uniform bool u_has_position;
-uniform bool u_has_material;
 uniform mat4 u_inv_view_proj;
 uniform ivec2 u_full_size;
 uniform ivec2 u_low_size;
@@ -38,7 +34,7 @@ void main()
     float z = texelFetch(u_gbuf_depth, px, 0).r;
     if (z >= 1.0) { o_color = vec4(0.0, 0.0, 0.0, 1.0); return; }
     vec3 N = normalize(texelFetch(u_gbuf_normal, px, 0).xyz);
-    vec3 X = gbuf_world_position(u_gbuf_depth, u_gbuf_position, u_has_position, u_inv_view_proj, px, u_full_size);
+    vec3 X = gbuf_world_position(u_gbuf_depth, u_inv_view_proj, px, u_full_size);
     vec4 dif; vec3 spec;
     if (u_block <= 1) {
         dif = texelFetch(u_diffuse_lo, px, 0);
@@ -54,7 +50,7 @@ void main()
                 ivec2 tp = sparse_pixel(q, u_block, u_full_size);
                 if (texelFetch(u_gbuf_depth, tp, 0).r >= 1.0) continue;
                 vec3 Nq = normalize(texelFetch(u_gbuf_normal, tp, 0).xyz);
-                vec3 Xq = gbuf_world_position(u_gbuf_depth, u_gbuf_position, u_has_position, u_inv_view_proj, tp, u_full_size);
+                vec3 Xq = gbuf_world_position(u_gbuf_depth, u_inv_view_proj, tp, u_full_size);
                 vec2 dp = vec2(tp - px);
                 float f = exp(-dot(dp, dp) / (2.0 * sigma * sigma));
                 vec3 dn = N - Nq;
@@ -72,7 +68,7 @@ void main()
         else { dif = nd; spec = ns; }                  // no similar tap: nearest plausible one
     }
     vec3 albedo = texelFetch(u_gbuf_albedo, px, 0).rgb;
-    float metallic = gbuf_metallic_roughness(u_gbuf_material, u_gbuf_albedo, u_gbuf_normal, u_has_material, px).x;
+    float metallic = gbuf_metallic_roughness(u_gbuf_albedo, u_gbuf_normal, px).x;
     spec *= u_spec_enabled;
 #if FAITHFUL_COMPOSE
     float f = min(0.5 + dif.a, 1.0);

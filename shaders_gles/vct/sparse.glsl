@@ -9,19 +9,16 @@ ivec2 sparse_pixel(ivec2 q, int B, ivec2 full_size)
     return min(q * B + off, full_size - 1);
 }
 
-vec3 gbuf_world_position(highp sampler2D depth_tex, highp sampler2D pos_tex, bool has_pos, mat4 inv_vp, ivec2 px, ivec2 size)
+vec3 gbuf_world_position(highp sampler2D depth_tex, mat4 inv_vp, ivec2 px, ivec2 size)
 {
-    if (has_pos) return texelFetch(pos_tex, px, 0).xyz;
     float z = texelFetch(depth_tex, px, 0).r;
     vec2 uv = (vec2(px) + 0.5) / vec2(size);
     vec4 w = inv_vp * vec4(uv * 2.0 - 1.0, z * 2.0 - 1.0, 1.0);
     return w.xyz / w.w;
 }
 
-// Metallic and roughness: from the material texture when a caller gives one (tests), else from the
-// renderer's G-buffer (albedo.a = metallic, normal.w = roughness; gi.h).
-vec2 gbuf_metallic_roughness(highp sampler2D mat_tex, highp sampler2D albedo_tex, highp sampler2D normal_tex, bool has_mat, ivec2 px)
+// Metallic and roughness from the renderer's G-buffer (albedo.a = metallic, normal.w = roughness; gi.h).
+vec2 gbuf_metallic_roughness(highp sampler2D albedo_tex, highp sampler2D normal_tex, ivec2 px)
 {
-    if (has_mat) return texelFetch(mat_tex, px, 0).rg;
     return vec2(texelFetch(albedo_tex, px, 0).a, texelFetch(normal_tex, px, 0).w);
 }

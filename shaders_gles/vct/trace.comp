@@ -17,11 +17,7 @@ layout(std430, binding = 2) buffer Counters { uint total_steps; } counters;
 #define MAX_CONES 9
 uniform highp sampler2D u_gbuf_depth;
 uniform highp sampler2D u_gbuf_normal;
-uniform highp sampler2D u_gbuf_position;
-uniform highp sampler2D u_gbuf_material;
 uniform highp sampler2D u_gbuf_albedo;
-uniform bool u_has_position;
-uniform bool u_has_material;
 uniform mat4 u_inv_view_proj;
 uniform vec3 u_eye;
 uniform ivec2 u_full_size;
@@ -48,7 +44,7 @@ void main()
         imageStore(u_out_spec, q, vec4(0.0));
         return;
     }
-    vec3 P = gbuf_world_position(u_gbuf_depth, u_gbuf_position, u_has_position, u_inv_view_proj, px, u_full_size);
+    vec3 P = gbuf_world_position(u_gbuf_depth, u_inv_view_proj, px, u_full_size);
     vec3 N = normalize(texelFetch(u_gbuf_normal, px, 0).xyz);
     vec3 up = abs(N.y) < 0.99 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
     vec3 T = normalize(cross(up, N));
@@ -70,7 +66,7 @@ void main()
     }
     vec4 spec = vec4(0.0);
 #if SPECULAR
-    vec2 mr = gbuf_metallic_roughness(u_gbuf_material, u_gbuf_albedo, u_gbuf_normal, u_has_material, px);
+    vec2 mr = gbuf_metallic_roughness(u_gbuf_albedo, u_gbuf_normal, px);
     if (mr.g < 0.5 || mr.r > 0.5) {                   // glossy enough to be worth a cone
         vec3 R = reflect(normalize(P - u_eye), N);
         float ao; int steps;

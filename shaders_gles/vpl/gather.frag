@@ -20,8 +20,6 @@ precision highp int;
 precision highp sampler2DArray;
 uniform highp sampler2D u_gb_depth;
 uniform highp sampler2D u_gb_normal;
-uniform highp sampler2D u_gb_position;
-uniform int u_has_position;
 uniform highp mat4 u_inv_viewproj;
 uniform ivec2 u_full_size;
 uniform ivec2 u_ind_size;
@@ -189,13 +187,9 @@ void main()
         o_nrm = vec4(0.0);
         return;
     }
-    if (u_has_position != 0) {
-        x = texelFetch(u_gb_position, px, 0).xyz;
-    } else {
-        vec2 uv = (vec2(px) + 0.5) / vec2(u_full_size);
-        vec4 w = u_inv_viewproj * vec4(vec3(uv, depth) * 2.0 - 1.0, 1.0);
-        x = w.xyz / w.w;
-    }
+    vec2 uv = (vec2(px) + 0.5) / vec2(u_full_size);
+    vec4 w = u_inv_viewproj * vec4(vec3(uv, depth) * 2.0 - 1.0, 1.0);
+    x = w.xyz / w.w;
     nx = normalize(texelFetch(u_gb_normal, px, 0).xyz);
     int bb = u_block * u_block;
     int s = (q.y % u_block) * u_block + (q.x % u_block);

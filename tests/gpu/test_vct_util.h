@@ -20,8 +20,6 @@
 
 #define VT_MAX_OBJ 64
 
-static bool vt_full_gbuffer = false;
-
 /* ---- context ------------------------------------------------------------------------------- */
 typedef struct vt_gl {
     EGLDisplay dpy;
@@ -158,7 +156,7 @@ static inline int vt_add_box(vt_scene *v, vec3 lo, vec3 sz, vec3 albedo, bool an
 /* ---- G-buffer + HDR target ------------------------------------------------------------------ */
 typedef struct vt_frame {
     int w, h;
-    GLuint gbuf_fbo, pos, normal, albedo, material, depth;
+    GLuint gbuf_fbo, pos, normal, albedo, depth;
     GLuint hdr_fbo, hdr;
     mat4 view, proj, view_proj, inv_view_proj;
     vec3 eye;
@@ -182,12 +180,11 @@ static inline void vt_frame_create(vt_frame *f, int w, int h, vec3 eye, vec3 tar
     f->pos = vt_tex(GL_RGBA32F, w, h);
     f->normal = vt_tex(GL_RGBA16F, w, h);
     f->albedo = vt_tex(GL_RGBA8, w, h);
-    f->material = vt_tex(GL_RGBA8, w, h);
     f->depth = vt_tex(GL_DEPTH_COMPONENT32F, w, h);
     glGenFramebuffers(1, &f->gbuf_fbo);
     glBindFramebuffer(GL_FRAMEBUFFER, f->gbuf_fbo);
-    GLuint cols[4] = {f->pos, f->normal, f->albedo, f->material};
-    for (int i = 0; i < 4; i++)
+    GLuint cols[3] = {f->pos, f->normal, f->albedo};
+    for (int i = 0; i < 3; i++)
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + (GLenum)i, GL_TEXTURE_2D, cols[i], 0);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, f->depth, 0);
     f->hdr = vt_tex(GL_RGBA32F, w, h);
@@ -203,8 +200,8 @@ static inline void vt_frame_create(vt_frame *f, int w, int h, vec3 eye, vec3 tar
 
 static inline void vt_frame_destroy(vt_frame *f)
 {
-    GLuint t[6] = {f->pos, f->normal, f->albedo, f->material, f->depth, f->hdr};
-    glDeleteTextures(6, t);
+    GLuint t[5] = {f->pos, f->normal, f->albedo, f->depth, f->hdr};
+    glDeleteTextures(5, t);
     glDeleteFramebuffers(1, &f->gbuf_fbo);
     glDeleteFramebuffers(1, &f->hdr_fbo);
 }
@@ -244,8 +241,8 @@ static inline int vt_gbuffer(vt_gl *g, vt_frame *f, const vt_scene *v)
         glVertexAttribPointer((GLuint)a, 3, GL_FLOAT, GL_FALSE, 9 * sizeof(float), (void *)(size_t)(a * 3 * sizeof(float)));
     }
     glBindFramebuffer(GL_FRAMEBUFFER, f->gbuf_fbo);
-    GLenum bufs[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3};
-    glDrawBuffers(4, bufs);
+    GLenum bufs[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+    glDrawBuffers(3, bufs);
     glViewport(0, 0, f->w, f->h);
     glClearColor(0, 0, 0, 0);
     glClearDepthf(1.0f);
@@ -297,10 +294,7 @@ static inline int vt_render(void *vct, vt_frame *f, const vt_scene *v, const gk_
     fr.view = f->view, fr.proj = f->proj, fr.view_proj = f->view_proj, fr.inv_view_proj = f->inv_view_proj;
     fr.eye = f->eye;
     fr.gbuf_depth = f->depth, fr.gbuf_normal = f->normal, fr.gbuf_albedo = f->albedo;
-    /* the renderer's layout (gi.h): positions from depth, metallic/roughness in albedo.a/normal.w;
-       vt_full_gbuffer switches to the optional position and material textures */
-    fr.gbuf_material = vt_full_gbuffer ? f->material : 0;
-    fr.gbuf_position = vt_full_gbuffer ? f->pos : 0;
+    /* the renderer's layout (gi.h): positions from depth, metallic/roughness in albedo.a/normal.w */
     fr.hdr_fbo = f->hdr_fbo;
     fr.n_lights = n_lights;
     fr.lights = lights;
@@ -334,7 +328,7 @@ static inline int vt_render(void *vct, vt_frame *f, const vt_scene *v, const gk_
     return glGetError() == GL_NO_ERROR ? 0 : -1;
 }
 
-/* Reads the G-buffer positions (RGBA32F) for masks in tests. */
+/* Reads the G-buffer positions (RGBA32F: xyz world, w window depth, 0 where nothing) for masks. */
 static inline void vt_read_positions(vt_frame *f, float *out_rgba)
 {
     glBindFramebuffer(GL_FRAMEBUFFER, f->gbuf_fbo);

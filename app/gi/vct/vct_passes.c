@@ -245,15 +245,9 @@ int vct_pass_trace(gk_vct *v, const gk_gi_frame *f, const vct_budget *b, gk_err 
             snprintf(nm, sizeof nm, "u_voxd%d", d);
             bind_tex(p, nm, 1 + d, GL_TEXTURE_3D, v->voxd[d], 0);
         }
-    GLuint pos_tex = f->gbuf_position ? f->gbuf_position : f->gbuf_depth;
     bind_tex(p, "u_gbuf_depth", 7, GL_TEXTURE_2D, f->gbuf_depth, v->nearest_sampler);
     bind_tex(p, "u_gbuf_normal", 8, GL_TEXTURE_2D, f->gbuf_normal, v->nearest_sampler);
-    bind_tex(p, "u_gbuf_position", 9, GL_TEXTURE_2D, pos_tex, v->nearest_sampler);
-    bind_tex(p, "u_gbuf_material", 10, GL_TEXTURE_2D, f->gbuf_material ? f->gbuf_material : f->gbuf_depth,
-             v->nearest_sampler);
     bind_tex(p, "u_gbuf_albedo", 11, GL_TEXTURE_2D, f->gbuf_albedo, v->nearest_sampler);
-    glUniform1i(glGetUniformLocation(p, "u_has_position"), f->gbuf_position != 0);
-    glUniform1i(glGetUniformLocation(p, "u_has_material"), f->gbuf_material != 0);
     glUniformMatrix4fv(glGetUniformLocation(p, "u_inv_view_proj"), 1, GL_FALSE, f->inv_view_proj.m);
     glUniform3f(glGetUniformLocation(p, "u_eye"), f->eye.x, f->eye.y, f->eye.z);
     glUniform2i(glGetUniformLocation(p, "u_full_size"), f->width, f->height);
@@ -322,13 +316,7 @@ int vct_pass_compose(gk_vct *v, const gk_gi_frame *f, gk_err *e)
     bind_tex(p, "u_spec_lo", 1, GL_TEXTURE_2D, v->trace_spec, v->nearest_sampler);
     bind_tex(p, "u_gbuf_depth", 2, GL_TEXTURE_2D, f->gbuf_depth, v->nearest_sampler);
     bind_tex(p, "u_gbuf_normal", 3, GL_TEXTURE_2D, f->gbuf_normal, v->nearest_sampler);
-    bind_tex(p, "u_gbuf_position", 4, GL_TEXTURE_2D, f->gbuf_position ? f->gbuf_position : f->gbuf_depth,
-             v->nearest_sampler);
     bind_tex(p, "u_gbuf_albedo", 5, GL_TEXTURE_2D, f->gbuf_albedo, v->nearest_sampler);
-    bind_tex(p, "u_gbuf_material", 6, GL_TEXTURE_2D, f->gbuf_material ? f->gbuf_material : f->gbuf_depth,
-             v->nearest_sampler);
-    glUniform1i(glGetUniformLocation(p, "u_has_position"), f->gbuf_position != 0);
-    glUniform1i(glGetUniformLocation(p, "u_has_material"), f->gbuf_material != 0);
     glUniformMatrix4fv(glGetUniformLocation(p, "u_inv_view_proj"), 1, GL_FALSE, f->inv_view_proj.m);
     glUniform2i(glGetUniformLocation(p, "u_full_size"), f->width, f->height);
     glUniform2i(glGetUniformLocation(p, "u_low_size"), v->trace_w, v->trace_h);

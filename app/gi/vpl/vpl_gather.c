@@ -122,9 +122,7 @@ static int interleaved(vpl_state *s, const gk_gi_frame *f, gk_err *e)
     glUseProgram(g);
     vpl_bind_tex(0, GL_TEXTURE_2D, f->gbuf_depth, g, "u_gb_depth");
     vpl_bind_tex(1, GL_TEXTURE_2D, f->gbuf_normal, g, "u_gb_normal");
-    vpl_bind_tex(2, GL_TEXTURE_2D, f->gbuf_position ? f->gbuf_position : f->gbuf_normal, g, "u_gb_position");
     vpl_bind_visibility(s, g);
-    set_1i(g, "u_has_position", f->gbuf_position != 0);
     gk_uniform_mat4(g, "u_inv_viewproj", f->inv_view_proj.m);
     set_2i(g, "u_full_size", f->width, f->height);
     set_2i(g, "u_ind_size", iw, ih);
