@@ -50,6 +50,12 @@ UNIT_BINS := $(UNIT_SRCS:tests/%.c=$(BUILD)/tests/%)
 GPU_BINS  := $(GPU_SRCS:tests/%.c=$(BUILD)/tests/%)
 FAKE_OBJS := $(FAKE_SRCS:%.c=$(BUILD)/obj/%.o)
 TESTLIB_OBJS := $(TESTLIB_SRCS:%.c=$(BUILD)/obj/%.o)
+# Test-only shaders live in tests/shaders/ (not embedded in the program). The GPU tests load them
+# from one root holding both trees, so they #include the production shaders as those do each other:
+# $(BUILD)/tests/shaders, a copy of shaders_gles/ with tests/shaders/ laid over it.
+TEST_SHADERS := $(shell find tests/shaders -type f 2>/dev/null | LC_ALL=C sort)
+TEST_SHADER_STAMP := $(BUILD)/tests/shaders/.stamp
+$(TESTLIB_OBJS): CFLAGS_ALL += -DGK_TEST_SHADERS=\"$(abspath $(BUILD))/tests/shaders\"
 
 .PHONY: all run test test-only bench references scenes deps install asan fuzz clean shaders-check
 all: $(BIN)
@@ -81,7 +87,12 @@ $(BUILD)/tests/unit/%: tests/unit/%.c $(LIB) $(FAKE_OBJS) $(TESTLIB_OBJS)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_ALL) -Itests $< $(FAKE_OBJS) $(TESTLIB_OBJS) $(LIB) -o $@ $(LIBS) -lcmocka
 
-$(BUILD)/tests/gpu/%: tests/gpu/%.c $(LIB) $(TESTLIB_OBJS)
+$(TEST_SHADER_STAMP): $(SHADERS) $(TEST_SHADERS)
+	rm -rf $(dir $@) && mkdir -p $(dir $@)
+	cp -R shaders_gles/. tests/shaders/. $(dir $@)
+	touch $@
+
+$(BUILD)/tests/gpu/%: tests/gpu/%.c $(LIB) $(TESTLIB_OBJS) | $(TEST_SHADER_STAMP)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_ALL) -Itests $< $(TESTLIB_OBJS) $(LIB) -o $@ $(LIBS) -lcmocka
 

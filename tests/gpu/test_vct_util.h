@@ -1,6 +1,6 @@
 /* Helpers shared by the vct GPU tests (tests/gpu/test_vct*.c): an EGL surfaceless GLES context,
  * small in-memory scenes (quads and boxes, one node per object), a test G-buffer rendered with
- * shaders_gles/vct/test/gbuf.*, an RGBA32F HDR target to read the method's contribution back, and
+ * tests/shaders/vct/test/gbuf.*, an RGBA32F HDR target to read the method's contribution back, and
  * one call that renders a frame through gk_gi_vct. Header-only (static functions) because each
  * GPU test is one program. */
 #ifndef TEST_VCT_UTIL_H
@@ -17,6 +17,7 @@
 #include "gi/vct/vct.h"
 #include "gl/gl.h"
 #include "gl/gl_program.h"
+#include "common/gl_fixture.h"
 
 #define VT_MAX_OBJ 64
 
@@ -36,8 +37,9 @@ static inline int vt_gl_init(vt_gl *g)
     g->ctx = eglCreateContext(g->dpy, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attr);
     if (g->ctx == EGL_NO_CONTEXT || !eglMakeCurrent(g->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, g->ctx))
         return -2;
-    /* #version 310 es: the portable GLES 3.1 path is what is tested */
-    g->programs = gk_program_cache_create(NULL, 31);
+    /* #version 310 es: the portable GLES 3.1 path is what is tested; the tests' shader root has
+       the method's shaders and the test-only ones (tests/shaders/) */
+    g->programs = gkt_programs(31);
     return g->programs ? 0 : -3;
 }
 
