@@ -34,6 +34,8 @@ GPIOD_SKIP := $(if $(filter 2,$(GPIOD_MAJOR)),platform/gpiod_v1.c,platform/gpiod
 C_SRCS   := $(filter-out app/cli/main.c $(GPIOD_SKIP),$(shell find base app platform -name '*.c' | LC_ALL=C sort))
 CXX_SRCS := $(shell find base app platform -name '*.cpp' | LC_ALL=C sort)
 SHADERS  := $(shell find shaders_gles -type f 2>/dev/null | LC_ALL=C sort)
+# the folders too: a file moved out or deleted changes its folder's time, not any file's
+SHADER_DIRS := $(shell find shaders_gles -type d 2>/dev/null | LC_ALL=C sort)
 GEN_SHADERS := $(BUILD)/gen/shaders_embedded.c
 
 OBJS := $(C_SRCS:%.c=$(BUILD)/obj/%.o) $(CXX_SRCS:%.cpp=$(BUILD)/obj/%.o) $(BUILD)/obj/gen/shaders_embedded.o
@@ -68,7 +70,7 @@ $(BUILD)/obj/%.o: %.cpp
 	@mkdir -p $(dir $@)
 	$(CXX) $(CXXFLAGS_ALL) -MMD -MP -c $< -o $@
 
-$(GEN_SHADERS): $(SHADERS) tools/embed_shaders.sh
+$(GEN_SHADERS): $(SHADERS) $(SHADER_DIRS) tools/embed_shaders.sh
 	@mkdir -p $(dir $@)
 	sh tools/embed_shaders.sh shaders_gles $@
 
@@ -87,7 +89,7 @@ $(BUILD)/tests/unit/%: tests/unit/%.c $(LIB) $(FAKE_OBJS) $(TESTLIB_OBJS)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_ALL) -Itests $< $(FAKE_OBJS) $(TESTLIB_OBJS) $(LIB) -o $@ $(LIBS) -lcmocka
 
-$(TEST_SHADER_STAMP): $(SHADERS) $(TEST_SHADERS)
+$(TEST_SHADER_STAMP): $(SHADERS) $(SHADER_DIRS) $(TEST_SHADERS)
 	rm -rf $(dir $@) && mkdir -p $(dir $@)
 	cp -R shaders_gles/. tests/shaders/. $(dir $@)
 	touch $@
