@@ -79,6 +79,10 @@ void gkt_scene_free(gkt_scene *t)
 
 int gkt_material(gkt_scene *t, vec3 base, float metallic, float roughness)
 {
+    if (t->s.n_materials >= GKT_MAX_MESH) {
+        fprintf(stderr, "# gkt_material: more than %d materials\n", GKT_MAX_MESH);
+        abort();
+    }
     gk_material *m = &t->mats[t->s.n_materials];
     memset(m, 0, sizeof *m);
     snprintf(m->name, sizeof m->name, "m%d", t->s.n_materials);
@@ -106,6 +110,10 @@ static int add_node(gkt_scene *t)
 
 int gkt_object(gkt_scene *t, gkw_geom *g, int material)
 {
+    if (t->s.n_meshes >= GKT_MAX_MESH || t->s.n_nodes >= GKT_MAX_NODE) {
+        fprintf(stderr, "# gkt_object: more than %d objects\n", GKT_MAX_MESH);
+        abort();
+    }
     int k = t->s.n_meshes++;
     t->geom[k] = *g;
     memset(g, 0, sizeof *g);
