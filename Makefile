@@ -34,6 +34,8 @@ GPIOD_SKIP := $(if $(filter 2,$(GPIOD_MAJOR)),platform/gpiod_v1.c,platform/gpiod
 C_SRCS   := $(filter-out app/cli/main.c $(GPIOD_SKIP),$(shell find base app platform -name '*.c' | LC_ALL=C sort))
 CXX_SRCS := $(shell find base app platform -name '*.cpp' | LC_ALL=C sort)
 SHADERS  := $(shell find shaders_gles -type f 2>/dev/null | LC_ALL=C sort)
+# the folders too: a file moved out or deleted changes its folder's time, not any file's
+SHADER_DIRS := $(shell find shaders_gles -type d 2>/dev/null | LC_ALL=C sort)
 GEN_SHADERS := $(BUILD)/gen/shaders_embedded.c
 
 OBJS := $(C_SRCS:%.c=$(BUILD)/obj/%.o) $(CXX_SRCS:%.cpp=$(BUILD)/obj/%.o) $(BUILD)/obj/gen/shaders_embedded.o
@@ -50,6 +52,12 @@ UNIT_BINS := $(UNIT_SRCS:tests/%.c=$(BUILD)/tests/%)
 GPU_BINS  := $(GPU_SRCS:tests/%.c=$(BUILD)/tests/%)
 FAKE_OBJS := $(FAKE_SRCS:%.c=$(BUILD)/obj/%.o)
 TESTLIB_OBJS := $(TESTLIB_SRCS:%.c=$(BUILD)/obj/%.o)
+# Test-only shaders live in tests/shaders/ (not embedded in the program). The GPU tests load them
+# from one root holding both trees, so they #include the production shaders as those do each other:
+# $(BUILD)/tests/shaders, a copy of shaders_gles/ with tests/shaders/ laid over it.
+TEST_SHADERS := $(shell find tests/shaders -type f 2>/dev/null | LC_ALL=C sort)
+TEST_SHADER_STAMP := $(BUILD)/tests/shaders/.stamp
+$(TESTLIB_OBJS): CFLAGS_ALL += -DGK_TEST_SHADERS=\"$(abspath $(BUILD))/tests/shaders\"
 
 .PHONY: all run test test-only bench references scenes deps install asan fuzz clean shaders-check
 all: $(BIN)
@@ -62,7 +70,7 @@ $(BUILD)/obj/%.o: %.cpp
 	@mkdir -p $(dir $@)
 	$(CXX) $(CXXFLAGS_ALL) -MMD -MP -c $< -o $@
 
-$(GEN_SHADERS): $(SHADERS) tools/embed_shaders.sh
+$(GEN_SHADERS): $(SHADERS) $(SHADER_DIRS) tools/embed_shaders.sh
 	@mkdir -p $(dir $@)
 	sh tools/embed_shaders.sh shaders_gles $@
 
@@ -81,7 +89,12 @@ $(BUILD)/tests/unit/%: tests/unit/%.c $(LIB) $(FAKE_OBJS) $(TESTLIB_OBJS)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_ALL) -Itests $< $(FAKE_OBJS) $(TESTLIB_OBJS) $(LIB) -o $@ $(LIBS) -lcmocka
 
-$(BUILD)/tests/gpu/%: tests/gpu/%.c $(LIB) $(TESTLIB_OBJS)
+$(TEST_SHADER_STAMP): $(SHADERS) $(SHADER_DIRS) $(TEST_SHADERS)
+	rm -rf $(dir $@) && mkdir -p $(dir $@)
+	cp -R shaders_gles/. tests/shaders/. $(dir $@)
+	touch $@
+
+$(BUILD)/tests/gpu/%: tests/gpu/%.c $(LIB) $(TESTLIB_OBJS) | $(TEST_SHADER_STAMP)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_ALL) -Itests $< $(TESTLIB_OBJS) $(LIB) -o $@ $(LIBS) -lcmocka
 

@@ -56,15 +56,11 @@ typedef struct gk_gi_frame {
                      inv_view_proj: ndc = (uv, depth) * 2 - 1);
        gbuf_albedo   RGBA8: base colour rgb, a = METALLIC;
        gbuf_normal   RGBA16F: world normal xyz (unit), w = ROUGHNESS;
-       gbuf_emission RGBA16F: emitted radiance rgb (nits).
-       gbuf_material and gbuf_position are 0 from the renderer (metallic and roughness live in
-       albedo.a and normal.w; positions come from depth); a method's own tests may set them. */
+       gbuf_emission RGBA16F: emitted radiance rgb (nits). */
     unsigned gbuf_depth;
     unsigned gbuf_normal;
     unsigned gbuf_albedo;
     unsigned gbuf_emission;
-    unsigned gbuf_material;
-    unsigned gbuf_position;
     unsigned direct_tex;         /* RGBA16F: direct light (linear, before exposure) */
     unsigned hdr_fbo;            /* FBO whose colour attachment 0 is the HDR image the method adds to
                                     (additive blending is the method's job: glBlendFunc(ONE, ONE)) */

@@ -9,26 +9,17 @@ ivec2 sparse_pixel(ivec2 q, int B, ivec2 full_size)
     return min(q * B + off, full_size - 1);
 }
 
-// The G-buffer (common/gbuffer.glsl) plus what a vct test may give instead of the renderer's
-// layout: a world-position texture and a metallic/roughness texture (gi.h gbuf_position,
-// gbuf_material; 0 from the renderer).
+// The renderer's G-buffer (common/gbuffer.glsl): positions from depth, metallic in albedo.a,
+// roughness in normal.w (gi.h).
 #define GB_ALBEDO_PRECISION highp
 #include "common/gbuffer.glsl"
-uniform highp sampler2D u_gb_position;
-uniform highp sampler2D u_gb_material;
-uniform bool u_has_position;
-uniform bool u_has_material;
 
 highp vec3 vct_world_position(ivec2 px)
 {
-    if (u_has_position) return texelFetch(u_gb_position, px, 0).xyz;
     return gb_world_position(px);
 }
 
-// Metallic and roughness: from the material texture when a caller gives one (tests), else from the
-// renderer's G-buffer (albedo.a = metallic, normal.w = roughness; gi.h).
 vec2 vct_metallic_roughness(ivec2 px)
 {
-    if (u_has_material) return texelFetch(u_gb_material, px, 0).rg;
     return vec2(gb_albedo_metallic(px).a, gb_roughness(px));
 }

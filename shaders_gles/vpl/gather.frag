@@ -19,8 +19,6 @@ precision highp float;
 precision highp int;
 precision highp sampler2DArray;
 #include "common/gbuffer.glsl"
-uniform highp sampler2D u_gb_position;   // a test's world positions (gi.h gbuf_position) when u_has_position
-uniform int u_has_position;
 uniform ivec2 u_ind_size;
 uniform highp sampler2D u_vpl;   // N×3: pos + label, nrm + area, flux
 uniform highp sampler2D u_val;   // M×4: centre + far, normal + size, t + r_near, b + map res
@@ -187,7 +185,7 @@ void main()
         o_nrm = vec4(0.0);
         return;
     }
-    x = u_has_position != 0 ? texelFetch(u_gb_position, px, 0).xyz : gb_world_position(px);
+    x = gb_world_position(px);
     nx = gb_normal(px);
     int bb = u_block * u_block;
     int s = (q.y % u_block) * u_block + (q.x % u_block);

@@ -1,23 +1,28 @@
 #!/bin/sh
-# Validates every shader under shaders_gles/ with glslangValidator as GLSL ES, after the same
+# Validates every shader under shaders_gles/ and the test-only ones under tests/shaders/ with
+# glslangValidator as GLSL ES, after the same
 # assembly the renderer does (app/render/shader_source.c): "#version 310 es" (and 320 es),
 # "#define GK_GLES N", the variant's #defines, then the file with each #include "path" (relative
-# to shaders_gles/) replaced by that file, each file at most once per program.
+# to shaders_gles/; for a test shader, to tests/shaders/ and then shaders_gles/, as the GPU tests'
+# shader root holds both) replaced by that file, each file at most once per program.
 # Variants: every line "// @variant NAME[=VALUE] ..." in a shader file is one set of defines to
 # validate; a file without such lines is validated once without extra defines. The stage comes
 # from the extension (.vert .frag .comp .geom). A deliberately broken shader must be rejected, so
 # the check can fail.
 . tests/e2e/lib.sh
 ROOT=shaders_gles
+BASE=shaders_gles   # where an include not found under ROOT is looked up
 
 # expand FILE SEENFILE: prints FILE with includes expanded (one awk process: a shell loop per
 # line was too slow); SEENFILE receives the files in inclusion order, line K + 1 being the
 # source-string number K of "#line N K" (as the C loader numbers them).
 expand() {
-    awk -v root="$ROOT" -v top="$1" -v seenfile="$2" '
+    awk -v root="$ROOT" -v base="$BASE" -v top="$1" -v seenfile="$2" '
         function emit(path, from, at,    k, line, n, inc, file) {
             if (path in seen) return 1
             file = root "/" path
+            if ((getline line < file) < 0) file = base "/" path
+            else close(file)
             if ((getline line < file) < 0) { printf "%s:%d: missing include %s\n", from, at, path > "/dev/stderr"; return 0 }
             close(file)
             k = nfiles++; seen[path] = k; print path > seenfile
@@ -37,11 +42,11 @@ expand() {
         BEGIN { nfiles = 0; printf "" > seenfile; if (!emit(top, top, 0)) exit 1 }'
 }
 
-# Rewrites glslang's "ERROR: K:LINE:" into "ERROR: shaders_gles/FILE:LINE:" using SEENFILE.
+# Rewrites glslang's "ERROR: K:LINE:" into "ERROR: ROOT/FILE:LINE:" using SEENFILE.
 map_log() {
-    awk -v seen="$1" 'BEGIN { k = 0; while ((getline f < seen) > 0) name[k++] = f }
+    awk -v seen="$1" -v root="$ROOT" 'BEGIN { k = 0; while ((getline f < seen) > 0) name[k++] = f }
         { if (match($0, /[0-9]+:[0-9]+:/)) { s = substr($0, RSTART, RLENGTH); split(s, a, ":");
-              if (a[1] in name) $0 = substr($0, 1, RSTART - 1) "shaders_gles/" name[a[1]] ":" a[2] ":" substr($0, RSTART + RLENGTH) }
+              if (a[1] in name) $0 = substr($0, 1, RSTART - 1) root "/" name[a[1]] ":" a[2] ":" substr($0, RSTART + RLENGTH) }
           print }'
 }
 
@@ -83,7 +88,8 @@ if ! command -v glslangValidator >/dev/null 2>&1; then
 fi
 
 count=0
-for f in $(find "$ROOT" -type f \( -name '*.vert' -o -name '*.frag' -o -name '*.comp' -o -name '*.geom' \) | LC_ALL=C sort); do
+for f in $(find shaders_gles tests/shaders -type f \( -name '*.vert' -o -name '*.frag' -o -name '*.comp' -o -name '*.geom' \) | LC_ALL=C sort); do
+    case $f in tests/shaders/*) ROOT=tests/shaders ;; *) ROOT=shaders_gles ;; esac
     rel=${f#"$ROOT"/}
     variants=$(sed -n 's#^[[:space:]]*//[[:space:]]*@variant[[:space:]]*##p' "$f" | tr ' ' ',')
     [ -n "$variants" ] || variants="-"
@@ -93,7 +99,7 @@ for f in $(find "$ROOT" -type f \( -name '*.vert' -o -name '*.frag' -o -name '*.
         for gles in 31 32; do
             [ "$ext" = geom ] && [ "$gles" = 31 ] && continue
             count=$((count + 1))
-            check "$rel [${defs:-no defines}] GLES $gles validates" validate "$rel" "$gles" "$defs"
+            check "$ROOT/$rel [${defs:-no defines}] GLES $gles validates" validate "$rel" "$gles" "$defs"
         done
     done
 done

@@ -54,8 +54,8 @@ static void point_light_over_plane(void **state)
     const vec3 lp = v3(0.3f, 1.2f, -0.2f);
     plane_scene(&lit, RHO);
     plane_scene(&black, 0);
-    fx_light(&lit, GK_LIGHT_POINT, GK_SHAPE_POINT, 10, lp, v3(0, -1, 0));
-    fx_light(&black, GK_LIGHT_POINT, GK_SHAPE_POINT, 10, lp, v3(0, -1, 0));
+    gkt_light(&lit, GK_LIGHT_POINT, GK_SHAPE_POINT, 10, lp, v3(0, -1, 0));
+    gkt_light(&black, GK_LIGHT_POINT, GK_SHAPE_POINT, 10, lp, v3(0, -1, 0));
     gk_image a, b;
     render_pair(&lit, &black, "shadow=hard,shadow_map=1024", &a, &b);
     double max_diff = 0, max_spec = 0;
@@ -88,6 +88,8 @@ static void point_light_over_plane(void **state)
     assert_true(n > W * H / 2);
     assert_true(max_diff < 3e-3);
     assert_true(max_spec < 5e-3);
+    gkt_scene_free(&lit);
+    gkt_scene_free(&black);
 }
 
 /* Rect light W x H = 0.8 x 0.5 m at 1 m, facing down, I = 5 cd: L_e = I / (W H).
@@ -101,13 +103,13 @@ static void rect_light_over_plane(void **state)
     fx_scene lit, black;
     plane_scene(&lit, RHO);
     plane_scene(&black, 0);
-    gk_light *l1 = fx_light(&lit, GK_LIGHT_POINT, GK_SHAPE_RECT, inten, c, v3(0, -1, 0));
-    gk_light *l2 = fx_light(&black, GK_LIGHT_POINT, GK_SHAPE_RECT, inten, c, v3(0, -1, 0));
+    gk_light *l1 = gkt_light(&lit, GK_LIGHT_POINT, GK_SHAPE_RECT, inten, c, v3(0, -1, 0));
+    gk_light *l2 = gkt_light(&black, GK_LIGHT_POINT, GK_SHAPE_RECT, inten, c, v3(0, -1, 0));
     l1->size[0] = l2->size[0] = lw;
     l1->size[1] = l2->size[1] = lh;
     gk_image a, b;
     render_pair(&lit, &black, "shadow=hard", &a, &b);
-    /* The light's X axis is world x, its Y axis world -z (fx_look_rotation of straight down). */
+    /* The light's X axis is world x, its Y axis world -z (gkt_look_rotation of straight down). */
     const vec3 corners[4] = {v3(c.x - lw / 2, c.y, c.z - lh / 2), v3(c.x + lw / 2, c.y, c.z - lh / 2),
                              v3(c.x + lw / 2, c.y, c.z + lh / 2), v3(c.x - lw / 2, c.y, c.z + lh / 2)};
     const double le = inten / (lw * lh);
@@ -150,6 +152,8 @@ static void rect_light_over_plane(void **state)
        mean relative error at roughness 0.6; 0.3 bounds it and still fails a lobe that is
        missing (error 1.0) or not normalised (errors of several x). */
     assert_true(spec_rel < 0.3);
+    gkt_scene_free(&lit);
+    gkt_scene_free(&black);
 }
 
 /* --gles 3.1 (#version 310 es, 3.2 features masked) against the default path on a scene with
@@ -160,10 +164,10 @@ static void gles31_matches_default(void **state)
     fx_scene f;
     plane_scene(&f, RHO);
     fx_quad(&f, -1.5f, 0.0f, -1.5f, 1.5f, 0.5f, fx_material(&f, 0.5f, 0, 0.8f));
-    gk_light *l = fx_light(&f, GK_LIGHT_POINT, GK_SHAPE_RECT, 5, v3(0, 1.2f, 0), v3(0, -1, 0));
+    gk_light *l = gkt_light(&f, GK_LIGHT_POINT, GK_SHAPE_RECT, 5, v3(0, 1.2f, 0), v3(0, -1, 0));
     l->size[0] = 0.6f;
     l->size[1] = 0.4f;
-    fx_light(&f, GK_LIGHT_SPOT, GK_SHAPE_POINT, 8, v3(1, 1.5f, 1), v3(-0.5f, -1, -0.5f));
+    gkt_light(&f, GK_LIGHT_SPOT, GK_SHAPE_POINT, 8, v3(1, 1.5f, 1), v3(-0.5f, -1, -0.5f));
     gk_image a, b;
     gk_err e = {0};
     if (fx_render(&gl, &f, 31, "shadow=pcss,shadow_map=512", &a, &e) != 0)
@@ -182,6 +186,7 @@ static void gles31_matches_default(void **state)
        driver that compiles 310 es and 320 es differently to round differently. */
     assert_true(max_val > 0.01);
     assert_true(max_abs <= 1e-3 * max_val);
+    gkt_scene_free(&f);
 }
 
 int main(void)

@@ -1,205 +1,69 @@
-/* Shared by tests/gpu/test_render*.c (header-only, no main): an EGL surfaceless GLES context,
- * hand-built scenes of quads and lights (no glTF files, so the tests pin exactly the geometry the
- * analytic answers assume), a renderer drawing into a small FBO, and an independent C version
- * of the BRDF (app/core/brdf_spec.md) and of the Lambert polygon irradiance. */
+/* Shared by tests/gpu/test_render*.c and test_shadow*.c (header-only, no main): on the shared
+ * fixture (tests/common/gl_fixture.h: context, framebuffer, scene builders) a renderer drawing
+ * hand-built scenes of quads and lights into a small FBO, and an independent C version of the
+ * BRDF (app/core/brdf_spec.md) and of the Lambert polygon irradiance. */
 #ifndef TEST_RENDER_FIXTURE_H
 #define TEST_RENDER_FIXTURE_H
 
-#include "platform/egl.h"
-#include <EGL/egl.h>
-#include <EGL/eglext.h>
-#include <GLES3/gl32.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "common/gl_fixture.h"
 #include "io/image_io.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
 
-#define FX_MAX 8
 #define FX_PI 3.14159265358979
 
-typedef struct fx_quad_data {
-    float pos[12], nrm[12], uv[8];
-    uint32_t idx[6];
-} fx_quad_data;
-
-typedef struct fx_scene {
-    gk_scene s;
-    gk_mesh meshes[FX_MAX];
-    fx_quad_data quads[FX_MAX];
-    gk_material mats[FX_MAX];
-    gk_light lights[FX_MAX];
-    gk_node nodes[2 * FX_MAX];
-    gk_camera cam;
-} fx_scene;
-
+/* The shared context and one RGBA8 framebuffer the renderer draws into. */
 typedef struct fx_gl {
-    EGLDisplay dpy;
-    EGLContext ctx;
-    GLuint fbo, color;
-    int w, h;
+    gkt_gl gl;
+    gk_target fb;
 } fx_gl;
 
 static inline int fx_gl_open(fx_gl *g, int w, int h)
 {
+    const GLenum rgba8[1] = {GL_RGBA8};
     memset(g, 0, sizeof *g);
-    g->dpy = eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, NULL);
-    if (g->dpy == EGL_NO_DISPLAY || !gk_egl_initialize(g->dpy, NULL, NULL) || !eglBindAPI(EGL_OPENGL_ES_API))
+    if (gkt_gl_open(&g->gl) != 0)
         return -1;
-    EGLint ca[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 2, EGL_NONE};
-    g->ctx = eglCreateContext(g->dpy, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, ca);
-    if (g->ctx == EGL_NO_CONTEXT || !eglMakeCurrent(g->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, g->ctx))
-        return -2;
-    g->w = w;
-    g->h = h;
-    glGenTextures(1, &g->color);
-    glBindTexture(GL_TEXTURE_2D, g->color);
-    glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, w, h);
-    glGenFramebuffers(1, &g->fbo);
-    glBindFramebuffer(GL_FRAMEBUFFER, g->fbo);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, g->color, 0);
-    return glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE ? 0 : -3;
+    return gkt_target(&g->fb, "test framebuffer", w, h, 1, rgba8, false);
 }
 
 static inline void fx_gl_close(fx_gl *g)
 {
-    glDeleteFramebuffers(1, &g->fbo);
-    glDeleteTextures(1, &g->color);
-    eglMakeCurrent(g->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-    eglDestroyContext(g->dpy, g->ctx);
-    eglTerminate(g->dpy);
+    gk_target_destroy(&g->fb);
+    gkt_gl_close(&g->gl);
 }
 
-/* Rotation taking (0,0,-1) to dir, keeping x as close to world x as possible (quaternion). */
-static inline quat fx_quat_from_axes(vec3 x, vec3 y, vec3 z)
-{
-    float m00 = x.x, m11 = y.y, m22 = z.z, tr = m00 + m11 + m22;
-    quat q;
-    if (tr > 0) {
-        float s = sqrtf(tr + 1.0f) * 2;
-        q = (quat){(y.z - z.y) / s, (z.x - x.z) / s, (x.y - y.x) / s, 0.25f * s};
-    } else if (m00 > m11 && m00 > m22) {
-        float s = sqrtf(1.0f + m00 - m11 - m22) * 2;
-        q = (quat){0.25f * s, (y.x + x.y) / s, (z.x + x.z) / s, (y.z - z.y) / s};
-    } else if (m11 > m22) {
-        float s = sqrtf(1.0f + m11 - m00 - m22) * 2;
-        q = (quat){(y.x + x.y) / s, 0.25f * s, (z.y + y.z) / s, (z.x - x.z) / s};
-    } else {
-        float s = sqrtf(1.0f + m22 - m00 - m11) * 2;
-        q = (quat){(z.x + x.z) / s, (z.y + y.z) / s, 0.25f * s, (x.y - y.x) / s};
-    }
-    return q_normalize(q);
-}
-
-static inline quat fx_look_rotation(vec3 dir)
-{
-    vec3 z = v3_norm(v3_scale(dir, -1.0f));
-    vec3 up = fabsf(z.y) > 0.99f ? v3(0, 0, -1) : v3(0, 1, 0);
-    vec3 x = v3_norm(v3_cross(up, z));
-    vec3 y = v3_cross(z, x);
-    return fx_quat_from_axes(x, y, z);
-}
-
-static inline int fx_add_node(fx_scene *f)
-{
-    gk_node *n = &f->nodes[f->s.n_nodes];
-    memset(n, 0, sizeof *n);
-    n->parent = -1;
-    n->rotation = (quat){0, 0, 0, 1};
-    n->scale = v3(1, 1, 1);
-    n->light = n->camera = -1;
-    return f->s.n_nodes++;
-}
+/* Scenes: the shared builder (gkt_scene), a camera, and the plane tests' horizontal quads. */
+typedef gkt_scene fx_scene;
 
 static inline void fx_init(fx_scene *f, vec3 eye, vec3 target, float yfov)
 {
-    memset(f, 0, sizeof *f);
-    f->s.meshes = f->meshes;
-    f->s.materials = f->mats;
-    f->s.lights = f->lights;
-    f->s.nodes = f->nodes;
-    f->s.cameras = &f->cam;
-    f->s.n_cameras = 1;
-    snprintf(f->s.name, sizeof f->s.name, "fixture");
-    snprintf(f->s.path, sizeof f->s.path, "(test fixture)");
-    f->cam = (gk_camera){.yfov = yfov, .aspect = 0, .znear = 0.05f, .zfar = 50.0f};
-    int c = fx_add_node(f);
-    f->nodes[c].camera = 0;
-    f->nodes[c].translation = eye;
-    f->nodes[c].rotation = fx_look_rotation(v3_sub(target, eye));
-    f->s.camera_node = c;
+    gkt_scene_init(f, "fixture");
+    gkt_camera(f, eye, target, yfov);
     f->s.bmin = v3(-4, -1, -4);
     f->s.bmax = v3(4, 3, 4);
 }
 
 static inline int fx_material(fx_scene *f, float rho, float metallic, float roughness)
 {
-    gk_material *m = &f->mats[f->s.n_materials];
-    memset(m, 0, sizeof *m);
-    m->base_color[0] = m->base_color[1] = m->base_color[2] = rho;
-    m->base_color[3] = 1;
-    m->base_color_tex = m->metallic_roughness_tex = -1;
-    m->metallic = metallic;
-    m->roughness = roughness;
-    m->ior = 1.5f;
-    return f->s.n_materials++;
+    return gkt_material(f, v3(rho, rho, rho), metallic, roughness);
 }
 
 /* A horizontal quad (normal +y) from (x0, y, z0) to (x1, y, z1). */
 static inline void fx_quad(fx_scene *f, float x0, float x1, float z0, float z1, float y, int material)
 {
-    int k = f->s.n_meshes++;
-    fx_quad_data *q = &f->quads[k];
-    const float p[12] = {x0, y, z0, x1, y, z0, x1, y, z1, x0, y, z1};
-    memcpy(q->pos, p, sizeof p);
-    for (int i = 0; i < 4; i++) {
-        q->nrm[3 * i] = 0, q->nrm[3 * i + 1] = 1, q->nrm[3 * i + 2] = 0;
-        q->uv[2 * i] = (float)(i == 1 || i == 2), q->uv[2 * i + 1] = (float)(i >= 2);
-    }
-    const uint32_t idx[6] = {0, 2, 1, 0, 3, 2}; /* counter-clockwise seen from +y */
-    memcpy(q->idx, idx, sizeof idx);
-    gk_mesh *m = &f->meshes[k];
-    memset(m, 0, sizeof *m);
-    m->positions = q->pos;
-    m->normals = q->nrm;
-    m->uvs = q->uv;
-    m->indices = q->idx;
-    m->n_vertices = 4;
-    m->n_triangles = 2;
-    m->material = material;
-    m->bmin = v3(x0, y, z0);
-    m->bmax = v3(x1, y, z1);
-    int n = fx_add_node(f);
-    f->nodes[n].mesh_first = k;
-    f->nodes[n].mesh_count = 1;
-    f->s.n_triangles += 2;
-}
-
-static inline gk_light *fx_light(fx_scene *f, enum gk_light_type type, enum gk_light_shape shape, float intensity, vec3 pos,
-                          vec3 dir)
-{
-    int i = f->s.n_lights++;
-    gk_light *l = &f->lights[i];
-    memset(l, 0, sizeof *l);
-    l->type = type;
-    l->shape = shape;
-    l->color[0] = l->color[1] = l->color[2] = 1;
-    l->intensity = intensity;
-    l->outer_cone = 0.785398f;
-    int n = fx_add_node(f);
-    f->nodes[n].light = i;
-    f->nodes[n].translation = pos;
-    f->nodes[n].rotation = fx_look_rotation(dir);
-    return l;
+    gkt_quad(f, v3(x0, y, z0), v3(x1, y, z0), v3(x1, y, z1), v3(x0, y, z1), v3(0, 1, 0), material);
 }
 
 /* Renders one frame with the given knobs (NULL: defaults) and reads the linear image back. */
 static inline int fx_render(fx_gl *g, fx_scene *f, int gles, const char *budget, gk_image *out, gk_err *e)
 {
-    gk_render_opts o = {.width = g->w, .height = g->h, .gles_version = gles, .shader_dir = getenv("GK_SHADER_DIR")};
+    gk_render_opts o = {.width = g->fb.width, .height = g->fb.height, .gles_version = gles, .shader_dir = getenv("GK_SHADER_DIR")};
     gk_renderer *r = gk_renderer_create(&o, e);
     if (!r)
         return -1;
@@ -212,7 +76,7 @@ static inline int fx_render(fx_gl *g, fx_scene *f, int gles, const char *budget,
     if (rc == 0)
         rc = gk_renderer_set_scene(r, &f->s, e);
     if (rc == 0)
-        rc = gk_renderer_draw(r, &fp, g->fbo, &t, e);
+        rc = gk_renderer_draw(r, &fp, g->fb.fbo, &t, e);
     if (rc == 0)
         rc = gk_renderer_read_linear(r, out, e);
     gk_renderer_destroy(r);

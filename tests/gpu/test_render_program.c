@@ -6,15 +6,18 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <cmocka.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "gpu/test_render_fixture.h"
+#include "common/gl_fixture.h"
 #include "gl/gbuffer_bind.h"
 #include "gl/gl_program.h"
 #include "gl/shader_source.h"
 
-static fx_gl gl;
+static gkt_gl gl;
 static char dir[256];
 
 static void write_file(const char *rel, const char *text)
@@ -36,13 +39,13 @@ static int setup(void **state)
     char sub[300];
     snprintf(sub, sizeof sub, "%s/lib", dir);
     mkdir(sub, 0700);
-    return fx_gl_open(&gl, 8, 8);
+    return gkt_gl_open(&gl);
 }
 
 static int teardown(void **state)
 {
     (void)state;
-    fx_gl_close(&gl);
+    gkt_gl_close(&gl);
     char cmd[300];
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
     return system(cmd) == 0 ? 0 : -1;

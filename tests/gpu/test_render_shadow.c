@@ -42,7 +42,7 @@ static void planes_scene(fx_scene *f, bool occluder, enum gk_light_shape shape)
     fx_quad(f, -4, 4, -4, 4, 0, fx_material(f, 0.8f, 0, 0.9f));
     if (occluder)
         fx_quad(f, -4, 0, -4, 4, H_OCC, fx_material(f, 0.5f, 0, 0.9f));
-    gk_light *l = fx_light(f, GK_LIGHT_POINT, shape, 4, v3(0, H_LIGHT, 0), v3(0, -1, 0));
+    gk_light *l = gkt_light(f, GK_LIGHT_POINT, shape, 4, v3(0, H_LIGHT, 0), v3(0, -1, 0));
     if (shape == GK_SHAPE_RECT)
         l->size[0] = l->size[1] = S_LIGHT;
     else
@@ -95,6 +95,8 @@ static vis_error measure(const char *budget, enum gk_light_shape shape)
     gk_image_free(&b);
     printf("# %s (%s light): mean |dV| %.4f over %d pixels, %.4f over %d penumbra pixels\n", budget,
            shape == GK_SHAPE_RECT ? "rect" : "sphere", r.mean_all, r.n_all, r.mean_penumbra, r.n_penumbra);
+    gkt_scene_free(&with);
+    gkt_scene_free(&without);
     return r;
 }
 
@@ -141,7 +143,7 @@ static void pcss_no_self_shadowing(void **state)
     for (int k = 0; k < 2; k++) {
         fx_init(&f[k], v3(1.2f, 1.6f, 1.8f), v3(0.6f, 0, 0), 0.9f);
         fx_quad(&f[k], -4, 4, -4, 4, 0, fx_material(&f[k], k == 0 ? 0.8f : 0.0f, 0, 0.9f));
-        gk_light *l = fx_light(&f[k], GK_LIGHT_POINT, GK_SHAPE_RECT, inten, c, dir);
+        gk_light *l = gkt_light(&f[k], GK_LIGHT_POINT, GK_SHAPE_RECT, inten, c, dir);
         l->size[0] = lw;
         l->size[1] = lh;
         if (fx_render(&gl, &f[k], 32, "shadow=pcss,shadow_map=1024", &img[k], &e) != 0)
@@ -176,6 +178,8 @@ static void pcss_no_self_shadowing(void **state)
        receiver-plane bias disabled (--shader-dir copy) the mean was 0.36: the check can fail. */
     assert_true(sum_err / n < 3e-3);
     assert_true(max_err < 0.05);
+    for (int k = 0; k < 2; k++)
+        gkt_scene_free(&f[k]);
 }
 
 int main(void)

@@ -84,6 +84,8 @@ static void measure(const sx_setup *st, const char *what, const char *const *met
     free(b);
     free(v);
     sx_truth_free(&t);
+    gkt_scene_free(&with);
+    gkt_scene_free(&without);
 }
 
 static const char *const all_methods[] = {"hard", "pcss", "vssm", "cssm", "cssm_sat", "savsm"};

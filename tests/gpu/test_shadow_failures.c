@@ -53,6 +53,8 @@ static void render_v(const char *method, float lx, float *v, sx_truth *t)
         fail_msg("render %s: %s", method, e.msg);
     gk_renderer_set_scene(ses.r, NULL, &e);
     sx_ratio(a, b, t, v);
+    gkt_scene_free(&with);
+    gkt_scene_free(&without);
 }
 
 static int cmp_float(const void *a, const void *b)

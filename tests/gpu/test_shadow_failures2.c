@@ -55,6 +55,8 @@ static void render_v(const sx_setup *st, const char *pins_extra, const char *met
         fail_msg("render %s: %s", method, e.msg);
     gk_renderer_set_scene(ses.r, NULL, &e);
     sx_ratio(a, b, t, v);
+    gkt_scene_free(&with);
+    gkt_scene_free(&without);
 }
 
 /* --- F2 ---------------------------------------------------------------------------------------- */
@@ -419,6 +421,7 @@ static void f7_sat_exact_readback(void **state)
     gk_shadow_maps_free(&maps);
     gk_scene_gpu_free(&gpu);
     gk_program_cache_destroy(progs);
+    gkt_scene_free(&f);
 }
 
 /* --- shadow_subdiv ------------------------------------------------------------------------------ */

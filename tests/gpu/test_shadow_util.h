@@ -1,5 +1,5 @@
 /* Shared by tests/gpu/test_shadow*.c (header-only): the analytic soft-shadow scenes of
- * dong-001.md §9.2 built in memory on test_render_fixture.h, one renderer driven through the real
+ * dong-001.md §9.2 built in memory on test_render_fixture.h (the shared gkt_scene builders), one renderer driven through the real
  * pipeline with the shadow method pinned per frame, visibility measured as
  *     V = L(scene) / L(scene without blockers, hard shadows)
  * on a white diffuse receiver (the lighting multiplies the unshadowed radiance by
@@ -36,39 +36,6 @@ typedef struct sx_setup {
     float yfov;
 } sx_setup;
 
-/* A quad with arbitrary corners (counter-clockwise seen from its front). */
-static inline void sx_quad4(fx_scene *f, vec3 a, vec3 b, vec3 c, vec3 d, int material)
-{
-    int k = f->s.n_meshes++;
-    fx_quad_data *q = &f->quads[k];
-    vec3 p[4] = {a, b, c, d};
-    vec3 n = v3_norm(v3_cross(v3_sub(b, a), v3_sub(c, a)));
-    for (int i = 0; i < 4; i++) {
-        q->pos[3 * i] = p[i].x, q->pos[3 * i + 1] = p[i].y, q->pos[3 * i + 2] = p[i].z;
-        q->nrm[3 * i] = n.x, q->nrm[3 * i + 1] = n.y, q->nrm[3 * i + 2] = n.z;
-        q->uv[2 * i] = (float)(i == 1 || i == 2), q->uv[2 * i + 1] = (float)(i >= 2);
-    }
-    const uint32_t idx[6] = {0, 1, 2, 0, 2, 3};
-    memcpy(q->idx, idx, sizeof idx);
-    gk_mesh *m = &f->meshes[k];
-    memset(m, 0, sizeof *m);
-    m->positions = q->pos;
-    m->normals = q->nrm;
-    m->uvs = q->uv;
-    m->indices = q->idx;
-    m->n_vertices = 4;
-    m->n_triangles = 2;
-    m->material = material;
-    m->bmin = v3(fminf(fminf(a.x, b.x), fminf(c.x, d.x)), fminf(fminf(a.y, b.y), fminf(c.y, d.y)),
-                 fminf(fminf(a.z, b.z), fminf(c.z, d.z)));
-    m->bmax = v3(fmaxf(fmaxf(a.x, b.x), fmaxf(c.x, d.x)), fmaxf(fmaxf(a.y, b.y), fmaxf(c.y, d.y)),
-                 fmaxf(fmaxf(a.z, b.z), fmaxf(c.z, d.z)));
-    int nd = fx_add_node(f);
-    f->nodes[nd].mesh_first = k;
-    f->nodes[nd].mesh_count = 1;
-    f->s.n_triangles += 2;
-}
-
 static inline vec3 sx_box_corner(const sx_setup *st, int i)
 {
     float x = (i & 1) ? 0.5f : -0.5f, y = (i & 2) ? 1.0f : 0.0f, z = (i & 4) ? 0.5f : -0.5f;
@@ -91,12 +58,14 @@ static inline void sx_build(fx_scene *f, const sx_setup *st, bool blockers)
             fx_quad(f, st->rect[i].x0, st->rect[i].x1, st->rect[i].z0, st->rect[i].z1, st->rect[i].y, black);
         if (st->box) {
             static const int faces[5][4] = {{2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-            for (int k = 0; k < 5; k++)
-                sx_quad4(f, sx_box_corner(st, faces[k][0]), sx_box_corner(st, faces[k][1]), sx_box_corner(st, faces[k][2]),
-                         sx_box_corner(st, faces[k][3]), white);
+            for (int k = 0; k < 5; k++) {
+                vec3 a = sx_box_corner(st, faces[k][0]), b = sx_box_corner(st, faces[k][1]),
+                     c = sx_box_corner(st, faces[k][2]), d = sx_box_corner(st, faces[k][3]);
+                gkt_quad(f, a, b, c, d, v3_cross(v3_sub(b, a), v3_sub(c, a)), white);
+            }
         }
     }
-    gk_light *l = fx_light(f, GK_LIGHT_SPOT, GK_SHAPE_RECT, 20, st->light, v3(0, -1, 0));
+    gk_light *l = gkt_light(f, GK_LIGHT_SPOT, GK_SHAPE_RECT, 20, st->light, v3(0, -1, 0));
     l->size[0] = l->size[1] = st->S;
     l->outer_cone = 0.95f;
     l->inner_cone = 0.9f;
@@ -236,7 +205,7 @@ static inline int sx_draw(sx_session *x, const char *pins, float *out)
     gk_frame_params fp = {.time_s = 0, .method = "none", .budget = &x->b};
     gk_frame_report t;
     gk_image img = {0};
-    if (gk_renderer_draw(x->r, &fp, x->gl.fbo, &t, &e) != 0 || gk_renderer_read_linear(x->r, &img, &e) != 0) {
+    if (gk_renderer_draw(x->r, &fp, x->gl.fb.fbo, &t, &e) != 0 || gk_renderer_read_linear(x->r, &img, &e) != 0) {
         fprintf(stderr, "draw %s: %s\n", pins, e.msg);
         return -1;
     }

@@ -42,22 +42,14 @@ static GLuint shadow_map(const vt_scene *sc, mat4 view_proj, int size)
     vt_frame f;
     memset(&f, 0, sizeof f);
     f.w = f.h = size;
-    f.depth = vt_tex(GL_DEPTH_COMPONENT32F, size, size);
-    glGenFramebuffers(1, &f.gbuf_fbo);
-    glBindFramebuffer(GL_FRAMEBUFFER, f.gbuf_fbo);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, f.depth, 0);
+    gkt_target(&f.gbuf, "test shadow map", size, size, 3, vt_gbuf_formats, true);
     f.view_proj = view_proj;
     f.eye = v3(0, 10, 0);
-    /* vt_gbuffer sets 4 draw buffers; with no colour attachments only depth is written */
-    GLuint pos = vt_tex(GL_RGBA32F, size, size), nrm = vt_tex(GL_RGBA16F, size, size);
-    GLuint alb = vt_tex(GL_RGBA8, size, size), mat = vt_tex(GL_RGBA8, size, size);
-    GLuint cols[4] = {pos, nrm, alb, mat};
-    for (int i = 0; i < 4; i++)
-        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + (GLenum)i, GL_TEXTURE_2D, cols[i], 0);
     vt_gbuffer(&g, &f, sc);
-    glDeleteTextures(4, cols);
-    glDeleteFramebuffers(1, &f.gbuf_fbo);
-    return f.depth;
+    GLuint depth = f.gbuf.depth;
+    f.gbuf.depth = 0; /* kept: the caller owns the map */
+    gk_target_destroy(&f.gbuf);
+    return depth;
 }
 
 static void injection_matches_formula_and_uses_the_shadow_map(void **state)

@@ -1,140 +1,66 @@
-/* Helpers shared by the vct GPU tests (tests/gpu/test_vct*.c): an EGL surfaceless GLES context,
- * small in-memory scenes (quads and boxes, one node per object), a test G-buffer rendered with
- * shaders_gles/vct/test/gbuf.*, an RGBA32F HDR target to read the method's contribution back, and
+/* Helpers shared by the vct GPU tests (tests/gpu/test_vct*.c), on the shared fixture
+ * (tests/common/gl_fixture.h: context, targets, scene builders): small in-memory scenes (quads
+ * and boxes, one node per object), a test G-buffer rendered with
+ * tests/shaders/vct/test/gbuf.*, an RGBA32F HDR target to read the method's contribution back, and
  * one call that renders a frame through gk_gi_vct. Header-only (static functions) because each
  * GPU test is one program. */
 #ifndef TEST_VCT_UTIL_H
 #define TEST_VCT_UTIL_H
 
-#include "platform/egl.h"
-#include <EGL/egl.h>
-#include <EGL/eglext.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "common/gl_fixture.h"
 #include "gi/vct/vct.h"
 #include "gl/gl.h"
 #include "gl/gl_program.h"
 
-#define VT_MAX_OBJ 64
-
-static bool vt_full_gbuffer = false;
-
 /* ---- context ------------------------------------------------------------------------------- */
 typedef struct vt_gl {
-    EGLDisplay dpy;
-    EGLContext ctx;
+    gkt_gl gl;
     gk_program_cache *programs;
 } vt_gl;
 
 static inline int vt_gl_init(vt_gl *g)
 {
-    g->dpy = eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, NULL);
-    if (g->dpy == EGL_NO_DISPLAY || !gk_egl_initialize(g->dpy, NULL, NULL) || !eglBindAPI(EGL_OPENGL_ES_API))
+    if (gkt_gl_open(&g->gl) != 0)
         return -1;
-    EGLint attr[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 1, EGL_NONE};
-    g->ctx = eglCreateContext(g->dpy, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attr);
-    if (g->ctx == EGL_NO_CONTEXT || !eglMakeCurrent(g->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, g->ctx))
-        return -2;
-    /* #version 310 es: the portable GLES 3.1 path is what is tested */
-    g->programs = gk_program_cache_create(NULL, 31);
+    /* #version 310 es: the portable GLES 3.1 path is what is tested; the tests' shader root has
+       the method's shaders and the test-only ones (tests/shaders/) */
+    g->programs = gkt_programs(31);
     return g->programs ? 0 : -3;
 }
 
 static inline void vt_gl_fini(vt_gl *g)
 {
     gk_program_cache_destroy(g->programs);
-    eglMakeCurrent(g->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-    eglDestroyContext(g->dpy, g->ctx);
-    eglTerminate(g->dpy);
+    gkt_gl_close(&g->gl);
 }
 
-/* ---- scenes -------------------------------------------------------------------------------- */
-typedef struct vt_scene {
-    gk_scene s;
-    gk_mesh meshes[VT_MAX_OBJ];
-    gk_material mats[VT_MAX_OBJ];
-    gk_node nodes[VT_MAX_OBJ];
-    gk_light lights[4];
-} vt_scene;
+/* ---- scenes: the shared builder, one node and one material per object ---------------------- */
+typedef gkt_scene vt_scene;
 
-static inline void vt_scene_init(vt_scene *v)
-{
-    memset(v, 0, sizeof *v);
-    v->s.meshes = v->meshes;
-    v->s.materials = v->mats;
-    v->s.nodes = v->nodes;
-    v->s.lights = v->lights;
-    v->s.camera_node = -1;
-    snprintf(v->s.name, sizeof v->s.name, "vct-test");
-}
-
-static inline void vt_scene_free(vt_scene *v)
-{
-    for (int i = 0; i < v->s.n_meshes; i++) {
-        free(v->meshes[i].positions);
-        free(v->meshes[i].normals);
-        free(v->meshes[i].indices);
-    }
-}
-
+static inline void vt_scene_init(vt_scene *v) { gkt_scene_init(v, "vct-test"); }
+static inline void vt_scene_free(vt_scene *v) { gkt_scene_free(v); }
 /* Bounds and counts after objects were added (node world matrices applied). */
-static inline void vt_scene_finish(vt_scene *v)
-{
-    vec3 lo = v3(1e30f, 1e30f, 1e30f), hi = v3(-1e30f, -1e30f, -1e30f);
-    v->s.n_triangles = 0;
-    for (int n = 0; n < v->s.n_nodes; n++) {
-        const gk_mesh *m = &v->meshes[v->nodes[n].mesh_first];
-        for (uint32_t i = 0; i < m->n_vertices; i++) {
-            vec3 p = m4_point(v->nodes[n].world, v3(m->positions[i * 3], m->positions[i * 3 + 1], m->positions[i * 3 + 2]));
-            lo = v3_min(lo, p);
-            hi = v3_max(hi, p);
-        }
-        v->s.n_triangles += m->n_triangles;
-    }
-    v->s.bmin = lo;
-    v->s.bmax = hi;
-}
+static inline void vt_scene_finish(vt_scene *v) { gkt_scene_bounds(v); }
 
-/* Adds an object made of quads (corner, edge u, edge v each), one node; returns the node index. */
+/* Adds an object made of quads (corner, edge u, edge v each; normal u x v), one node; returns the
+   node index. */
 static inline int vt_add_quads(vt_scene *v, int nq, const float (*q)[9], vec3 albedo, vec3 emission, bool animated)
 {
-    int i = v->s.n_meshes++;
-    gk_mesh *m = &v->meshes[i];
-    m->n_vertices = (uint32_t)nq * 4;
-    m->n_triangles = (uint32_t)nq * 2;
-    m->positions = calloc(m->n_vertices * 3, sizeof(float));
-    m->normals = calloc(m->n_vertices * 3, sizeof(float));
-    m->indices = calloc(m->n_triangles * 3, sizeof(uint32_t));
+    gkw_geom geom = {0};
     for (int k = 0; k < nq; k++) {
         vec3 c = v3(q[k][0], q[k][1], q[k][2]), u = v3(q[k][3], q[k][4], q[k][5]), w = v3(q[k][6], q[k][7], q[k][8]);
-        vec3 n = v3_norm(v3_cross(u, w));
-        vec3 p[4] = {c, v3_add(c, u), v3_add(v3_add(c, u), w), v3_add(c, w)};
-        for (int j = 0; j < 4; j++) {
-            memcpy(&m->positions[(k * 4 + j) * 3], &p[j], sizeof(vec3));
-            memcpy(&m->normals[(k * 4 + j) * 3], &n, sizeof(vec3));
-        }
-        uint32_t b = (uint32_t)k * 4, idx[6] = {b, b + 1, b + 2, b, b + 2, b + 3};
-        memcpy(&m->indices[k * 6], idx, sizeof idx);
+        gkb_quad(&geom, c, v3_add(c, u), v3_add(v3_add(c, u), w), v3_add(c, w), v3_cross(u, w));
     }
-    m->material = i;
-    gk_material *mat = &v->mats[i];
-    mat->base_color[0] = albedo.x, mat->base_color[1] = albedo.y, mat->base_color[2] = albedo.z;
-    mat->base_color[3] = 1;
-    mat->emissive[0] = emission.x, mat->emissive[1] = emission.y, mat->emissive[2] = emission.z;
-    mat->base_color_tex = mat->metallic_roughness_tex = -1;
-    mat->roughness = 1;
-    v->s.n_materials = v->s.n_meshes;
-    gk_node *nd = &v->nodes[v->s.n_nodes];
-    nd->parent = -1;
-    nd->mesh_first = i;
-    nd->mesh_count = 1;
-    nd->light = nd->camera = -1;
-    nd->world = m4_identity();
-    nd->animated = animated;
-    return v->s.n_nodes++;
+    int mat = gkt_material(v, albedo, 0, 1);
+    v->mats[mat].emissive[0] = emission.x, v->mats[mat].emissive[1] = emission.y, v->mats[mat].emissive[2] = emission.z;
+    int n = gkt_object(v, &geom, mat);
+    v->nodes[n].animated = animated;
+    return n;
 }
 
 static inline int vt_add_quad(vt_scene *v, vec3 c, vec3 u, vec3 w, vec3 albedo)
@@ -156,45 +82,24 @@ static inline int vt_add_box(vt_scene *v, vec3 lo, vec3 sz, vec3 albedo, bool an
 }
 
 /* ---- G-buffer + HDR target ------------------------------------------------------------------ */
+/* gbuf: position (RGBA32F, w = window depth; for test masks only), normal (RGBA16F), albedo
+   (RGBA8) and depth, the renderer's layout (gi.h); hdr: RGBA32F. */
 typedef struct vt_frame {
     int w, h;
-    GLuint gbuf_fbo, pos, normal, albedo, material, depth;
-    GLuint hdr_fbo, hdr;
+    gk_target gbuf, hdr;
     mat4 view, proj, view_proj, inv_view_proj;
     vec3 eye;
 } vt_frame;
 
-static inline GLuint vt_tex(GLenum fmt, int w, int h)
-{
-    GLuint t;
-    glGenTextures(1, &t);
-    glBindTexture(GL_TEXTURE_2D, t);
-    glTexStorage2D(GL_TEXTURE_2D, 1, fmt, w, h);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    return t;
-}
+static const GLenum vt_gbuf_formats[3] = {GL_RGBA32F, GL_RGBA16F, GL_RGBA8};
 
 static inline void vt_frame_create(vt_frame *f, int w, int h, vec3 eye, vec3 target, vec3 up, float yfov)
 {
+    const GLenum hdr[1] = {GL_RGBA32F};
     memset(f, 0, sizeof *f);
     f->w = w, f->h = h, f->eye = eye;
-    f->pos = vt_tex(GL_RGBA32F, w, h);
-    f->normal = vt_tex(GL_RGBA16F, w, h);
-    f->albedo = vt_tex(GL_RGBA8, w, h);
-    f->material = vt_tex(GL_RGBA8, w, h);
-    f->depth = vt_tex(GL_DEPTH_COMPONENT32F, w, h);
-    glGenFramebuffers(1, &f->gbuf_fbo);
-    glBindFramebuffer(GL_FRAMEBUFFER, f->gbuf_fbo);
-    GLuint cols[4] = {f->pos, f->normal, f->albedo, f->material};
-    for (int i = 0; i < 4; i++)
-        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + (GLenum)i, GL_TEXTURE_2D, cols[i], 0);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, f->depth, 0);
-    f->hdr = vt_tex(GL_RGBA32F, w, h);
-    glGenFramebuffers(1, &f->hdr_fbo);
-    glBindFramebuffer(GL_FRAMEBUFFER, f->hdr_fbo);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, f->hdr, 0);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    gkt_target(&f->gbuf, "test gbuffer", w, h, 3, vt_gbuf_formats, true);
+    gkt_target(&f->hdr, "test hdr", w, h, 1, hdr, false);
     f->view = m4_look_at(eye, target, up);
     f->proj = m4_perspective(yfov, (float)w / (float)h, 0.05f, 20.0f);
     f->view_proj = m4_mul(f->proj, f->view);
@@ -203,10 +108,8 @@ static inline void vt_frame_create(vt_frame *f, int w, int h, vec3 eye, vec3 tar
 
 static inline void vt_frame_destroy(vt_frame *f)
 {
-    GLuint t[6] = {f->pos, f->normal, f->albedo, f->material, f->depth, f->hdr};
-    glDeleteTextures(6, t);
-    glDeleteFramebuffers(1, &f->gbuf_fbo);
-    glDeleteFramebuffers(1, &f->hdr_fbo);
+    gk_target_destroy(&f->gbuf);
+    gk_target_destroy(&f->hdr);
 }
 
 /* Rasterizes the scene (current node matrices) into the G-buffer. */
@@ -243,9 +146,9 @@ static inline int vt_gbuffer(vt_gl *g, vt_frame *f, const vt_scene *v)
         glEnableVertexAttribArray((GLuint)a);
         glVertexAttribPointer((GLuint)a, 3, GL_FLOAT, GL_FALSE, 9 * sizeof(float), (void *)(size_t)(a * 3 * sizeof(float)));
     }
-    glBindFramebuffer(GL_FRAMEBUFFER, f->gbuf_fbo);
-    GLenum bufs[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3};
-    glDrawBuffers(4, bufs);
+    glBindFramebuffer(GL_FRAMEBUFFER, f->gbuf.fbo);
+    GLenum bufs[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+    glDrawBuffers(3, bufs);
     glViewport(0, 0, f->w, f->h);
     glClearColor(0, 0, 0, 0);
     glClearDepthf(1.0f);
@@ -296,16 +199,13 @@ static inline int vt_render(void *vct, vt_frame *f, const vt_scene *v, const gk_
     fr.width = f->w, fr.height = f->h;
     fr.view = f->view, fr.proj = f->proj, fr.view_proj = f->view_proj, fr.inv_view_proj = f->inv_view_proj;
     fr.eye = f->eye;
-    fr.gbuf_depth = f->depth, fr.gbuf_normal = f->normal, fr.gbuf_albedo = f->albedo;
-    /* the renderer's layout (gi.h): positions from depth, metallic/roughness in albedo.a/normal.w;
-       vt_full_gbuffer switches to the optional position and material textures */
-    fr.gbuf_material = vt_full_gbuffer ? f->material : 0;
-    fr.gbuf_position = vt_full_gbuffer ? f->pos : 0;
-    fr.hdr_fbo = f->hdr_fbo;
+    fr.gbuf_depth = f->gbuf.depth, fr.gbuf_normal = f->gbuf.color[1], fr.gbuf_albedo = f->gbuf.color[2];
+    /* the renderer's layout (gi.h): positions from depth, metallic/roughness in albedo.a/normal.w */
+    fr.hdr_fbo = f->hdr.fbo;
     fr.n_lights = n_lights;
     fr.lights = lights;
     fr.budget = b;
-    glBindFramebuffer(GL_FRAMEBUFFER, f->hdr_fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, f->hdr.fbo);
     glClearColor(0, 0, 0, 0);
     glClear(GL_COLOR_BUFFER_BIT);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -326,21 +226,15 @@ static inline int vt_render(void *vct, vt_frame *f, const vt_scene *v, const gk_
         fprintf(stderr, "# vct render: %s\n", e.msg);
         return -1;
     }
-    if (out_rgba) {
-        glBindFramebuffer(GL_FRAMEBUFFER, f->hdr_fbo);
-        glReadPixels(0, 0, f->w, f->h, GL_RGBA, GL_FLOAT, out_rgba);
-        glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    }
+    if (out_rgba)
+        gkt_read_rgba(&f->hdr, 0, GL_FLOAT, out_rgba);
     return glGetError() == GL_NO_ERROR ? 0 : -1;
 }
 
-/* Reads the G-buffer positions (RGBA32F) for masks in tests. */
+/* Reads the G-buffer positions (RGBA32F: xyz world, w window depth, 0 where nothing) for masks. */
 static inline void vt_read_positions(vt_frame *f, float *out_rgba)
 {
-    glBindFramebuffer(GL_FRAMEBUFFER, f->gbuf_fbo);
-    glReadBuffer(GL_COLOR_ATTACHMENT0);
-    glReadPixels(0, 0, f->w, f->h, GL_RGBA, GL_FLOAT, out_rgba);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    gkt_read_rgba(&f->gbuf, 0, GL_FLOAT, out_rgba);
 }
 
 /* A budget with the vct knobs at the given values (strings as on the command line). */

@@ -27,7 +27,7 @@ static const wall walls[5] = {
 
 static vec3 albedo(int mat)
 {
-    const float *c = H.materials[mat].base_color;
+    const float *c = H.box.mats[mat].base_color;
     return v3(c[0], c[1], c[2]);
 }
 
@@ -38,11 +38,11 @@ static float e_direct(vec3 y, vec3 n)
     float d2 = v3_dot(L, L), d = sqrtf(d2);
     vec3 l = v3_scale(L, 1.0f / d);
     float c = -v3_dot(l, H.gl_light.direction);
-    float I = H.light.intensity;
-    if (H.light.shape == GK_SHAPE_RECT) { /* one-sided Lambertian emitter: I·cos */
+    float I = H.box.lights[0].intensity;
+    if (H.box.lights[0].shape == GK_SHAPE_RECT) { /* one-sided Lambertian emitter: I·cos */
         I *= fmaxf(c, 0.0f);
-    } else if (H.light.type == GK_LIGHT_SPOT) {
-        float ci = cosf(H.light.inner_cone), co = cosf(H.light.outer_cone);
+    } else if (H.box.lights[0].type == GK_LIGHT_SPOT) {
+        float ci = cosf(H.box.lights[0].inner_cone), co = cosf(H.box.lights[0].outer_cone);
         float t = fminf(fmaxf((c - co) / (ci - co), 0.0f), 1.0f);
         I *= t * t;
     }
@@ -184,8 +184,8 @@ static void test_f13_clamp(void **state)
    a rectangular area light (5-face hemicube, I·cosθ), with and without the clamp. */
 static double light_energy_ratio(enum gk_light_type type, enum gk_light_shape shape, const char *clamp)
 {
-    H.light.type = type, H.light.shape = shape;
-    H.light.size[0] = H.light.size[1] = 0.1f;
+    H.box.lights[0].type = type, H.box.lights[0].shape = shape;
+    H.box.lights[0].size[0] = H.box.lights[0].size[1] = 0.1f;
     float *ref = malloc(sizeof(float) * W * HH * 4);
     reference(ref);
     gk_vpl_debug d;
@@ -199,7 +199,7 @@ static double light_energy_ratio(enum gk_light_type type, enum gk_light_shape sh
     assert_int_equal(h_frame(&H, 0), 0);
     double r = h_mean(H.img, W * HH) / h_mean(ref, W * HH);
     free(ref);
-    H.light.type = GK_LIGHT_SPOT, H.light.shape = GK_SHAPE_POINT;
+    H.box.lights[0].type = GK_LIGHT_SPOT, H.box.lights[0].shape = GK_SHAPE_POINT;
     return r;
 }
 

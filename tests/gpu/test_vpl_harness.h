@@ -1,5 +1,5 @@
 /* Shared set-up of the vpl GPU tests (included by tests/gpu/test_vpl_*.c; not a program itself):
- * an EGL surfaceless context, the T5 "Cornell corner" scene of dong-001.md §9.2 built in memory
+ * on the shared fixture (tests/common/gl_fixture.h: context, targets, scene builders) the T5 "Cornell corner" scene of dong-001.md §9.2 built in memory
  * (unit box, one-sided walls ρ = 0.75 grey, red left, green right, two cuboids, a 30° spot aimed at
  * the corner (0,0,0) from (0.5, 0.95, 0.9)), the renderer's own G-buffer shader and scene upload,
  * and one call that runs the vpl method for a frame and reads back the indirect radiance it adds. */
@@ -11,22 +11,17 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "common/gl_fixture.h"
 #include "gi/vpl/vpl.h"
-#include "platform/egl.h"
 #include "gl/gl_program.h"
 #include "gl/gl_target.h"
 #include "render/scene_gpu.h"
 
-#define H_MAX_MESH 8
-
 typedef struct vpl_h {
-    gk_egl egl;
+    gkt_gl gl;
     gk_program_cache *programs;
-    gk_scene scene;
-    gk_mesh meshes[H_MAX_MESH];
-    gk_material materials[4];
-    gk_node nodes[H_MAX_MESH];
-    gk_light light;
+    gkt_scene box;       /* the built-in Cornell corner (shared scene builders) */
+    gk_scene scene;      /* box.s, or the external scene */
     gk_scene_gpu gpu;
     gk_target gbuf, hdr;
     int w, h;
@@ -39,45 +34,6 @@ typedef struct vpl_h {
     float *img;          /* w*h*4 indirect radiance of the last frame */
     gk_frame_report times; /* the method's pass timings of the last frame */
 } vpl_h;
-
-static inline void h_quad(gk_mesh *m, vec3 o, vec3 a, vec3 b, vec3 n, int mat)
-{
-    m->n_vertices = 4, m->n_triangles = 2, m->material = mat;
-    m->positions = malloc(12 * sizeof(float));
-    m->normals = malloc(12 * sizeof(float));
-    m->indices = malloc(6 * sizeof(uint32_t));
-    vec3 p[4] = {o, v3_add(o, a), v3_add(v3_add(o, a), b), v3_add(o, b)};
-    for (int i = 0; i < 4; i++) {
-        memcpy(&m->positions[i * 3], &p[i], sizeof(vec3));
-        memcpy(&m->normals[i * 3], &n, sizeof(vec3));
-    }
-    const uint32_t ix[6] = {0, 1, 2, 0, 2, 3};
-    memcpy(m->indices, ix, sizeof ix);
-}
-
-/* A cuboid as one mesh of 6 quads (outward normals). */
-static inline void h_box(gk_mesh *m, vec3 mn, vec3 sz, int mat)
-{
-    m->n_vertices = 24, m->n_triangles = 12, m->material = mat;
-    m->positions = malloc(72 * sizeof(float));
-    m->normals = malloc(72 * sizeof(float));
-    m->indices = malloc(36 * sizeof(uint32_t));
-    vec3 X = v3(sz.x, 0, 0), Y = v3(0, sz.y, 0), Z = v3(0, 0, sz.z);
-    struct { vec3 o, a, b, n; } f[6] = {
-        {mn, Y, Z, v3(-1, 0, 0)}, {v3_add(mn, X), Y, Z, v3(1, 0, 0)}, {mn, X, Z, v3(0, -1, 0)},
-        {v3_add(mn, Y), X, Z, v3(0, 1, 0)}, {mn, X, Y, v3(0, 0, -1)}, {v3_add(mn, Z), X, Y, v3(0, 0, 1)},
-    };
-    for (int q = 0; q < 6; q++) {
-        vec3 p[4] = {f[q].o, v3_add(f[q].o, f[q].a), v3_add(v3_add(f[q].o, f[q].a), f[q].b), v3_add(f[q].o, f[q].b)};
-        for (int i = 0; i < 4; i++) {
-            memcpy(&m->positions[(q * 4 + i) * 3], &p[i], sizeof(vec3));
-            memcpy(&m->normals[(q * 4 + i) * 3], &f[q].n, sizeof(vec3));
-        }
-        const uint32_t ix[6] = {0, 1, 2, 0, 2, 3};
-        for (int k = 0; k < 6; k++)
-            m->indices[q * 6 + k] = (uint32_t)(q * 4) + ix[k];
-    }
-}
 
 static inline int h_draw_scene(void *ctx, unsigned prog, gk_err *e)
 {
@@ -111,59 +67,35 @@ static inline int h_init_with(vpl_h *h, bool with_boxes, int w, int hh, gk_scene
 {
     memset(h, 0, sizeof *h);
     gk_err e = {0};
-    EGLDisplay dpy = eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, NULL);
-    if (gk_egl_init_display(&h->egl, dpy, &e) || gk_egl_create_context(&h->egl, EGL_NO_CONFIG_KHR, false, &e) ||
-        gk_egl_make_current(&h->egl, EGL_NO_SURFACE, &e)) {
-        fprintf(stderr, "EGL: %s\n", e.msg);
+    if (gkt_gl_open(&h->gl) != 0)
         return -1;
-    }
-    h->programs = gk_program_cache_create(NULL, h->egl.gles_version);
-    const float grey[3] = {0.75f, 0.75f, 0.75f}, red[3] = {0.75f, 0.1f, 0.1f}, green[3] = {0.1f, 0.75f, 0.1f};
-    const float *cols[3] = {grey, red, green};
-    for (int i = 0; i < 3; i++) {
-        gk_material *m = &h->materials[i];
-        snprintf(m->name, sizeof m->name, "wall%d", i);
-        m->base_color[0] = cols[i][0], m->base_color[1] = cols[i][1], m->base_color[2] = cols[i][2];
-        m->base_color[3] = 1, m->roughness = 1, m->ior = 1.5f, m->base_color_tex = m->metallic_roughness_tex = -1;
-    }
-    int n = 0;
-    h_quad(&h->meshes[n++], v3(0, 0, 0), v3(1, 0, 0), v3(0, 0, 1), v3(0, 1, 0), 0);  /* floor */
-    h_quad(&h->meshes[n++], v3(0, 1, 0), v3(1, 0, 0), v3(0, 0, 1), v3(0, -1, 0), 0); /* ceiling */
-    h_quad(&h->meshes[n++], v3(0, 0, 0), v3(1, 0, 0), v3(0, 1, 0), v3(0, 0, 1), 0);  /* back */
-    h_quad(&h->meshes[n++], v3(0, 0, 0), v3(0, 1, 0), v3(0, 0, 1), v3(1, 0, 0), 1);  /* left, red */
-    h_quad(&h->meshes[n++], v3(1, 0, 0), v3(0, 1, 0), v3(0, 0, 1), v3(-1, 0, 0), 2); /* right, green */
+    h->programs = gk_program_cache_create(NULL, h->gl.egl.gles_version);
+    gkt_scene *b = &h->box;
+    gkt_scene_init(b, "vpl-cornell-corner");
+    int grey = gkt_material(b, v3(0.75f, 0.75f, 0.75f), 0, 1), red = gkt_material(b, v3(0.75f, 0.1f, 0.1f), 0, 1),
+        green = gkt_material(b, v3(0.1f, 0.75f, 0.1f), 0, 1);
+    /* one-sided walls facing into the unit box */
+    gkt_quad(b, v3(0, 0, 0), v3(1, 0, 0), v3(1, 0, 1), v3(0, 0, 1), v3(0, 1, 0), grey);   /* floor */
+    gkt_quad(b, v3(0, 1, 0), v3(1, 1, 0), v3(1, 1, 1), v3(0, 1, 1), v3(0, -1, 0), grey);  /* ceiling */
+    gkt_quad(b, v3(0, 0, 0), v3(1, 0, 0), v3(1, 1, 0), v3(0, 1, 0), v3(0, 0, 1), grey);   /* back */
+    gkt_quad(b, v3(0, 0, 0), v3(0, 1, 0), v3(0, 1, 1), v3(0, 0, 1), v3(1, 0, 0), red);    /* left */
+    gkt_quad(b, v3(1, 0, 0), v3(1, 1, 0), v3(1, 1, 1), v3(1, 0, 1), v3(-1, 0, 0), green); /* right */
     if (with_boxes) {
-        h_box(&h->meshes[n++], v3(0.3f, 0, 0.35f), v3(0.3f, 0.6f, 0.3f), 0);
-        h_box(&h->meshes[n++], v3(0.6f, 0, 0.45f), v3(0.3f, 0.3f, 0.3f), 0);
+        gkw_geom g = {0};
+        gkb_box(&g, v3(0.3f, 0, 0.35f), v3(0.6f, 0.6f, 0.65f), false);
+        gkt_object(b, &g, grey);
+        gkb_box(&g, v3(0.6f, 0, 0.45f), v3(0.9f, 0.3f, 0.75f), false);
+        gkt_object(b, &g, grey);
     }
-    for (int i = 0; i < n; i++) {
-        gk_node *nd = &h->nodes[i];
-        snprintf(nd->name, sizeof nd->name, "n%d", i);
-        nd->parent = -1, nd->mesh_first = i, nd->mesh_count = 1, nd->light = -1, nd->camera = -1;
-        nd->scale = v3(1, 1, 1), nd->rotation = (quat){0, 0, 0, 1};
-        nd->world = m4_identity();
-    }
-    h->light.type = GK_LIGHT_SPOT, h->light.shape = GK_SHAPE_POINT;
-    h->light.color[0] = h->light.color[1] = h->light.color[2] = 1;
-    h->light.intensity = 2.0f;
-    h->light.inner_cone = 25.0f * 3.14159265f / 180.0f, h->light.outer_cone = 30.0f * 3.14159265f / 180.0f;
+    b->s.bmin = v3(0, 0, 0), b->s.bmax = v3(1, 1, 1);
+    /* the spot: a light of the scene without a node (h_aim places it) */
+    gk_light *L0 = &b->lights[b->s.n_lights++];
+    L0->type = GK_LIGHT_SPOT, L0->shape = GK_SHAPE_POINT;
+    L0->color[0] = L0->color[1] = L0->color[2] = 1;
+    L0->intensity = 2.0f;
+    L0->inner_cone = 25.0f * 3.14159265f / 180.0f, L0->outer_cone = 30.0f * 3.14159265f / 180.0f;
     gk_scene *s = &h->scene;
-    if (external) {
-        for (int i = 0; i < n; i++) { /* the built-in box is not needed */
-            free(h->meshes[i].positions);
-            free(h->meshes[i].normals);
-            free(h->meshes[i].indices);
-        }
-        *s = *external;
-    } else {
-    snprintf(s->name, sizeof s->name, "vpl-cornell-corner");
-    s->meshes = h->meshes, s->n_meshes = n;
-    s->materials = h->materials, s->n_materials = 3;
-    s->nodes = h->nodes, s->n_nodes = n;
-    s->lights = &h->light, s->n_lights = 1;
-    s->camera_node = -1;
-    s->bmin = v3(0, 0, 0), s->bmax = v3(1, 1, 1);
-    }
+    *s = external ? *external : b->s;
     if (gk_scene_gpu_upload(&h->gpu, s, &e)) {
         fprintf(stderr, "upload: %s\n", e.msg);
         return -1;
@@ -171,11 +103,8 @@ static inline int h_init_with(vpl_h *h, bool with_boxes, int w, int hh, gk_scene
     h->w = w, h->h = hh;
     const GLenum gb[3] = {GL_RGBA8, GL_RGBA16F, GL_RGBA16F};
     const GLenum hf[1] = {GL_RGBA32F};
-    if (gk_target_create(&h->gbuf, "test gbuffer", w, hh, 3, gb, GL_NEAREST, true, &e) ||
-        gk_target_create(&h->hdr, "test hdr", w, hh, 1, hf, GL_NEAREST, false, &e)) {
-        fprintf(stderr, "targets: %s\n", e.msg);
+    if (gkt_target(&h->gbuf, "test gbuffer", w, hh, 3, gb, true) || gkt_target(&h->hdr, "test hdr", w, hh, 1, hf, false))
         return -1;
-    }
     h->eye = v3(0.5f, 0.5f, 0.98f);
     h->view = m4_look_at(h->eye, v3(0.5f, 0.5f, 0.0f), v3(0, 1, 0));
     h->proj = m4_perspective(70.0f * 3.14159265f / 180.0f, (float)w / (float)hh, 0.01f, 5.0f);
@@ -184,7 +113,7 @@ static inline int h_init_with(vpl_h *h, bool with_boxes, int w, int hh, gk_scene
     h->vp = m4_mul(h->proj, h->view);
     h->inv_vp = m4_inverse(h->vp);
     h->gl_light.scene_light = 0, h->gl_light.node = -1;
-    h->gl_light.radiant = v3(h->light.intensity, h->light.intensity, h->light.intensity);
+    h->gl_light.radiant = v3(L0->intensity, L0->intensity, L0->intensity);
     h_aim(h, v3(0, 0, 0));
     if (external) {
         for (int i = 0; i < s->n_nodes; i++)
@@ -202,7 +131,7 @@ static inline int h_init_with(vpl_h *h, bool with_boxes, int w, int hh, gk_scene
     gk_budget_init(&h->budget);
     h->m = &gk_gi_vpl;
     h->m->declare_knobs(&h->budget);
-    gk_gi_context ctx = {h->programs, h->egl.gles_version};
+    gk_gi_context ctx = {h->programs, h->gl.egl.gles_version};
     h->self = h->m->create(&ctx, &e);
     if (!h->self || h->m->set_scene(h->self, s, &e)) {
         fprintf(stderr, "vpl: %s\n", e.msg);
@@ -274,9 +203,7 @@ static inline int h_frame(vpl_h *h, double t)
         fprintf(stderr, "render: %s\n", e.msg);
         return -1;
     }
-    glBindFramebuffer(GL_FRAMEBUFFER, h->hdr.fbo);
-    glReadBuffer(GL_COLOR_ATTACHMENT0);
-    glReadPixels(0, 0, h->w, h->h, GL_RGBA, GL_FLOAT, h->img);
+    gkt_read_rgba(&h->hdr, 0, GL_FLOAT, h->img);
     return glGetError() == GL_NO_ERROR ? 0 : -1;
 }
 
@@ -318,13 +245,9 @@ static inline void h_free(vpl_h *h)
     gk_target_destroy(&h->hdr);
     gk_scene_gpu_free(&h->gpu);
     gk_program_cache_destroy(h->programs);
-    for (int i = 0; h->scene.meshes == h->meshes && i < h->scene.n_meshes; i++) {
-        free(h->meshes[i].positions);
-        free(h->meshes[i].normals);
-        free(h->meshes[i].indices);
-    }
+    gkt_scene_free(&h->box);
     free(h->img);
-    gk_egl_terminate(&h->egl);
+    gkt_gl_close(&h->gl);
 }
 
 #endif

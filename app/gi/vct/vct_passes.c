@@ -73,26 +73,15 @@ typedef struct mip_uniforms {
 static const gk_uniform_field mip_fields[] = {GK_UNIFORM(mip_uniforms, u_res), GK_UNIFORM(mip_uniforms, u_dst_res),
                                               GK_UNIFORM(mip_uniforms, u_from_level0), GK_UNIFORM(mip_uniforms, u_dir)};
 
-/* The G-buffer extras of vct/sparse.glsl (a test's position and material textures) */
-typedef struct vct_gbuffer_uniforms {
-    gk_gbuffer_uniforms gb;
-    GLint u_gb_position, u_gb_material, u_has_position, u_has_material;
-} vct_gbuffer_uniforms;
-#define VCT_GBUFFER_FIELDS(type, member)                                                                               \
-    GK_GBUFFER_FIELDS(type, member.gb), GK_UNIFORM_AS(type, member.u_gb_position, "u_gb_position"),                    \
-        GK_UNIFORM_AS(type, member.u_gb_material, "u_gb_material"),                                                    \
-        GK_UNIFORM_AS(type, member.u_has_position, "u_has_position"),                                                  \
-        GK_UNIFORM_AS(type, member.u_has_material, "u_has_material")
-
 /* vct/trace.comp */
 typedef struct trace_uniforms {
-    vct_gbuffer_uniforms g;
+    gk_gbuffer_uniforms g;
     GLint u_vox0, u_voxd[6];
     GLint u_low_size, u_block, u_res, u_res_f, u_grid_origin, u_grid_size, u_step_mul, u_ao_lambda, u_max_dist,
         u_apex_offset, u_footprint_clamp, u_spec_aperture, u_n_cones, u_cone_dir, u_cone_aperture, u_cone_weight;
 } trace_uniforms;
 static const gk_uniform_field trace_fields[] = {
-    VCT_GBUFFER_FIELDS(trace_uniforms, g),
+    GK_GBUFFER_FIELDS(trace_uniforms, g),
     GK_UNIFORM(trace_uniforms, u_vox0),
     GK_UNIFORM_AS(trace_uniforms, u_voxd[0], "u_voxd0"),
     GK_UNIFORM_AS(trace_uniforms, u_voxd[1], "u_voxd1"),
@@ -120,11 +109,11 @@ static const gk_uniform_field trace_fields[] = {
 
 /* vct/compose.{vert,frag} */
 typedef struct compose_uniforms {
-    vct_gbuffer_uniforms g;
+    gk_gbuffer_uniforms g;
     GLint u_diffuse_lo, u_spec_lo, u_low_size, u_block, u_voxel_world, u_spec_enabled;
 } compose_uniforms;
 static const gk_uniform_field compose_fields[] = {
-    VCT_GBUFFER_FIELDS(compose_uniforms, g),
+    GK_GBUFFER_FIELDS(compose_uniforms, g),
     GK_UNIFORM(compose_uniforms, u_diffuse_lo),
     GK_UNIFORM(compose_uniforms, u_spec_lo),
     GK_UNIFORM(compose_uniforms, u_low_size),
@@ -335,20 +324,12 @@ static void bind_tex(GLint loc, int unit, GLenum target, GLuint tex, GLuint samp
     glUniform1i(loc, unit);
 }
 
-/* The G-buffer on units first.. first + 3 (gk_gbuffer_bind), a test's position and material
-   textures on first + 4, first + 5 (the depth texture stands in when there are none). */
-static void bind_gbuffer(const vct_gbuffer_uniforms *u, const gk_gi_frame *f, int first, GLuint sampler)
+/* The G-buffer on units first.. first + 3 (gk_gbuffer_bind). */
+static void bind_gbuffer(const gk_gbuffer_uniforms *u, const gk_gi_frame *f, int first, GLuint sampler)
 {
     gk_gbuffer_view gb = gk_gi_gbuffer(f);
-    gk_gbuffer_bind(&gb, &u->gb, first, sampler);
-    bind_tex(u->u_gb_position, first + GK_GBUFFER_UNITS, GL_TEXTURE_2D,
-             f->gbuf_position ? f->gbuf_position : f->gbuf_depth, sampler);
-    bind_tex(u->u_gb_material, first + GK_GBUFFER_UNITS + 1, GL_TEXTURE_2D,
-             f->gbuf_material ? f->gbuf_material : f->gbuf_depth, sampler);
-    glUniform1i(u->u_has_position, f->gbuf_position != 0);
-    glUniform1i(u->u_has_material, f->gbuf_material != 0);
+    gk_gbuffer_bind(&gb, u, first, sampler);
 }
-#define VCT_GBUFFER_UNITS (GK_GBUFFER_UNITS + 2)
 
 static void unbind_units(int n)
 {
@@ -406,7 +387,7 @@ int vct_pass_trace(gk_vct *v, const gk_gi_frame *f, const vct_budget *b, gk_err 
     glBindImageTexture(1, v->trace_spec, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glDispatchCompute((GLuint)groups(v->trace_w, 8), (GLuint)groups(v->trace_h, 8), 1);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-    unbind_units(7 + VCT_GBUFFER_UNITS);
+    unbind_units(7 + GK_GBUFFER_UNITS);
     v->stats.trace_runs++;
     return 0;
 }
@@ -452,7 +433,7 @@ int vct_pass_compose(gk_vct *v, const gk_gi_frame *f, gk_err *e)
     glBindVertexArray(v->vao);
     glDrawArrays(GL_TRIANGLES, 0, 3);
 
-    unbind_units(2 + VCT_GBUFFER_UNITS);
+    unbind_units(2 + GK_GBUFFER_UNITS);
     glBindVertexArray((GLuint)vao);
     glUseProgram((GLuint)prog);
     glBlendFuncSeparate((GLenum)src_rgb, (GLenum)dst_rgb, (GLenum)src_a, (GLenum)dst_a);

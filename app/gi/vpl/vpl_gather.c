@@ -68,8 +68,6 @@ void vpl_bind_tex(int unit, GLenum target, GLuint tex, GLint loc)
 
 static const gk_uniform_field gather_fields[] = {
     GK_GBUFFER_FIELDS(vpl_gather_uniforms, gb),
-    GK_UNIFORM(vpl_gather_uniforms, u_gb_position),
-    GK_UNIFORM(vpl_gather_uniforms, u_has_position),
     GK_UNIFORM(vpl_gather_uniforms, u_ind_size),
     GK_UNIFORM(vpl_gather_uniforms, u_vpl),
     GK_UNIFORM(vpl_gather_uniforms, u_val),
@@ -165,9 +163,7 @@ static int interleaved(vpl_state *s, const gk_gi_frame *f, gk_err *e)
     glUseProgram(g);
     gk_gbuffer_view gb = gk_gi_gbuffer(f);
     gk_gbuffer_bind(&gb, &u->gb, VPL_GATHER_GBUFFER_UNIT, 0);
-    vpl_bind_tex(2, GL_TEXTURE_2D, f->gbuf_position ? f->gbuf_position : f->gbuf_normal, u->u_gb_position);
     vpl_bind_visibility(s, u);
-    glUniform1i(u->u_has_position, f->gbuf_position != 0);
     glUniform2i(u->u_ind_size, iw, ih);
     glUniform1i(u->u_n, s->n);
     glUniform1i(u->u_block, s->block);

@@ -83,7 +83,7 @@ float vpl_target_max(const vpl_state *s);
 #define VPL_GATHER_GBUFFER_UNIT 10
 typedef struct vpl_gather_uniforms {
     gk_gbuffer_uniforms gb;
-    GLint u_gb_position, u_has_position, u_ind_size, u_vpl, u_val, u_n, u_block, u_dmin2, u_origin, u_out_max;
+    GLint u_ind_size, u_vpl, u_val, u_n, u_block, u_dmin2, u_origin, u_out_max;
     GLint u_bcos, u_bsin, u_bzcos, u_bzsin, u_bz, u_bmom;
     GLint u_mr_t[4], u_mr_p[3], u_mr_level, u_mr_top, u_tau_z, u_tau_n;
 } vpl_gather_uniforms;
