@@ -3,7 +3,8 @@
 # config, until stopped. Without one, a bounded offscreen tour on the mock platform: every scene of
 # the playlist for DWELL virtual seconds (default 1, i.e. 60 frames) at 640x360, one capture per
 # scene in out/, per-frame stats in out/showcase-stats.csv, and a summary line per scene (frames,
-# median and p95 frame time, method, budgets) printed by the kiosk at the end.
+# warm-up frames apart, median, p95 and p99 of the judged frames, method, budgets) printed by the
+# kiosk at the end.
 # Usage: tools/showcase.sh BIN   (environment: DWELL=seconds, SIZE=WxH, CONFIG=file)
 set -eu
 BIN=${1:-build/gikiosk}

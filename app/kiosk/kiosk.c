@@ -17,6 +17,7 @@
 #include "hud.h"
 #include "playlist.h"
 #include "stats.h"
+#include "visit_memory.h"
 
 typedef struct kiosk {
     const gk_kiosk_opts *o;
@@ -35,6 +36,8 @@ typedef struct kiosk {
     gk_stats_csv *csv;
     long frame;                          /* frames drawn */
     int sched_skip;                      /* frames the scheduler does not see: the first at a new level */
+    gk_visit_memory *visits;             /* levels and cost model per (scene, method) for the run */
+    int visit_scene, visit_method;       /* the (scene, catalogue index) now shown; -1 before the first */
     bool have_frame;                     /* a frame of the current visit is drawn and not captured */
     double last_frame_ms;                /* newest measured frame (the HUD's number) */
     long last_frame;
@@ -53,19 +56,37 @@ static const char *kind_name(enum gk_input_kind k)
     return k >= 0 && k <= GK_INPUT_QUIT ? n[k] : "?";
 }
 
-/* Knobs that affect frames now: the renderer's own and those of the current method (a knob whose
- * owner is a method name of the catalogue belongs to that method). */
-static void reset_scheduler(kiosk *k)
+static int catalogue_index(const char *method)
 {
-    bool active[GK_MAX_KNOBS];
+    int n;
+    const gk_gi_entry *all = gk_gi_catalogue(&n);
+    const gk_gi_entry *e = gk_gi_catalogue_find(method);
+    return e ? (int)(e - all) : -1;
+}
+
+/* Starts showing the playlist's current (scene, method): the visit before it is remembered, and
+ * this one starts from its own remembered levels and cost model, or from the knobs' defaults on a
+ * first visit -- never from the previous scene's levels. Knobs that affect frames now: the
+ * renderer's own and those of the current method (a knob whose owner is a method name of the
+ * catalogue belongs to that method). */
+static void begin_visit(kiosk *k)
+{
+    if (k->visit_scene >= 0)
+        gk_visit_save(k->visits, k->visit_scene, k->visit_method, &k->budget, &k->sched);
     const char *method = gk_playlist_method(&k->pl);
-    for (int i = 0; i < k->budget.n; i++) {
-        const char *owner = k->budget.def[i]->owner ? k->budget.def[i]->owner : "";
-        active[i] = !gk_gi_is_method(owner) || !strcmp(owner, method);
+    k->visit_scene = k->pl.current;
+    k->visit_method = catalogue_index(method);
+    if (!gk_visit_restore(k->visits, k->visit_scene, k->visit_method, &k->budget, &k->sched)) {
+        bool active[GK_MAX_KNOBS];
+        for (int i = 0; i < k->budget.n; i++) {
+            const char *owner = k->budget.def[i]->owner ? k->budget.def[i]->owner : "";
+            active[i] = !gk_gi_is_method(owner) || !strcmp(owner, method);
+        }
+        gk_budget_reset_defaults(&k->budget);
+        gk_sched_reset(&k->sched, &k->sched_params, &k->budget, active);
     }
-    gk_sched_reset(&k->sched, &k->sched_params, &k->budget, active);
     gk_recent_clear(&k->recent);
-    k->sched_skip = 0; /* the scheduler's own warm-up (gk_sched_params.warmup) covers a reset */
+    k->sched_skip = 0; /* the scheduler's own warm-up (gk_sched_params.warmup) covers a new visit */
 }
 
 static int capture(kiosk *k, long frame, const char *scene, const char *method, gk_err *e)
@@ -130,7 +151,7 @@ static int enter_scene(kiosk *k, gk_err *e)
     for (int m = 0; m < n; m++)
         snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", m ? "," : "", methods[m]);
     gk_log("scene %s (method %s; methods %s)", name, gk_playlist_method(&k->pl), list);
-    reset_scheduler(k);
+    begin_visit(k);
     return 0;
 }
 
@@ -195,7 +216,7 @@ static void drop_failed_method(kiosk *k)
     gk_log("scene %s: method %s failed, showing the scene with %s", gk_playlist_scene(&k->pl), method,
            n ? methods[0] : "none");
     gk_playlist_set_methods(&k->pl, methods, n, 0);
-    reset_scheduler(k);
+    begin_visit(k);
 }
 
 /* One frame: draw (HUD included), present, record. */
@@ -223,8 +244,12 @@ static int frame(kiosk *k, double now, gk_err *e)
     }
     if (gk_platform_present(k->plat, e))
         return -1;
+    /* Judged: what the scheduler holds against the target. Not judged: the warm-up frames of a
+       visit and the first frame at a new level, which pay one-off costs (shader compiles,
+       voxelizing, first shadow maps); the summary reports them apart. */
+    bool judged = measured && k->sched.warm == 0 && k->sched_skip == 0;
     if (measured)
-        gk_summary_add(&k->summary, scene, method, frame_ms, &k->budget);
+        gk_summary_add(&k->summary, scene, method, frame_ms, judged, &k->budget);
     if (k->csv && gk_stats_csv_row(k->csv, k->frame, now, scene, method, &report, &k->budget, e))
         return -1;
     k->have_frame = true;
@@ -270,7 +295,7 @@ static int handle_input(kiosk *k, double now, bool *scene_changed, gk_err *e)
             *scene_changed = true;
         if (what & GK_PL_METHOD) {
             gk_log("method %s (scene %s)", gk_playlist_method(&k->pl), gk_playlist_scene(&k->pl));
-            reset_scheduler(k);
+            begin_visit(k);
         }
         if (what & GK_PL_HUD)
             gk_log("HUD %s", k->pl.hud_visible ? "on" : "off");
@@ -359,6 +384,11 @@ int gk_kiosk_run(const gk_kiosk_opts *o, const gk_kiosk_config *c, gk_err *e)
         return gk_fail(e, GK_ERUNTIME, "out of memory");
     k->o = o;
     k->c = c;
+    k->visit_scene = k->visit_method = -1;
+    if (!(k->visits = calloc(1, sizeof *k->visits))) {
+        free(k);
+        return gk_fail(e, GK_ERUNTIME, "out of memory");
+    }
     gk_summary_init(&k->summary);
     gk_playlist_init(&k->pl, c->scenes, c->n_scenes, c->dwell_s, c->pause_after_input_s);
     int rc = -1;
@@ -381,6 +411,7 @@ done:
     for (int i = 0; i < GK_MAX_PLAYLIST; i++)
         gk_scene_free(k->scenes[i]);
     gk_platform_close(k->plat);
+    free(k->visits);
     free(k);
     return rc;
 }

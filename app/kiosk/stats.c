@@ -56,7 +56,8 @@ float gk_recent_percentile(const gk_recent *r, float q)
 
 void gk_summary_init(gk_summary *s) { memset(s, 0, sizeof *s); }
 
-void gk_summary_add(gk_summary *s, const char *scene, const char *method, double frame_ms, const gk_budget *b)
+void gk_summary_add(gk_summary *s, const char *scene, const char *method, double frame_ms, bool judged,
+                    const gk_budget *b)
 {
     gk_scene_summary *e = NULL;
     for (int i = 0; i < s->n; i++)
@@ -71,6 +72,12 @@ void gk_summary_add(gk_summary *s, const char *scene, const char *method, double
     snprintf(e->method, sizeof e->method, "%s", method);
     gk_budget_format_active(b, method, e->budgets, sizeof e->budgets);
     e->frames++;
+    if (!judged) {
+        e->warmup++;
+        if (frame_ms > e->warmup_max_ms)
+            e->warmup_max_ms = frame_ms;
+        return;
+    }
     if (e->n_ms == e->cap_ms && e->cap_ms < SUMMARY_MAX_SAMPLES) {
         long cap = e->cap_ms ? e->cap_ms * 2 : 256;
         double *m = realloc(e->ms, (size_t)cap * sizeof *m);
@@ -89,8 +96,11 @@ void gk_summary_print(gk_summary *s, FILE *f)
         gk_scene_summary *e = &s->scenes[i];
         double med = gk_percentile(e->ms, e->n_ms, 0.5);
         double p95 = gk_percentile(e->ms, e->n_ms, 0.95);
-        fprintf(f, "scene %s: %ld frames, median %.2f ms, p95 %.2f ms, method %s, budgets %s\n", e->scene,
-                e->frames, med, p95, e->method, e->budgets[0] ? e->budgets : "-");
+        double p99 = gk_percentile(e->ms, e->n_ms, 0.99);
+        fprintf(f, "scene %s: %ld frames (%ld warm-up, max %.2f ms), judged: median %.2f ms, p95 %.2f ms, "
+                   "p99 %.2f ms, method %s, budgets %s\n",
+                e->scene, e->frames, e->warmup, e->warmup_max_ms, med, p95, p99, e->method,
+                e->budgets[0] ? e->budgets : "-");
     }
 }
 

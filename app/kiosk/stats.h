@@ -34,8 +34,10 @@ typedef struct gk_scene_summary {
     char scene[GK_NAME_LEN];
     char method[32];              /* method of the scene's last frame */
     char budgets[512];            /* knob values at the scene's last frame */
-    long frames;
-    double *ms;                   /* every frame time (capped, see stats.c) */
+    long frames;                  /* measured frames, judged and warm-up */
+    long warmup;                  /* frames the scheduler did not judge (one-off costs) */
+    double warmup_max_ms;
+    double *ms;                   /* every judged frame time (capped, see stats.c) */
     long n_ms, cap_ms;
 } gk_scene_summary;
 
@@ -45,8 +47,12 @@ typedef struct gk_summary {
 } gk_summary;
 
 void gk_summary_init(gk_summary *s);
-void gk_summary_add(gk_summary *s, const char *scene, const char *method, double frame_ms, const gk_budget *b);
-/* One line per scene: "scene NAME: N frames, median X ms, p95 Y ms, method M, budgets K=V,...". */
+/* judged: a frame the scheduler judged against the target; the others (warm-up after a scene,
+ * method or level change) are counted apart, so one-off costs do not spoil the percentiles. */
+void gk_summary_add(gk_summary *s, const char *scene, const char *method, double frame_ms, bool judged,
+                    const gk_budget *b);
+/* One line per scene: "scene NAME: N frames (W warm-up, max X ms), judged: median X ms, p95 Y ms,
+ * p99 Z ms, method M, budgets K=V,...". */
 void gk_summary_print(gk_summary *s, FILE *f);
 void gk_summary_free(gk_summary *s);
 

@@ -92,16 +92,19 @@ static void summary_one_line_per_scene(void **state)
     gk_budget_add(&b, &scale);
     gk_summary s;
     gk_summary_init(&s);
+    gk_summary_add(&s, "cornell", "vct", 5000, false, &b); /* a warm-up frame: not in the percentiles */
     for (int i = 1; i <= 100; i++)
-        gk_summary_add(&s, "cornell", "vct", i, &b);
-    gk_summary_add(&s, "box", "none", 3, &b);
+        gk_summary_add(&s, "cornell", "vct", i, true, &b);
+    gk_summary_add(&s, "box", "none", 3, true, &b);
     char buf[1024] = {0};
     FILE *f = fmemopen(buf, sizeof buf, "w");
     gk_summary_print(&s, f);
     fclose(f);
     assert_string_equal(buf,
-                        "scene cornell: 100 frames, median 50.00 ms, p95 95.00 ms, method vct, budgets render_scale=1\n"
-                        "scene box: 1 frames, median 3.00 ms, p95 3.00 ms, method none, budgets render_scale=1\n");
+                        "scene cornell: 101 frames (1 warm-up, max 5000.00 ms), judged: median 50.00 ms, p95 95.00 ms, "
+                        "p99 99.00 ms, method vct, budgets render_scale=1\n"
+                        "scene box: 1 frames (0 warm-up, max 0.00 ms), judged: median 3.00 ms, p95 3.00 ms, p99 3.00 ms, "
+                        "method none, budgets render_scale=1\n");
     gk_summary_free(&s);
 }
 
