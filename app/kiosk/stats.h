@@ -9,7 +9,7 @@
 
 #include <stdio.h>
 
-#include "../render/renderer.h"
+#include "gl/frame_report.h"
 #include "../sched/budget.h"
 #include "config.h"
 
