@@ -52,6 +52,9 @@ UNIT_BINS := $(UNIT_SRCS:tests/%.c=$(BUILD)/tests/%)
 GPU_BINS  := $(GPU_SRCS:tests/%.c=$(BUILD)/tests/%)
 FAKE_OBJS := $(FAKE_SRCS:%.c=$(BUILD)/obj/%.o)
 TESTLIB_OBJS := $(TESTLIB_SRCS:%.c=$(BUILD)/obj/%.o)
+# Kept after the build: as intermediates make would delete them after the tests and print an
+# `rm` line after the suite's closing `N passed, N failed`.
+.SECONDARY: $(FAKE_OBJS) $(TESTLIB_OBJS)
 # Test-only shaders live in tests/shaders/ (not embedded in the program). The GPU tests load them
 # from one root holding both trees, so they #include the production shaders as those do each other:
 # $(BUILD)/tests/shaders, a copy of shaders_gles/ with tests/shaders/ laid over it.
