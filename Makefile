@@ -1,5 +1,5 @@
 # gikiosk — one entry point (DESIGN §1). `make` builds build/gikiosk.
-# Targets: all run test bench references scenes deps install asan fuzz clean
+# Targets: all run test bench calibrate references scenes deps install asan fuzz clean
 
 PREFIX  ?= /usr/local
 DESTDIR ?=
@@ -62,7 +62,7 @@ TEST_SHADERS := $(shell find tests/shaders -type f 2>/dev/null | LC_ALL=C sort)
 TEST_SHADER_STAMP := $(BUILD)/tests/shaders/.stamp
 $(TESTLIB_OBJS): CFLAGS_ALL += -DGK_TEST_SHADERS=\"$(abspath $(BUILD))/tests/shaders\"
 
-.PHONY: all run test test-only bench references scenes deps install asan fuzz clean shaders-check
+.PHONY: all run test test-only bench calibrate references scenes deps install asan fuzz clean shaders-check
 all: $(BIN)
 
 $(BUILD)/obj/%.o: %.c
@@ -151,6 +151,10 @@ asan: deps
 bench: deps $(BIN)
 	sh tools/bench.sh $(BIN)
 
+# The measured model the kiosk chooses methods from: config/calibration/CLASS.csv (tools/calibrate.sh).
+calibrate: deps $(BIN)
+	sh tools/calibrate.sh $(BIN)
+
 references: deps $(BIN)
 	sh tools/references.sh $(BIN)
 
@@ -158,10 +162,12 @@ scenes: deps $(BIN)
 	$(BIN) build-scenes config/scenes
 
 install: $(BIN)
-	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/share/gikiosk/scenes $(DESTDIR)/etc/gikiosk \
+	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/share/gikiosk/scenes \
+		$(DESTDIR)$(PREFIX)/share/gikiosk/calibration $(DESTDIR)/etc/gikiosk \
 		$(DESTDIR)/lib/systemd/system $(DESTDIR)/lib/udev/rules.d
 	install -m 755 $(BIN) $(DESTDIR)$(PREFIX)/bin/gikiosk
 	install -m 644 config/scenes/* $(DESTDIR)$(PREFIX)/share/gikiosk/scenes/
+	install -m 644 config/calibration/*.csv $(DESTDIR)$(PREFIX)/share/gikiosk/calibration/
 	install -m 644 config/kiosk.ini $(DESTDIR)/etc/gikiosk/kiosk.ini
 	install -m 644 board/gikiosk.service $(DESTDIR)/lib/systemd/system/gikiosk.service
 	install -m 644 board/99-gikiosk.rules $(DESTDIR)/lib/udev/rules.d/99-gikiosk.rules

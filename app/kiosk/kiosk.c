@@ -13,6 +13,7 @@
 #include "base/log.h"
 #include "gi/gi_catalogue.h"
 #include "../render/renderer.h"
+#include "../sched/calibration.h"
 #include "../sched/scheduler.h"
 #include "hud.h"
 #include "playlist.h"
@@ -37,6 +38,8 @@ typedef struct kiosk {
     long frame;                          /* frames drawn */
     int sched_skip;                      /* frames the scheduler does not see: the first at a new level */
     gk_visit_memory *visits;             /* levels and cost model per (scene, method) for the run */
+    gk_calibration calibration;          /* measured speed and error per scene x method */
+    bool have_calibration;
     int visit_scene, visit_method;       /* the (scene, catalogue index) now shown; -1 before the first */
     bool have_frame;                     /* a frame of the current visit is drawn and not captured */
     double last_frame_ms;                /* newest measured frame (the HUD's number) */
@@ -146,6 +149,20 @@ static int enter_scene(kiosk *k, gk_err *e)
     int n = gk_methods_for_scene(applicable, n_app, configured, k->o->method, methods, &def, note, sizeof note);
     if (note[0])
         gk_log("scene %s: %s", name, note);
+    if (!k->o->method && k->have_calibration) {
+        /* Attract mode chooses from measurement: the lowest calibrated error that fits the target,
+           never a method worse than none (the mode button still forces any method). */
+        const char *names[GK_PL_MAX_METHODS];
+        for (int m = 0; m < n; m++)
+            names[m] = methods[m];
+        char why[512];
+        int pick = gk_calibration_choose(&k->calibration, name, names, n, k->c->target_ms,
+                                         (double)k->width * k->height, why, sizeof why);
+        if (pick >= 0) {
+            def = pick;
+            gk_log("scene %s: automatic choice %s", name, why);
+        }
+    }
     gk_playlist_set_methods(&k->pl, methods, n, def);
     char list[256] = "";
     for (int m = 0; m < n; m++)
@@ -357,6 +374,31 @@ static int open_platform(kiosk *k, gk_err *e)
     return 0;
 }
 
+/* The platform's calibration (app/sched/calibration.h) beside the scenes: config/scenes ->
+ * config/calibration/CLASS.csv. Missing: logged once, the playlist's order is kept. Malformed: an
+ * error at start (exit 2, file:line), like a bad kiosk.ini. */
+static int load_calibration(kiosk *k, const char *renderer, gk_err *e)
+{
+    char cls[64], path[1024];
+    gk_calibration_class(renderer, cls, sizeof cls);
+    const char *dir = k->o->scenes_dir ? k->o->scenes_dir : "config/scenes";
+    const char *slash = strrchr(dir, '/');
+    int parent = slash ? (int)(slash - dir) : 0;
+    snprintf(path, sizeof path, "%.*s%scalibration/%s.csv", parent, dir, slash ? "/" : "", cls);
+    gk_err ce = {0};
+    if (gk_calibration_load(path, &k->calibration, &ce) == 0) {
+        k->have_calibration = true;
+        gk_log("calibration: %s (%d scene x method rows)", path, k->calibration.n);
+        return 0;
+    }
+    if (ce.code == GK_EINPUT) {
+        *e = ce;
+        return -1;
+    }
+    gk_log("no calibration for %s (%s): methods in the playlist's order", cls, ce.msg);
+    return 0;
+}
+
 static int open_renderer(kiosk *k, gk_err *e)
 {
     int gles = gk_platform_gles_version(k->plat);
@@ -369,6 +411,8 @@ static int open_renderer(kiosk *k, gk_err *e)
         .shader_dir = k->o->shader_dir, .gpu_timer_queries = !software, /* meaningless on llvmpipe */
     };
     if (!(k->r = gk_renderer_create(&ro, e)))
+        return -1;
+    if (load_calibration(k, renderer, e) != 0)
         return -1;
     gk_err he = {0};
     k->hud = gk_hud_create(k->width, k->height, k->o->shader_dir, ro.gles_version >= 32 ? 32 : 31, NULL, &he);
@@ -412,6 +456,7 @@ done:
         gk_scene_free(k->scenes[i]);
     gk_platform_close(k->plat);
     free(k->visits);
+    gk_calibration_free(&k->calibration);
     free(k);
     return rc;
 }

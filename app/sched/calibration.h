@@ -1,0 +1,46 @@
+/* The measured model the kiosk chooses a scene's method from (DESIGN §6): one row per scene x
+ * method at the default budgets -- frame time and error against one ruler per scene -- made by
+ * `make calibrate` (tools/calibrate.sh) into config/calibration/CLASS.csv, CLASS named from the GL
+ * renderer string (llvmpipe on CI). A missing file means no calibration: the kiosk then keeps the
+ * playlist's order. Frame times are scaled to the run's pixel count (a prior; the scheduler's
+ * online model corrects it per visit). No GL: unit-tested. */
+#ifndef GK_CALIBRATION_H
+#define GK_CALIBRATION_H
+
+#include <stdbool.h>
+
+#include "base/err.h"
+
+typedef struct gk_calib_row {
+    char scene[64], method[32];
+    int width, height;        /* the size it was measured at */
+    double frame_ms;          /* median frame time at the default budgets */
+    double error;             /* against the scene's ruler (rel_rmse, or rmse for a black ruler) */
+} gk_calib_row;
+
+typedef struct gk_calibration {
+    int n;
+    gk_calib_row *rows;
+    char path[512];
+} gk_calibration;
+
+/* Platform class of a GL renderer string: its first word, lower case ("llvmpipe (LLVM ...)" ->
+ * "llvmpipe"). */
+void gk_calibration_class(const char *renderer, char *out, int out_len);
+/* Reads path. Returns 0, or -1 with e: GK_EINPUT naming file:line for a malformed row,
+ * GK_ERUNTIME when it cannot be read. A missing file is reported as GK_ERUNTIME too: the caller
+ * decides (the kiosk logs it and runs uncalibrated). */
+int gk_calibration_load(const char *path, gk_calibration *c, gk_err *e);
+void gk_calibration_free(gk_calibration *c);
+const gk_calib_row *gk_calibration_find(const gk_calibration *c, const char *scene, const char *method);
+
+/* The automatic choice among a scene's methods: the lowest calibrated error whose frame time,
+ * scaled by run_pixels / measured pixels, is under target_ms; if none fits, the fastest. A method
+ * whose error is larger than `none`'s on this scene is never chosen (`none` is chosen instead when
+ * it is in the list). Methods without a calibration row are not candidates. Returns the index in
+ * methods, or -1 when no method of the list is calibrated for this scene. why (optional) gets a
+ * one-line account: "vpl: error 0.114 at ~70 ms (none 0.376, vct 0.467 worse than none)". */
+int gk_calibration_choose(const gk_calibration *c, const char *scene, const char *const *methods, int n,
+                          double target_ms, double run_pixels, char *why, int why_len);
+
+#endif
