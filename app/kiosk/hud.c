@@ -217,7 +217,8 @@ void gk_hud_draw(gk_hud *h, unsigned fbo, const gk_hud_info *in)
     char buf[256];
     if (h->has_text) {
         float x = text(h, x0 + pad, y, in->scene ? in->scene : "-", white);
-        snprintf(buf, sizeof buf, "   method %s", in->method ? in->method : "-");
+        snprintf(buf, sizeof buf, "   method %s%s%s%s", in->method ? in->method : "-", in->method_mode ? " (" : "",
+                 in->method_mode ? in->method_mode : "", in->method_mode ? ")" : "");
         text(h, x, y, buf, grey);
         y += line;
         snprintf(buf, sizeof buf, "frame %.1f ms   median %.1f   p95 %.1f   target %.1f", in->frame_ms,

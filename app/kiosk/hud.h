@@ -14,6 +14,7 @@ typedef struct gk_hud gk_hud;
 
 typedef struct gk_hud_info {
     const char *scene, *method;
+    const char *method_mode;      /* "auto" (the kiosk's choice) or "forced" (mode button, --method); may be NULL */
     double frame_ms, median_ms, p95_ms, target_ms;
     const gk_recent *recent;
     const gk_budget *budget;

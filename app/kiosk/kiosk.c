@@ -210,6 +210,7 @@ static void draw_hud(void *user, const gk_pass_ctx *ctx, unsigned fbo)
     kiosk *k = user;
     gk_hud_info info = {
         .scene = gk_playlist_scene(&k->pl), .method = gk_playlist_method(&k->pl), .frame_ms = k->last_frame_ms,
+        .method_mode = k->o->method || k->pl.method != k->pl.default_method ? "forced" : "auto",
         .median_ms = gk_recent_percentile(&k->recent, 0.5f), .p95_ms = gk_recent_percentile(&k->recent, 0.95f),
         .target_ms = k->c->target_ms, .recent = &k->recent, .budget = &k->budget,
     };
