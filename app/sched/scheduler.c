@@ -13,6 +13,8 @@ void gk_sched_params_defaults(gk_sched_params *p, double target_ms)
     p->warmup = 3;
     p->learn_rate = 0.3;
     p->max_down_steps = 2;
+    p->max_up_steps = 3;
+    p->up_after_far = 5;
 }
 
 void gk_sched_reset(gk_sched *s, const gk_sched_params *p, const gk_budget *b, const bool *active)
@@ -102,6 +104,7 @@ static int fit_step(gk_sched *s, const gk_budget *b, double ms)
     if (w < 0)
         w = 0; /* noise larger than the step: the knob is cheap */
     s->weight[changed] = 0.5 * s->weight[changed] + 0.5 * w;
+    s->measured[changed] = true;
     double rest = ms;
     for (int k = 0; k < b->n; k++)
         if (s->active[k])
@@ -160,31 +163,44 @@ static int step_down(gk_sched *s, gk_budget *b, double ms, gk_sched_change *ch, 
     return n;
 }
 
+/* Up: the knob that buys the most quality per predicted millisecond while the worst recent frame
+ * plus what the steps add stays under target*(1 - margin/2). The first step may take any knob (its
+ * cost may still be the prior's guess: the next frames measure it); further steps in the same
+ * frame only knobs whose cost a step response has measured, so a far-under-target scene climbs
+ * several levels at once on a model it can trust, and an unfitted model climbs one step at a time. */
 static int step_up(gk_sched *s, gk_budget *b, gk_sched_change *ch, int max)
 {
     double goal = s->p.target_ms * (1 - s->p.margin / 2);
-    int best = -1;
-    double best_score = -1;
-    for (int k = 0; k < b->n; k++) {
-        if (!movable(s, b, k) || b->level[k] >= b->max_level[k] || s->frame < s->blocked_until[k])
-            continue;
-        double added = fmax(step_delta(s, b, k, +1), 0);
-        if (s->under_worst_ms + added >= goal)
-            continue;
-        double score = quality_per_step(b, k) / fmax(added, 1e-6);
-        if (score > best_score) {
-            best_score = score;
-            best = k;
+    double predicted = s->under_worst_ms;
+    int n = 0;
+    while (n < max && n < s->p.max_up_steps) {
+        int best = -1;
+        double best_score = -1, best_added = 0;
+        for (int k = 0; k < b->n; k++) {
+            if (!movable(s, b, k) || b->level[k] >= b->max_level[k] || s->frame < s->blocked_until[k])
+                continue;
+            if (n > 0 && !s->measured[k])
+                continue;
+            double added = fmax(step_delta(s, b, k, +1), 0);
+            if (predicted + added >= goal)
+                continue;
+            double score = quality_per_step(b, k) / fmax(added, 1e-6);
+            if (score > best_score) {
+                best_score = score;
+                best = k;
+                best_added = added;
+            }
         }
+        if (best < 0)
+            break;
+        ch[n++] = (gk_sched_change){best, b->level[best], b->level[best] + 1};
+        b->level[best]++;
+        predicted += best_added;
+        if (s->last_dir[best] < 0)
+            s->direction_changes++;
+        s->last_dir[best] = +1;
     }
-    if (best < 0 || max < 1)
-        return 0;
-    ch[0] = (gk_sched_change){best, b->level[best], b->level[best] + 1};
-    b->level[best]++;
-    if (s->last_dir[best] < 0)
-        s->direction_changes++;
-    s->last_dir[best] = +1;
-    return 1;
+    return n;
 }
 
 int gk_sched_update(gk_sched *s, gk_budget *b, double frame_ms, gk_sched_change *changes, int max)
@@ -215,7 +231,10 @@ int gk_sched_update(gk_sched *s, gk_budget *b, double frame_ms, gk_sched_change 
     }
     if (s->under_count == 0 || frame_ms > s->under_worst_ms)
         s->under_worst_ms = frame_ms;
-    if (++s->under_count < p->up_after)
+    /* Far under the target (the worst recent frame under half of it), a few frames are evidence
+       enough; near it, wait longer so noise does not pull levels up and down. */
+    int wait = s->under_worst_ms < p->target_ms * 0.5 ? p->up_after_far : p->up_after;
+    if (++s->under_count < wait)
         return 0;
     s->under_count = 0;
     return step_up(s, b, changes, max);

@@ -7,7 +7,7 @@
  * weight (averaged into it); on other frames normalised least mean squares on the measured time
  * keeps the whole prediction calibrated (base and weights move along the feature vector).
  *
- * Control: over target -> step down at once, as many steps as the model predicts are needed to get
+ * Control (up: see gk_sched_params.max_up_steps, up_after_far): over target -> step down at once, as many steps as the model predicts are needed to get
  * under target*(1 - margin/2) but at most max_down_steps per measured frame, each time the knob whose step saves the most predicted time per
  * quality lost (quality of a step = 1/(number of values - 1)). Under target*(1 - margin) for
  * up_after consecutive frames -> one step up, the knob that buys the most quality per predicted
@@ -33,6 +33,10 @@ typedef struct gk_sched_params {
                              with equal shares dropped 15 knobs in one frame (934 ms -> 46 ms at a
                              400 ms target); a couple of steps, then a new measurement, lands near
                              the target instead of on the floor */
+    int max_up_steps;     /* steps up per judged frame (3); beyond the first only knobs whose cost a
+                             step response has measured (see step_up) */
+    int up_after_far;     /* frames under target/2 before a step up (5): far under the target the
+                             kiosk should not take 30 frames a level to show what it can */
 } gk_sched_params;
 
 typedef struct gk_sched_change {
@@ -53,6 +57,7 @@ typedef struct gk_sched {
     int last_dir[GK_MAX_KNOBS];  /* +1 last moved up, -1 down, 0 never */
     int reversals[GK_MAX_KNOBS];
     long blocked_until[GK_MAX_KNOBS];
+    bool measured[GK_MAX_KNOBS]; /* the knob's weight came from a step response, not only the prior */
     long direction_changes;      /* total over the run, for tests and logs */
     bool have_prev;              /* the previous measured frame, for step responses */
     double prev_ms;

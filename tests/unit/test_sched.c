@@ -224,6 +224,46 @@ static void recovers_when_load_drops(void **state)
     assert_true(q95 <= 16.7);
 }
 
+/* Far under the target the climb uses the model: several measured knobs per step, after
+ * up_after_far frames instead of up_after. From the floor at a tenth of the load (the richest levels
+ * take 2.4 ms against 16.7) back to the richest levels: one step per 30 frames would take
+ * 7 x 30 = 210 frames (asserted for the one-step configuration, so the comparison is real). Bound
+ * for the default: no more than one up_after_far wait per level, 7 x 5 = 35 frames (measured 20:
+ * measured knobs climb up to 3 levels per step). */
+static int frames_to_richest(const gk_sched_params *p)
+{
+    gk_budget b;
+    setup(&b);
+    gk_sched s;
+    gk_sched_reset(&s, p, &b, NULL);
+    sim m = {.rng = 5, .load = 5, .noise = 0.02};
+    int changes = 0, last_dir[GK_MAX_KNOBS] = {0};
+    run(&s, &b, &m, 300, NULL, &changes, last_dir); /* to the floor, the knobs' costs measured */
+    assert_int_equal(b.level[0] + b.level[1] + b.level[2], 0);
+    m.load = 0.1;
+    for (int f = 1; f <= 1000; f++) {
+        run(&s, &b, &m, 1, NULL, &changes, last_dir);
+        if (b.level[0] + b.level[1] + b.level[2] == 2 + 3 + 2)
+            return f;
+    }
+    return 1000;
+}
+
+static void climbs_fast_far_under_target(void **state)
+{
+    (void)state;
+    gk_sched_params p;
+    gk_sched_params_defaults(&p, 16.7);
+    int fast = frames_to_richest(&p), far_wait = p.up_after_far;
+    p.max_up_steps = 1;
+    p.up_after_far = p.up_after;
+    int one_by_one = frames_to_richest(&p);
+    print_message("# sched climb from the floor at 1/10 load: %d frames (one step per %d frames: %d)\n", fast,
+                  p.up_after, one_by_one);
+    assert_true(one_by_one >= 7 * p.up_after);
+    assert_true(fast <= 7 * far_wait);
+}
+
 static void fit_learns_true_costs(void **state)
 {
     (void)state;
@@ -251,6 +291,7 @@ int main(void)
         cmocka_unit_test(inactive_knobs_never_move),
         cmocka_unit_test(fixed_variant_knobs_never_move),
         cmocka_unit_test(recovers_when_load_drops),
+        cmocka_unit_test(climbs_fast_far_under_target),
         cmocka_unit_test(fit_learns_true_costs),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
