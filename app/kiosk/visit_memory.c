@@ -2,18 +2,16 @@
 
 #include <string.h>
 
-static gk_visit_state *slot(gk_visit_memory *m, int scene, int method)
+static bool in_range(int scene, int method)
 {
-    if (scene < 0 || scene >= GK_MAX_PLAYLIST || method < 0 || method >= GK_VISIT_METHODS)
-        return NULL;
-    return &m->slot[scene][method];
+    return scene >= 0 && scene < GK_MAX_PLAYLIST && method >= 0 && method < GK_VISIT_METHODS;
 }
 
 void gk_visit_save(gk_visit_memory *m, int scene, int method, const gk_budget *b, const gk_sched *s)
 {
-    gk_visit_state *v = slot(m, scene, method);
-    if (!v)
+    if (!in_range(scene, method))
         return;
+    gk_visit_state *v = &m->slot[scene][method];
     v->valid = true;
     memcpy(v->level, b->level, sizeof v->level);
     v->sched = *s;
@@ -30,9 +28,9 @@ static int clamp_level(const gk_budget *b, int k, int level)
 
 bool gk_visit_restore(const gk_visit_memory *m, int scene, int method, gk_budget *b, gk_sched *s)
 {
-    const gk_visit_state *v = slot((gk_visit_memory *)m, scene, method);
-    if (!v || !v->valid)
+    if (!in_range(scene, method) || !m->slot[scene][method].valid)
         return false;
+    const gk_visit_state *v = &m->slot[scene][method];
     for (int k = 0; k < b->n; k++)
         if (!b->pinned[k])
             b->level[k] = clamp_level(b, k, v->level[k]);

@@ -27,6 +27,7 @@
 #include "../../sched/budget.h"
 #include "gl/gl.h"
 #include "gl/gl_program.h"
+#include "gl/pass.h"
 #include "../scene_gpu.h"
 
 #define GK_SHADOW_MAX_LIGHTS 8   /* lights past this are unshadowed */
@@ -53,7 +54,8 @@ typedef struct gk_shadow_ctx {
     const gk_scene_gpu *gpu;
     const gk_gl_caps *caps;
     int subdiv;                   /* level of the knob shadow_subdiv (VSSM), resolved by the renderer */
-    const struct gk_pass_ctx *pass; /* the renderer's pass context (its clock); NULL in tests */
+    const gk_pass_ctx *pass;      /* the renderer's pass context: a method's sub-passes (depth maps,
+                                     prefilters) nest under `shadow` on its clock; NULL in tests */
 } gk_shadow_ctx;
 
 typedef struct gk_shadow_method {

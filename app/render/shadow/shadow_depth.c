@@ -57,7 +57,7 @@ static const gk_uniform_field maps_fields[] = {
     GK_UNIFORM(maps_uniforms, u_shadow_proj),  GK_UNIFORM(maps_uniforms, u_shadow_light),
 };
 
-int gk_shadow_maps_render(gk_shadow_maps *m, const gk_shadow_ctx *ctx, int slot, const gk_shadow_view *v, gk_err *e)
+static int render_maps(gk_shadow_maps *m, const gk_shadow_ctx *ctx, int slot, const gk_shadow_view *v, gk_err *e)
 {
     if (slot < 0 || slot >= GK_SHADOW_MAX_LIGHTS)
         return gk_fail(e, GK_ERUNTIME, "shadow slot %d out of range", slot);
@@ -99,6 +99,16 @@ int gk_shadow_maps_render(gk_shadow_maps *m, const gk_shadow_ctx *ctx, int slot,
     glDisable(GL_POLYGON_OFFSET_FILL);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     return 0;
+}
+
+/* The depth maps every method starts from, as the sub-pass `shadow.shadow_depth`: what a method's
+   own prefilter adds is then its own sub-pass beside it. */
+int gk_shadow_maps_render(gk_shadow_maps *m, const gk_shadow_ctx *ctx, int slot, const gk_shadow_view *v, gk_err *e)
+{
+    gk_pass_begin(ctx->pass, "shadow_depth");
+    int rc = render_maps(m, ctx, slot, v, e);
+    gk_pass_end(ctx->pass);
+    return rc;
 }
 
 int gk_shadow_maps_bind(const gk_shadow_maps *m, gk_program_cache *progs, int slot, const gk_shadow_view *v,

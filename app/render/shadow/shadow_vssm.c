@@ -103,9 +103,12 @@ static int vssm_render(void *self, const gk_shadow_ctx *ctx, int slot, const gk_
         return -1;
     float q = (float)((1u << gk_sat_bits(v->map_size)) - 1u);
     s->rsc = scene_radius_norm(v, ctx->scene);
-    if (gk_pf_linearize(ctx->progs, st->maps.tex[slot], v, s->zmin, s->zmax, e) != 0 ||
-        gk_pf_hsm(ctx->progs, s->zmin, s->zmax, s->size, s->layers, e) != 0 ||
-        gk_pf_sat(ctx->progs, 0, s->zmin, s->size, s->layers, q, 1.0f, s->sat_z, s->sat_z2, 0, 0, e) != 0)
+    gk_pass_begin(ctx->pass, "vssm_prefilter"); /* linearize, min-max hierarchy, summed-area tables */
+    int rc = gk_pf_linearize(ctx->progs, st->maps.tex[slot], v, s->zmin, s->zmax, e) != 0 ||
+             gk_pf_hsm(ctx->progs, s->zmin, s->zmax, s->size, s->layers, e) != 0 ||
+             gk_pf_sat(ctx->progs, 0, s->zmin, s->size, s->layers, q, 1.0f, s->sat_z, s->sat_z2, 0, 0, e) != 0;
+    gk_pass_end(ctx->pass);
+    if (rc)
         return -1;
     glUseProgram(0);
     return 0;
