@@ -26,4 +26,11 @@ fi
 if "$BIN" scenes | grep -q 'vpl'; then
     run vpl --scenes cornell-spot,atrium --methods vpl --sweep 'vpl_n=256,512,1024;vpl_m=2,4,8,16,32,adaptive'
 fi
+# Choosing a method: per scene ONE chart with every method's default sweep against one ruler
+# (SCENE-1bounce.exr where it exists, else SCENE.exr), the Pareto front over all of them, each
+# point's spread (median to p95 of its frames) and the kiosk's automatic choice at 400 ms, 640x360
+# (from config/calibration/CLASS.csv) marked.
+scenes=$(ls config/scenes/*.gltf config/scenes/*.glb 2>/dev/null | sed 's|.*/||; s/\.gltf$//; s/\.glb$//' | sort -u |
+    tr '\n' ',' | sed 's/,$//')
+run methods --scenes "$scenes" --one-ruler
 echo "bench: results in $OUT/*/bench.csv and $OUT/*/speed-accuracy-*.png"

@@ -12,7 +12,7 @@
 #include "../sched/budget.h"
 
 #define GK_BENCH_MAX_AXES 6
-#define GK_BENCH_MAX_ROWS 512
+#define GK_BENCH_MAX_ROWS 1024
 
 /* One sweep: the cartesian product of each axis's values. */
 typedef struct gk_bench_sweep {
@@ -29,11 +29,17 @@ typedef struct gk_bench_opts {
     int width, height;         /* 0 = the reference's size */
     int frames, warmup;        /* timed frames per configuration, untimed frames before them */
     bool rebuild_gi;           /* GI methods redo their static work (voxelize, inject...) every frame */
+    bool one_ruler;            /* every method of a scene against ONE reference (SCENE-1bounce.exr
+                                  where it exists, else SCENE.exr), so methods compare on one
+                                  axis; default: each against what it computes (none: -direct) */
     char out_dir[512];
     char scenes_dir[512];
     char refs_dir[512];
     int gles_version;
     const char *shader_dir;
+    double target_ms;          /* the kiosk's choice is marked for this target (default 400: the
+                                  kiosk's default) ... */
+    int target_width, target_height; /* ... at this display size (default 640x360: `make run`) */
 } gk_bench_opts;
 
 typedef struct gk_bench_row {
@@ -46,6 +52,8 @@ typedef struct gk_bench_row {
                                                  its reference is black) */
     double pass_ms[GK_MAX_PASSES];            /* medians, in the order of pass_names */
     bool pareto;
+    bool chosen;               /* the kiosk's automatic choice for this scene (method at its default
+                                  budgets) from the calibration, at opts.target_ms */
 } gk_bench_row;
 
 /* The error a row is charted and ranked by: rel_rmse; for a black reference (light-leak), where the
@@ -61,6 +69,9 @@ typedef struct gk_bench_result {
     char pass_names[GK_MAX_PASSES][GK_PASS_PATH_LEN]; /* dotted report paths: "shadow", "gi.vct_trace" */
     int n_rows;
     gk_bench_row rows[GK_BENCH_MAX_ROWS];
+    int frames;                /* timed frames per row (the spread bars' sample) */
+    double choice_target_ms;   /* what rows[].chosen was chosen for (0: nothing marked) */
+    int choice_width, choice_height;
 } gk_bench_result;
 
 /* Parses a sweep; knobs and values are checked against b (GK_EINPUT naming what is unknown). */
@@ -75,6 +86,12 @@ void gk_bench_sweep_pins(const gk_bench_sweep *s, int index, char *out, int out_
 /* Marks rows[i].pareto for the rows of one scene: on the front when no other row of that scene is
  * both at least as fast and strictly more accurate (rel_rmse), or strictly faster and as accurate. */
 void gk_bench_mark_pareto(gk_bench_row *rows, int n);
+
+/* Marks the row the kiosk would show in attract mode: the method gk_calibration_choose picks for
+ * each scene (calibration c, target_ms at target_pixels), in its row at every knob's default level.
+ * why[scene index] gets the account. Scenes without a calibrated method or such a row: none. */
+struct gk_calibration;
+void gk_bench_mark_choice(gk_bench_result *r, const struct gk_calibration *c, double target_ms, double target_pixels);
 
 /* Runs everything and writes the outputs. Allocates the result (free()). */
 int gk_bench_run(const gk_bench_opts *o, gk_bench_result **out, gk_err *e);

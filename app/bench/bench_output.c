@@ -27,7 +27,7 @@ int gk_bench_write_csv(const gk_bench_result *r, const char *path, gk_err *e)
     fputs("scene,method", f);
     for (int k = 0; k < r->budget.n; k++)
         fprintf(f, ",%s", r->budget.def[k]->name);
-    fputs(",frame_ms_median,frame_ms_p95,reference,rel_rmse,ssim,psnr,mean_ratio,test_mean,pareto", f);
+    fputs(",frame_ms_median,frame_ms_p95,reference,rel_rmse,ssim,psnr,mean_ratio,test_mean,pareto,chosen", f);
     for (int p = 0; p < r->n_passes; p++)
         fprintf(f, ",%s_ms", r->pass_names[p]);
     fputc('\n', f);
@@ -44,7 +44,7 @@ int gk_bench_write_csv(const gk_bench_result *r, const char *path, gk_err *e)
         put_num(f, row->psnr);
         put_num(f, row->mean_ratio);
         put_num(f, row->test_mean);
-        fprintf(f, ",%d", row->pareto ? 1 : 0);
+        fprintf(f, ",%d,%d", row->pareto ? 1 : 0, row->chosen ? 1 : 0);
         for (int p = 0; p < r->n_passes; p++)
             put_num(f, row->pass_ms[p]);
         fputc('\n', f);
@@ -136,7 +136,8 @@ static int write_scene_chart(const gk_bench_result *r, const char *dir, const ch
             if (strcmp(key, series[m]))
                 continue;
             row_label(r, i, sk, label, sizeof label);
-            fprintf(f, "%.6g %.6g \"%s\"\n", row->frame_ms_median, gk_bench_row_error(row), label);
+            fprintf(f, "%.6g %.6g %.6g \"%s\"\n", row->frame_ms_median, gk_bench_row_error(row), row->frame_ms_p95,
+                    label);
         }
         fputs("\n\n", f);
     }
@@ -153,6 +154,14 @@ static int write_scene_chart(const gk_bench_result *r, const char *dir, const ch
         }
     for (int a = 0; a < n; a++)
         fprintf(f, "%.6g %.6g\n", r->rows[idx[a]].frame_ms_median, gk_bench_row_error(&r->rows[idx[a]]));
+    /* the kiosk's automatic choice (one point, or an empty block) */
+    fputs("\n\n# kiosk's choice\n", f);
+    const gk_bench_row *chosen = NULL;
+    for (int i = 0; i < r->n_rows && !chosen; i++)
+        if (!strcmp(r->rows[i].scene, scene) && r->rows[i].chosen && !isnan(gk_bench_row_error(&r->rows[i])))
+            chosen = &r->rows[i];
+    if (chosen)
+        fprintf(f, "%.6g %.6g\n", chosen->frame_ms_median, gk_bench_row_error(chosen));
     fclose(f);
     if (n_series == 0) {
         gk_log("bench: %s has no measured error (no reference): no chart", scene);
@@ -164,10 +173,19 @@ static int write_scene_chart(const gk_bench_result *r, const char *dir, const ch
         return gk_fail(e, GK_ERUNTIME, "%s: %s", gp, strerror(errno));
     fprintf(f, "# Speed against accuracy for %s: regenerate with `gnuplot %s`.\n", scene, gp);
     fprintf(f, "set title \"%s: error against frame time (llvmpipe CPU times: compare as ratios)\"\n", scene);
-    fprintf(f, "set xlabel \"frame time, median (ms, log scale)\"\nset ylabel \"%s\"\n",
+    /* the references this scene's rows were measured against, named on the axis */
+    char refs[256] = "";
+    for (int i = 0; i < r->n_rows; i++) {
+        const char *ref = r->rows[i].reference;
+        if (strcmp(r->rows[i].scene, scene) || !ref[0] || strstr(refs, ref))
+            continue;
+        snprintf(refs + strlen(refs), sizeof refs - strlen(refs), "%s%s.exr", refs[0] ? ", " : "", ref);
+    }
+    fprintf(f, "set xlabel \"frame time (ms, log scale): median of %d frames, bar to their p95\"\nset ylabel \"%s%s\"\n",
+            r->frames,
             gk_bench_black_reference(r->rows, r->n_rows, scene)
-                ? "mean radiance, nits (the reference is black: all of it is leaked light)"
-                : "relative RMSE vs the path-traced reference (GI methods: one bounce where there is one)");
+                ? "mean radiance, nits (the reference is black: all of it is leaked light) "
+                : "relative RMSE vs ", refs);
     fputs("set logscale xy\nset grid\nset key outside right top\nset offsets graph 0.05, graph 0.05, graph 0.05, graph 0.05\n",
           f);
     for (int pass = 0; pass < 2; pass++) {
@@ -176,10 +194,16 @@ static int write_scene_chart(const gk_bench_result *r, const char *dir, const ch
         else
             fprintf(f, "set terminal svg size 1000,640 font \"DejaVu Sans,10\" noenhanced\nset output \"%s/speed-accuracy-%s.svg\"\n", dir, scene);
         fputs("plot ", f);
+        /* each point: the median frame time, a bar to the p95 of the same frames (the spread that
+           tells timing noise from a real difference), the varying knobs as its label */
         for (int m = 0; m < n_series; m++)
-            fprintf(f, "\"%s\" index %d using 1:2 with points pt 7 ps 1.2 title \"%s\", \"%s\" index %d using 1:2:3 with labels offset 0,0.8 font \",7\" notitle, ",
-                    dat, m, series[m], dat, m);
-        fprintf(f, "\"%s\" index %d using 1:2 with linespoints lw 2 dt 2 pt 6 ps 2 lc rgb \"black\" title \"Pareto front\"\n", dat, n_series);
+            fprintf(f, "\"%s\" index %d using 1:2:1:3 with xerrorbars pt 7 ps 1.2 lc %d title \"%s\", \"%s\" index %d using 1:2:4 with labels offset 0,0.8 font \",7\" notitle, ",
+                    dat, m, m + 1, series[m], dat, m);
+        fprintf(f, "\"%s\" index %d using 1:2 with linespoints lw 2 dt 2 pt 6 ps 2 lc rgb \"black\" title \"Pareto front\"", dat, n_series);
+        if (chosen)
+            fprintf(f, ", \"%s\" index %d using 1:2 with points pt 3 ps 3.5 lw 2 lc rgb \"red\" title \"kiosk's choice at %.0f ms, %dx%d\"",
+                    dat, n_series + 1, r->choice_target_ms, r->choice_width, r->choice_height);
+        fputc('\n', f);
     }
     fclose(f);
     char cmd[2200];

@@ -1,5 +1,6 @@
 /* The bench's measuring half: renders each configuration on the mock platform, times it and
  * compares its linear HDR image with the scene's path-traced reference. */
+#include "../sched/calibration.h"
 #include "bench.h"
 
 #include <errno.h>
@@ -80,6 +81,7 @@ static int measure(bench_run *b, const char *method, const char *pins, gk_err *e
        pay for them every frame to measure them, any other sweep measures the kiosk's steady state. */
     gk_renderer_set_rerender_static_shadows(b->renderer, strstr(pins, "shadow") != NULL || b->o->rebuild_gi);
     gk_renderer_set_rebuild_gi(b->renderer, b->o->rebuild_gi);
+    gk_renderer_cut(b->renderer); /* no cross-fade from the previous configuration's GI */
     int frames = b->o->frames, total = b->o->warmup + frames;
     double *frame_ms = calloc((size_t)frames, sizeof *frame_ms);
     double *pass_ms = calloc((size_t)frames * GK_MAX_PASSES, sizeof *pass_ms);
@@ -122,12 +124,17 @@ static int measure(bench_run *b, const char *method, const char *pins, gk_err *e
     if (rc == 0) {
         snprintf(row->scene, sizeof row->scene, "%s", b->scene->name);
         snprintf(row->method, sizeof row->method, "%s", method);
+        /* the levels as they ran: a knob a pass clamped (vct_res=256 past the storage-buffer
+           limit runs at 128) is charted and written as what ran */
+        const gk_budget *ran = gk_renderer_budget_ran(b->renderer);
+        if (!ran || ran->n != budget.n)
+            ran = &budget;
         for (int k = 0; k < budget.n; k++) {
             int col = gk_budget_find(&r->budget, budget.def[k]->name);
             if (col < 0)
                 col = gk_budget_add(&r->budget, budget.def[k]);
             if (col >= 0)
-                row->level[col] = budget.level[k];
+                row->level[col] = ran->level[k];
         }
         row->frame_ms_median = percentile(frame_ms, frames, 0.5);
         row->frame_ms_p95 = percentile(frame_ms, frames, 0.95);
@@ -146,7 +153,7 @@ static int measure(bench_run *b, const char *method, const char *pins, gk_err *e
            reference's direct component; the GI methods, which all compute one diffuse bounce,
            against the one-bounce reference where the scene has one (summary C.1), else the full
            image. The reference column says which. */
-        bool none = strcmp(method, "none") == 0;
+        bool none = strcmp(method, "none") == 0 && !b->o->one_ruler;
         bool direct = none && b->reference_direct.pixels;
         bool one_bounce = !none && b->reference_1bounce.pixels;
         const gk_image *ref = direct ? &b->reference_direct : one_bounce ? &b->reference_1bounce : &b->reference;
@@ -332,6 +339,9 @@ int gk_bench_run(const gk_bench_opts *o, gk_bench_result **out, gk_err *e)
                          .shader_dir = o->shader_dir, .gpu_timer_queries = false};
     b.renderer = gk_renderer_create(&ro, e);
     int rc = b.renderer ? 0 : -1;
+    char gl_renderer[256] = "";
+    if (rc == 0)
+        snprintf(gl_renderer, sizeof gl_renderer, "%s", (const char *)glGetString(GL_RENDERER));
     char list[512];
     snprintf(list, sizeof list, "%s", scenes);
     char *save = NULL;
@@ -345,6 +355,23 @@ int gk_bench_run(const gk_bench_opts *o, gk_bench_result **out, gk_err *e)
         return -1;
     }
     gk_bench_mark_pareto(b.r->rows, b.r->n_rows);
+    b.r->frames = o->frames;
+    /* the kiosk's choice, from the calibration it would load (missing: nothing marked) */
+    gk_calibration cal;
+    char cal_path[1024];
+    gk_err ce = {0};
+    gk_calibration_path(o->scenes_dir, gl_renderer, cal_path, sizeof cal_path);
+    if (gk_calibration_load(cal_path, &cal, &ce) == 0) {
+        gk_bench_mark_choice(b.r, &cal, o->target_ms, (double)o->target_width * o->target_height);
+        b.r->choice_target_ms = o->target_ms;
+        b.r->choice_width = o->target_width;
+        b.r->choice_height = o->target_height;
+        gk_calibration_free(&cal);
+        gk_log("bench: the kiosk's choice at %.0f ms, %dx%d, marked from %s", o->target_ms, o->target_width,
+               o->target_height, cal_path);
+    } else {
+        gk_log("bench: no kiosk choice marked: %s", ce.msg);
+    }
     *out = b.r;
     return 0;
 }

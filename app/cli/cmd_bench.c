@@ -12,16 +12,22 @@ static void usage(FILE *f)
 {
     fputs("usage: gikiosk bench [--scenes LIST] [--methods LIST] [--size WxH] [--frames N] [--warmup N]\n"
           "                     [--sweep KNOB=V1,V2[;KNOB=V1,V2...]] [--scenes-dir DIR] [--references DIR]\n"
-          "                     [--gles 3.1|3.2] [--shader-dir DIR] [--rebuild-gi] --out DIR\n"
+          "                     [--gles 3.1|3.2] [--shader-dir DIR] [--rebuild-gi]\n"
+          "                     [--target-ms MS] [--target-size WxH] [--one-ruler] --out DIR\n"
           "\n"
           "Renders every configuration offscreen (mock platform), measures the frame time (median and p95\n"
           "over --frames frames after --warmup untimed ones) and the error against the path-traced\n"
           "reference REFERENCES/SCENE.exr, and writes DIR/bench.csv and DIR/speed-accuracy-SCENE.png/.svg\n"
-          "(error against frame time, one series per method, the Pareto front marked).\n"
+          "(error against frame time, one series per method, a bar from the median to the p95 frame time,\n"
+          "the Pareto front, and the kiosk's automatic choice -- from config/calibration/CLASS.csv beside\n"
+          "the scenes folder, at --target-ms (default 400) and --target-size (default 640x360) -- marked).\n"
           "Defaults: scenes cornell,shadow-planes; every method that applies; for method none the sweep\n"
           "shadow x shadow_map, for a GI method each of its knobs one at a time; size from the reference;\n"
           "5 frames after 2 warm-up frames. On a machine without a GPU the times are llvmpipe CPU times:\n"
           "read them as ratios between configurations measured in the same run.\n"
+          "--one-ruler: every method of a scene is measured against one reference (SCENE-1bounce.exr\n"
+          "where it exists, else SCENE.exr), so the methods compare on one axis (default: each against\n"
+          "what it computes; none against SCENE-direct.exr).\n"
           "--rebuild-gi: the GI methods redo every frame what they otherwise keep between frames of a\n"
           "static scene (vct: voxelize, inject, mips) and shadow maps are re-rendered: the cost of a\n"
           "moving light or object, pass by pass.\n",
@@ -51,6 +57,9 @@ int gk_cmd_bench(int argc, char **argv)
     o.frames = 5;
     o.warmup = 2;
     o.gles_version = 32;
+    o.target_ms = 400.0;   /* the kiosk's default target and `make run`'s size */
+    o.target_width = 640;
+    o.target_height = 360;
     snprintf(o.scenes_dir, sizeof o.scenes_dir, "%s", gk_scene_default_dir());
     snprintf(o.refs_dir, sizeof o.refs_dir, "tests/references");
     for (int i = 1; i < argc; i++) {
@@ -61,6 +70,10 @@ int gk_cmd_bench(int argc, char **argv)
         }
         if (!strcmp(a, "--rebuild-gi")) {
             o.rebuild_gi = true;
+            continue;
+        }
+        if (!strcmp(a, "--one-ruler")) {
+            o.one_ruler = true;
             continue;
         }
         if (i + 1 >= argc) {
@@ -86,7 +99,13 @@ int gk_cmd_bench(int argc, char **argv)
             o.shader_dir = v;
         else if (!strcmp(a, "--size"))
             bad = parse_size(v, &o.width, &o.height);
-        else if (!strcmp(a, "--frames"))
+        else if (!strcmp(a, "--target-size"))
+            bad = parse_size(v, &o.target_width, &o.target_height);
+        else if (!strcmp(a, "--target-ms")) {
+            char *end;
+            o.target_ms = strtod(v, &end);
+            bad = *v == '\0' || *end || !(o.target_ms >= 1.0 && o.target_ms <= 60000.0);
+        } else if (!strcmp(a, "--frames"))
             bad = parse_count(v, 1, 10000, &o.frames);
         else if (!strcmp(a, "--warmup"))
             bad = parse_count(v, 0, 1000, &o.warmup);

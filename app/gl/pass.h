@@ -20,6 +20,9 @@ typedef struct gk_pass_ctx {
     gk_program_cache *programs;
     const gk_gl_caps *caps;
     const struct gk_budget *budget;    /* this frame's knob levels */
+    struct gk_budget *ran;             /* the levels that really ran: starts as a copy of budget; a
+                                          pass that clamps a knob notes it (gk_knob_note_ran). NULL
+                                          when there is no budget */
     const struct gk_scene *scene;      /* evaluated at this frame's time */
     const gk_gbuffer_view *gbuffer;    /* NULL before the gbuffer pass */
 } gk_pass_ctx;

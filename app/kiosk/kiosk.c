@@ -202,6 +202,13 @@ static void log_budget_changes(kiosk *k, const gk_sched_change *ch, int n, doubl
     }
 }
 
+/* The levels as this frame ran them (a clamped knob shows what ran, not what was asked). */
+static const gk_budget *ran_budget(const kiosk *k)
+{
+    const gk_budget *ran = gk_renderer_budget_ran(k->r);
+    return ran ? ran : &k->budget;
+}
+
 /* The HUD, drawn by the renderer as the frame's last pass (`hud`, on its clock). It shows the
  * newest complete frame report: the previous frame's (or older with GPU timer queries). */
 static void draw_hud(void *user, const gk_pass_ctx *ctx, unsigned fbo)
@@ -212,7 +219,7 @@ static void draw_hud(void *user, const gk_pass_ctx *ctx, unsigned fbo)
         .scene = gk_playlist_scene(&k->pl), .method = gk_playlist_method(&k->pl), .frame_ms = k->last_frame_ms,
         .method_mode = k->o->method || k->pl.method != k->pl.default_method ? "forced" : "auto",
         .median_ms = gk_recent_percentile(&k->recent, 0.5f), .p95_ms = gk_recent_percentile(&k->recent, 0.95f),
-        .target_ms = k->c->target_ms, .recent = &k->recent, .budget = &k->budget,
+        .target_ms = k->c->target_ms, .recent = &k->recent, .budget = ran_budget(k),
     };
     gk_hud_draw(k->hud, fbo, &info);
 }
@@ -267,8 +274,8 @@ static int frame(kiosk *k, double now, gk_err *e)
        voxelizing, first shadow maps); the summary reports them apart. */
     bool judged = measured && k->sched.warm == 0 && k->sched_skip == 0;
     if (measured)
-        gk_summary_add(&k->summary, scene, method, frame_ms, judged, &k->budget);
-    if (k->csv && gk_stats_csv_row(k->csv, k->frame, now, scene, method, &report, &k->budget, e))
+        gk_summary_add(&k->summary, scene, method, frame_ms, judged, ran_budget(k));
+    if (k->csv && gk_stats_csv_row(k->csv, k->frame, now, scene, method, &report, ran_budget(k), e))
         return -1;
     k->have_frame = true;
     k->last_frame = k->frame;
@@ -382,10 +389,7 @@ static int load_calibration(kiosk *k, const char *renderer, gk_err *e)
 {
     char cls[64], path[1024];
     gk_calibration_class(renderer, cls, sizeof cls);
-    const char *dir = k->o->scenes_dir ? k->o->scenes_dir : "config/scenes";
-    const char *slash = strrchr(dir, '/');
-    int parent = slash ? (int)(slash - dir) : 0;
-    snprintf(path, sizeof path, "%.*s%scalibration/%s.csv", parent, dir, slash ? "/" : "", cls);
+    gk_calibration_path(k->o->scenes_dir, renderer, path, sizeof path);
     gk_err ce = {0};
     if (gk_calibration_load(path, &k->calibration, &ce) == 0) {
         k->have_calibration = true;

@@ -245,7 +245,7 @@ int gk_render_compose(gk_renderer *r, GLuint fbo, int w, int h, bool linear_out,
     glDisable(GL_BLEND);
     glUseProgram(prog);
     glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, r->hdr.color[0]);
+    glBindTexture(GL_TEXTURE_2D, r->shown ? r->shown : r->hdr.color[0]);
     glUniform1i(u->u_hdr, 0);
     glUniform1f(u->u_exposure, r->exposure);
     gk_render_fullscreen(r);
@@ -282,20 +282,26 @@ bool gk_renderer_gi_failed(const gk_renderer *r, const char *method)
     return gk_render_gi_failed(r->gi, r, method);
 }
 
-/* Runs the GI method as the `gi` pass. A method that fails is logged once (render_gi.c then skips
-   it until the next scene) and the frame keeps its direct light: a kiosk keeps showing something. */
-static void pass_gi(gk_renderer *r, const gk_frame_params *fp, const gk_pass_ctx *ctx)
+/* Runs the GI method as the `gi` pass, with the cross-fade of render_gi_blend.c around it. A method
+   that fails is logged once (render_gi.c then skips it until the next scene) and the frame keeps its
+   direct light: a kiosk keeps showing something. */
+static void pass_gi(gk_renderer *r, const gk_frame_params *fp, const gk_frame_knobs *fk, const gk_pass_ctx *ctx)
 {
     const char *method = fp ? fp->method : NULL;
-    if (!method || strcmp(method, "none") == 0)
+    bool run_method = method && strcmp(method, "none") != 0;
+    if (!run_method && !gk_gi_blend_active(r))
         return;
     gk_err gi_err = {0};
     gk_pass_begin(ctx, "gi");
-    int rc = gk_render_gi_run(r->gi, r, method, ctx, &gi_err);
-    gk_pass_end(ctx);
+    int rc = gk_gi_blend_before_method(r, ctx, fk->gi_blend, &gi_err);
     if (rc != 0)
+        gk_log("renderer: GI cross-fade failed, showing the new GI at once: %s", gi_err.msg);
+    if (run_method && gk_render_gi_run(r->gi, r, method, ctx, &gi_err) != 0)
         gk_log("renderer: GI method %s failed on scene %s, showing it without GI: %s", method,
                r->scene->name[0] ? r->scene->name : "?", gi_err.msg);
+    if (rc == 0 && gk_gi_blend_after_method(r, ctx, &gi_err) != 0)
+        gk_log("renderer: GI cross-fade failed, showing the new GI at once: %s", gi_err.msg);
+    gk_pass_end(ctx);
 }
 
 int gk_renderer_draw(gk_renderer *r, const gk_frame_params *fp, unsigned target_fbo, gk_frame_report *report,
@@ -312,8 +318,11 @@ int gk_renderer_draw(gk_renderer *r, const gk_frame_params *fp, unsigned target_
     int w = (int)lroundf((float)r->opts.width * fk.render_scale), h = (int)lroundf((float)r->opts.height * fk.render_scale);
     if (w < 1) w = 1;
     if (h < 1) h = 1;
+    /* before the targets may be resized: the last frame's GI is still there to hold */
+    gk_gi_blend_begin_frame(r, fp ? fp->method : NULL, b, fk.gi_blend, e);
     if (ensure_targets(r, w, h, e) != 0)
         return -1;
+    r->shown = r->hdr.color[0];
 
     gk_scene *s = r->scene;
     gk_scene_evaluate(s, fp ? (float)fp->time_s : 0.0f);
@@ -324,8 +333,12 @@ int gk_renderer_draw(gk_renderer *r, const gk_frame_params *fp, unsigned target_
     gk_scene_camera(s, (float)r->opts.width / (float)r->opts.height, &gb.view, &gb.proj, &gb.eye);
     gb.view_proj = m4_mul(gb.proj, gb.view);
     gb.inv_view_proj = m4_inverse(gb.view_proj);
+    r->have_ran = b != NULL;
+    if (b)
+        r->ran = *b;
     gk_pass_ctx ctx = {
-        .timer = r->timer, .programs = r->progs, .caps = &r->caps, .budget = b, .scene = s, .gbuffer = &gb,
+        .timer = r->timer, .programs = r->progs, .caps = &r->caps, .budget = b, .ran = b ? &r->ran : NULL,
+        .scene = s, .gbuffer = &gb,
     };
 
     frame_light fl[64];
@@ -351,7 +364,7 @@ int gk_renderer_draw(gk_renderer *r, const gk_frame_params *fp, unsigned target_
         gk_pass_end(&ctx);
     }
     if (rc == 0) {
-        pass_gi(r, fp, &ctx);
+        pass_gi(r, fp, &fk, &ctx);
         if (!r->exposure_known)
             measure_exposure(r); /* once per scene, outside every pass: a one-off read-back */
         gk_pass_begin(&ctx, "compose");

@@ -65,6 +65,7 @@ void gk_renderer_destroy(gk_renderer *r)
         gk_scene_gpu_free(&r->gpu);
     gk_target_destroy(&r->gbuf);
     gk_target_destroy(&r->hdr);
+    gk_gi_blend_destroy(r);
     for (int i = 0; i < GK_MAX_SHADOW_METHODS && gk_shadow_methods[i]; i++)
         if (r->shadow_state[i])
             gk_shadow_methods[i]->destroy(r->shadow_state[i]);
@@ -92,6 +93,7 @@ int gk_renderer_set_scene(gk_renderer *r, gk_scene *s, gk_err *e)
     memset(&r->shadow_cache, 0, sizeof r->shadow_cache);
     r->have_frame = false;
     r->exposure_known = false;
+    gk_gi_blend_reset(r);
     if (!s)
         return 0;
     if (gk_scene_gpu_upload(&r->gpu, s, e) != 0)
@@ -135,3 +137,13 @@ void gk_render_fullscreen(gk_renderer *r)
 }
 
 float gk_renderer_exposure(const gk_renderer *r) { return r->exposure; }
+
+const gk_budget *gk_renderer_budget_ran(const gk_renderer *r)
+{
+    return r->have_ran ? &r->ran : NULL;
+}
+
+void gk_renderer_cut(gk_renderer *r)
+{
+    gk_gi_blend_reset(r);
+}

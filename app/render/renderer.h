@@ -64,6 +64,14 @@ void gk_renderer_set_rebuild_gi(gk_renderer *r, bool on);
  * gk_renderer_gi_failed and the frame keeps its direct light. */
 int gk_renderer_draw(gk_renderer *r, const gk_frame_params *fp, unsigned target_fbo, gk_frame_report *report,
                      gk_err *e);
+/* The last frame's knob levels as they ran: its budget, with the levels a pass could not run
+ * replaced by what it ran (vct_res=256 -> 128 past the storage-buffer limit). NULL when the frame
+ * had no budget. What the HUD, the stats and the bench report. */
+const gk_budget *gk_renderer_budget_ran(const gk_renderer *r);
+/* A cut: the next frame shows its GI at once, without the cross-fade from the last frame's (a
+ * change of method or knob levels otherwise fades over `gi_blend` frames). The bench cuts between
+ * configurations so each one is measured as itself. */
+void gk_renderer_cut(gk_renderer *r);
 /* True when the GI method failed on the current scene (logged once by the renderer; it is not
  * run again until the next scene). */
 bool gk_renderer_gi_failed(const gk_renderer *r, const char *method);

@@ -18,7 +18,7 @@ enum { UNIT_ALBEDO = 0, UNIT_NORMAL = 1, UNIT_EMISSION = 2, UNIT_DEPTH = 3, UNIT
 
 /* The renderer's knobs, read each frame through handles (no names in the frame loop). */
 typedef struct gk_render_knobs {
-    gk_knob scale, shadow, shadow_map, shadow_subdiv;
+    gk_knob scale, shadow, shadow_map, shadow_subdiv, gi_blend;
     const gk_shadow_method *shadow_of_level[GK_MAX_KNOB_VALUES]; /* knob `shadow` level -> method */
     const gk_knob_def *shadow_table_def; /* the definition shadow_of_level was built from */
     const gk_shadow_method *shadow_without_budget;               /* PCSS, the framework reference */
@@ -30,7 +30,25 @@ typedef struct gk_frame_knobs {
     const gk_shadow_method *shadow;
     int shadow_map;
     int shadow_subdiv;          /* level of shadow_subdiv (VSSM) */
+    int gi_blend;               /* frames a GI change is cross-faded over (0: off) */
 } gk_frame_knobs;
+
+/* Cross-fade of the GI result when the method or a budget changes (render_gi_blend.c): the
+ * visitor sees the indirect light slide from the old to the new over gi_blend frames instead of a
+ * jump. What is faded is the GI's contribution -- the frame after GI minus the frame before it --
+ * so direct light never ghosts; the contribution of the last frame before the change is held. */
+typedef struct gk_gi_blend {
+    gk_target pre;              /* this frame's HDR image before the GI pass (render size) */
+    gk_target held;             /* GI contribution shown in the last frame before the change (its size) */
+    gk_target out;              /* the blended image composed during a transition */
+    bool pre_valid;             /* pre holds the last frame's image before GI (it ran the gi pass) */
+    int frames;                 /* frames of the running transition (the gi_blend knob when it began) */
+    int frames_left;            /* blended frames still to draw (0: no transition) */
+    char method[32];            /* what the last frame ran: method and every knob level */
+    int n_levels;
+    int levels[GK_MAX_KNOBS];
+    bool have_last;
+} gk_gi_blend;
 
 /* The shadow maps of a static scene are kept while this stays the same (compared by value). */
 typedef struct gk_shadow_cache_key {
@@ -58,6 +76,10 @@ struct gk_renderer {
 
     struct gk_render_gi *gi;    /* GI methods (render_gi.c) */
     gk_render_knobs knobs;      /* handles of the renderer's knobs (renderer_knobs.c) */
+    gk_budget ran;              /* this frame's knob levels as they ran (pass.h: gk_pass_ctx.ran) */
+    bool have_ran;
+    gk_gi_blend blend;          /* GI cross-fade state (render_gi_blend.c) */
+    GLuint shown;               /* the HDR texture compose shows this frame: hdr, or blend.out */
     gk_shadow_cache_key shadow_cache; /* what the maps now in shadow_state were rendered for */
     void *shadow_state[GK_MAX_SHADOW_METHODS]; /* per method of gk_shadow_methods[], created on first use */
 
@@ -69,6 +91,18 @@ struct gk_renderer {
 /* renderer_knobs.c: handles set up at creation; the frame's values from budget b (NULL: defaults). */
 void gk_render_knobs_init(gk_render_knobs *k);
 void gk_render_knobs_read(gk_render_knobs *k, const gk_budget *b, gk_frame_knobs *out);
+
+/* render_gi_blend.c. At the start of a frame, before targets are resized: notes what the frame
+ * runs and, when that differs from the last frame, holds the GI contribution that frame showed. */
+void gk_gi_blend_begin_frame(gk_renderer *r, const char *method, const gk_budget *b, int blend_frames, gk_err *e);
+/* True when the gi pass has work this frame though the method adds nothing (a fade to none). */
+bool gk_gi_blend_active(const gk_renderer *r);
+/* Inside the gi pass: before the method (keeps the image before GI), after it (the fade). */
+int gk_gi_blend_before_method(gk_renderer *r, const gk_pass_ctx *ctx, int blend_frames, gk_err *e);
+int gk_gi_blend_after_method(gk_renderer *r, const gk_pass_ctx *ctx, gk_err *e);
+/* A new scene: nothing to fade from. */
+void gk_gi_blend_reset(gk_renderer *r);
+void gk_gi_blend_destroy(gk_renderer *r);
 
 /* Light kind numbers of shaders_gles/common/lights.glsl. */
 int gk_render_light_kind(const gk_light *l);

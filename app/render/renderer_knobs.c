@@ -40,12 +40,22 @@ static const gk_knob_def knob_shadow_subdiv = {
     .auto_max_level = 3,
 };
 
+/* Frames a change of GI method or budget is cross-faded over (render_gi_blend.c); 0 = off, the
+ * method's result shows at once (for measuring the pop itself). A switch, not a trade: the fade
+ * costs one HDR blit per frame with GI (timed as gi.blend_hold), the scheduler never moves it. 4
+ * frames: each frame of a switch moves a quarter of the jump (tests/gpu/test_gi_blend.c). */
+static const gk_knob_def knob_gi_blend = {
+    .name = "gi_blend", .owner = "render", .n_values = 2,
+    .values = {"0", "4"}, .cost = {1.0f, 1.0f}, .default_level = 1, .fixed = true,
+};
+
 void gk_render_knobs_init(gk_render_knobs *k)
 {
     k->scale = (gk_knob){&knob_render_scale, -1};
     k->shadow = (gk_knob){&knob_shadow, -1};
     k->shadow_map = (gk_knob){&knob_shadow_map, -1};
     k->shadow_subdiv = (gk_knob){&knob_shadow_subdiv, -1};
+    k->gi_blend = (gk_knob){&knob_gi_blend, -1};
     k->shadow_table_def = NULL;
     k->shadow_without_budget = gk_shadow_method_find("pcss");
 }
@@ -67,6 +77,7 @@ void gk_render_knobs_read(gk_render_knobs *k, const gk_budget *b, gk_frame_knobs
     out->shadow = shadow >= 0 ? k->shadow_of_level[shadow] : k->shadow_without_budget;
     out->shadow_map = (int)gk_knob_number(b, &k->shadow_map, 1024.0f);
     out->shadow_subdiv = gk_knob_level(b, &k->shadow_subdiv, knob_shadow_subdiv.default_level);
+    out->gi_blend = (int)gk_knob_number(b, &k->gi_blend, 0.0f); /* no budget: one-off frames, nothing to fade */
 }
 
 void gk_renderer_declare_knobs(gk_renderer *r, gk_budget *b)
@@ -76,5 +87,6 @@ void gk_renderer_declare_knobs(gk_renderer *r, gk_budget *b)
     gk_budget_add(b, &knob_shadow);
     gk_budget_add(b, &knob_shadow_map);
     gk_budget_add(b, &knob_shadow_subdiv);
+    gk_budget_add(b, &knob_gi_blend);
     gk_render_gi_declare_knobs(b);
 }

@@ -81,6 +81,18 @@ float gk_knob_number(const gk_budget *b, gk_knob *k, float fallback)
     return isnan(v) ? fallback : v;
 }
 
+void gk_knob_note_ran(gk_budget *ran, gk_knob *k, float value)
+{
+    if (!ran || !gk_knob_resolve(ran, k))
+        return;
+    int i = k->index, best = -1;
+    for (int l = 0; l < ran->def[i]->n_values; l++)
+        if (!isnan(ran->number[i][l]) && ran->number[i][l] <= value)
+            best = l;
+    if (best >= 0)
+        ran->level[i] = best;
+}
+
 const char *gk_budget_value(const gk_budget *b, const char *name)
 {
     int i = gk_budget_find(b, name);

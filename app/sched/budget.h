@@ -74,6 +74,12 @@ int gk_knob_level(const gk_budget *b, gk_knob *k, int fallback);
  * the knob, or the value is not a number ("adaptive"). */
 float gk_knob_number(const gk_budget *b, gk_knob *k, float fallback);
 
+/* A pass could not run the knob's level and ran `value` instead (vct_res=256 past the GPU's
+ * storage-buffer limit runs at 128): notes in `ran` -- the renderer's copy of the frame's levels,
+ * what the HUD, the stats and the bench report -- the richest level whose value is <= value.
+ * ran NULL (nobody reads it) or lacking the knob: no-op. */
+void gk_knob_note_ran(struct gk_budget *ran, gk_knob *k, float value);
+
 /* True when knob i matters for method (owner "render" or the method itself). */
 bool gk_budget_knob_active(const gk_budget *b, int i, const char *method);
 

@@ -22,6 +22,16 @@ void gk_calibration_class(const char *renderer, char *out, int out_len)
     out[n] = '\0';
 }
 
+void gk_calibration_path(const char *scenes_dir, const char *renderer, char *out, int out_len)
+{
+    char cls[64];
+    gk_calibration_class(renderer, cls, sizeof cls);
+    const char *dir = scenes_dir ? scenes_dir : "config/scenes";
+    const char *slash = strrchr(dir, '/');
+    int parent = slash ? (int)(slash - dir) : 0;
+    snprintf(out, (size_t)out_len, "%.*s%scalibration/%s.csv", parent, dir, slash ? "/" : "", cls);
+}
+
 void gk_calibration_free(gk_calibration *c)
 {
     free(c->rows);

@@ -27,6 +27,9 @@ typedef struct gk_calibration {
 /* Platform class of a GL renderer string: its first word, lower case ("llvmpipe (LLVM ...)" ->
  * "llvmpipe"). */
 void gk_calibration_class(const char *renderer, char *out, int out_len);
+/* Where the kiosk and the bench look for the calibration of a renderer: beside the scenes folder,
+ * config/scenes -> config/calibration/CLASS.csv. */
+void gk_calibration_path(const char *scenes_dir, const char *renderer, char *out, int out_len);
 /* Reads path. Returns 0, or -1 with e: GK_EINPUT naming file:line for a malformed row,
  * GK_ERUNTIME when it cannot be read. A missing file is reported as GK_ERUNTIME too: the caller
  * decides (the kiosk logs it and runs uncalibrated). */

@@ -66,6 +66,39 @@ c_mips=$(col gi.vct_mips_ms)
 check "bench.csv (--rebuild-gi): voxelize, inject and mips timed every frame" \
     sh -c "awk -F, -v v=$c_vox -v i=$c_inj -v m=$c_mips 'NR > 1 && !(\$v > 0 && \$i > 0 && \$m > 0) { bad = 1 } END { exit bad || NR != 2 }' '$CSV'"
 
+# A value the renderer cannot run is reported as what ran: llvmpipe's 128 MiB storage-buffer limit
+# holds vct's 256^3 scratch buffer, so vct_res=256 runs (and is written, and charted) as 128.
+expect_exit 0 "bench: vct_res=256 on cornell" "$GIKIOSK" bench --scenes cornell --methods vct \
+    --sweep "vct_res=256" --size 32x24 --frames 1 --warmup 0 --out "$TMP/clamp"
+CSV=$TMP/clamp/bench.csv
+c_res=$(col vct_res)
+if grep -q "does not fit this GPU's storage-buffer limit, using 128" "$TMP/stderr"; then
+    check "bench.csv: the clamped vct_res is written as the 128 that ran" \
+        sh -c "[ \"\$(awk -F, -v c=$c_res 'NR == 2 { print \$c }' '$CSV')\" = 128 ]"
+else
+    check "bench.csv: vct_res=256 ran unclamped and is written as 256" \
+        sh -c "[ \"\$(awk -F, -v c=$c_res 'NR == 2 { print \$c }' '$CSV')\" = 256 ]"
+fi
+
+# One chart per scene for choosing a method: every method against one ruler, the kiosk's automatic
+# choice marked. The mark must be what the kiosk itself picks (its log, another code path), and it
+# must not be worse than none in the bench's own measurement.
+expect_exit 0 "bench --one-ruler: none, vct, vpl on cornell-spot" "$GIKIOSK" bench --scenes cornell-spot \
+    --methods none,vct,vpl --one-ruler --frames 1 --warmup 1 --sweep "render_scale=1" --out "$TMP/choice"
+CSV=$TMP/choice/bench.csv
+c_ch=$(col chosen); c_m=$(col method); c_ref=$(col reference); c_err=$(col rel_rmse)
+check "bench.csv (--one-ruler): every method against cornell-spot-1bounce" \
+    sh -c "awk -F, -v r=$c_ref 'NR > 1 && \$r != \"cornell-spot-1bounce\" { bad = 1 } END { exit bad || NR != 4 }' '$CSV'"
+chosen=$(awk -F, -v c="$c_ch" -v m="$c_m" 'NR > 1 && $c == 1 { print $m }' "$CSV")
+check "bench.csv: exactly one row marked as the kiosk's choice" [ "$(echo "$chosen" | grep -c .)" = 1 ]
+"$GIKIOSK" run --platform mock --size 640x360 --scene cornell-spot --frames 1 --target-ms 400 2>"$TMP/kiosk.log" >/dev/null
+kiosk_pick=$(sed -n 's/.*scene cornell-spot: automatic choice \([a-z0-9_]*\):.*/\1/p' "$TMP/kiosk.log" | head -1)
+check "the marked choice ($chosen) is the kiosk's own at 400 ms, 640x360 (${kiosk_pick:-none logged})" \
+    [ -n "$kiosk_pick" ] && [ "$chosen" = "$kiosk_pick" ]
+check "the marked choice is not worse than none against the same ruler" \
+    sh -c "awk -F, -v c=$c_ch -v m=$c_m -v e=$c_err 'NR > 1 { err[\$m] = \$e; if (\$c == 1) pick = \$m } END { exit !(pick != \"\" && err[pick] <= err[\"none\"]) }' '$CSV'"
+check "chart: the choice is drawn" grep -q "kiosk's choice at 400 ms, 640x360" "$TMP/choice/speed-accuracy-cornell-spot.gp"
+
 expect_exit 2 "bench: unknown knob in --sweep exits 2" "$GIKIOSK" bench --scenes shadow-planes --sweep "shadows=hard" --out "$TMP/c"
 stderr_has "unknown knob 'shadows'" "bench: the message names the knob"
 expect_exit 2 "bench: missing --out exits 2" "$GIKIOSK" bench --scenes shadow-planes

@@ -96,6 +96,28 @@ static void knob_handles_resolve_and_read(void **state)
     assert_false(gk_knob_resolve(&a, &missing));
 }
 
+/* A pass that cannot run a level notes what it ran: the richest value not above it. */
+static void note_ran_records_the_value_that_ran(void **state)
+{
+    (void)state;
+    gk_budget ran;
+    gk_budget_init(&ran);
+    gk_budget_add(&ran, &scale);
+    gk_budget_add(&ran, &shadow_map);
+    gk_knob k = {&shadow_map, -1};
+    ran.level[1] = 3; /* asked 2048 */
+    gk_knob_note_ran(&ran, &k, 1024.0f);
+    assert_string_equal(gk_budget_value(&ran, "shadow_map"), "1024");
+    gk_knob_note_ran(&ran, &k, 700.0f); /* between values: the one below */
+    assert_string_equal(gk_budget_value(&ran, "shadow_map"), "512");
+    gk_knob_note_ran(&ran, &k, 100.0f); /* below every value: left as it was */
+    assert_string_equal(gk_budget_value(&ran, "shadow_map"), "512");
+    gk_knob_note_ran(NULL, &k, 256.0f); /* nobody reads it: no-op, no crash */
+    gk_knob missing = {&vpl_m, -1};
+    gk_knob_note_ran(&ran, &missing, 4.0f);
+    assert_int_equal(ran.n, 2);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -103,6 +125,7 @@ int main(void)
         cmocka_unit_test(pin_rejects_unknown_knob_and_value),
         cmocka_unit_test(range_clamps_and_rejects_inverted),
         cmocka_unit_test(knob_handles_resolve_and_read),
+        cmocka_unit_test(note_ran_records_the_value_that_ran),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -220,6 +220,7 @@ static int vct_render(void *self, const gk_gi_frame *f, gk_err *e)
         if (!v->allocated || v->cur.res != max_res)
             gk_log("vct: vct_res=%d does not fit this GPU's storage-buffer limit, using %d", b.res, max_res);
         b.res = max_res;
+        gk_knob_note_ran(f->pass ? f->pass->ran : NULL, &v->k_res, (float)max_res);
     }
     if (!v->allocated || b.res != v->cur.res || b.aniso != v->cur.aniso) {
         vct_grid_fit(v, s, b.res);
