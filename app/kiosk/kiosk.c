@@ -45,7 +45,12 @@ typedef struct kiosk {
     double last_frame_ms;                /* newest measured frame (the HUD's number) */
     long last_frame;
     char last_scene[GK_NAME_LEN], last_method[GK_METHOD_LEN];
+    long floor_over;                     /* judged frames of this visit over the target at the floor */
 } kiosk;
+
+/* Judged frames over the target at the floor before the kiosk says (once a visit) that the scene
+ * cannot meet it: more than a stray slow frame, few enough to say it within the visit. */
+#define FLOOR_OVER_TO_SAY 5
 
 static const char *button_name(enum gk_button b)
 {
@@ -89,6 +94,7 @@ static void begin_visit(kiosk *k)
         gk_sched_reset(&k->sched, &k->sched_params, &k->budget, active);
     }
     gk_recent_clear(&k->recent);
+    k->floor_over = 0;
     k->sched_skip = 0; /* the scheduler's own warm-up (gk_sched_params.warmup) covers a new visit */
 }
 
@@ -275,6 +281,13 @@ static int frame(kiosk *k, double now, gk_err *e)
     bool judged = measured && k->sched.warm == 0 && k->sched_skip == 0;
     if (measured)
         gk_summary_add(&k->summary, scene, method, frame_ms, judged, ran_budget(k));
+    if (judged && gk_sched_at_floor(&k->sched, &k->budget)) {
+        /* every knob the scheduler may move is at its floor: budgets cannot help this visit */
+        gk_summary_at_floor(&k->summary, scene, frame_ms, k->c->target_ms);
+        if (frame_ms > k->c->target_ms && ++k->floor_over == FLOOR_OVER_TO_SAY)
+            gk_log("scene %s: cannot meet the %.0f ms target with method %s: %d judged frames over it with every "
+                   "knob at its floor (this one %.1f ms)", scene, k->c->target_ms, method, FLOOR_OVER_TO_SAY, frame_ms);
+    }
     if (k->csv && gk_stats_csv_row(k->csv, k->frame, now, scene, method, &report, ran_budget(k), e))
         return -1;
     k->have_frame = true;

@@ -56,6 +56,20 @@ float gk_recent_percentile(const gk_recent *r, float q)
 
 void gk_summary_init(gk_summary *s) { memset(s, 0, sizeof *s); }
 
+void gk_summary_at_floor(gk_summary *s, const char *scene, double frame_ms, double target_ms)
+{
+    for (int i = 0; i < s->n; i++) {
+        gk_scene_summary *e = &s->scenes[i];
+        if (strcmp(e->scene, scene) != 0)
+            continue;
+        if (e->floor_best_ms == 0 || frame_ms < e->floor_best_ms)
+            e->floor_best_ms = frame_ms;
+        e->target_ms = target_ms;
+        if (frame_ms > target_ms)
+            e->over_at_floor++;
+    }
+}
+
 void gk_summary_add(gk_summary *s, const char *scene, const char *method, double frame_ms, bool judged,
                     const gk_budget *b)
 {
@@ -101,6 +115,10 @@ void gk_summary_print(gk_summary *s, FILE *f)
                    "p99 %.2f ms, method %s, budgets %s\n",
                 e->scene, e->frames, e->warmup, e->warmup_max_ms, med, p95, p99, e->method,
                 e->budgets[0] ? e->budgets : "-");
+        if (e->over_at_floor > 0)
+            fprintf(f, "scene %s: cannot meet the %.0f ms target: %ld judged frames over it with every knob at its "
+                       "floor (the fastest at the floor %.2f ms)\n",
+                    e->scene, e->target_ms, e->over_at_floor, e->floor_best_ms);
     }
 }
 

@@ -39,6 +39,9 @@ typedef struct gk_scene_summary {
     double warmup_max_ms;
     double *ms;                   /* every judged frame time (capped, see stats.c) */
     long n_ms, cap_ms;
+    long over_at_floor;           /* judged frames over the target with every knob at its floor */
+    double floor_best_ms;         /* the fastest judged frame at the floor (0: none) */
+    double target_ms;
 } gk_scene_summary;
 
 typedef struct gk_summary {
@@ -47,6 +50,10 @@ typedef struct gk_summary {
 } gk_summary;
 
 void gk_summary_init(gk_summary *s);
+/* A judged frame of scene drawn with every knob at its floor: counted when over target_ms, so the
+ * summary can say the scene cannot meet the target and the best it reached (call after
+ * gk_summary_add for the same frame). */
+void gk_summary_at_floor(gk_summary *s, const char *scene, double frame_ms, double target_ms);
 /* judged: a frame the scheduler judged against the target; the others (warm-up after a scene,
  * method or level change) are counted apart, so one-off costs do not spoil the percentiles. */
 void gk_summary_add(gk_summary *s, const char *scene, const char *method, double frame_ms, bool judged,

@@ -39,6 +39,14 @@ static bool movable(const gk_sched *s, const gk_budget *b, int k)
     return s->active[k] && !b->pinned[k] && !b->def[k]->fixed && b->def[k]->n_values > 1;
 }
 
+bool gk_sched_at_floor(const gk_sched *s, const gk_budget *b)
+{
+    for (int k = 0; k < b->n; k++)
+        if (s->active[k] && !b->pinned[k] && !b->def[k]->fixed && b->level[k] > b->min_level[k])
+            return false;
+    return true;
+}
+
 double gk_sched_predict(const gk_sched *s, const gk_budget *b)
 {
     if (!s->seeded)

@@ -70,6 +70,9 @@ void gk_sched_reset(gk_sched *s, const gk_sched_params *p, const gk_budget *b, c
 /* Feeds the time of the frame just drawn at b's current levels; may change levels in b for the next
  * frame. Fills changes (up to max) and returns their count. */
 int gk_sched_update(gk_sched *s, gk_budget *b, double frame_ms, gk_sched_change *changes, int max);
+/* True when no knob the scheduler may move can step down: every active, unpinned knob is at the
+ * lowest level its range allows. A frame over the target then cannot be helped by budgets. */
+bool gk_sched_at_floor(const gk_sched *s, const gk_budget *b);
 /* The model's prediction for b's current levels (ms); 0 before the first measured frame. */
 double gk_sched_predict(const gk_sched *s, const gk_budget *b);
 

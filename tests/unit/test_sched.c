@@ -152,6 +152,13 @@ static void pins_and_ranges_hold_under_overload(void **state)
     }
     assert_int_equal(b.level[1], 0);      /* the free knob went to its minimum */
     assert_int_equal(b.level[2], 1);
+    /* at the floor: pinned render_scale at "1" and vct_res at its range's "64" do not count */
+    assert_true(gk_sched_at_floor(&s, &b));
+    b.level[2] = 2;
+    assert_false(gk_sched_at_floor(&s, &b)); /* vct_res could step down again */
+    b.level[2] = 1;
+    b.level[1] = 1;
+    assert_false(gk_sched_at_floor(&s, &b));
 }
 
 static void inactive_knobs_never_move(void **state)
