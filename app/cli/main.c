@@ -1,4 +1,6 @@
 /* gikiosk: parses the command and dispatches (DESIGN §3). */
+#include <errno.h>
+#include <signal.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -19,7 +21,37 @@ static void usage(FILE *f)
           f);
 }
 
+/* A write that failed on stdout or stderr (a closed descriptor, a dead pipe, a full disk) turns a
+   successful exit into exit 1: the output a caller relies on (the summary, compare's metrics) is
+   lost. Said on stderr when stderr still works. */
+static int check_std_streams(int rc)
+{
+    int out_err = 0;
+    errno = 0;
+    if (fflush(stdout) != 0 || ferror(stdout))
+        out_err = errno ? errno : EIO;
+    if (out_err) {
+        fprintf(stderr, "gikiosk: cannot write to standard output: %s\n", strerror(out_err));
+        rc = rc ? rc : 1;
+    }
+    if (fflush(stderr) != 0 || ferror(stderr))
+        rc = rc ? rc : 1;
+    return rc;
+}
+
+static int dispatch(int argc, char **argv);
+
 int main(int argc, char **argv)
+{
+    /* A reader that goes away (`gikiosk scenes | head -1`, a dead log pipe) is a write error, not a
+       signal that kills the kiosk before it restores the display; and a file-size limit is a write
+       error (EFBIG) like a full disk, reported by whoever writes. */
+    signal(SIGPIPE, SIG_IGN);
+    signal(SIGXFSZ, SIG_IGN);
+    return check_std_streams(dispatch(argc, argv));
+}
+
+static int dispatch(int argc, char **argv)
 {
     if (argc < 2) {
         usage(stderr);

@@ -1,5 +1,6 @@
 // OpenImageIO shim behind app/io/image_io.h: the only C++ in the image path. Every OIIO call is
 // wrapped so no C++ exception or object escapes into the C code.
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
@@ -7,8 +8,10 @@
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <vector>
 
 extern "C" {
+#include "base/outfile.h"
 #include "io/image_io.h"
 }
 
@@ -91,15 +94,36 @@ int write_image(const char *path, const gk_image *img, const gk_image_meta *meta
             }
             src = clamped;
         }
-        bool ok = out->open(path, spec) && out->write_image(OIIO::TypeDesc::FLOAT, src);
+        // Encoded in memory (OIIO's IOProxy), then written to a temporary file beside the target
+        // with every write checked and renamed over it once complete (base/outfile.h): a full
+        // disk never leaves a truncated image nor destroys the previous one. (OIIO's PNG writer
+        // does not notice a failing write; going through memory makes every format's failure
+        // ours to see.)
+        std::vector<unsigned char> encoded;
+        OIIO::Filesystem::IOVecOutput vec_out(encoded);
+        bool in_memory = out->supports("ioproxy");
+        if (in_memory) {
+            void *proxy = &vec_out;
+            spec.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+        }
+        gk_outfile tmp;
+        if (in_memory ? gk_outfile_open(&tmp, path, e) : gk_outfile_reserve(&tmp, path, e)) {
+            free(clamped);
+            return -1;
+        }
+        bool ok = out->open(in_memory ? path : tmp.tmp, spec) && out->write_image(OIIO::TypeDesc::FLOAT, src);
         std::string err = ok ? "" : one_line(out->geterror());
         bool closed = out->close();
         if (ok && !closed)
             err = one_line(out->geterror());
         free(clamped);
-        if (!ok || !closed)
+        if (!ok || !closed) {
+            gk_outfile_discard(&tmp);
             return gk_fail(e, GK_ERUNTIME, "%s: cannot write image: %s", path, err.c_str());
-        return 0;
+        }
+        if (in_memory && !encoded.empty())
+            fwrite(encoded.data(), 1, encoded.size(), tmp.f); // checked by the commit (ferror)
+        return gk_outfile_commit(&tmp, e);
     } catch (const std::exception &ex) {
         return gk_fail(e, GK_ERUNTIME, "%s: cannot write image: %s", path, ex.what());
     }

@@ -94,9 +94,11 @@ static void begin_visit(kiosk *k)
 
 static int capture(kiosk *k, long frame, const char *scene, const char *method, gk_err *e)
 {
-    char png[1024], exr[1024];
-    snprintf(png, sizeof png, "%s/%06ld-%s-%s.png", k->o->capture_dir, frame, scene, method);
+    char png[4096], exr[4096];
+    int n = snprintf(png, sizeof png, "%s/%06ld-%s-%s.png", k->o->capture_dir, frame, scene, method);
     snprintf(exr, sizeof exr, "%s/%06ld-%s-%s.exr", k->o->capture_dir, frame, scene, method);
+    if (n < 0 || (size_t)n >= sizeof png) /* never a capture under a cut name */
+        return gk_fail(e, GK_EINPUT, "--capture: the path '%s/...' is too long", k->o->capture_dir);
     if (gk_renderer_capture(k->r, png, k->o->hdr ? exr : NULL, e))
         return gk_fail_prefix(e, "capture: ");
     gk_log("capture: %s", png);
