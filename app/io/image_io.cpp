@@ -12,10 +12,15 @@
 
 extern "C" {
 #include "base/outfile.h"
+#include "base/readfile.h"
 #include "io/image_io.h"
 }
 
 namespace {
+
+// The largest image file read (compare, textures): 1 GiB, beyond any capture or reference
+// (a 4096x4096 RGBA float EXR is 256 MiB).
+const size_t kMaxImageFileBytes = size_t(1) << 30;
 
 // Pixels come back exactly as stored: OIIO would otherwise premultiply PNG/TIFF colour by alpha.
 OIIO::ImageSpec read_config()
@@ -159,6 +164,10 @@ extern "C" int gk_image_read(const char *path, gk_image *img, gk_err *e)
 {
     img->width = img->height = img->channels = 0;
     img->pixels = nullptr;
+    // A regular file of bounded size, checked before OIIO opens it: `compare REF /dev/zero` would
+    // otherwise read forever, and a directory or FIFO would block or read as garbage.
+    if (gk_check_regular_file(path, "image", kMaxImageFileBytes, e))
+        return -1;
     try {
         OIIO::ImageSpec config = read_config();
         auto in = OIIO::ImageInput::open(path, &config);
