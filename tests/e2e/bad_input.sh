@@ -2,7 +2,7 @@
 # Bad input is refused by name with exit 2, never read forever or accepted silently (issue 12):
 # devices, directories and FIFOs as files; --size beyond the mock's cap; a glTF requiring an
 # unsupported extension; a buffer uri outside the scene's folder (its bytes never echoed); NaN
-# pixels in compare (exit 1, counted, never a success).
+# pixels in compare (exit 1, counted, never a success); a light too bright for the reference tracer.
 . tests/e2e/lib.sh
 export EGL_PLATFORM=surfaceless
 S=config/scenes
@@ -60,4 +60,14 @@ stderr_has "nan.exr: 768 NaN/inf values in the test image" "the NaN values are c
 check "the JSON carries the count and no NaN value" sh -c "grep -q '\"nonfinite\": 768' '$TMP/stdout' && ! grep -Eqi ': *-?(nan|inf)' '$TMP/stdout'"
 expect_exit 2 "compare with a NaN reference exits 2" "$GIKIOSK" compare "$TMP/nan.exr" "$TMP/a.exr"
 stderr_has "nan.exr: 768 NaN/inf values in the reference" "the reference's NaN values are named"
+
+# --- the reference tracer refuses a light it cannot sum in float (1e38 cd rendered black, exit 0)
+mkdir -p "$TMP/hot"
+sed -n '/cat >"\$S\/a.gltf" <<.GLTF./,/^GLTF$/p' tests/e2e/run.sh | sed '1d;$d' |
+    sed 's/"intensity": 20/"intensity": 1e38, "name": "blinding"/' >"$TMP/hot/hot.gltf"
+sed 's/1e38/20/' "$TMP/hot/hot.gltf" >"$TMP/hot/fine.gltf"
+expect_exit 2 "reference with a 1e38 cd light exits 2" $GIKIOSK reference --scene hot --scenes-dir "$TMP/hot" --size 8x8 --spp 1 --out "$TMP/hot.exr"
+stderr_has "light 0 \('blinding'\): emission 1e\+38 beyond" "the light is named"
+check "no reference is written" [ ! -e "$TMP/hot.exr" ]
+expect_exit 0 "the same scene at 20 cd renders" $GIKIOSK reference --scene fine --scenes-dir "$TMP/hot" --size 8x8 --spp 1 --out "$TMP/fine.exr"
 finish
