@@ -11,6 +11,7 @@
 #include <sys/stat.h>
 
 #include "base/log.h"
+#include "base/sd_notify.h"
 #include "gi/gi_catalogue.h"
 #include "../render/renderer.h"
 #include "../sched/calibration.h"
@@ -45,6 +46,7 @@ typedef struct kiosk {
     double last_frame_ms;                /* newest measured frame (the HUD's number) */
     long last_frame;
     char last_scene[GK_NAME_LEN], last_method[GK_METHOD_LEN];
+    gk_notify notify;                    /* systemd readiness + watchdog (Type=notify) */
 } kiosk;
 
 static const char *button_name(enum gk_button b)
@@ -264,6 +266,7 @@ static int frame(kiosk *k, double now, gk_err *e)
     }
     if (gk_platform_present(k->plat, e))
         return -1;
+    gk_notify_frame(&k->notify); /* READY=1 after the first frame shown, then the watchdog's ping */
     /* Judged: what the scheduler holds against the target. Not judged: the warm-up frames of a
        visit and the first frame at a new level, which pay one-off costs (shader compiles,
        voxelizing, first shadow maps); the summary reports them apart. */
@@ -437,12 +440,14 @@ int gk_kiosk_run(const gk_kiosk_opts *o, const gk_kiosk_config *c, gk_err *e)
         return gk_fail(e, GK_ERUNTIME, "out of memory");
     }
     gk_summary_init(&k->summary);
+    gk_notify_open(&k->notify);
     gk_playlist_init(&k->pl, c->scenes, c->n_scenes, c->dwell_s, c->pause_after_input_s);
     int rc = -1;
     if (open_platform(k, e) || open_renderer(k, e) || setup_budget(k, e) || open_outputs(k, e))
         goto done;
     rc = loop(k, e);
 done:
+    gk_notify_close(&k->notify); /* STOPPING=1: restoring the display and writing outputs */
     if (k->csv) {
         gk_err ce = {0};
         if (gk_stats_csv_close(k->csv, &k->budget, &ce) && rc == 0) {
