@@ -11,7 +11,7 @@ CXX     ?= c++
 DEB_PACKAGES := build-essential pkg-config libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri \
 	libdrm-dev libgbm-dev libgpiod-dev libtinygltf-dev libopenimageio-dev openimageio-tools \
 	libinih-dev libcmocka-dev glslang-tools gnuplot-nox fonts-dejavu-core libstb-dev \
-	clang libclang-rt-14-dev
+	clang libclang-rt-14-dev jq python3 systemd
 
 PKGS := egl glesv2 gbm libdrm libgpiod tinygltf OpenImageIO inih stb
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)

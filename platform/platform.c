@@ -1,4 +1,4 @@
-/* Backend dispatch, defaults, the event queue and the SIGINT/SIGTERM flag; see platform.h. */
+/* Backend dispatch, defaults, the event queue and the SIGINT/SIGTERM/SIGHUP/SIGQUIT flag; see platform.h. */
 #include "platform_impl.h"
 
 #include <signal.h>
@@ -13,7 +13,11 @@
  * which restores the display (CRTC) the normal way. */
 static volatile sig_atomic_t quit_signal;
 static int handler_users;
-static struct sigaction saved_int, saved_term;
+/* SIGHUP (a closed terminal or session) and SIGQUIT end the run like SIGINT/SIGTERM: cleanly, the
+   display restored, the stats and captures written. */
+static const int quit_signals[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT};
+#define N_QUIT_SIGNALS ((int)(sizeof quit_signals / sizeof quit_signals[0]))
+static struct sigaction saved[N_QUIT_SIGNALS];
 
 static void on_quit_signal(int sig)
 {
@@ -31,16 +35,16 @@ static void install_signal_handlers(void)
     sa.sa_handler = on_quit_signal;
     sigemptyset(&sa.sa_mask);
     sa.sa_flags = 0; /* no SA_RESTART: a blocking poll() returns EINTR at once */
-    sigaction(SIGINT, &sa, &saved_int);
-    sigaction(SIGTERM, &sa, &saved_term);
+    for (int i = 0; i < N_QUIT_SIGNALS; i++)
+        sigaction(quit_signals[i], &sa, &saved[i]);
 }
 
 static void restore_signal_handlers(void)
 {
     if (handler_users == 0 || --handler_users > 0)
         return;
-    sigaction(SIGINT, &saved_int, NULL);
-    sigaction(SIGTERM, &saved_term, NULL);
+    for (int i = 0; i < N_QUIT_SIGNALS; i++)
+        sigaction(quit_signals[i], &saved[i], NULL);
 }
 
 bool gk_platform_signal_pending(void) { return quit_signal != 0; }

@@ -18,7 +18,7 @@ enum gk_input_kind {
     GK_INPUT_RELEASE,
     GK_INPUT_CLICK,     /* press + release shorter than hold_ms */
     GK_INPUT_HOLD,      /* held for hold_ms (sent once, while still held) */
-    GK_INPUT_QUIT,      /* SIGTERM/SIGINT or end of the mock script's run */
+    GK_INPUT_QUIT,      /* SIGTERM/SIGINT/SIGHUP/SIGQUIT or end of the mock script's run */
 };
 
 typedef struct gk_input_event {
@@ -76,14 +76,14 @@ unsigned gk_platform_framebuffer(const gk_platform *p);
 int gk_platform_present(gk_platform *p, gk_err *e);
 
 /* Waits up to timeout_ms for input (0 = poll) and returns up to max events (count, or -1 on a
- * runtime error). Also reports GK_INPUT_QUIT after SIGINT/SIGTERM. Buttons that disappear are
+ * runtime error). Also reports GK_INPUT_QUIT after SIGINT/SIGTERM/SIGHUP/SIGQUIT. Buttons that disappear are
  * logged and reconnected here; that is not an error. */
 int gk_platform_poll(gk_platform *p, int timeout_ms, gk_input_event *ev, int max);
 
 /* Seconds since open: virtual on mock (frames * period), CLOCK_MONOTONIC on KMS. */
 double gk_platform_now(const gk_platform *p);
 
-/* True once SIGINT/SIGTERM has been received. */
+/* True once SIGINT/SIGTERM/SIGHUP/SIGQUIT has been received. */
 bool gk_platform_quit_requested(const gk_platform *p);
 
 #endif

@@ -42,7 +42,7 @@ struct gk_platform {
 gk_platform *gk_mock_open(const gk_platform_desc *desc, gk_err *e);
 gk_platform *gk_kms_open(const gk_platform_desc *desc, bool *no_display, gk_err *e);
 
-/* The SIGINT/SIGTERM flag (the one allowed singleton). */
+/* The SIGINT/SIGTERM/SIGHUP/SIGQUIT flag (the one allowed singleton). */
 bool gk_platform_signal_pending(void);
 
 /* Seconds of CLOCK_MONOTONIC. */

@@ -20,6 +20,9 @@ int gk_script_parse(const char *text, const char *name, gk_script *out, gk_err *
 /* Reads and parses a file; a missing or unreadable file is GK_EINPUT naming it. */
 int gk_script_load(const char *path, gk_script *out, gk_err *e);
 void gk_script_free(gk_script *s);
+/* Sorts edges by time, stably (equal times keep their order), in O(n log n); returns the number
+ * of comparisons it made (the tests bound it by n log2 n). */
+long gk_script_sort_edges(gk_raw_edge *edges, int n);
 
 /* "next" -> GK_BTN_NEXT; -1 when unknown. Also used by the config reader. */
 int gk_button_from_name(const char *name);

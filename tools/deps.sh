@@ -1,6 +1,7 @@
 #!/bin/sh
 # Installs the Debian packages given as arguments that are not installed yet (a no-op when all
-# are present), saying what it installs. Uses sudo when not root.
+# are present), saying what it installs and showing apt's own progress (a first install takes
+# minutes). Uses sudo when not root.
 set -eu
 missing=""
 for p in "$@"; do
@@ -13,7 +14,8 @@ echo "make deps: installing:$missing"
 SUDO=""
 [ "$(id -u)" -eq 0 ] || SUDO=sudo
 export DEBIAN_FRONTEND=noninteractive
-$SUDO apt-get update -qq
+echo "make deps: apt-get update"
+$SUDO apt-get update
 # shellcheck disable=SC2086
-$SUDO apt-get install -y -qq --no-install-recommends $missing >/dev/null
+$SUDO apt-get install -y --no-install-recommends $missing
 echo "make deps: done"

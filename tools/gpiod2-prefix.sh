@@ -9,12 +9,17 @@ BUILD=${1:-build}
 PREFIX=$BUILD/gpiod2
 APT=$PREFIX/apt
 MIRROR=${GK_BACKPORTS_MIRROR:-http://deb.debian.org/debian}
-mkdir -p "$APT/lists/partial" "$APT/archives/partial" "$PREFIX/root"
+# Its own cache directory too: apt's binary caches (pkgcache.bin, srcpkgcache.bin) would otherwise
+# be rebuilt from the backports list over the system's in /var/cache/apt.
+mkdir -p "$APT/lists/partial" "$APT/archives/partial" "$APT/cache" "$PREFIX/root"
 echo "deb $MIRROR bookworm-backports main" >"$APT/sources.list"
 : >"$APT/status"
-APT_OPTS="-o Dir::Etc::sourcelist=$PWD/$APT/sources.list -o Dir::Etc::sourceparts=- \
- -o Dir::State::Lists=$PWD/$APT/lists -o Dir::State::status=$PWD/$APT/status \
- -o Dir::Cache::archives=$PWD/$APT/archives -o Debug::NoLocking=1 -o APT::Get::List-Cleanup=0"
+case $APT in /*) ;; *) APT=$PWD/$APT ;; esac # apt's Dir options need absolute paths
+APT_OPTS="-o Dir::Etc::sourcelist=$APT/sources.list -o Dir::Etc::sourceparts=- \
+ -o Dir::State::Lists=$APT/lists -o Dir::State::status=$APT/status \
+ -o Dir::Cache=$APT/cache -o Dir::Cache::pkgcache=$APT/cache/pkgcache.bin \
+ -o Dir::Cache::srcpkgcache=$APT/cache/srcpkgcache.bin \
+ -o Dir::Cache::archives=$APT/archives -o Debug::NoLocking=1 -o APT::Get::List-Cleanup=0"
 skip() { echo "gpiod2: SKIP: $*"; exit 0; }
 
 if [ ! -f "$PREFIX/root/usr/include/gpiod.h" ]; then

@@ -7,7 +7,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/csv.h"
 #include "base/log.h"
+#include "base/outfile.h"
 
 static void put_num(FILE *f, double v)
 {
@@ -21,9 +23,10 @@ static void put_num(FILE *f, double v)
 
 int gk_bench_write_csv(const gk_bench_result *r, const char *path, gk_err *e)
 {
-    FILE *f = fopen(path, "w");
-    if (!f)
-        return gk_fail(e, GK_ERUNTIME, "%s: %s", path, strerror(errno));
+    gk_outfile o; /* complete or not at all: a temporary file renamed into place */
+    if (gk_outfile_open(&o, path, e))
+        return -1;
+    FILE *f = o.f;
     fputs("scene,method", f);
     for (int k = 0; k < r->budget.n; k++)
         fprintf(f, ",%s", r->budget.def[k]->name);
@@ -33,12 +36,15 @@ int gk_bench_write_csv(const gk_bench_result *r, const char *path, gk_err *e)
     fputc('\n', f);
     for (int i = 0; i < r->n_rows; i++) {
         const gk_bench_row *row = &r->rows[i];
-        fprintf(f, "%s,%s", row->scene, row->method);
+        gk_csv_field(f, row->scene); /* a scene name is a file name: quoted if it holds a comma */
+        fputc(',', f);
+        gk_csv_field(f, row->method);
         for (int k = 0; k < r->budget.n; k++)
             fprintf(f, ",%s", r->budget.def[k]->values[row->level[k]]);
         put_num(f, row->frame_ms_median);
         put_num(f, row->frame_ms_p95);
-        fprintf(f, ",%s", row->reference);
+        fputc(',', f);
+        gk_csv_field(f, row->reference);
         put_num(f, row->rel_rmse);
         put_num(f, row->ssim);
         put_num(f, row->psnr);
@@ -49,9 +55,7 @@ int gk_bench_write_csv(const gk_bench_result *r, const char *path, gk_err *e)
             put_num(f, row->pass_ms[p]);
         fputc('\n', f);
     }
-    if (fclose(f) != 0)
-        return gk_fail(e, GK_ERUNTIME, "%s: %s", path, strerror(errno));
-    return 0;
+    return gk_outfile_commit(&o, e);
 }
 
 /* Does knob k take more than one value among the rows of this scene and method? */
@@ -95,14 +99,68 @@ static void row_label(const gk_bench_result *r, int i, int series_knob, char *ou
     }
 }
 
+/* The gnuplot script of one scene's chart, writing png and svg. */
+/* The row marked as the kiosk's automatic choice for scene (with a measured error), or NULL. */
+static const gk_bench_row *chosen_row(const gk_bench_result *r, const char *scene)
+{
+    for (int i = 0; i < r->n_rows; i++)
+        if (!strcmp(r->rows[i].scene, scene) && r->rows[i].chosen && !isnan(gk_bench_row_error(&r->rows[i])))
+            return &r->rows[i];
+    return NULL;
+}
+
+static void put_chart_script(FILE *f, const gk_bench_result *r, const char *scene, const char *dat, const char *gp,
+                             char series[][64], int n_series, const char *png, const char *svg)
+{
+    fprintf(f, "# Speed against accuracy for %s: regenerate with `gnuplot %s`.\n", scene, gp);
+    fprintf(f, "set title \"%s: error against frame time (llvmpipe CPU times: compare as ratios)\"\n", scene);
+    /* the references this scene's rows were measured against, named on the axis */
+    char refs[256] = "";
+    for (int i = 0; i < r->n_rows; i++) {
+        const char *ref = r->rows[i].reference;
+        if (strcmp(r->rows[i].scene, scene) || !ref[0] || strstr(refs, ref))
+            continue;
+        snprintf(refs + strlen(refs), sizeof refs - strlen(refs), "%s%s.exr", refs[0] ? ", " : "", ref);
+    }
+    fprintf(f, "set xlabel \"frame time (ms, log scale): median of %d frames, bar to their p95\"\nset ylabel \"%s%s\"\n",
+            r->frames,
+            gk_bench_black_reference(r->rows, r->n_rows, scene)
+                ? "mean radiance, nits (the reference is black: all of it is leaked light) "
+                : "relative RMSE vs ", refs);
+    fputs("set logscale xy\nset grid\nset key outside right top\nset offsets graph 0.05, graph 0.05, graph 0.05, graph 0.05\n",
+          f);
+    const gk_bench_row *chosen = chosen_row(r, scene);
+    for (int pass = 0; pass < 2; pass++) {
+        if (pass == 0)
+            fprintf(f, "set terminal pngcairo size 1000,640 font \"DejaVu Sans,10\" noenhanced\nset output \"%s\"\n", png);
+        else
+            fprintf(f, "set terminal svg size 1000,640 font \"DejaVu Sans,10\" noenhanced\nset output \"%s\"\n", svg);
+        fputs("plot ", f);
+        /* each point: the median frame time, a bar to the p95 of the same frames (the spread that
+           tells timing noise from a real difference), the varying knobs as its label */
+        for (int m = 0; m < n_series; m++)
+            fprintf(f, "\"%s\" index %d using 1:2:1:3 with xerrorbars pt 7 ps 1.2 lc %d title \"%s\", \"%s\" index %d using 1:2:4 with labels offset 0,0.8 font \",7\" notitle, ",
+                    dat, m, m + 1, series[m], dat, m);
+        fprintf(f, "\"%s\" index %d using 1:2 with linespoints lw 2 dt 2 pt 6 ps 2 lc rgb \"black\" title \"Pareto front\"", dat, n_series);
+        if (chosen)
+            fprintf(f, ", \"%s\" index %d using 1:2 with points pt 3 ps 3.5 lw 2 lc rgb \"red\" title \"kiosk's choice at %.0f ms, %dx%d\"",
+                    dat, n_series + 1, r->choice_target_ms, r->choice_width, r->choice_height);
+        fputc('\n', f);
+    }
+}
+
 static int write_scene_chart(const gk_bench_result *r, const char *dir, const char *scene, gk_err *e)
 {
-    char dat[1024], gp[1024];
+    char dat[1024], gp[1024], png[1024], svg[1024];
     snprintf(dat, sizeof dat, "%s/speed-accuracy-%s.dat", dir, scene);
     snprintf(gp, sizeof gp, "%s/speed-accuracy-%s.gp", dir, scene);
-    FILE *f = fopen(dat, "w");
-    if (!f)
-        return gk_fail(e, GK_ERUNTIME, "%s: %s", dat, strerror(errno));
+    snprintf(png, sizeof png, "%s/speed-accuracy-%s.png", dir, scene);
+    if (snprintf(svg, sizeof svg, "%s/speed-accuracy-%s.svg", dir, scene) >= (int)sizeof svg)
+        return gk_fail(e, GK_EINPUT, "bench: the path '%s/speed-accuracy-%s...' is too long", dir, scene);
+    gk_outfile dat_out;
+    if (gk_outfile_open(&dat_out, dat, e))
+        return -1;
+    FILE *f = dat_out.f;
     /* One gnuplot data block per method (separated by two blank lines), then the Pareto front
        sorted by time. */
     bool several_methods = false;
@@ -156,68 +214,62 @@ static int write_scene_chart(const gk_bench_result *r, const char *dir, const ch
         fprintf(f, "%.6g %.6g\n", r->rows[idx[a]].frame_ms_median, gk_bench_row_error(&r->rows[idx[a]]));
     /* the kiosk's automatic choice (one point, or an empty block) */
     fputs("\n\n# kiosk's choice\n", f);
-    const gk_bench_row *chosen = NULL;
-    for (int i = 0; i < r->n_rows && !chosen; i++)
-        if (!strcmp(r->rows[i].scene, scene) && r->rows[i].chosen && !isnan(gk_bench_row_error(&r->rows[i])))
-            chosen = &r->rows[i];
+    const gk_bench_row *chosen = chosen_row(r, scene);
     if (chosen)
         fprintf(f, "%.6g %.6g\n", chosen->frame_ms_median, gk_bench_row_error(chosen));
-    fclose(f);
+    if (gk_outfile_commit(&dat_out, e))
+        return -1;
     if (n_series == 0) {
         gk_log("bench: %s has no measured error (no reference): no chart", scene);
         return 0;
     }
 
-    f = fopen(gp, "w");
-    if (!f)
-        return gk_fail(e, GK_ERUNTIME, "%s: %s", gp, strerror(errno));
-    fprintf(f, "# Speed against accuracy for %s: regenerate with `gnuplot %s`.\n", scene, gp);
-    fprintf(f, "set title \"%s: error against frame time (llvmpipe CPU times: compare as ratios)\"\n", scene);
-    /* the references this scene's rows were measured against, named on the axis */
-    char refs[256] = "";
-    for (int i = 0; i < r->n_rows; i++) {
-        const char *ref = r->rows[i].reference;
-        if (strcmp(r->rows[i].scene, scene) || !ref[0] || strstr(refs, ref))
-            continue;
-        snprintf(refs + strlen(refs), sizeof refs - strlen(refs), "%s%s.exr", refs[0] ? ", " : "", ref);
+    /* The script kept beside the chart names the final files (`gnuplot FILE.gp` regenerates
+       them); the run itself draws into temporary files renamed into place when gnuplot succeeds. */
+    gk_outfile gp_out, run_gp, png_out, svg_out;
+    if (gk_outfile_open(&gp_out, gp, e))
+        return -1;
+    put_chart_script(gp_out.f, r, scene, dat, gp, series, n_series, png, svg);
+    if (gk_outfile_commit(&gp_out, e))
+        return -1;
+    if (gk_outfile_reserve(&png_out, png, e))
+        return -1;
+    if (gk_outfile_reserve(&svg_out, svg, e)) {
+        gk_outfile_discard(&png_out);
+        return -1;
     }
-    fprintf(f, "set xlabel \"frame time (ms, log scale): median of %d frames, bar to their p95\"\nset ylabel \"%s%s\"\n",
-            r->frames,
-            gk_bench_black_reference(r->rows, r->n_rows, scene)
-                ? "mean radiance, nits (the reference is black: all of it is leaked light) "
-                : "relative RMSE vs ", refs);
-    fputs("set logscale xy\nset grid\nset key outside right top\nset offsets graph 0.05, graph 0.05, graph 0.05, graph 0.05\n",
-          f);
-    for (int pass = 0; pass < 2; pass++) {
-        if (pass == 0)
-            fprintf(f, "set terminal pngcairo size 1000,640 font \"DejaVu Sans,10\" noenhanced\nset output \"%s/speed-accuracy-%s.png\"\n", dir, scene);
-        else
-            fprintf(f, "set terminal svg size 1000,640 font \"DejaVu Sans,10\" noenhanced\nset output \"%s/speed-accuracy-%s.svg\"\n", dir, scene);
-        fputs("plot ", f);
-        /* each point: the median frame time, a bar to the p95 of the same frames (the spread that
-           tells timing noise from a real difference), the varying knobs as its label */
-        for (int m = 0; m < n_series; m++)
-            fprintf(f, "\"%s\" index %d using 1:2:1:3 with xerrorbars pt 7 ps 1.2 lc %d title \"%s\", \"%s\" index %d using 1:2:4 with labels offset 0,0.8 font \",7\" notitle, ",
-                    dat, m, m + 1, series[m], dat, m);
-        fprintf(f, "\"%s\" index %d using 1:2 with linespoints lw 2 dt 2 pt 6 ps 2 lc rgb \"black\" title \"Pareto front\"", dat, n_series);
-        if (chosen)
-            fprintf(f, ", \"%s\" index %d using 1:2 with points pt 3 ps 3.5 lw 2 lc rgb \"red\" title \"kiosk's choice at %.0f ms, %dx%d\"",
-                    dat, n_series + 1, r->choice_target_ms, r->choice_width, r->choice_height);
-        fputc('\n', f);
+    if (gk_outfile_open(&run_gp, gp, e)) {
+        gk_outfile_discard(&png_out);
+        gk_outfile_discard(&svg_out);
+        return -1;
     }
-    fclose(f);
+    put_chart_script(run_gp.f, r, scene, dat, gp, series, n_series, png_out.tmp, svg_out.tmp);
+    fflush(run_gp.f);
     char cmd[2200];
-    snprintf(cmd, sizeof cmd, "gnuplot '%s' 2>&1", gp);
-    FILE *p = popen(cmd, "r");
-    if (!p)
+    snprintf(cmd, sizeof cmd, "gnuplot '%s' 2>&1", run_gp.tmp);
+    FILE *p = ferror(run_gp.f) ? NULL : popen(cmd, "r");
+    if (!p) {
+        gk_outfile_discard(&run_gp);
+        gk_outfile_discard(&png_out);
+        gk_outfile_discard(&svg_out);
         return gk_fail(e, GK_ERUNTIME, "bench: cannot run gnuplot: %s", strerror(errno));
+    }
     char line[512];
     while (fgets(line, sizeof line, p))
         gk_log("gnuplot: %s", strtok(line, "\n"));
     int status = pclose(p);
-    if (status != 0)
+    gk_outfile_discard(&run_gp);
+    if (status != 0) {
+        gk_outfile_discard(&png_out);
+        gk_outfile_discard(&svg_out);
         gk_log("bench: gnuplot failed on %s (charts skipped; bench.csv is complete)", gp);
-    return 0;
+        return 0;
+    }
+    if (gk_outfile_commit(&png_out, e)) {
+        gk_outfile_discard(&svg_out);
+        return -1;
+    }
+    return gk_outfile_commit(&svg_out, e);
 }
 
 int gk_bench_write_charts(const gk_bench_result *r, const char *dir, gk_err *e)

@@ -27,7 +27,11 @@ static void usage(FILE *f)
           "  ssim        on tonemapped luminance, Gaussian 11x11 window, sigma 1.5\n"
           "  mean_ratio  mean t / mean r (energy ratio)\n"
           "  max_error   largest |t - r|, at max_error_at [x, y] (x from left, y from top)\n"
-          "In JSON, other non-finite values (a NaN pixel, a ratio over a zero mean) are null.\n",
+          "In JSON, other non-finite values (a NaN pixel, a ratio over a zero mean) are null.\n"
+          "\n"
+          "Exit: 0 metrics printed; 1 the test image holds NaN/inf values (counted in `nonfinite`, the\n"
+          "metrics are printed but mean nothing); 2 bad usage or a bad file (missing, not a regular file,\n"
+          "over 1 GiB, unreadable, sizes differ, NaN/inf in the reference).\n",
           f);
 }
 
@@ -101,6 +105,14 @@ static void print_text(const char *ref_path, const char *test_path, const gk_ima
         printf("%-11s %ld NaN/inf values in the test image\n", "nonfinite", m->nonfinite);
 }
 
+static long count_nonfinite(const gk_image *img)
+{
+    long n = 0, count = (long)img->width * img->height * img->channels;
+    for (long i = 0; i < count; i++)
+        n += !isfinite(img->pixels[i]);
+    return n;
+}
+
 static int bad_usage(const char *fmt, const char *arg)
 {
     fputs("gikiosk compare: ", stderr);
@@ -153,14 +165,26 @@ int gk_cmd_compare(int argc, char **argv)
     gk_metrics m;
     gk_err e = {0};
     int rc = 0;
+    long ref_bad = 0;
     if (gk_image_read(paths[0], &ref, &e) != 0 || gk_image_read(paths[1], &test, &e) != 0 ||
         gk_metrics_compute(&ref, &test, exposure, &m, &e) != 0) {
         fprintf(stderr, "gikiosk compare: %s\n", e.msg);
         rc = e.code ? e.code : 1;
-    } else if (json) {
-        print_json(paths[0], paths[1], &ref, &m);
+    } else if ((ref_bad = count_nonfinite(&ref)) > 0) {
+        /* a reference with NaN/inf is a bad file, not a measurement */
+        fprintf(stderr, "gikiosk compare: %s: %ld NaN/inf values in the reference\n", paths[0], ref_bad);
+        rc = 2;
     } else {
-        print_text(paths[0], paths[1], &ref, &m);
+        if (json)
+            print_json(paths[0], paths[1], &ref, &m);
+        else
+            print_text(paths[0], paths[1], &ref, &m);
+        /* A NaN pixel makes the metrics NaN (or hides in them): never a success. */
+        if (m.nonfinite > 0 || !isfinite(m.rmse) || !isfinite(m.ssim)) {
+            fprintf(stderr, "gikiosk compare: %s: %ld NaN/inf values in the test image; the metrics are not "
+                            "meaningful\n", paths[1], m.nonfinite);
+            rc = 1;
+        }
     }
     gk_image_free(&ref);
     gk_image_free(&test);

@@ -280,7 +280,14 @@ int gk_cmd_reference(int argc, char **argv)
     }
     gk_image img = {a.width, a.height, 3, r.rgb};
     rc = 0;
-    if (gk_image_write_float(a.out, &img, &meta, &e)) {
+    long nonfinite = 0;
+    for (long i = 0; i < 3L * a.width * a.height; i++)
+        nonfinite += !isfinite(r.rgb[i]);
+    if (nonfinite > 0) { /* never a reference with NaN/inf in it: it would poison every comparison */
+        fprintf(stderr, "gikiosk reference: %ld NaN/inf values in the rendered image; %s not written\n", nonfinite,
+                a.out);
+        rc = 1;
+    } else if (gk_image_write_float(a.out, &img, &meta, &e)) {
         fprintf(stderr, "gikiosk reference: %s\n", e.msg);
         rc = e.code ? e.code : 1;
     } else if (a.compare_to) {

@@ -1,6 +1,11 @@
 /* gikiosk: parses the command and dispatches (DESIGN §3). */
+#include <errno.h>
+#include <fcntl.h>
+#include <stdbool.h>
+#include <signal.h>
 #include <stdio.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "cli/commands.h"
 
@@ -19,7 +24,67 @@ static void usage(FILE *f)
           f);
 }
 
+/* Started with descriptor 0, 1 or 2 closed, the next file the program opens (the stats spool, a
+   capture, the DRM device) would get that number, and the log or the summary would be written into
+   it. Each closed one is opened on a device instead: stdin on /dev/null, stdout and stderr on
+   /dev/full, where every write fails (ENOSPC), so output that has nowhere to go is still an error
+   at exit. Returns whether stdout was closed. */
+static bool reserve_std_descriptors(void)
+{
+    bool stdout_closed = false;
+    for (int fd = 0; fd <= 2; fd++) {
+        if (fcntl(fd, F_GETFD) != -1 || errno != EBADF)
+            continue;
+        int got = open(fd == 0 ? "/dev/null" : "/dev/full", fd == 0 ? O_RDONLY : O_WRONLY);
+        if (got >= 0 && got != fd) { /* a lower one was closed too and took it: move it up */
+            dup2(got, fd);
+            close(got);
+        }
+        stdout_closed |= fd == 1;
+    }
+    return stdout_closed;
+}
+
+static bool stdout_was_closed;
+
+/* A write that failed on stdout or stderr (a closed descriptor, a dead pipe, a full disk) turns a
+   successful exit into exit 1: the output a caller relies on (the summary, compare's metrics) is
+   lost. Said on stderr when stderr still works. */
+static int check_std_streams(int rc)
+{
+    int out_err = 0;
+    errno = 0;
+    if (fflush(stdout) != 0 || ferror(stdout))
+        out_err = errno ? errno : EIO;
+    int reason_known = errno != 0;
+    if (out_err) { /* the reason is lost when an earlier flush (the kiosk's summary) failed first */
+        if (stdout_was_closed)
+            fputs("gikiosk: cannot write to standard output: it was closed\n", stderr);
+        else if (!reason_known)
+            fputs("gikiosk: cannot write to standard output\n", stderr);
+        else
+            fprintf(stderr, "gikiosk: cannot write to standard output: %s\n", strerror(out_err));
+        rc = rc ? rc : 1;
+    }
+    if (fflush(stderr) != 0 || ferror(stderr))
+        rc = rc ? rc : 1;
+    return rc;
+}
+
+static int dispatch(int argc, char **argv);
+
 int main(int argc, char **argv)
+{
+    /* A reader that goes away (`gikiosk scenes | head -1`, a dead log pipe) is a write error, not a
+       signal that kills the kiosk before it restores the display; and a file-size limit is a write
+       error (EFBIG) like a full disk, reported by whoever writes. */
+    stdout_was_closed = reserve_std_descriptors();
+    signal(SIGPIPE, SIG_IGN);
+    signal(SIGXFSZ, SIG_IGN);
+    return check_std_streams(dispatch(argc, argv));
+}
+
+static int dispatch(int argc, char **argv)
 {
     if (argc < 2) {
         usage(stderr);

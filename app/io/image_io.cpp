@@ -1,5 +1,6 @@
 // OpenImageIO shim behind app/io/image_io.h: the only C++ in the image path. Every OIIO call is
 // wrapped so no C++ exception or object escapes into the C code.
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
@@ -7,12 +8,19 @@
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <vector>
 
 extern "C" {
+#include "base/outfile.h"
+#include "base/readfile.h"
 #include "io/image_io.h"
 }
 
 namespace {
+
+// The largest image file read (compare, textures): 1 GiB, beyond any capture or reference
+// (a 4096x4096 RGBA float EXR is 256 MiB).
+const size_t kMaxImageFileBytes = size_t(1) << 30;
 
 // Pixels come back exactly as stored: OIIO would otherwise premultiply PNG/TIFF colour by alpha.
 OIIO::ImageSpec read_config()
@@ -91,15 +99,36 @@ int write_image(const char *path, const gk_image *img, const gk_image_meta *meta
             }
             src = clamped;
         }
-        bool ok = out->open(path, spec) && out->write_image(OIIO::TypeDesc::FLOAT, src);
+        // Encoded in memory (OIIO's IOProxy), then written to a temporary file beside the target
+        // with every write checked and renamed over it once complete (base/outfile.h): a full
+        // disk never leaves a truncated image nor destroys the previous one. (OIIO's PNG writer
+        // does not notice a failing write; going through memory makes every format's failure
+        // ours to see.)
+        std::vector<unsigned char> encoded;
+        OIIO::Filesystem::IOVecOutput vec_out(encoded);
+        bool in_memory = out->supports("ioproxy");
+        if (in_memory) {
+            void *proxy = &vec_out;
+            spec.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+        }
+        gk_outfile tmp;
+        if (in_memory ? gk_outfile_open(&tmp, path, e) : gk_outfile_reserve(&tmp, path, e)) {
+            free(clamped);
+            return -1;
+        }
+        bool ok = out->open(in_memory ? path : tmp.tmp, spec) && out->write_image(OIIO::TypeDesc::FLOAT, src);
         std::string err = ok ? "" : one_line(out->geterror());
         bool closed = out->close();
         if (ok && !closed)
             err = one_line(out->geterror());
         free(clamped);
-        if (!ok || !closed)
+        if (!ok || !closed) {
+            gk_outfile_discard(&tmp);
             return gk_fail(e, GK_ERUNTIME, "%s: cannot write image: %s", path, err.c_str());
-        return 0;
+        }
+        if (in_memory && !encoded.empty())
+            fwrite(encoded.data(), 1, encoded.size(), tmp.f); // checked by the commit (ferror)
+        return gk_outfile_commit(&tmp, e);
     } catch (const std::exception &ex) {
         return gk_fail(e, GK_ERUNTIME, "%s: cannot write image: %s", path, ex.what());
     }
@@ -135,6 +164,10 @@ extern "C" int gk_image_read(const char *path, gk_image *img, gk_err *e)
 {
     img->width = img->height = img->channels = 0;
     img->pixels = nullptr;
+    // A regular file of bounded size, checked before OIIO opens it: `compare REF /dev/zero` would
+    // otherwise read forever, and a directory or FIFO would block or read as garbage.
+    if (gk_check_regular_file(path, "image", kMaxImageFileBytes, e))
+        return -1;
     try {
         OIIO::ImageSpec config = read_config();
         auto in = OIIO::ImageInput::open(path, &config);

@@ -4,6 +4,8 @@
  * also sees section headers, which inih does not pass to the handler for empty sections. */
 #include "config.h"
 
+#include "base/readfile.h"
+
 #include <ctype.h>
 #include <errno.h>
 #include <ini.h>
@@ -462,35 +464,15 @@ int gk_kiosk_config_parse(gk_kiosk_config *c, const char *text, const char *name
     return 0;
 }
 
+/* A kiosk config is a page of INI; anything beyond this is not one (and /dev/zero never ends). */
+#define CONFIG_MAX_BYTES ((size_t)1 << 20)
+
 int gk_kiosk_config_load(gk_kiosk_config *c, const char *path, gk_err *e)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return gk_fail(e, GK_EINPUT, "%s: cannot open: %s", path, strerror(errno));
-    size_t cap = 4096, len = 0;
-    char *text = malloc(cap);
-    size_t got;
-    while (text && (got = fread(text + len, 1, cap - len - 1, f)) > 0) {
-        len += got;
-        if (len + 1 == cap) {
-            char *t = realloc(text, cap * 2);
-            if (!t) {
-                free(text);
-                text = NULL;
-                break;
-            }
-            text = t;
-            cap *= 2;
-        }
-    }
-    fclose(f);
-    if (!text)
-        return gk_fail(e, GK_ERUNTIME, "%s: out of memory", path);
-    text[len] = '\0';
-    if (memchr(text, '\0', len)) {
-        free(text);
-        return gk_fail(e, GK_EINPUT, "%s: binary data (a NUL byte) in a text file", path);
-    }
+    char *text;
+    size_t len;
+    if (gk_read_text_file(path, "config", CONFIG_MAX_BYTES, &text, &len, e))
+        return -1;
     int rc = gk_kiosk_config_parse(c, text, path, e);
     free(text);
     return rc;

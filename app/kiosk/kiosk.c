@@ -11,6 +11,7 @@
 #include <sys/stat.h>
 
 #include "base/log.h"
+#include "base/sd_notify.h"
 #include "gi/gi_catalogue.h"
 #include "../render/renderer.h"
 #include "../sched/calibration.h"
@@ -46,6 +47,7 @@ typedef struct kiosk {
     long last_frame;
     char last_scene[GK_NAME_LEN], last_method[GK_METHOD_LEN];
     long floor_over;                     /* judged frames of this visit over the target at the floor */
+    gk_notify notify;                    /* systemd readiness + watchdog (Type=notify) */
 } kiosk;
 
 /* Judged frames over the target at the floor before the kiosk says (once a visit) that the scene
@@ -79,12 +81,23 @@ static int catalogue_index(const char *method)
  * catalogue belongs to that method). */
 static void begin_visit(kiosk *k)
 {
-    if (k->visit_scene >= 0)
+    char levels[512];
+    if (k->visit_scene >= 0) {
         gk_visit_save(k->visits, k->visit_scene, k->visit_method, &k->budget, &k->sched);
+        /* after the last frame's scheduler step: what the next visit resumes at */
+        int n_cat;
+        const char *left = k->visit_method >= 0 ? gk_gi_catalogue(&n_cat)[k->visit_method].name : "none";
+        gk_budget_format_active(&k->budget, left, levels, sizeof levels);
+        gk_log("visit: %s with %s leaves at %s", k->scenes[k->visit_scene] ? k->scenes[k->visit_scene]->name : "?",
+               left, levels);
+    }
     const char *method = gk_playlist_method(&k->pl);
     k->visit_scene = k->pl.current;
     k->visit_method = catalogue_index(method);
-    if (!gk_visit_restore(k->visits, k->visit_scene, k->visit_method, &k->budget, &k->sched)) {
+    if (gk_visit_restore(k->visits, k->visit_scene, k->visit_method, &k->budget, &k->sched)) {
+        gk_budget_format_active(&k->budget, method, levels, sizeof levels);
+        gk_log("visit: %s with %s resumes at %s", gk_playlist_scene(&k->pl), method, levels);
+    } else {
         bool active[GK_MAX_KNOBS];
         for (int i = 0; i < k->budget.n; i++) {
             const char *owner = k->budget.def[i]->owner ? k->budget.def[i]->owner : "";
@@ -100,9 +113,11 @@ static void begin_visit(kiosk *k)
 
 static int capture(kiosk *k, long frame, const char *scene, const char *method, gk_err *e)
 {
-    char png[1024], exr[1024];
-    snprintf(png, sizeof png, "%s/%06ld-%s-%s.png", k->o->capture_dir, frame, scene, method);
+    char png[4096], exr[4096];
+    int n = snprintf(png, sizeof png, "%s/%06ld-%s-%s.png", k->o->capture_dir, frame, scene, method);
     snprintf(exr, sizeof exr, "%s/%06ld-%s-%s.exr", k->o->capture_dir, frame, scene, method);
+    if (n < 0 || (size_t)n >= sizeof png) /* never a capture under a cut name */
+        return gk_fail(e, GK_EINPUT, "--capture: the path '%s/...' is too long", k->o->capture_dir);
     if (gk_renderer_capture(k->r, png, k->o->hdr ? exr : NULL, e))
         return gk_fail_prefix(e, "capture: ");
     gk_log("capture: %s", png);
@@ -275,6 +290,7 @@ static int frame(kiosk *k, double now, gk_err *e)
     }
     if (gk_platform_present(k->plat, e))
         return -1;
+    gk_notify_frame(&k->notify); /* READY=1 after the first frame shown, then the watchdog's ping */
     /* Judged: what the scheduler holds against the target. Not judged: the warm-up frames of a
        visit and the first frame at a new level, which pay one-off costs (shader compiles,
        voxelizing, first shadow maps); the summary reports them apart. */
@@ -452,12 +468,14 @@ int gk_kiosk_run(const gk_kiosk_opts *o, const gk_kiosk_config *c, gk_err *e)
         return gk_fail(e, GK_ERUNTIME, "out of memory");
     }
     gk_summary_init(&k->summary);
+    gk_notify_open(&k->notify);
     gk_playlist_init(&k->pl, c->scenes, c->n_scenes, c->dwell_s, c->pause_after_input_s);
     int rc = -1;
     if (open_platform(k, e) || open_renderer(k, e) || setup_budget(k, e) || open_outputs(k, e))
         goto done;
     rc = loop(k, e);
 done:
+    gk_notify_close(&k->notify); /* STOPPING=1: restoring the display and writing outputs */
     if (k->csv) {
         gk_err ce = {0};
         if (gk_stats_csv_close(k->csv, &k->budget, &ce) && rc == 0) {

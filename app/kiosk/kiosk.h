@@ -24,7 +24,7 @@ typedef struct gk_kiosk_opts {
     const char *scenes_dir;         /* where the playlist's scene files are */
 } gk_kiosk_opts;
 
-/* Runs until o->frames/o->seconds, SIGINT/SIGTERM, or the mock script's end. c->scenes holds the
+/* Runs until o->frames/o->seconds, SIGINT/SIGTERM/SIGHUP/SIGQUIT, or the mock script's end. c->scenes holds the
  * playlist (already resolved). Returns 0, or -1 with e (GK_EINPUT: bad budget pins/[budgets]/script,
  * GK_ERUNTIME: platform, GPU, no loadable scene). */
 int gk_kiosk_run(const gk_kiosk_opts *o, const gk_kiosk_config *c, gk_err *e);

@@ -2,8 +2,15 @@
 #include "stats.h"
 
 #include <errno.h>
+#include <fcntl.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
+
+#include "base/csv.h"
+#include "base/log.h"
+#include "base/outfile.h"
 
 void gk_recent_clear(gk_recent *r) { memset(r, 0, sizeof *r); }
 
@@ -132,35 +139,86 @@ void gk_summary_free(gk_summary *s)
 /* ---- CSV ------------------------------------------------------------------------------------ */
 
 #define MAX_PASS_NAMES 64
+/* A spool that exists is a previous run's rows (a run killed by SIGKILL): never overwritten; the
+   next free name FILE.part-2 ... FILE.part-99 is used instead. */
+#define MAX_SPOOL_TRIES 99
 
 struct gk_stats_csv {
-    char path[512], spool_path[520];
+    char *path, *spool_path;
     FILE *spool;
     int n_pass;
     char pass[MAX_PASS_NAMES][GK_PASS_PATH_LEN];
 };
 
+static void csv_free(gk_stats_csv *c)
+{
+    if (c->spool)
+        fclose(c->spool);
+    free(c->path);
+    free(c->spool_path);
+    free(c);
+}
+
+/* The spool: a CSV of its own (RFC 4180), one row per frame, flushed at every row, so whatever
+   ends the run (SIGKILL, a power cut, a full disk at the end) its rows stay readable:
+   frame,time_s,scene,method,frame_ms,passes_ms,budgets with passes_ms = "PATH=MS PATH=MS ..." and
+   budgets = "KNOB=VALUE ...". The wide CSV is made from it at the end, when the pass union is known. */
+static const char SPOOL_HEADER[] = "frame,time_s,scene,method,frame_ms,passes_ms,budgets\n";
+
+static FILE *create_spool(gk_stats_csv *c, gk_err *e)
+{
+    size_t len = strlen(c->path) + 16;
+    if (!(c->spool_path = malloc(len)))
+        return NULL;
+    for (int i = 1; i <= MAX_SPOOL_TRIES; i++) {
+        if (i == 1)
+            snprintf(c->spool_path, len, "%s.part", c->path);
+        else
+            snprintf(c->spool_path, len, "%s.part-%d", c->path, i);
+        int fd = open(c->spool_path, O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+        if (fd >= 0) {
+            FILE *f = fdopen(fd, "w+");
+            if (!f)
+                close(fd);
+            return f;
+        }
+        if (errno != EEXIST)
+            break;
+    }
+    gk_fail(e, GK_ERUNTIME, "--stats: cannot write '%s': %s", c->spool_path, strerror(errno));
+    return NULL;
+}
+
 gk_stats_csv *gk_stats_csv_open(const char *path, gk_err *e)
 {
     gk_stats_csv *c = calloc(1, sizeof *c);
-    if (!c) {
+    if (!c || !(c->path = strdup(path))) {
+        free(c);
         gk_fail(e, GK_ERUNTIME, "--stats: out of memory");
         return NULL;
     }
-    snprintf(c->path, sizeof c->path, "%s", path);
-    snprintf(c->spool_path, sizeof c->spool_path, "%s.part", path);
-    /* Open the final file once now, so a bad path fails before the run rather than after it. */
-    FILE *probe = fopen(path, "w");
-    if (!probe || !(c->spool = fopen(c->spool_path, "w+"))) {
-        gk_fail(e, GK_ERUNTIME, "--stats: cannot write '%s': %s", probe ? c->spool_path : path, strerror(errno));
-        if (probe)
-            fclose(probe);
-        free(c);
+    /* The spool is created beside the CSV now, so a directory that cannot be written fails before
+       the run; the CSV itself is not touched until the run's rows are complete (an existing one
+       stays as it was when this run fails). */
+    if (!(c->spool = create_spool(c, e))) {
+        if (e && !e->code)
+            gk_fail(e, GK_ERUNTIME, "--stats: cannot write '%s': %s", path, strerror(errno));
+        csv_free(c);
         return NULL;
     }
-    fclose(probe);
+    if (fputs(SPOOL_HEADER, c->spool) == EOF || fflush(c->spool) != 0) {
+        gk_fail(e, GK_ERUNTIME, "--stats: cannot write '%s': %s", c->spool_path, strerror(errno));
+        fclose(c->spool);
+        c->spool = NULL;
+        remove(c->spool_path);
+        csv_free(c);
+        return NULL;
+    }
+    gk_log("stats: rows spooled to %s until the run ends", c->spool_path);
     return c;
 }
+
+const char *gk_stats_csv_spool_path(const gk_stats_csv *c) { return c ? c->spool_path : NULL; }
 
 static int pass_index(gk_stats_csv *c, const char *name)
 {
@@ -173,38 +231,56 @@ static int pass_index(gk_stats_csv *c, const char *name)
     return c->n_pass++;
 }
 
-/* Spool line: "frame,time_s,scene,method,frame_ms\tIDX=MS IDX=MS\tLEVEL LEVEL ...". frame_ms is
- * the report's total (the sum of its top-level passes); every pass of the report is a column named
- * by its dotted path ("gi.vct_trace"), so a nested pass is never mistaken for a top-level one. */
+/* frame_ms is the report's total (the sum of its top-level passes); every pass of the report is
+ * a column named by its dotted path ("gi.vct_trace"), so a nested pass is never mistaken for a
+ * top-level one. */
 int gk_stats_csv_row(gk_stats_csv *c, long frame, double time_s, const char *scene, const char *method,
                      const gk_frame_report *report, const gk_budget *b, gk_err *e)
 {
-    fprintf(c->spool, "%ld,%.6f,%s,%s,%.3f\t", frame, time_s, scene, method, report->total_ms);
+    FILE *f = c->spool;
+    fprintf(f, "%ld,%.6f,", frame, time_s);
+    gk_csv_field(f, scene);
+    fputc(',', f);
+    gk_csv_field(f, method);
+    fprintf(f, ",%.3f,", report->total_ms);
     for (int i = 0; i < report->n; i++) {
         char path[GK_PASS_PATH_LEN];
         gk_frame_report_path(report, i, path, sizeof path);
-        int k = pass_index(c, path);
-        if (k >= 0)
-            fprintf(c->spool, "%d=%.3f ", k, report->pass[i].ms);
+        pass_index(c, path);
+        fprintf(f, "%s%s=%.3f", i ? " " : "", path, report->pass[i].ms);
     }
-    fputc('\t', c->spool);
+    fputc(',', f);
+    /* knob values hold no comma, quote, space or '=' (budget.h's value strings are tokens) */
     for (int i = 0; i < b->n; i++)
-        fprintf(c->spool, "%d ", b->level[i]);
-    if (fputc('\n', c->spool) == EOF)
+        fprintf(f, "%s%s=%s", i ? " " : "", b->def[i]->name, b->def[i]->values[b->level[i]]);
+    fputc('\n', f);
+    /* flushed at every row: a row in the spool survives SIGKILL */
+    if (fflush(f) != 0 || ferror(f))
         return gk_fail(e, GK_ERUNTIME, "--stats: cannot write '%s': %s", c->spool_path, strerror(errno));
     return 0;
 }
 
-int gk_stats_csv_close(gk_stats_csv *c, const gk_budget *b, gk_err *e)
+/* "NAME=VALUE NAME=VALUE": the value of name, or NULL. Writes the value's length to *len. */
+static const char *pair_value(const char *list, const char *name, size_t *len)
 {
-    if (!c)
-        return 0;
-    int rc = 0;
-    FILE *out = fopen(c->path, "w");
-    if (!out) {
-        rc = gk_fail(e, GK_ERUNTIME, "--stats: cannot write '%s': %s", c->path, strerror(errno));
-        goto done;
+    size_t n = strlen(name);
+    for (const char *p = list; p && *p;) {
+        while (*p == ' ')
+            p++;
+        const char *end = strchr(p, ' ');
+        if (!end)
+            end = p + strlen(p);
+        if ((size_t)(end - p) > n && !strncmp(p, name, n) && p[n] == '=') {
+            *len = (size_t)(end - p - (ptrdiff_t)n - 1);
+            return p + n + 1;
+        }
+        p = end;
     }
+    return NULL;
+}
+
+static void write_wide_csv(gk_stats_csv *c, const gk_budget *b, FILE *out, gk_csv_record *rec)
+{
     fputs("frame,time_s,scene,method,frame_ms", out);
     for (int i = 0; i < c->n_pass; i++)
         fprintf(out, ",%s_ms", c->pass[i]);
@@ -212,46 +288,60 @@ int gk_stats_csv_close(gk_stats_csv *c, const gk_budget *b, gk_err *e)
         fprintf(out, ",%s", b->def[i]->name);
     fputc('\n', out);
     rewind(c->spool);
-    char line[4096];
-    while (fgets(line, sizeof line, c->spool)) {
-        char *t1 = strchr(line, '\t'), *t2 = t1 ? strchr(t1 + 1, '\t') : NULL;
-        if (!t2)
+    bool header = true;
+    while (gk_csv_read(c->spool, rec) == 1) {
+        if (header || rec->n < 7) { /* the spool's header; a row cut short by a crash */
+            header = false;
             continue;
-        *t1 = *t2 = '\0';
-        double ms[MAX_PASS_NAMES];
-        int have[MAX_PASS_NAMES] = {0};
-        char *save = NULL;
-        for (char *tok = strtok_r(t1 + 1, " ", &save); tok; tok = strtok_r(NULL, " ", &save)) {
-            int k;
-            double v;
-            if (sscanf(tok, "%d=%lf", &k, &v) == 2 && k >= 0 && k < MAX_PASS_NAMES) {
-                ms[k] = v;
-                have[k] = 1;
-            }
         }
-        fputs(line, out);
+        for (int i = 0; i < 5; i++) {
+            if (i)
+                fputc(',', out);
+            gk_csv_field(out, gk_csv_get(rec, i));
+        }
         for (int i = 0; i < c->n_pass; i++) {
-            if (have[i])
-                fprintf(out, ",%.3f", ms[i]);
-            else
-                fputs(",", out); /* the pass did not run this frame (another method) */
+            size_t len;
+            const char *v = pair_value(gk_csv_get(rec, 5), c->pass[i], &len);
+            fprintf(out, ",%.*s", v ? (int)len : 0, v ? v : ""); /* empty: the pass did not run */
         }
-        save = NULL;
-        char *tok = strtok_r(t2 + 1, " \n", &save);
         for (int i = 0; i < b->n; i++) {
-            int lv = tok ? atoi(tok) : b->level[i];
-            if (lv < 0 || lv >= b->def[i]->n_values)
-                lv = b->level[i];
-            fprintf(out, ",%s", b->def[i]->values[lv]);
-            tok = tok ? strtok_r(NULL, " \n", &save) : NULL;
+            size_t len;
+            const char *v = pair_value(gk_csv_get(rec, 6), b->def[i]->name, &len);
+            fprintf(out, ",%.*s", v ? (int)len : 0, v ? v : "");
         }
         fputc('\n', out);
     }
-    if (fclose(out) != 0)
-        rc = gk_fail(e, GK_ERUNTIME, "--stats: cannot write '%s': %s", c->path, strerror(errno));
-done:
-    fclose(c->spool);
-    remove(c->spool_path);
-    free(c);
+}
+
+int gk_stats_csv_close(gk_stats_csv *c, const gk_budget *b, gk_err *e)
+{
+    if (!c)
+        return 0;
+    gk_outfile out;
+    gk_csv_record rec = {0};
+    int rc = gk_outfile_open(&out, c->path, e);
+    if (rc == 0) {
+        write_wide_csv(c, b, out.f, &rec);
+        if (ferror(c->spool)) {
+            gk_fail(e, GK_ERUNTIME, "--stats: cannot read back '%s': %s", c->spool_path, strerror(errno));
+            gk_outfile_discard(&out);
+            rc = -1;
+        } else {
+            rc = gk_outfile_commit(&out, e);
+        }
+    }
+    gk_csv_record_free(&rec);
+    if (rc == 0) {
+        remove(c->spool_path);
+    } else {
+        /* The rows are not lost: the spool stays, a CSV of its own, and the message says where. */
+        if (e) { /* the spool's name first: it is what must not be cut off */
+            char why[sizeof e->msg];
+            snprintf(why, sizeof why, "%s", e->msg);
+            if (snprintf(e->msg, sizeof e->msg, "--stats: the rows are kept in '%s' (%s)", c->spool_path, why) < 0)
+                e->msg[0] = '\0';
+        }
+    }
+    csv_free(c);
     return rc;
 }

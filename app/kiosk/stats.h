@@ -2,8 +2,9 @@
  * per-scene summary printed at the end of a run, and the --stats CSV (DESIGN §4):
  * `frame,time_s,scene,method,frame_ms,` then one PASS_ms column per render pass (the union of the
  * pass names seen during the run, in order of first appearance), then one column per budget knob
- * (its value). The pass union is only known at the end, so rows are spooled to FILE.part and the
- * CSV is written when the run ends. No GL here: unit-tested. */
+ * (its value). The pass union is only known at the end, so rows are spooled to FILE.part (a CSV
+ * of its own, flushed at every row: it survives SIGKILL) and the CSV is written when the run ends,
+ * through a temporary file renamed into place (base/outfile.h). No GL here: unit-tested. */
 #ifndef GK_KIOSK_STATS_H
 #define GK_KIOSK_STATS_H
 
@@ -68,7 +69,10 @@ typedef struct gk_stats_csv gk_stats_csv;
 gk_stats_csv *gk_stats_csv_open(const char *path, gk_err *e);
 int gk_stats_csv_row(gk_stats_csv *c, long frame, double time_s, const char *scene, const char *method,
                      const gk_frame_report *report, const gk_budget *b, gk_err *e);
-/* Writes the CSV from the spool (the knob columns are b's knobs) and removes the spool. */
+/* The spool in use: FILE.part, or FILE.part-N when a previous run's spool is still there. */
+const char *gk_stats_csv_spool_path(const gk_stats_csv *c);
+/* Writes the CSV from the spool (the knob columns are b's knobs) and removes the spool. When the
+ * CSV cannot be written the spool is kept and e says where it is. Frees c either way. */
 int gk_stats_csv_close(gk_stats_csv *c, const gk_budget *b, gk_err *e);
 
 #endif

@@ -2,6 +2,8 @@
 #include "ref_scene.h"
 
 #include <float.h>
+#include <math.h>
+#include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -57,6 +59,19 @@ static int add_mesh_triangles(gk_ref_scene *rs, const gk_scene *s, const gk_node
         rs->n_tris++;
     }
     return 0;
+}
+
+/* The brightest emission the tracer accepts, per channel (cd, lux or nits). A pixel is a float sum
+ * of spp samples of emission x BRDF x geometry / pdf; the bound leaves 18 orders of magnitude
+ * below FLT_MAX (3.4e38) for those factors (1/d^2 alone is 1e6 at a millimetre) and the sum, and
+ * is 11 orders above the sun's disc (1.6e9 nits). An order-of-magnitude margin, not a measurement. Brighter lights (a 1e38 cd
+ * point rendered black with exit 0 before) are refused by name. */
+#define GK_REF_MAX_EMISSION 1e20f
+
+static bool emission_in_range(vec3 v)
+{
+    return isfinite(v.x) && isfinite(v.y) && isfinite(v.z) && fabsf(v.x) <= GK_REF_MAX_EMISSION &&
+           fabsf(v.y) <= GK_REF_MAX_EMISSION && fabsf(v.z) <= GK_REF_MAX_EMISSION;
 }
 
 static void light_from_node(gk_ref_light *L, const gk_light *gl, mat4 w)
@@ -187,6 +202,13 @@ int gk_ref_scene_build(gk_ref_scene *rs, const gk_scene *s, mat4 view, mat4 proj
             continue;
         gk_ref_light *L = &rs->lights[rs->n_lights++];
         light_from_node(L, &s->lights[nd->light], nd->world);
+        if (!emission_in_range(L->intensity) || !emission_in_range(L->radiance) ||
+            !(isfinite(L->power) && L->power <= GK_REF_MAX_EMISSION * 4.0f * GK_PI)) {
+            gk_fail(e, GK_EINPUT, "%s: light %d ('%s'): emission %g beyond what the reference tracer can sum "
+                    "(at most %g cd, lux or nits a channel)", s->path, nd->light, s->lights[nd->light].name,
+                    (double)s->lights[nd->light].intensity, (double)GK_REF_MAX_EMISSION);
+            goto fail;
+        }
         if (L->kind != GK_REF_DIRECTIONAL && L->kind != GK_REF_SUN) {
             lo = v3_min(lo, L->pos);
             hi = v3_max(hi, L->pos);
@@ -202,6 +224,14 @@ int gk_ref_scene_build(gk_ref_scene *rs, const gk_scene *s, mat4 view, mat4 proj
         gk_ref_light *L = &rs->lights[i];
         if (L->kind == GK_REF_DIRECTIONAL || L->kind == GK_REF_SUN)
             L->power = lum3(L->intensity) * GK_PI * rs->radius * rs->radius;
+    }
+    for (uint32_t i = 0; i < rs->n_tris; i++) {
+        const gk_material *mt = &s->materials[rs->tris[i].material];
+        if (!emission_in_range(v3(mt->emissive[0], mt->emissive[1], mt->emissive[2]))) {
+            gk_fail(e, GK_EINPUT, "%s: material '%s': emission beyond what the reference tracer can sum (at most "
+                    "%g nits a channel)", s->path, mt->name, (double)GK_REF_MAX_EMISSION);
+            goto fail;
+        }
     }
     if (ne > 0) {
         rs->mesh_light = rs->n_lights;

@@ -51,15 +51,33 @@ struct Loader {
 
 // File access for tinygltf: only regular files under the scene's directory (no wordexp expansion,
 // no devices or FIFOs that could block), and nothing at all for documents loaded from memory.
+// A buffer's uri is confined to the scene's folder like an image's (texture.c): the file it names,
+// symlinks and `..` resolved, must lie inside base_dir, else it is not read at all (so no byte of
+// a file outside can reach an error message). The scene file itself (gk_scene_load) has no base.
 struct FsContext {
     bool allow_files;
+    const char *base_dir; // nullptr: any regular file (the scene file named on the command line)
 };
+
+bool inside_base(const std::string &abs, const char *base_dir)
+{
+    char *root = realpath(base_dir, nullptr), *file = realpath(abs.c_str(), nullptr);
+    bool inside = false;
+    if (root && file) {
+        size_t n = strlen(root);
+        inside = strncmp(file, root, n) == 0 && (file[n] == '/' || (n == 1 && root[0] == '/'));
+    }
+    free(root);
+    free(file);
+    return inside;
+}
 
 bool fs_exists(const std::string &abs, void *user)
 {
     const FsContext *ctx = static_cast<const FsContext *>(user);
     struct stat st;
-    return ctx->allow_files && stat(abs.c_str(), &st) == 0 && S_ISREG(st.st_mode);
+    return ctx->allow_files && stat(abs.c_str(), &st) == 0 && S_ISREG(st.st_mode) &&
+           (!ctx->base_dir || inside_base(abs, ctx->base_dir));
 }
 
 std::string fs_expand(const std::string &p, void *) { return p; }
@@ -766,6 +784,27 @@ gk_scene *convert(Loader &L, const Model &m, const char *base_dir)
     return s;
 }
 
+// The extensions the loader reads (lights, emissive strength, transmission, ior): a file may
+// require these; any other required one is refused by name.
+const char *const kSupportedExtensions[] = {"KHR_lights_punctual", "KHR_materials_emissive_strength",
+                                            "KHR_materials_transmission", "KHR_materials_ior"};
+
+bool extension_supported(const std::string &name)
+{
+    for (const char *x : kSupportedExtensions)
+        if (name == x)
+            return true;
+    return false;
+}
+
+std::string supported_extensions_list()
+{
+    std::string all;
+    for (const char *x : kSupportedExtensions)
+        all += (all.empty() ? "" : ", ") + std::string(x);
+    return all;
+}
+
 gk_scene *load_bytes(const unsigned char *data, size_t size, const char *path, const char *base_dir, gk_err *e)
 {
     Loader L{path, e};
@@ -775,7 +814,7 @@ gk_scene *load_bytes(const unsigned char *data, size_t size, const char *path, c
             return nullptr;
         }
         tinygltf::TinyGLTF loader;
-        FsContext ctx{base_dir != nullptr};
+        FsContext ctx{base_dir != nullptr, base_dir};
         loader.SetFsCallbacks(tinygltf::FsCallbacks{fs_exists, fs_expand, fs_read, fs_write, &ctx});
         loader.SetImageLoader(image_noop, nullptr);
         Model model;
@@ -800,6 +839,14 @@ gk_scene *load_bytes(const unsigned char *data, size_t size, const char *path, c
             L.fail("tinygltf: %s", err.empty() ? "cannot parse the file" : err.c_str());
             return nullptr;
         }
+        // glTF 2.0 §3.12: a file that requires an extension the loader does not implement must
+        // not be shown as if it had none.
+        for (const std::string &x : model.extensionsRequired)
+            if (!extension_supported(x)) {
+                L.fail("requires extension '%s', which gikiosk does not support (supported: %s)", x.c_str(),
+                       supported_extensions_list().c_str());
+                return nullptr;
+            }
         return convert(L, model, base_dir);
     } catch (const std::exception &ex) {
         L.fail("cannot parse the file (%s)", ex.what());
@@ -819,7 +866,7 @@ extern "C" gk_scene *gk_scene_load_memory(const void *data, size_t size, const c
 
 extern "C" gk_scene *gk_scene_load(const char *path, gk_err *e)
 {
-    FsContext ctx{true};
+    FsContext ctx{true, nullptr};
     std::vector<unsigned char> bytes;
     std::string err;
     if (!fs_read(&bytes, &err, path, &ctx)) {

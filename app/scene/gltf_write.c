@@ -2,6 +2,8 @@
  * (round-trips a float), buffers are appended 4-byte aligned: identical input, identical bytes. */
 #include "scene/gltf_write.h"
 
+#include "base/outfile.h"
+
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -549,11 +551,13 @@ int gkw_write(gkw_doc *d, const char *dir, gk_err *e)
     size_t len[2] = {b.len, d->bin_len};
     for (int k = 0; k < 2 && rc == 0; k++) {
         snprintf(path, sizeof path, "%s/%s.%s", dir, d->name, exts[k]);
-        FILE *f = fopen(path, "wb");
-        if (!f || (len[k] && fwrite(data[k], 1, len[k], f) != len[k]))
-            rc = gk_fail(e, GK_ERUNTIME, "%s: cannot write", path);
-        if (f && fclose(f) != 0 && rc == 0)
-            rc = gk_fail(e, GK_ERUNTIME, "%s: cannot write", path);
+        gk_outfile o; /* a temporary file renamed into place: never a half-written scene */
+        rc = gk_outfile_open(&o, path, e);
+        if (rc == 0) {
+            if (len[k])
+                fwrite(data[k], 1, len[k], o.f); /* checked by the commit */
+            rc = gk_outfile_commit(&o, e);
+        }
     }
     free(b.s);
     return rc;

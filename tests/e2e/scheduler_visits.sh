@@ -23,8 +23,19 @@ check "cornell's first visit ends below its defaults (the target is impossible)"
     awk '$1 == 1 && $3 != $4 { ok = 1 } END { exit !ok }' "$TMP/visits"
 check "shadow-planes starts from the defaults, not from cornell's levels" \
     awk '$1 == 1 { d = $3 } $1 == 2 && $3 == d { ok = 1 } END { exit !ok }' "$TMP/visits"
-check "cornell's second visit starts where its first ended" \
-    awk '$1 == 1 { end1 = $4 } $1 == 3 { start3 = $3 } END { exit !(end1 != "" && start3 == end1) }' "$TMP/visits"
+# Where a visit ends is after its last frame's scheduler step (the CSV row of that frame still has
+# the levels it was drawn at), so the kiosk logs it; the second visit must resume there, and its first
+# CSV row must show those levels.
+leaves=$(sed -n 's/.*visit: cornell with vct leaves at \([^ ]*\).*/\1/p' "$TMP/stderr" | head -1)
+resumes=$(sed -n 's/.*visit: cornell with vct resumes at \([^ ]*\).*/\1/p' "$TMP/stderr" | head -1)
+echo "# cornell leaves at $leaves; resumes at $resumes"
+check "cornell's second visit resumes where its first ended" sh -c "[ -n '$leaves' ] && [ '$leaves' = '$resumes' ]"
+check "the second visit's first frame is drawn at those levels" \
+    awk -F, -v want="$leaves" 'NR == 1 { for (i = 1; i <= NF; i++) col[$i] = i; next }
+        $3 == "cornell" && seen_other && !done { n = split(want, kv, ","); for (j = 1; j <= n; j++) {
+            split(kv[j], p, "="); if ($(col[p[1]]) != p[2]) bad = 1 } done = 1 }
+        $3 != "cornell" { seen_other = 1 }
+        END { exit bad || !done }' "$TMP/s.csv"
 check "the summary reports warm-up frames apart from the judged ones" \
     grep -Eq '^scene cornell: [0-9]+ frames \([1-9][0-9]* warm-up, max [0-9.]+ ms\), judged: median [0-9.]+ ms, p95 [0-9.]+ ms, p99' "$TMP/summary"
 # A scene that cannot meet its target even with every knob at its floor is said so, once in the log

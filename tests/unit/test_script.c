@@ -4,6 +4,8 @@
 #include <stddef.h>
 #include <cmocka.h>
 #include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "platform/script.h"
@@ -40,6 +42,54 @@ static void parses_actions_into_sorted_edges(void **state)
     for (int i = 1; i < s.count; i++)
         assert_true(s.edges[i].time_s >= s.edges[i - 1].time_s);
     gk_script_free(&s);
+}
+
+/* The worst case of the old insertion sort: every hold lasts an hour, so each release lands after
+   every later press. 100k holds = 200k edges; the merge sort makes at most n ceil(log2 n)
+   comparisons (3.6 M here; the insertion sort made n^2/4 = 10^10), sorted and stable. The bound
+   is counted, not timed. */
+static void overlapping_holds_sort_in_n_log_n(void **state)
+{
+    (void)state;
+    enum { HOLDS = 100000 };
+    size_t cap = (size_t)HOLDS * 32;
+    char *text = malloc(cap), *p = text;
+    for (int i = 0; i < HOLDS; i++)
+        p += snprintf(p, cap - (size_t)(p - text), "%d.%03d %s hold 3600000\n", i / 1000, i % 1000,
+                      i % 2 ? "next" : "prev");
+    gk_script s;
+    gk_err e = {0};
+    assert_int_equal(gk_script_parse(text, "long.txt", &s, &e), 0);
+    assert_int_equal(s.count, 2 * HOLDS);
+    for (int i = 0; i < HOLDS; i++) /* the presses first, in order; then the releases */
+        assert_true(s.edges[i].pressed && fabs(s.edges[i].time_s - i / 1000.0) < 1e-9);
+    for (int i = HOLDS; i < 2 * HOLDS; i++)
+        assert_true(!s.edges[i].pressed && s.edges[i].time_s >= s.edges[i - 1].time_s);
+    /* count the comparisons on the parser's own unsorted order (presses and releases interleaved) */
+    gk_raw_edge *edges = malloc(sizeof *edges * 2 * HOLDS);
+    for (int i = 0; i < HOLDS; i++) {
+        edges[2 * i] = (gk_raw_edge){.time_s = i / 1000.0, .button = GK_BTN_NEXT, .pressed = true};
+        edges[2 * i + 1] = (gk_raw_edge){.time_s = i / 1000.0 + 3600, .button = GK_BTN_NEXT, .pressed = false};
+    }
+    long n = 2 * HOLDS, log2n = 0;
+    while ((1L << log2n) < n)
+        log2n++;
+    long comparisons = gk_script_sort_edges(edges, (int)n);
+    print_message("# %ld edges sorted with %ld comparisons (n log2 n = %ld)\n", n, comparisons, n * log2n);
+    assert_true(comparisons <= n * log2n);
+    for (int i = 1; i < n; i++)
+        assert_true(edges[i].time_s >= edges[i - 1].time_s);
+    /* stability: equal times keep their order */
+    gk_raw_edge ties[5] = {{.time_s = 1, .button = GK_BTN_NEXT}, {.time_s = 0, .button = GK_BTN_PREV},
+                           {.time_s = 1, .button = GK_BTN_MODE}, {.time_s = 0, .button = GK_BTN_INFO},
+                           {.time_s = 1, .button = GK_BTN_PREV}};
+    gk_script_sort_edges(ties, 5);
+    enum gk_button want[5] = {GK_BTN_PREV, GK_BTN_INFO, GK_BTN_NEXT, GK_BTN_MODE, GK_BTN_PREV};
+    for (int i = 0; i < 5; i++)
+        assert_int_equal(ties[i].button, want[i]);
+    free(edges);
+    gk_script_free(&s);
+    free(text);
 }
 
 static void empty_and_comment_only_scripts_are_fine(void **state)
@@ -108,6 +158,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(parses_actions_into_sorted_edges),
+        cmocka_unit_test(overlapping_holds_sort_in_n_log_n),
         cmocka_unit_test(empty_and_comment_only_scripts_are_fine),
         cmocka_unit_test(errors_name_file_line_and_problem),
         cmocka_unit_test(missing_file_is_input_error_naming_it),
