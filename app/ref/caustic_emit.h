@@ -30,7 +30,10 @@
 #include "sample.h"
 
 enum { GK_CAUSTIC_EMIT_LIGHT = 0, GK_CAUSTIC_EMIT_GUIDED = 1 };
-#define GK_CAUSTIC_GRID_DEFAULT 1 /* cells per axis; measured on caustic-ring (see caustic_emit.c) */
+/* Cells per axis of the target grid. Measured on caustic-ring, 160x120, 32 spp, same run: noise floor
+   inside the caustic mask 0.097 / 0.116 / 0.125 with 1 / 2 / 4 cells per axis at equal time — finer
+   cells hug the ring better but overlap, and the 1/(cones covering d) weights add variance. */
+#define GK_CAUSTIC_GRID_DEFAULT 1
 
 typedef struct gk_caustic_cone {
     vec3 axis;          /* unit, from the light towards the target's centre */
