@@ -8,6 +8,11 @@
 #   tests/references/noise.csv (file,spp,seed,rel_rmse_floor).
 # The floor is measured by the renderer itself from two independent halves of the samples (see
 # app/ref/render.h) and is also stored in each EXR (gikiosk:noise_floor).
+# Each SCENE-caustics.exr gets its caustic mask beside it, SCENE-caustics-mask.png (pixels above 1/4
+# of the caustic's peak luminance, `gikiosk reference --caustic-mask`), and its floor inside and
+# outside that mask, with the render time, in tests/references/noise-regions.csv
+# (file,spp,seed,mask,mask_pixels,floor_in_mask,floor_outside_mask,render_seconds).
+# Caustic photons are aimed at the mirrors (--caustic-emit guided, the default; app/ref/caustic_emit.h).
 #
 # usage: tools/references.sh BIN [SCENE...]      (default: every scene of the list below)
 #        tools/references.sh --bench BIN          (cornell, 1 vs 2 threads: samples/s, rays/s)
@@ -51,7 +56,7 @@ spp_for() {
         cornell-spot) echo 2048 ;;
         shadow-planes) echo 512 ;;
         light-leak) echo 32 ;;   # the right room is black by design: the image is exactly 0
-        caustic-ring) echo 2048 ;;   # caustics come from light tracing: rel. noise is high where the ring focuses
+        caustic-ring) echo 2048 ;;   # caustics: guided light tracing, floor ~0.012 inside the caustic mask
         furnace) echo 128 ;;
         atrium) echo 512 ;;
         *) echo 128 ;;
@@ -62,6 +67,17 @@ scenes=${*:-"cornell cornell-spot shadow-planes light-leak caustic-ring furnace 
 mkdir -p "$OUT_DIR"
 csv=$OUT_DIR/noise.csv
 [ -f "$csv" ] || echo "file,spp,seed,rel_rmse_floor" >"$csv"
+regions=$OUT_DIR/noise-regions.csv
+[ -f "$regions" ] || echo "file,spp,seed,mask,mask_pixels,floor_in_mask,floor_outside_mask,render_seconds" >"$regions"
+
+attr_of() { iinfo -v "$1" 2>/dev/null | sed -n "s/.*gikiosk:$2: \"\(.*\)\"/\1/p"; }
+# Replaces FILE's row of a CSV (first column) with ROW, keeping the header first and rows sorted.
+put_row() {
+    grep -v "^$2," "$1" >"$1.tmp" || true
+    echo "$3" >>"$1.tmp"
+    { head -n 1 "$1.tmp"; tail -n +2 "$1.tmp" | LC_ALL=C sort; } >"$1"
+    rm -f "$1.tmp"
+}
 
 floor_of() { iinfo -v "$1" 2>/dev/null | sed -n 's/.*gikiosk:noise_floor: "\(.*\)"/\1/p'; }
 max_of() { oiiotool "$1" --printstats 2>/dev/null | sed -n 's/.*Stats Max: *\([^ ]*\) *\([^ ]*\) *\([^ ]*\).*/\1 \2 \3/p'; }
@@ -81,19 +97,23 @@ for scene in $scenes; do
         if [ "$variant" = all ]; then file=$scene.exr; else file=$scene-$variant.exr; fi
         out=$OUT_DIR/$file
         start=$(date +%s)
+        mask=
+        if [ "$paths" = caustics ]; then mask=$scene-caustics-mask.png; fi
         "$BIN" reference --scene "$scene" --scenes-dir "$SCENES_DIR" --size "$SIZE" --spp "$spp" \
-            --paths "$paths" --bounces "$bounces" --seed "$SEED" --out "$out"
+            --paths "$paths" --bounces "$bounces" --seed "$SEED" --out "$out" \
+            ${mask:+--caustic-mask "$OUT_DIR/$mask"}
         if [ "$paths" = caustics ] && [ "$(max_of "$out")" = "0.000000 0.000000 0.000000" ]; then
-            rm -f "$out"   # no caustic paths in this scene
+            rm -f "$out" "$OUT_DIR/$mask"   # no caustic paths in this scene
             echo "references: $scene has no caustics"
             continue
         fi
         floor=$(floor_of "$out")
         [ -n "$floor" ] || floor=nan   # black image: no relative error defined
-        grep -v "^$file," "$csv" >"$csv.tmp" || true
-        echo "$file,$spp,$SEED,$floor" >>"$csv.tmp"
-        { head -n 1 "$csv.tmp"; tail -n +2 "$csv.tmp" | LC_ALL=C sort; } >"$csv"
-        rm -f "$csv.tmp"
+        put_row "$csv" "$file" "$file,$spp,$SEED,$floor"
+        if [ -n "$mask" ]; then
+            put_row "$regions" "$file" "$file,$spp,$SEED,$mask,$(attr_of "$out" caustic_mask_pixels),$(attr_of "$out" \
+                noise_floor_in_mask),$(attr_of "$out" noise_floor_outside_mask),$(attr_of "$out" render_seconds)"
+        fi
         echo "references: $file spp $spp floor $floor ($(( $(date +%s) - start )) s)"
     done
 done

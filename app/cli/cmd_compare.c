@@ -1,5 +1,6 @@
-/* gikiosk compare REFERENCE TEST [--json] [--exposure X]: error metrics of a test image against a
- * reference (definitions in metrics/metrics.h), as aligned text or one JSON object. */
+/* gikiosk compare REFERENCE TEST [--json] [--exposure X] [--mask MASK]: error metrics of a test image
+ * against a reference (definitions in metrics/metrics.h), as aligned text or one JSON object; with a
+ * mask (e.g. the caustic mask beside a caustic reference), also over the pixels inside and outside it. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -10,7 +11,7 @@
 
 static void usage(FILE *f)
 {
-    fputs("usage: gikiosk compare REFERENCE TEST [--json] [--exposure X]\n"
+    fputs("usage: gikiosk compare REFERENCE TEST [--json] [--exposure X] [--mask MASK]\n"
           "\n"
           "Error metrics of TEST against REFERENCE (any format OpenImageIO reads; linear EXR expected).\n"
           "Both images must have the same size and channel count.\n"
@@ -18,6 +19,9 @@ static void usage(FILE *f)
           "  --json        print one JSON object instead of aligned text\n"
           "  --exposure X  scale factor applied before the tonemap for psnr and ssim\n"
           "                (default 0.18 / mean luminance of REFERENCE, 1 when that is 0)\n"
+          "  --mask MASK   an image of the same size (e.g. tests/references/SCENE-caustics-mask.png):\n"
+          "                also report every metric over the pixels inside it (a colour\n"
+          "                channel >= 0.5) and outside it; the exposure stays the whole image's\n"
           "\n"
           "metrics (colour channels: RGB, or grey for 1-2 channel images; alpha ignored):\n"
           "  rel_rmse    sqrt(mean (t-r)^2) / mean r          linear\n"
@@ -59,14 +63,10 @@ static void json_string(const char *key, const char *s)
     putchar('"');
 }
 
-static void print_json(const char *ref_path, const char *test_path, const gk_image *ref, const gk_metrics *m)
+/* The metrics as JSON members (no braces). */
+static void json_metrics(const gk_metrics *m)
 {
     double psnr = (m->psnr > 999.0) ? 999.0 : m->psnr; /* +inf and > 999 both cap */
-    putchar('{');
-    json_string("reference", ref_path);
-    fputs(", ", stdout);
-    json_string("test", test_path);
-    printf(", \"width\": %d, \"height\": %d, \"channels\": %d, ", ref->width, ref->height, ref->channels);
     json_number("rel_rmse", m->rel_rmse);
     fputs(", ", stdout);
     json_number("rel_mse", m->rel_mse);
@@ -86,13 +86,45 @@ static void print_json(const char *ref_path, const char *test_path, const gk_ima
     json_number("ref_mean", m->ref_mean);
     fputs(", ", stdout);
     json_number("test_mean", m->test_mean);
-    printf(", \"nonfinite\": %ld}\n", m->nonfinite);
+    printf(", \"pixels\": %ld, \"nonfinite\": %ld", m->pixels, m->nonfinite);
 }
 
-static void print_text(const char *ref_path, const char *test_path, const gk_image *ref, const gk_metrics *m)
+typedef struct mask_report {
+    const char *path;
+    long pixels;
+    gk_metrics inside, outside;
+    int has_outside;  /* 0 when the mask selects every pixel */
+} mask_report;
+
+static void print_json(const char *ref_path, const char *test_path, const gk_image *ref, const gk_metrics *m,
+                       const mask_report *mr)
 {
-    printf("%-11s %s (%dx%d, %d channels)\n", "reference", ref_path, ref->width, ref->height, ref->channels);
-    printf("%-11s %s\n", "test", test_path);
+    putchar('{');
+    json_string("reference", ref_path);
+    fputs(", ", stdout);
+    json_string("test", test_path);
+    printf(", \"width\": %d, \"height\": %d, \"channels\": %d, ", ref->width, ref->height, ref->channels);
+    json_metrics(m);
+    if (mr) {
+        fputs(", \"mask\": {", stdout);
+        json_string("file", mr->path);
+        printf(", \"pixels\": %ld, \"inside\": {", mr->pixels);
+        json_metrics(&mr->inside);
+        fputs("}, \"outside\": ", stdout);
+        if (mr->has_outside) {
+            putchar('{');
+            json_metrics(&mr->outside);
+            putchar('}');
+        } else {
+            fputs("null", stdout);
+        }
+        putchar('}');
+    }
+    puts("}");
+}
+
+static void text_metrics(const gk_metrics *m)
+{
     printf("%-11s %.6g\n", "rel_rmse", m->rel_rmse);
     printf("%-11s %.6g\n", "rel_mse", m->rel_mse);
     printf("%-11s %.6g\n", "rmse", m->rmse);
@@ -111,6 +143,67 @@ static long count_nonfinite(const gk_image *img)
     for (long i = 0; i < count; i++)
         n += !isfinite(img->pixels[i]);
     return n;
+}
+
+static void print_text(const char *ref_path, const char *test_path, const gk_image *ref, const gk_metrics *m,
+                       const mask_report *mr)
+{
+    printf("%-11s %s (%dx%d, %d channels)\n", "reference", ref_path, ref->width, ref->height, ref->channels);
+    printf("%-11s %s\n", "test", test_path);
+    text_metrics(m);
+    if (!mr)
+        return;
+    printf("\ninside the mask %s (%ld pixels):\n", mr->path, mr->pixels);
+    text_metrics(&mr->inside);
+    if (mr->has_outside) {
+        printf("\noutside the mask (%ld pixels):\n", mr->outside.pixels);
+        text_metrics(&mr->outside);
+    } else {
+        printf("\noutside the mask: no pixel\n");
+    }
+}
+
+/* Reads the mask image and computes the metrics inside and outside it. */
+static int mask_metrics(const char *path, const gk_image *ref, const gk_image *test, double exposure,
+                        mask_report *mr, gk_err *e)
+{
+    gk_image img = {0};
+    if (gk_image_read(path, &img, e) != 0)
+        return -1;
+    int rc = -1;
+    unsigned char *in = NULL;
+    if (img.width != ref->width || img.height != ref->height) {
+        gk_fail(e, GK_EINPUT, "mask %s is %dx%d, the images are %dx%d", path, img.width, img.height, ref->width,
+                ref->height);
+        goto out;
+    }
+    in = gk_mask_from_image(&img);
+    if (!in) {
+        gk_fail(e, GK_ERUNTIME, "out of memory for the mask %s", path);
+        goto out;
+    }
+    size_t n = (size_t)img.width * img.height;
+    mr->path = path;
+    mr->pixels = gk_mask_count(in, img.width, img.height);
+    if (mr->pixels == 0) {
+        gk_fail(e, GK_EINPUT, "mask %s selects no pixel (no colour channel >= 0.5)", path);
+        goto out;
+    }
+    /* The same auto exposure as the whole image, so the tonemap is the one it gets. */
+    if (!(exposure > 0.0))
+        exposure = gk_metrics_auto_exposure(ref);
+    if (gk_metrics_compute_masked(ref, test, exposure, in, &mr->inside, e) != 0)
+        goto out;
+    mr->has_outside = mr->pixels < (long)n;
+    for (size_t p = 0; p < n; p++)
+        in[p] = !in[p];
+    if (mr->has_outside && gk_metrics_compute_masked(ref, test, exposure, in, &mr->outside, e) != 0)
+        goto out;
+    rc = 0;
+out:
+    free(in);
+    gk_image_free(&img);
+    return rc;
 }
 
 static int bad_usage(const char *fmt, const char *arg)
@@ -136,6 +229,7 @@ int gk_cmd_compare(int argc, char **argv)
 {
     const char *paths[2] = {NULL, NULL};
     int n_paths = 0, json = 0;
+    const char *mask_path = NULL;
     double exposure = 0.0; /* auto */
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -150,6 +244,11 @@ int gk_cmd_compare(int argc, char **argv)
                 return bad_usage("--exposure needs a value%s", "");
             if (parse_exposure(v, &exposure) != 0)
                 return bad_usage("--exposure: '%s' is not a positive number", v);
+        } else if (!strcmp(a, "--mask") || !strncmp(a, "--mask=", 7)) {
+            const char *v = a[6] == '=' ? a + 7 : (i + 1 < argc ? argv[++i] : NULL);
+            if (!v || !*v)
+                return bad_usage("--mask needs a file%s", "");
+            mask_path = v;
         } else if (a[0] == '-' && a[1] != '\0') {
             return bad_usage("unknown option '%s'", a);
         } else if (n_paths < 2) {
@@ -163,11 +262,13 @@ int gk_cmd_compare(int argc, char **argv)
 
     gk_image ref = {0}, test = {0};
     gk_metrics m;
+    mask_report mr = {0};
     gk_err e = {0};
     int rc = 0;
     long ref_bad = 0;
     if (gk_image_read(paths[0], &ref, &e) != 0 || gk_image_read(paths[1], &test, &e) != 0 ||
-        gk_metrics_compute(&ref, &test, exposure, &m, &e) != 0) {
+        gk_metrics_compute(&ref, &test, exposure, &m, &e) != 0 ||
+        (mask_path && mask_metrics(mask_path, &ref, &test, exposure, &mr, &e) != 0)) {
         fprintf(stderr, "gikiosk compare: %s\n", e.msg);
         rc = e.code ? e.code : 1;
     } else if ((ref_bad = count_nonfinite(&ref)) > 0) {
@@ -176,9 +277,9 @@ int gk_cmd_compare(int argc, char **argv)
         rc = 2;
     } else {
         if (json)
-            print_json(paths[0], paths[1], &ref, &m);
+            print_json(paths[0], paths[1], &ref, &m, mask_path ? &mr : NULL);
         else
-            print_text(paths[0], paths[1], &ref, &m);
+            print_text(paths[0], paths[1], &ref, &m, mask_path ? &mr : NULL);
         /* A NaN pixel makes the metrics NaN (or hides in them): never a success. */
         if (m.nonfinite > 0 || !isfinite(m.rmse) || !isfinite(m.ssim)) {
             fprintf(stderr, "gikiosk compare: %s: %ld NaN/inf values in the test image; the metrics are not "

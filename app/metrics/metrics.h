@@ -74,6 +74,15 @@ unsigned char *gk_mask_from_pixels(int width, int height, const int *xy, int n);
 /* Pixels with x0 <= x < x1 and y0 <= y < y1 (clipped to the image). */
 unsigned char *gk_mask_from_rect(int width, int height, int x0, int y0, int x1, int y1);
 
+/* The caustic mask of a reference: pixels whose luminance exceeds fraction x the image's peak
+ * luminance (issue 14 uses fraction 1/4); the peak goes to *peak (optional). Empty for a black image. */
+unsigned char *gk_mask_above_peak(const gk_image *img, double fraction, float *peak);
+/* A mask read back from a mask image (e.g. the PNG `gikiosk reference --caustic-mask` writes):
+ * pixels where any colour channel is >= 0.5 (PNG: >= 128 of 255). */
+unsigned char *gk_mask_from_image(const gk_image *img);
+/* Non-zero bytes of a width x height mask. */
+long gk_mask_count(const unsigned char *mask, int width, int height);
+
 /* SSIM of two single-channel planes with values in [0, 1] (see above); map (optional, width *
  * height) receives the per-pixel SSIM. mask (optional) selects the pixels averaged. Returns the
  * mean, or NaN when out of memory or the mask is empty. */

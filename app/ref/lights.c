@@ -296,16 +296,28 @@ static vec3 cosine_about(vec3 n, float u1, float u2)
     return gk_to_world(gk_sample_cosine_hemisphere(u1, u2), t, b, n);
 }
 
+int gk_light_pick(const gk_ref_scene *rs, float u, float *prob)
+{
+    return pick_cdf(rs->light_cdf, rs->n_lights, u, prob);
+}
+
 bool gk_light_photon(const gk_ref_scene *rs, gk_rng *rng, vec3 *o, vec3 *d, vec3 *flux, int *light)
 {
-    float u0 = gk_rng_float(rng), u1 = gk_rng_float(rng), u2 = gk_rng_float(rng);
-    float u3 = gk_rng_float(rng), u4 = gk_rng_float(rng), u5 = gk_rng_float(rng);
+    float u0 = gk_rng_float(rng), u[5];
+    for (int k = 0; k < 5; k++)
+        u[k] = gk_rng_float(rng);
     float pl;
-    int li = pick_cdf(rs->light_cdf, rs->n_lights, u0, &pl);
+    int li = gk_light_pick(rs, u0, &pl);
     if (li < 0)
         return false;
-    const gk_ref_light *L = &rs->lights[li];
     *light = li;
+    return gk_light_photon_of(rs, li, pl, u, o, d, flux);
+}
+
+bool gk_light_photon_of(const gk_ref_scene *rs, int li, float pl, const float u[5], vec3 *o, vec3 *d, vec3 *flux)
+{
+    float u1 = u[0], u2 = u[1], u3 = u[2], u4 = u[3], u5 = u[4];
+    const gk_ref_light *L = &rs->lights[li];
     float eps = 1e-5f * rs->radius;
     switch (L->kind) {
     case GK_REF_POINT:

@@ -46,6 +46,13 @@ float gk_light_pdf(const gk_ref_scene *rs, int li, int tri, vec3 p, vec3 x, vec3
  * the light's index (for the range window at the first hit). */
 bool gk_light_photon(const gk_ref_scene *rs, gk_rng *rng, vec3 *o, vec3 *d, vec3 *flux, int *light);
 
+/* Picks a light in proportion to power (the choice of gk_light_photon and next-event estimation)
+ * from a uniform u: its index (-1 without lights) and, in *prob, the probability of that pick. */
+int gk_light_pick(const gk_ref_scene *rs, float u, float *prob);
+/* gk_light_photon's emission from light li once picked with probability pl, from five uniforms:
+ * the flux is divided by pl. (gk_light_photon = gk_light_pick + this, drawing the same numbers.) */
+bool gk_light_photon_of(const gk_ref_scene *rs, int li, float pl, const float u[5], vec3 *o, vec3 *d, vec3 *flux);
+
 /* The range window of a point/spot light at distance dist (1 when range is 0). */
 float gk_light_window(const gk_ref_light *L, float dist);
 /* Spot cone factor t^2 for an emission direction w (unit, leaving the light). */

@@ -8,6 +8,7 @@
  * to the pixel it projects into (the pinhole's importance We), divided by the number of photons. */
 #include <math.h>
 
+#include "caustic_emit.h"
 #include "lights.h"
 #include "materials.h"
 #include "trace.h"
@@ -52,12 +53,12 @@ static void connect_camera(const gk_ref_scene *rs, const gk_surface *sf, vec3 x,
     splat(ctx, px, py, v3_scale(v3_mul(flux, f), we));
 }
 
-void gk_trace_light(const gk_ref_scene *rs, int max_depth, gk_rng *rng, gk_splat_fn splat, void *ctx,
-                    gk_trace_stats *st)
+void gk_trace_light(const gk_ref_scene *rs, const gk_caustic_emitter *em, int max_depth, gk_rng *rng,
+                    gk_splat_fn splat, void *ctx, gk_trace_stats *st)
 {
     vec3 o, d, flux;
     int li;
-    if (!gk_light_photon(rs, rng, &o, &d, &flux, &li))
+    if (em ? !gk_caustic_photon(rs, em, rng, &o, &d, &flux, &li) : !gk_light_photon(rs, rng, &o, &d, &flux, &li))
         return;
     int n_specular = 0;
     for (int depth = 0; depth < max_depth; depth++) {

@@ -144,6 +144,12 @@ static int build_cdf(const gk_ref_scene *rs, float **out, bool delta_only)
     return 0;
 }
 
+bool gk_ref_material_may_be_delta(const gk_material *mt)
+{
+    /* Textures multiply the factors by at most 1, so these bounds hold at every point. */
+    return (mt->metallic > 0.5f && mt->roughness < 0.05f) || (mt->transmission > 0.0f && mt->roughness < 0.05f);
+}
+
 int gk_ref_scene_build(gk_ref_scene *rs, const gk_scene *s, mat4 view, mat4 proj, vec3 eye, int width,
                        int height, gk_err *e)
 {
@@ -241,8 +247,7 @@ int gk_ref_scene_build(gk_ref_scene *rs, const gk_scene *s, mat4 view, mat4 proj
         L->power = GK_PI * rs->emissive_cdf[ne];
     }
     for (uint32_t i = 0; i < rs->n_tris; i++) {
-        const gk_material *mt = &s->materials[rs->tris[i].material];
-        if ((mt->metallic > 0.5f && mt->roughness < 0.05f) || (mt->transmission > 0.0f && mt->roughness < 0.05f))
+        if (gk_ref_material_may_be_delta(&s->materials[rs->tris[i].material]))
             rs->has_delta_surfaces = true;
     }
     if (build_cdf(rs, &rs->light_cdf, false) || build_cdf(rs, &rs->delta_cdf, true)) {

@@ -75,6 +75,10 @@ int gk_ref_scene_build(gk_ref_scene *rs, const gk_scene *s, mat4 view, mat4 proj
                        int width, int height, gk_err *e);
 void gk_ref_scene_free(gk_ref_scene *rs);
 
+/* True when a surface of this material can have a delta lobe somewhere (mirror: metallic > 0.5 and
+ * roughness < 0.05; smooth dielectric: transmission > 0 and roughness < 0.05, as materials.h). */
+bool gk_ref_material_may_be_delta(const gk_material *mt);
+
 /* Primary ray through the centre of pixel (x, y), y = 0 at the top. */
 vec3 gk_ref_camera_dir(const gk_ref_scene *rs, float px, float py);
 

@@ -25,6 +25,7 @@ typedef struct job {
     pthread_mutex_t progress_lock;
     int last_percent;
     bool light_pass;
+    const gk_caustic_emitter *emitter; /* NULL: the lights' own emission */
     int failed;
 } job;
 
@@ -38,6 +39,8 @@ void gk_ref_options_default(gk_ref_options *o)
     o->seed = 1;
     o->paths = GK_PATH_ALL;
     o->max_diffuse = GK_BOUNCES_UNLIMITED;
+    o->caustic_emit = GK_CAUSTIC_EMIT_GUIDED;
+    o->caustic_grid = GK_CAUSTIC_GRID_DEFAULT;
 }
 
 int gk_ref_bounces_parse(const char *s)
@@ -145,7 +148,7 @@ static void render_chunk(job *j, int chunk, gk_trace_stats *st)
         for (size_t p = 0; p < npix; p++) {
             gk_rng rng;
             gk_rng_seed(&rng, j->o->seed, p, (uint64_t)s, 1);
-            gk_trace_light(rs, j->o->max_depth, &rng, splat_into, &c, st);
+            gk_trace_light(rs, j->emitter, j->o->max_depth, &rng, splat_into, &c, st);
         }
     j->chunk[chunk] = img;
 }
@@ -218,6 +221,12 @@ int gk_ref_render(const gk_ref_scene *rs, const gk_ref_options *o, gk_ref_result
     j.light_pass = (o->paths & GK_PATH_CAUSTICS) && rs->n_lights > 0 && rs->has_delta_surfaces &&
                    o->max_diffuse != 0;
     j.n_items = j.n_tiles + (j.light_pass ? LIGHT_CHUNKS : 0);
+    gk_caustic_emitter emitter = {0};
+    if (j.light_pass && o->caustic_emit == GK_CAUSTIC_EMIT_GUIDED) {
+        if (gk_caustic_emitter_build(&emitter, rs, o->caustic_grid, e))
+            return -1;
+        j.emitter = &emitter;
+    }
     j.last_percent = -1;
     j.sum_h1 = calloc(npix * 3, sizeof(double));
     j.sum_all = calloc(npix * 3, sizeof(double));
@@ -286,8 +295,14 @@ int gk_ref_render(const gk_ref_scene *rs, const gk_ref_options *o, gk_ref_result
     free(j.chunk);
     free(j.sum_h1);
     free(j.sum_all);
-    free(h1);
-    free(h2);
+    gk_caustic_emitter_free(&emitter);
+    if (n1 > 0 && n2 > 0) {
+        r->half[0] = h1, r->half[1] = h2;
+        r->n_half[0] = n1, r->n_half[1] = n2;
+    } else {
+        free(h1);
+        free(h2);
+    }
     return 0;
 fail:
     if (j.chunk)
@@ -298,6 +313,7 @@ fail:
     free(j.sum_all);
     free(h1);
     free(h2);
+    gk_caustic_emitter_free(&emitter);
     gk_ref_result_free(r);
     return -1;
 }
@@ -305,5 +321,30 @@ fail:
 void gk_ref_result_free(gk_ref_result *r)
 {
     free(r->rgb);
-    r->rgb = NULL;
+    free(r->half[0]);
+    free(r->half[1]);
+    r->rgb = r->half[0] = r->half[1] = NULL;
+}
+
+double gk_ref_noise_floor_masked(const gk_ref_result *r, int width, int height, const unsigned char *mask,
+                                 bool inside)
+{
+    if (!r->half[0] || !r->half[1])
+        return NAN;
+    double se = 0.0, sum = 0.0;
+    size_t n = 0;
+    for (size_t p = 0; p < (size_t)width * height; p++) {
+        if ((mask[p] != 0) != inside)
+            continue;
+        for (int c = 0; c < 3; c++) {
+            double d = (double)r->half[0][3 * p + c] - (double)r->half[1][3 * p + c];
+            se += d * d;
+            sum += r->rgb[3 * p + c];
+        }
+        n += 3;
+    }
+    if (n == 0 || !(sum > 0.0))
+        return NAN;
+    int n1 = r->n_half[0], n2 = r->n_half[1];
+    return sqrt(se / (double)n) / (sum / (double)n) / sqrt((double)(n1 + n2) * (1.0 / n1 + 1.0 / n2));
 }

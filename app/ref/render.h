@@ -15,6 +15,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "caustic_emit.h"
 #include "ref_scene.h"
 #include "trace.h"
 
@@ -28,6 +29,10 @@ typedef struct gk_ref_options {
     int max_diffuse;     /* most D vertices per path, the eye's first surface included (1: direct
                             light, 2: direct + one bounce); GK_BOUNCES_UNLIMITED by default */
     bool progress;       /* draw a progress bar on stderr */
+    int caustic_emit;    /* GK_CAUSTIC_EMIT_GUIDED (default: caustic photons towards the delta
+                            surfaces, caustic_emit.h) or GK_CAUSTIC_EMIT_LIGHT (the lights' own
+                            emission); both unbiased, the image differs only in noise */
+    int caustic_grid;    /* cells per axis of the guided photons' target grid (default 1) */
 } gk_ref_options;
 
 typedef struct gk_ref_result {
@@ -37,11 +42,19 @@ typedef struct gk_ref_result {
     uint64_t rays;
     uint64_t samples;    /* camera samples (pixels x spp) */
     uint64_t light_paths;
+    float *half[2];      /* the images of samples [0, spp/2) and [spp/2, spp) (NULL when spp < 2) */
+    int n_half[2];       /* their sample counts */
 } gk_ref_result;
 
 void gk_ref_options_default(gk_ref_options *o);
 int gk_ref_render(const gk_ref_scene *rs, const gk_ref_options *o, gk_ref_result *r, gk_err *e);
 void gk_ref_result_free(gk_ref_result *r);
+
+/* The noise floor (as above) over the pixels whose mask byte is non-zero (inside) or zero (!inside):
+ * sqrt(mean of (h1 - h2)^2) / mean of the image, both over those pixels, / sqrt(S (1/n1 + 1/n2)).
+ * NAN when the selection is empty, black or the render has no halves. */
+double gk_ref_noise_floor_masked(const gk_ref_result *r, int width, int height, const unsigned char *mask,
+                                 bool inside);
 
 /* Relative RMSE of t against r (n floats each), as defined above; NAN if mean(r) is 0. */
 double gk_ref_rel_rmse(const float *t, const float *r, size_t n);

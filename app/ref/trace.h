@@ -12,7 +12,8 @@
  * bounces, and classify each contribution by the D and S vertices seen so far.
  * Caustics seen directly, L S+ D E, come from light tracing (gk_trace_light) for every light type:
  * photons from the lights (chosen by power) through specular chains to the first diffuse hit,
- * connected to the pinhole camera. Eye paths cannot find them for delta lights (no BSDF sample hits
+ * connected to the pinhole camera; by default point and spot lights emit them only towards the
+ * delta surfaces (caustic_emit.h), where every caustic path starts. Eye paths cannot find them for delta lights (no BSDF sample hits
  * a point, no light sample leaves a delta vertex) and find them only with huge variance for small
  * area lights. So the eye pass drops every caustic path whose first vertex from the eye is D
  * (E D S+ L) and keeps the caustics seen through a mirror or glass (E S+ D S+ L) — nothing is
@@ -58,9 +59,12 @@ vec3 gk_trace_eye(const gk_ref_scene *rs, vec3 o, vec3 d, unsigned mask, int max
                   int rr_depth, gk_rng *rng, gk_trace_stats *st);
 
 /* One light path; its camera connections are passed to splat(ctx, px, py, rgb)
- * as image-plane measurement contributions (to be divided by the number of light paths). */
+ * as image-plane measurement contributions (to be divided by the number of light paths).
+ * em: photons emitted towards the specular geometry (caustic_emit.h); NULL: the lights' own
+ * emission (gk_light_photon). Both are unbiased; em wastes no photon where no caustic can start. */
 typedef void (*gk_splat_fn)(void *ctx, int px, int py, vec3 value);
-void gk_trace_light(const gk_ref_scene *rs, int max_depth, gk_rng *rng, gk_splat_fn splat, void *ctx,
-                    gk_trace_stats *st);
+struct gk_caustic_emitter;
+void gk_trace_light(const gk_ref_scene *rs, const struct gk_caustic_emitter *em, int max_depth, gk_rng *rng,
+                    gk_splat_fn splat, void *ctx, gk_trace_stats *st);
 
 #endif

@@ -74,4 +74,46 @@ expect_exit 2 "unknown option exits 2" "$GIKIOSK" compare "$A" "$A" --jsn
 stderr_has "unknown option '--jsn'" "unknown option is named"
 expect_exit 2 "bad exposure exits 2" "$GIKIOSK" compare "$A" "$A" --exposure zero
 expect_exit 0 "--help exits 0" "$GIKIOSK" compare --help
+
+# 6. --mask: metrics inside and outside a mask, on a synthetic pair whose error is known exactly.
+# Reference 1 everywhere; the test is 1.5 on the left half (x < 32), the mask's region, and exact on
+# the right: inside rel_rmse 0.5 and mean_ratio 1.5, outside exactly 0 and 1, the whole image
+# rel_rmse sqrt(0.5 * 0.25) = 0.353553 and mean_ratio 1.25.
+R=$TMP/mref.exr; T=$TMP/mtest.exr; M=$TMP/mask.png
+oiiotool --pattern constant:color=1,1,1 64x64 3 -d float -o "$R"
+# oiiotool --paste: the first image is the foreground, pasted into the second.
+oiiotool --pattern constant:color=1.5,1.5,1.5 32x64 3 "$R" --paste +0+0 -d float -o "$T"
+oiiotool --pattern constant:color=1,1,1 32x64 3 --pattern constant:color=0,0,0 64x64 3 --paste +0+0 -d uint8 -o "$M"
+"$GIKIOSK" compare "$R" "$T" --mask "$M" --json >"$TMP/mask.json"
+check "--mask exits 0" [ $? -eq 0 ]
+# part NAME: the members of the "NAME": {...} object of the mask report, on one line.
+part() { sed -n "s/.*\"$1\": {\([^}]*\)}.*/\1/p" "$TMP/mask.json" >"$TMP/part.json"; echo "$TMP/part.json"; }
+whole() { sed 's/, "mask": .*//' "$TMP/mask.json" >"$TMP/whole.json"; echo "$TMP/whole.json"; }
+check "mask: whole-image rel_rmse 0.353553" near "$(json_field rel_rmse "$(whole)")" 0.35355339 1e-6
+check "mask: whole-image mean_ratio 1.25" near "$(json_field mean_ratio "$(whole)")" 1.25 1e-6
+check "mask: 2048 pixels selected" grep -q '"mask": {"file": "[^"]*mask.png", "pixels": 2048' "$TMP/mask.json"
+check "mask: inside rel_rmse 0.5" near "$(json_field rel_rmse "$(part inside)")" 0.5 1e-6
+check "mask: inside mean_ratio 1.5" near "$(json_field mean_ratio "$(part inside)")" 1.5 1e-6
+check "mask: inside max error at [0, 0]" [ "$(json_field max_error_at "$(part inside)")" = "[0, 0]" ]
+check "mask: inside pixels 2048" [ "$(json_field pixels "$(part inside)")" = 2048 ]
+check "mask: outside rel_rmse exactly 0" [ "$(json_field rel_rmse "$(part outside)")" = 0 ]
+check "mask: outside mean_ratio exactly 1" [ "$(json_field mean_ratio "$(part outside)")" = 1 ]
+check "mask: outside pixels 2048" [ "$(json_field pixels "$(part outside)")" = 2048 ]
+"$GIKIOSK" compare "$R" "$T" --mask "$M" >"$TMP/mask.txt"
+check "mask: text has the inside section" grep -q '^inside the mask .*mask.png (2048 pixels):$' "$TMP/mask.txt"
+check "mask: text has the outside section" grep -q '^outside the mask (2048 pixels):$' "$TMP/mask.txt"
+check "mask: text rel_rmse lines whole/inside/outside" [ "$(grep -c '^rel_rmse' "$TMP/mask.txt")" -eq 3 ]
+oiiotool --pattern constant:color=1,1,1 64x64 3 -d uint8 -o "$TMP/all.png"
+"$GIKIOSK" compare "$R" "$T" --mask "$TMP/all.png" --json >"$TMP/mask.json"
+check "mask selecting everything: outside is null" grep -q '"outside": null}' "$TMP/mask.json"
+check "mask selecting everything: inside = whole" near "$(json_field rel_rmse "$(part inside)")" 0.35355339 1e-6
+oiiotool --pattern constant:color=0,0,0 64x64 3 -d uint8 -o "$TMP/none.png"
+expect_exit 2 "empty mask exits 2" "$GIKIOSK" compare "$R" "$T" --mask "$TMP/none.png"
+stderr_has "none\.png selects no pixel" "empty mask is named"
+oiiotool --pattern constant:color=1,1,1 32x64 3 -d uint8 -o "$TMP/smallmask.png"
+expect_exit 2 "mask of another size exits 2" "$GIKIOSK" compare "$R" "$T" --mask "$TMP/smallmask.png"
+stderr_has "smallmask\.png is 32x64, the images are 64x64" "mask size mismatch names both sizes"
+expect_exit 2 "missing mask exits 2" "$GIKIOSK" compare "$R" "$T" --mask "$TMP/nomask.png"
+stderr_has "nomask\.png" "missing mask is named"
+expect_exit 2 "--mask without a file exits 2" "$GIKIOSK" compare "$R" "$T" --mask
 finish

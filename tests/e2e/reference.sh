@@ -16,6 +16,9 @@ stderr_has "usage:" "bad --size prints usage"
 expect_exit 2 "bad --paths exits 2" "$GIKIOSK" reference --scene cornell --scenes-dir "$SCENES" --paths some --out "$TMP/x.exr"
 expect_exit 2 "bad --bounces exits 2" "$GIKIOSK" reference --scene cornell --scenes-dir "$SCENES" --bounces -1 --out "$TMP/x.exr"
 stderr_has "bounces: '-1' is not an integer" "bad --bounces is named"
+expect_exit 2 "bad --caustic-emit exits 2" "$GIKIOSK" reference --scene cornell --scenes-dir "$SCENES" --caustic-emit aimed --out "$TMP/x.exr"
+stderr_has "caustic-emit: 'aimed' is not guided or light" "bad --caustic-emit is named"
+expect_exit 2 "bad --caustic-grid exits 2" "$GIKIOSK" reference --scene cornell --scenes-dir "$SCENES" --caustic-grid 0 --out "$TMP/x.exr"
 expect_exit 2 "missing --out exits 2" "$GIKIOSK" reference --scene cornell --scenes-dir "$SCENES"
 expect_exit 0 "--help exits 0" "$GIKIOSK" reference --help
 
@@ -24,15 +27,41 @@ expect_exit 0 "--help exits 0" "$GIKIOSK" reference --help
 "$GIKIOSK" reference --scene cornell --scenes-dir "$SCENES" --size 32x24 --spp 4 --threads 2 --out "$TMP/t2.exr" 2>/dev/null
 check "1 and 2 threads render identical pixels" sh -c "idiff -fail 0 -failpercent 0 -warn 0 '$TMP/t1.exr' '$TMP/t2.exr' >/dev/null 2>&1"
 meta=$(iinfo -v "$TMP/t1.exr" 2>/dev/null)
-for key in command scene spp seed paths bounces noise_floor; do
+for key in command scene spp seed paths bounces caustic_emit caustic_grid noise_floor; do
     check "EXR metadata has gikiosk:$key" sh -c "echo '$meta' | grep -q 'gikiosk:$key:'"
 done
+
+# --caustic-mask: a PNG of the render's size selecting the pixels above 1/4 of its peak, and the
+# floors inside and outside it in the EXR. caustic-ring's caustic at 32x24, 16 spp.
+"$GIKIOSK" reference --scene caustic-ring --scenes-dir "$SCENES" --size 32x24 --spp 16 --paths caustics \
+    --out "$TMP/c.exr" --caustic-mask "$TMP/c-mask.png" 2>"$TMP/err"
+check "--caustic-mask writes the mask" [ -s "$TMP/c-mask.png" ]
+check "--caustic-mask reports the floors on stderr" grep -q "noise floor .* inside, .* outside" "$TMP/err"
+check "the mask is 32x24" sh -c "iinfo '$TMP/c-mask.png' | grep -q '32 x  *24'"
+cmeta=$(iinfo -v "$TMP/c.exr" 2>/dev/null)
+for key in caustic_mask_pixels noise_floor_in_mask noise_floor_outside_mask; do
+    check "EXR metadata has gikiosk:$key" sh -c "echo '$cmeta' | grep -q 'gikiosk:$key: \"[0-9]'"
+done
+# The mask's pixel count equals the pixels of the render above 1/4 of its peak luminance (oiiotool).
+peak=$(oiiotool "$TMP/c.exr" --chsum:weight=0.2126,0.7152,0.0722 --printstats 2>/dev/null | sed -n 's/.*Stats Max: *\([^ ]*\).*/\1/p')
+# lum - peak/4 clamped to [0, tiny] and scaled up: 1 above the threshold, 0 elsewhere; mean x pixels.
+above=$(oiiotool "$TMP/c.exr" --chsum:weight=0.2126,0.7152,0.0722 --subc "$(awk -v p="$peak" 'BEGIN { print p / 4 }')" \
+    --clamp:min=0 --mulc 1e30 --clamp:max=1 --printstats 2>/dev/null |
+    sed -n 's/.*Stats Avg: *\([^ ]*\).*/\1/p' | awk '{ printf "%d", $1 * 32 * 24 + 0.5 }')
+mask_px=$(echo "$cmeta" | sed -n 's/.*gikiosk:caustic_mask_pixels: "\(.*\)"/\1/p')
+echo "# caustic mask: $mask_px pixels, oiiotool counts $above above $peak / 4"
+check "mask pixel count ($mask_px) matches oiiotool ($above)" [ "$mask_px" = "$above" ]
+# (8-bit PNG: oiiotool prints the mean as "N (of 255)")
+in_png=$(oiiotool "$TMP/c-mask.png" --printstats 2>/dev/null | sed -n 's/.*Stats Avg: *\([^ ]*\).*/\1/p' |
+    awk '{ printf "%d", $1 / 255 * 32 * 24 + 0.5 }')
+check "the PNG holds those $mask_px pixels ($in_png)" [ "$in_png" = "$mask_px" ]
 
 # Committed references: re-render each at SPP_LOW with another seed and compare. The low-spp image's
 # expected rel RMSE against the reference is sqrt(floor_low^2 + floor_ref^2) ~= floor_ref *
 # sqrt(spp_ref / spp_low) (the reference's own noise is small next to it). Bound: 3x that. The
-# measured ratio is 0.96-1.08, and 0.13-0.16 for caustic-ring, whose firefly-dominated noise is
-# heavy-tailed (rare huge samples are missing at low spp); a wrong light unit,
+# measured ratio is 0.96-1.08 (caustic-ring-caustics 0.96 since its caustic photons are guided; it
+# was 0.13-0.16 with the light's own emission, whose rare photons on the mirror made the noise
+# heavy-tailed). Each reference is re-rendered with its own --caustic-emit; a wrong light unit,
 # camera, BRDF or a missing path class moves it by far more than 3x, as the noise is tiny at
 # reference spp.
 SPP_LOW=2
@@ -43,10 +72,12 @@ for ref in tests/references/*.exr; do
     scene=$(get scene); spp=$(get spp); paths=$(get paths); size=$(get size); floor=$(get noise_floor)
     bounces=$(get bounces)   # absent in references rendered before --bounces existed: unlimited
     [ -n "$bounces" ] || bounces=unlimited
+    emit=$(get caustic_emit) # absent in references rendered before --caustic-emit existed: light
+    [ -n "$emit" ] || emit=light
     name=$(basename "$ref")
     out=$TMP/low-$name
     json=$("$GIKIOSK" reference --scene "$scene" --scenes-dir "$SCENES" --size "$size" --spp $SPP_LOW \
-        --paths "$paths" --bounces "$bounces" --seed 777 --out "$out" --compare-to "$ref" 2>"$TMP/err")
+        --paths "$paths" --bounces "$bounces" --caustic-emit "$emit" --seed 777 --out "$out" --compare-to "$ref" 2>"$TMP/err")
     if [ -z "$json" ]; then
         not_ok "$name: re-render failed ($(head -c 200 "$TMP/err"))"
         continue

@@ -343,6 +343,55 @@ static void mask_metrics(void **state)
     gk_image_free(&t);
 }
 
+/* The caustic mask: luminance strictly above a fraction of the peak; NaN pixels never selected and
+ * never the peak; a black image gives an empty mask; a mask image reads back where a channel >= 0.5. */
+static void caustic_mask_above_peak(void **state)
+{
+    (void)state;
+    gk_image img;
+    make_constant(&img, 4, 2, 3, 0.0f);
+    /* Grey pixels, so luminance = the value: peak 4, threshold 1. */
+    const float v[8] = {4.0f, 1.0f, 1.01f, 0.5f, 2.0f, NAN, 0.0f, 3.0f};
+    for (int p = 0; p < 8; p++)
+        for (int c = 0; c < 3; c++)
+            img.pixels[3 * p + c] = v[p];
+    float peak = 0.0f;
+    unsigned char *m = gk_mask_above_peak(&img, 0.25, &peak);
+    assert_non_null(m);
+    assert_true(peak == 4.0f);
+    const unsigned char want[8] = {1, 0, 1, 0, 1, 0, 0, 1};
+    for (int p = 0; p < 8; p++)
+        assert_int_equal(m[p], want[p]);
+    assert_int_equal(gk_mask_count(m, 4, 2), 4);
+    free(m);
+    /* Luminance, not a channel: pure blue 4 has luminance 0.2888, under 1/4 of a grey 4's peak. */
+    for (int c = 0; c < 3; c++)
+        img.pixels[3 * 1 + c] = c == 2 ? 4.0f : 0.0f;
+    m = gk_mask_above_peak(&img, 0.25, NULL);
+    assert_int_equal(m[1], 0);
+    free(m);
+    gk_image_free(&img);
+
+    make_constant(&img, 3, 3, 3, 0.0f);
+    m = gk_mask_above_peak(&img, 0.25, &peak);
+    assert_non_null(m);
+    assert_true(peak == 0.0f);
+    assert_int_equal(gk_mask_count(m, 3, 3), 0);
+    free(m);
+    gk_image_free(&img);
+
+    /* Read back from a mask image: a grey+alpha image, alpha ignored, >= 0.5 selected. */
+    make_constant(&img, 3, 1, 2, 1.0f);
+    img.pixels[0] = 0.5f, img.pixels[2] = 0.49f, img.pixels[4] = 1.0f;
+    /* pixel 1: grey 0.49 under alpha 1 (make_constant): alpha must not select it */
+    m = gk_mask_from_image(&img);
+    assert_int_equal(m[0], 1);
+    assert_int_equal(m[1], 0);
+    assert_int_equal(m[2], 1);
+    free(m);
+    gk_image_free(&img);
+}
+
 static void nan_pixel_is_reported(void **state)
 {
     (void)state;
@@ -492,6 +541,7 @@ int main(void)
         cmocka_unit_test(alpha_is_ignored_and_grey_works),
         cmocka_unit_test(mismatch_names_both_sizes),
         cmocka_unit_test(mask_metrics),
+        cmocka_unit_test(caustic_mask_above_peak),
         cmocka_unit_test(nan_pixel_is_reported),
         cmocka_unit_test(means_and_exposure),
         cmocka_unit_test(flicker_by_hand),
