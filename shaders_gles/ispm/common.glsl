@@ -24,7 +24,7 @@ struct Hit { highp vec4 pos_valid; highp vec4 nrm_h; highp vec4 pow_dist; };
     highp uint ph_nonzero[16];  /* blocks holding a specular texel, per level */                    \
     highp uint ph_hits;         /* second hits the trace found */                                   \
     highp uint ph_reflected;    /* photons that survived Russian roulette and the lobe */           \
-    highp uint ph_pad0;                                                                             \
+    highp uint ph_steps;        /* march steps + list nodes visited (the trace's work, L19) */     \
     highp uint ph_pad1;
 
 // Normals as the seed stores them: spherical (θ, φ) in two halves.

@@ -50,6 +50,7 @@ typedef struct gk_ispm_stats {
     unsigned photons;            /* first hits (photon slots written) */
     unsigned reflected;          /* survived Russian roulette and the lobe */
     unsigned hits;               /* second hits found by the trace */
+    unsigned trace_work;         /* march steps + list nodes the trace visited (L19's work count) */
     unsigned photon_overflow;    /* photons dropped: buffer full */
     unsigned fragments;          /* list nodes wanted this frame (tier A: every frustum fragment) */
     unsigned list_overflow;      /* fragments dropped: the pool was full (L11) */

@@ -15,7 +15,7 @@
 /* Header of the photon buffer (ISPM_PHOTON_HEADER in common.glsl), in uints. */
 enum {
     ISPM_PH_COUNT = 0, ISPM_PH_LEVEL = 1, ISPM_PH_OVERFLOW = 2, ISPM_PH_TOP = 3, ISPM_PH_NONZERO = 4,
-    ISPM_PH_HITS = 20, ISPM_PH_REFLECTED = 21, ISPM_PH_HEADER_UINTS = 24
+    ISPM_PH_HITS = 20, ISPM_PH_REFLECTED = 21, ISPM_PH_STEPS = 22, ISPM_PH_HEADER_UINTS = 24
 };
 #define ISPM_PH_HEADER_BYTES (ISPM_PH_HEADER_UINTS * 4)
 enum { ISPM_LL_COUNT = 0, ISPM_LL_CAPACITY = 1, ISPM_LL_OVERFLOW = 2 };
@@ -63,6 +63,7 @@ typedef struct ispm_state {
     bool lists_ok;           /* start-up probe */
     /* splat + upsample */
     GLuint splat_fbo, splat_tex, splat_vao, empty_vao;
+    GLenum splat_fmt;        /* RGBA32F with EXT_color_buffer_float + EXT_float_blend, else RGBA16F */
     int splat_w, splat_h;
     /* view of the last frame's lists (tests) */
     mat4 view, proj;

@@ -78,11 +78,11 @@ static int ensure_splat_target(ispm_state *s, const gk_gi_frame *f, gk_err *e)
         glDeleteFramebuffers(1, &s->splat_fbo);
         glDeleteTextures(1, &s->splat_tex);
     }
-    /* RGBA16F: additive blending of irradiance (research A.5); colour-renderable with
-       EXT_color_buffer_half_float (checked at create) or 3.2 core. */
+    /* additive blending of irradiance (research A.5): RGBA32F with EXT_float_blend, else RGBA16F
+       (colour-renderable with EXT_color_buffer_half_float, checked at create, or 3.2 core) */
     glGenTextures(1, &s->splat_tex);
     glBindTexture(GL_TEXTURE_2D, s->splat_tex);
-    glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA16F, w, h);
+    glTexStorage2D(GL_TEXTURE_2D, 1, s->splat_fmt, w, h);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -92,7 +92,8 @@ static int ensure_splat_target(ispm_state *s, const gk_gi_frame *f, gk_err *e)
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, s->splat_tex, 0);
     GLenum st = glCheckFramebufferStatus(GL_FRAMEBUFFER);
     if (st != GL_FRAMEBUFFER_COMPLETE)
-        return gk_fail(e, GK_ERUNTIME, "ispm: splat target %dx%d RGBA16F incomplete (0x%04x)", w, h, st);
+        return gk_fail(e, GK_ERUNTIME, "ispm: splat target %dx%d %s incomplete (0x%04x)", w, h,
+                       s->splat_fmt == GL_RGBA32F ? "RGBA32F" : "RGBA16F", st);
     s->splat_w = w, s->splat_h = h;
     s->st.splat_w = w, s->st.splat_h = h;
     return 0;
