@@ -25,6 +25,7 @@ typedef struct gk_ispm_debug {
     unsigned shuffle;        /* != 0: permute the block order per frame with this seed (emulates a
                                 GPU's nondeterministic compaction order on llvmpipe, L13) */
     bool no_backface_rule;   /* L9: keep hits on surfaces the ray leaves */
+    bool faithful_hit;       /* the seed's |Δz| < ε alone, without the reach test (trace.comp) */
     bool faithful_kernel;    /* L15: the seed's 1/(πh²) normalisation */
     bool cone_kernel;        /* cone instead of the Gaussian */
     float delta;             /* Gaussian δ (0.25) */

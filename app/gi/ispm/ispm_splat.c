@@ -7,13 +7,13 @@
 #include "ispm_internal.h"
 
 typedef struct trace_uniforms {
-    GLint u_view, u_proj, u_res, u_near, u_tmax, u_eps_abs, u_eps_slope, u_backface, u_capacity, u_c0, u_omega_texel,
+    GLint u_view, u_proj, u_res, u_near, u_tmax, u_eps_abs, u_eps_slope, u_backface, u_reach, u_capacity, u_c0, u_omega_texel,
         u_cos_min, u_h_min, u_h_max;
 } trace_uniforms;
 static const gk_uniform_field trace_fields[] = {
     GK_UNIFORM(trace_uniforms, u_view),     GK_UNIFORM(trace_uniforms, u_proj),        GK_UNIFORM(trace_uniforms, u_res),
     GK_UNIFORM(trace_uniforms, u_near),     GK_UNIFORM(trace_uniforms, u_tmax),        GK_UNIFORM(trace_uniforms, u_eps_abs),
-    GK_UNIFORM(trace_uniforms, u_eps_slope), GK_UNIFORM(trace_uniforms, u_backface),   GK_UNIFORM(trace_uniforms, u_capacity),
+    GK_UNIFORM(trace_uniforms, u_eps_slope), GK_UNIFORM(trace_uniforms, u_backface),   GK_UNIFORM(trace_uniforms, u_reach), GK_UNIFORM(trace_uniforms, u_capacity),
     GK_UNIFORM(trace_uniforms, u_c0),       GK_UNIFORM(trace_uniforms, u_omega_texel), GK_UNIFORM(trace_uniforms, u_cos_min),
     GK_UNIFORM(trace_uniforms, u_h_min),    GK_UNIFORM(trace_uniforms, u_h_max)};
 
@@ -52,6 +52,7 @@ int ispm_trace(ispm_state *s, const gk_gi_frame *f, gk_err *e)
     glUniform1f(u->u_eps_abs, d->eps_abs_rel * s->diam);
     glUniform1f(u->u_eps_slope, d->eps_slope);
     glUniform1i(u->u_backface, !d->no_backface_rule);
+    glUniform1i(u->u_reach, !d->faithful_hit);
     glUniform1i(u->u_capacity, s->capacity);
     glUniform1f(u->u_c0, d->c0);
     glUniform1f(u->u_omega_texel, s->light.omega_texel);
