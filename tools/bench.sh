@@ -26,4 +26,9 @@ fi
 if "$BIN" scenes | grep -q 'vpl'; then
     run vpl --scenes cornell-spot,atrium --methods vpl --sweep 'vpl_n=256,512,1024;vpl_m=2,4,8,16,32,adaptive'
 fi
+# Caustics by image-space photon mapping, on caustic-ring's chart with the other methods: none, vct
+# and vpl at their defaults beside ispm's photons x trace resolution.
+if "$BIN" scenes | grep -q 'ispm'; then
+    run ispm --scenes caustic-ring --methods none,vct,vpl,ispm --sweep 'ispm_photons=1024,4096,16384,65536;ispm_trace=64,128,256'
+fi
 echo "bench: results in $OUT/*/bench.csv and $OUT/*/speed-accuracy-*.png"
