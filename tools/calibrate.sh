@@ -22,9 +22,9 @@ size=$(oiiotool --info "$REFS/cornell.exr" | sed -n 's/.*: *\([0-9]*\) x *\([0-9
 rm -rf "$OUT"
 mkdir -p "$(dirname "$OUT")"
 TIME_SIZE=${TIME_SIZE:-640x360}
-"$BIN" bench --scenes "$scenes" --methods none,vct,vpl --sweep "render_scale=1" --size "$size" \
+"$BIN" bench --scenes "$scenes" --methods none,vct,vpl,ispm --sweep "render_scale=1" --size "$size" \
     --frames 1 --warmup 2 --references "$REFS" --out "$OUT" 2>"$OUT.log" || { cat "$OUT.log" >&2; exit 1; }
-"$BIN" bench --scenes "$scenes" --methods none,vct,vpl --sweep "render_scale=1" --size "$TIME_SIZE" \
+"$BIN" bench --scenes "$scenes" --methods none,vct,vpl,ispm --sweep "render_scale=1" --size "$TIME_SIZE" \
     --frames "$FRAMES" --warmup 2 --references "$REFS" --out "$OUT/time" 2>"$OUT.time.log" ||
     { cat "$OUT.time.log" >&2; exit 1; }
 renderer=$(sed -n 's/^gikiosk: OpenGL ES .* on \(.*\)$/\1/p' "$OUT.log" | head -1)
