@@ -26,6 +26,11 @@ fi
 if "$BIN" scenes | grep -q 'vpl'; then
     run vpl --scenes cornell-spot,atrium --methods vpl --sweep 'vpl_n=256,512,1024;vpl_m=2,4,8,16,32,adaptive'
 fi
+# Caustics by image-space photon mapping, on caustic-ring's chart with the other methods: none, vct
+# and vpl at their defaults beside ispm's photons x trace resolution.
+if "$BIN" scenes | grep -q 'ispm'; then
+    run ispm --scenes caustic-ring --methods none,vct,vpl,ispm --sweep 'ispm_photons=1024,4096,16384,65536;ispm_trace=64,128,256'
+fi
 # Choosing a method: per scene ONE chart with every method's default sweep against one ruler
 # (SCENE-1bounce.exr where it exists, else SCENE.exr), the Pareto front over all of them, each
 # point's spread (median to p95 of its frames) and the kiosk's automatic choice at 400 ms, 640x360

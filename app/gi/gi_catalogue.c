@@ -9,7 +9,7 @@ static const gk_gi_entry catalogue[] = {
     {"none", true, 0, "direct light only (with soft shadows)"},
     {"vct", true, GK_GI_NEEDS_INTERREFLECTION, "voxel cone tracing"},
     {"vpl", true, GK_GI_NEEDS_INTERREFLECTION, "virtual point lights clustered into virtual area lights"},
-    {"ispm", false, GK_GI_NEEDS_CAUSTICS, "image-space photon mapping (caustics)"},
+    {"ispm", true, GK_GI_NEEDS_CAUSTICS, "image-space photon mapping (caustics)"},
     {"lgv", false, GK_GI_NEEDS_CAUSTICS, "photon tracing against cube maps, grid gathering"},
     {"lightmap", false, GK_GI_NEEDS_STATIC, "CPU photons, GPU final gather into light maps"},
     /* line-based volume caustics: a medium, and a specular caster lit by a local light */

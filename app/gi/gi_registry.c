@@ -7,10 +7,12 @@
 
 extern const gk_gi_method gk_gi_vct;
 extern const gk_gi_method gk_gi_vpl;
+extern const gk_gi_method gk_gi_ispm;
 
 static const gk_gi_method *const registry[] = {
     &gk_gi_vct,
     &gk_gi_vpl,
+    &gk_gi_ispm,
     NULL, /* sentinel: keeps the array valid C even with no method registered */
 };
 

@@ -1,0 +1,90 @@
+/* State shared by the files of the ispm method (not for other modules). */
+#ifndef GK_ISPM_INTERNAL_H
+#define GK_ISPM_INTERNAL_H
+
+#include "gl/gl.h"
+#include "gl/gl_program.h"
+#include "ispm.h"
+
+#define ISPM_RSM_RES 256     /* research A.4's llvmpipe size (the seed: 512²) */
+#define ISPM_RSM_LEVELS 9    /* 256 .. 1 */
+#define ISPM_PEEL_LAYERS 4   /* tier B: the seed's Fig. 4.2b compares against 4 layers */
+#define ISPM_NODE_BYTES 12   /* Node in shaders_gles/ispm/common.glsl */
+#define ISPM_PHOTON_BYTES 48
+#define ISPM_HIT_BYTES 48
+/* Header of the photon buffer (ISPM_PHOTON_HEADER in common.glsl), in uints. */
+enum {
+    ISPM_PH_COUNT = 0, ISPM_PH_LEVEL = 1, ISPM_PH_OVERFLOW = 2, ISPM_PH_TOP = 3, ISPM_PH_NONZERO = 4,
+    ISPM_PH_HITS = 20, ISPM_PH_REFLECTED = 21, ISPM_PH_STEPS = 22, ISPM_PH_HEADER_UINTS = 24
+};
+#define ISPM_PH_HEADER_BYTES (ISPM_PH_HEADER_UINTS * 4)
+enum { ISPM_LL_COUNT = 0, ISPM_LL_CAPACITY = 1, ISPM_LL_OVERFLOW = 2 };
+
+#define ISPM_KNOBS 5
+
+/* The light as the photon passes see it this frame (ispm_photons.c). */
+typedef struct ispm_light {
+    bool ok;                 /* a point/spot light and specular geometry in front of it */
+    vec3 pos, axis;
+    vec3 radiant;
+    bool spot;
+    float cos_outer, cos_inner;
+    mat4 view, proj, vp, inv_vp;
+    float tan_half;
+    float omega_texel;       /* mean solid angle of an RSM texel (sr) */
+} ispm_light;
+
+typedef struct ispm_state {
+    gk_gi_context ctx;
+    gk_program_cache *own_cache;
+    gk_ispm_debug dbg;
+    gk_ispm_stats st;
+    gk_knob knob[ISPM_KNOBS];
+    /* the diffuse indirect part: the vpl method, through its gi.h interface */
+    const gk_gi_method *vpl;
+    void *vpl_self;
+    /* budget this frame */
+    int photons, trace_res, tier;
+    float splat_scale;
+    long pool_bytes;
+    /* scene */
+    float diam;
+    ispm_light light;
+    /* RSM and photons */
+    GLuint rsm_fbo, rsm_tex[3], rsm_depth;
+    GLuint counts_ssbo, photon_ssbo, hit_buf;
+    int capacity;            /* photon slots allocated */
+    /* lists */
+    GLuint nodes_ssbo, pixels_ssbo, ctr_ssbo, ll_fbo;
+    long nodes_cap;          /* nodes the pool holds */
+    int ll_res;              /* trace resolution the pixel buffer was made for */
+    GLuint peel_fbo, peel_tex[ISPM_PEEL_LAYERS], peel_depth;
+    int peel_res;
+    bool lists_ok;           /* start-up probe */
+    /* splat + upsample */
+    GLuint splat_fbo, splat_tex, splat_vao, empty_vao;
+    GLenum splat_fmt;        /* RGBA32F with EXT_color_buffer_float + EXT_float_blend, else RGBA16F */
+    int splat_w, splat_h;
+    /* view of the last frame's lists (tests) */
+    mat4 view, proj;
+    /* counters read back one frame late (double-buffered copies) */
+    GLuint readback[2];
+    int readback_frame;
+    unsigned frame_index;
+    bool logged_overflow, logged_tier;
+} ispm_state;
+
+/* ispm_photons.c: frames the light onto the specular geometry, renders the RSM, builds the mask
+   pyramid and emits the reflected photons into photon_ssbo. False in *any when there is nothing to
+   emit this frame (no light, no specular geometry). */
+int ispm_emit_photons(ispm_state *s, const gk_gi_frame *f, bool *any, gk_err *e);
+/* ispm_lists.c: the camera-frustum lists at the trace resolution (tier A or B). */
+bool ispm_probe_lists(int gles_version);
+int ispm_build_lists(ispm_state *s, const gk_gi_frame *f, gk_err *e);
+/* ispm_splat.c: trace, splat and upsample+compose into f->hdr_fbo. */
+int ispm_trace(ispm_state *s, const gk_gi_frame *f, gk_err *e);
+int ispm_splat(ispm_state *s, const gk_gi_frame *f, gk_err *e);
+int ispm_upsample(ispm_state *s, const gk_gi_frame *f, gk_err *e);
+void ispm_free_gpu(ispm_state *s);
+
+#endif

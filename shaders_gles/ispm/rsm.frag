@@ -1,0 +1,37 @@
+// RSM texel for photon emission: the normal facing the light and the specular-mask bit (RGB10_A2:
+// a = 1 on specular texels, the mask of pass 2), the specular albedo s and roughness (RGBA8), the
+// diffuse albedo d (RGBA8; Russian roulette needs both). Position comes from the depth texture and
+// the incident flux I·ΔΩ from the texel's direction (emit.comp), so nothing here needs a float
+// target (GLES 3.1 has none without extensions).
+// Specular as the scene features define it (app/scene/features.c): metallic > 0.5, roughness < 0.2.
+precision highp float;
+in vec3 v_world;
+in vec3 v_normal;
+uniform vec4 u_base_color;
+uniform vec2 u_metallic_roughness;
+uniform vec3 u_emissive;
+uniform int u_mat_flags;
+uniform mat4 u_model;          // declared for draw_scene (gi.h); used by rsm.vert
+uniform vec3 u_light_pos;
+layout(location = 0) out vec4 o_nrm;
+layout(location = 1) out vec4 o_spec;
+layout(location = 2) out vec4 o_diff;
+
+const int MAT_LIGHT_PROXY = 4;
+
+void main()
+{
+    if ((u_mat_flags & MAT_LIGHT_PROXY) != 0)
+        discard;
+    vec3 n = normalize(v_normal);
+    if (dot(n, u_light_pos - v_world) < 0.0)
+        n = -n;
+    float metallic = clamp(u_metallic_roughness.x, 0.0, 1.0), rough = clamp(u_metallic_roughness.y, 0.0, 1.0);
+    bool specular = metallic > 0.5 && rough < 0.2;
+    // fresnel_mix at normal incidence (brdf_spec.md): F0 = mix(0.04, base, metallic)
+    vec3 s = mix(vec3(0.04), u_base_color.rgb, metallic);
+    vec3 d = (1.0 - metallic) * u_base_color.rgb;
+    o_nrm = vec4(n * 0.5 + 0.5, specular ? 1.0 : 0.0);
+    o_spec = vec4(s, rough);
+    o_diff = vec4(d, 0.0);
+}
