@@ -98,6 +98,13 @@ int gkt_material(gkt_scene *t, vec3 base, float metallic, float roughness)
     return t->s.n_materials++;
 }
 
+int gkt_material_lambert(gkt_scene *t, vec3 base)
+{
+    int m = gkt_material(t, base, 0.0f, 1.0f);
+    t->mats[m].specular = 0.0f;
+    return m;
+}
+
 static int add_node(gkt_scene *t)
 {
     gk_node *n = &t->nodes[t->s.n_nodes];

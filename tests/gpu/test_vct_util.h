@@ -56,7 +56,7 @@ static inline int vt_add_quads(vt_scene *v, int nq, const float (*q)[9], vec3 al
         vec3 c = v3(q[k][0], q[k][1], q[k][2]), u = v3(q[k][3], q[k][4], q[k][5]), w = v3(q[k][6], q[k][7], q[k][8]);
         gkb_quad(&geom, c, v3_add(c, u), v3_add(v3_add(c, u), w), v3_add(c, w), v3_cross(u, w));
     }
-    int mat = gkt_material(v, albedo, 0, 1);
+    int mat = gkt_material_lambert(v, albedo);
     v->mats[mat].emissive[0] = emission.x, v->mats[mat].emissive[1] = emission.y, v->mats[mat].emissive[2] = emission.z;
     int n = gkt_object(v, &geom, mat);
     v->nodes[n].animated = animated;

@@ -72,8 +72,9 @@ static inline int h_init_with(vpl_h *h, bool with_boxes, int w, int hh, gk_scene
     h->programs = gk_program_cache_create(NULL, h->gl.egl.gles_version);
     gkt_scene *b = &h->box;
     gkt_scene_init(b, "vpl-cornell-corner");
-    int grey = gkt_material(b, v3(0.75f, 0.75f, 0.75f), 0, 1), red = gkt_material(b, v3(0.75f, 0.1f, 0.1f), 0, 1),
-        green = gkt_material(b, v3(0.1f, 0.75f, 0.1f), 0, 1);
+    /* Lambertian, as the Cornell box (the tests' analytic one-bounce answers use rho / pi) */
+    int grey = gkt_material_lambert(b, v3(0.75f, 0.75f, 0.75f)), red = gkt_material_lambert(b, v3(0.75f, 0.1f, 0.1f)),
+        green = gkt_material_lambert(b, v3(0.1f, 0.75f, 0.1f));
     /* one-sided walls facing into the unit box */
     gkt_quad(b, v3(0, 0, 0), v3(1, 0, 0), v3(1, 0, 1), v3(0, 0, 1), v3(0, 1, 0), grey);   /* floor */
     gkt_quad(b, v3(0, 1, 0), v3(1, 1, 0), v3(1, 1, 1), v3(0, 1, 1), v3(0, -1, 0), grey);  /* ceiling */
