@@ -336,7 +336,7 @@ bool read_primitive(Loader &L, const Model &m, int mi, int pi, const tinygltf::P
     return true;
 }
 
-// KHR_materials_specular (brdf_spec.md): specularFactor (>= 0, default 1), specularColorFactor
+// KHR_materials_specular (brdf_spec.md): specularFactor (in [0, 1], default 1), specularColorFactor
 // (3 numbers >= 0, default 1), specularTexture (A: weight, data) and specularColorTexture (RGB,
 // sRGB colour). A malformed value is refused with the material named, never guessed.
 template <typename TexRef>
@@ -353,8 +353,8 @@ bool read_specular(Loader &L, const tinygltf::Material &src, int mi, gk_material
         return L.fail("material %d ('%s'): KHR_materials_specular must be an object", mi, src.name.c_str());
     if (const Value *f = member(ext, "specularFactor")) {
         double v = f->IsNumber() ? f->GetNumberAsDouble() : -1.0;
-        if (!std::isfinite(v) || v < 0)
-            return L.fail("material %d ('%s'): specularFactor must be a finite number >= 0", mi, src.name.c_str());
+        if (!std::isfinite(v) || v < 0 || v > 1)
+            return L.fail("material %d ('%s'): specularFactor must be a number in [0, 1]", mi, src.name.c_str());
         d->specular = (float)v;
     }
     if (const Value *c = member(ext, "specularColorFactor")) {
