@@ -56,11 +56,14 @@ typedef struct gk_gi_frame {
                      inv_view_proj: ndc = (uv, depth) * 2 - 1);
        gbuf_albedo   RGBA8: base colour rgb, a = METALLIC;
        gbuf_normal   RGBA16F: world normal xyz (unit), w = ROUGHNESS;
-       gbuf_emission RGBA16F: emitted radiance rgb (nits). */
+       gbuf_emission RGBA16F: emitted radiance rgb (nits);
+       gbuf_specular RGBA8: KHR_materials_specular, rgb = sqrt(c0) (the dielectric F0 colour,
+                     brdf_spec.md), a = SPECULAR WEIGHT (0: pure Lambert). */
     unsigned gbuf_depth;
     unsigned gbuf_normal;
     unsigned gbuf_albedo;
     unsigned gbuf_emission;
+    unsigned gbuf_specular;
     unsigned direct_tex;         /* RGBA16F: direct light (linear, before exposure) */
     unsigned hdr_fbo;            /* FBO whose colour attachment 0 is the HDR image the method adds to
                                     (additive blending is the method's job: glBlendFunc(ONE, ONE)) */
@@ -69,8 +72,8 @@ typedef struct gk_gi_frame {
     const gk_budget *budget;
     /* Draws every mesh of the scene with `program` (bound, and from gk_gi_context.programs); sets
        the uniform `u_model` (mat4) per node and `u_base_color` (vec4), `u_emissive` (vec3),
-       `u_metallic_roughness` (vec2), `u_mat_flags` (int) per material: the program's source must
-       declare all five (the compiler may drop the ones it does not use). Returns -1 with e filled
+       `u_metallic_roughness` (vec2), `u_mat_flags` (int), `u_specular` (vec4, scene_gpu.h) per
+       material: the program's source must declare all six (the compiler may drop the ones it does not use). Returns -1 with e filled
        when it does not. Attribute locations: 0 position, 1 normal, 2 uv. */
     int (*draw_scene)(void *draw_ctx, unsigned program, gk_err *e);
     void *draw_ctx;
@@ -100,7 +103,7 @@ const gk_gi_method *gk_gi_find(const char *name);
 static inline gk_gbuffer_view gk_gi_gbuffer(const gk_gi_frame *f)
 {
     return (gk_gbuffer_view){.albedo = f->gbuf_albedo, .normal = f->gbuf_normal, .emission = f->gbuf_emission,
-                             .depth = f->gbuf_depth, .width = f->width, .height = f->height, .view = f->view,
+                             .depth = f->gbuf_depth, .specular = f->gbuf_specular, .width = f->width, .height = f->height, .view = f->view,
                              .proj = f->proj, .view_proj = f->view_proj, .inv_view_proj = f->inv_view_proj,
                              .eye = f->eye};
 }

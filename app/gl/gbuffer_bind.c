@@ -2,8 +2,9 @@
 
 void gk_gbuffer_bind(const gk_gbuffer_view *g, const gk_gbuffer_uniforms *u, int first_unit, GLuint sampler)
 {
-    const GLuint tex[GK_GBUFFER_UNITS] = {g->albedo, g->normal, g->emission, g->depth};
-    const GLint loc[GK_GBUFFER_UNITS] = {u->u_gb_albedo, u->u_gb_normal, u->u_gb_emission, u->u_gb_depth};
+    const GLuint tex[GK_GBUFFER_UNITS] = {g->albedo, g->normal, g->emission, g->depth, g->specular};
+    const GLint loc[GK_GBUFFER_UNITS] = {u->u_gb_albedo, u->u_gb_normal, u->u_gb_emission, u->u_gb_depth,
+                                         u->u_gb_specular};
     for (int i = 0; i < GK_GBUFFER_UNITS; i++) {
         GLint unit = first_unit + i;
         glActiveTexture(GL_TEXTURE0 + (GLenum)unit);

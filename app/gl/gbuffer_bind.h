@@ -17,7 +17,7 @@
 #include "gl_program.h"
 
 typedef struct gk_gbuffer_uniforms {
-    GLint u_gb_albedo, u_gb_normal, u_gb_emission, u_gb_depth;
+    GLint u_gb_albedo, u_gb_normal, u_gb_emission, u_gb_depth, u_gb_specular;
     GLint u_inv_viewproj, u_eye, u_viewport;
 } gk_gbuffer_uniforms;
 
@@ -25,26 +25,28 @@ typedef struct gk_gbuffer_uniforms {
     GK_UNIFORM_AS(type, member.u_gb_albedo, "u_gb_albedo"), GK_UNIFORM_AS(type, member.u_gb_normal, "u_gb_normal"),   \
         GK_UNIFORM_AS(type, member.u_gb_emission, "u_gb_emission"),                                                    \
         GK_UNIFORM_AS(type, member.u_gb_depth, "u_gb_depth"),                                                          \
+        GK_UNIFORM_AS(type, member.u_gb_specular, "u_gb_specular"),                                                    \
         GK_UNIFORM_AS(type, member.u_inv_viewproj, "u_inv_viewproj"), GK_UNIFORM_AS(type, member.u_eye, "u_eye"),     \
         GK_UNIFORM_AS(type, member.u_viewport, "u_viewport")
 
 /* The frame's G-buffer (written by the renderer's gbuffer pass) and the view it was drawn with;
  * the pass context (pass.h) lends it to every pass. Layout: depth DEPTH_COMPONENT32F window depth
  * of proj (world = inv_view_proj * (uv, depth)*2-1); albedo RGBA8 (rgb base colour, a metallic);
- * normal RGBA16F (xyz world normal, w roughness); emission RGBA16F (emitted radiance, nits). */
+ * normal RGBA16F (xyz world normal, w roughness); emission RGBA16F (emitted radiance, nits);
+ * specular RGBA8 (KHR_materials_specular: rgb sqrt(c0), the dielectric F0 colour; a weight). */
 typedef struct gk_gbuffer_view {
-    GLuint albedo, normal, emission, depth;
+    GLuint albedo, normal, emission, depth, specular;
     int width, height;                 /* internal render size (after render_scale) */
     mat4 view, proj, view_proj, inv_view_proj;
     vec3 eye;
 } gk_gbuffer_view;
 
-/* Texture units the G-buffer takes from first_unit on: albedo, normal, emission, depth. */
-#define GK_GBUFFER_UNITS 4
+/* Texture units the G-buffer takes from first_unit on: albedo, normal, emission, depth, specular. */
+#define GK_GBUFFER_UNITS 5
 
-/* Binds the four textures on first_unit.. (with sampler object `sampler` on each, 0 for the
+/* Binds the five textures on first_unit.. (with sampler object `sampler` on each, 0 for the
  * textures' own filtering) and sets the sampler, matrix, eye and viewport uniforms of the current
- * program. Leaves GL_TEXTURE0 + first_unit + 3 active. */
+ * program. Leaves GL_TEXTURE0 + first_unit + 4 active. */
 void gk_gbuffer_bind(const gk_gbuffer_view *g, const gk_gbuffer_uniforms *u, int first_unit, GLuint sampler);
 
 #endif

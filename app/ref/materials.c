@@ -1,4 +1,5 @@
-/* The shared BRDF (brdf_spec.md) and its sampling for the path tracer (see materials.h). */
+/* The shared BRDF (brdf_spec.md: glTF 2.0 Appendix B with KHR_materials_specular) and its sampling
+ * for the path tracer (see materials.h). */
 #include "materials.h"
 
 #include <math.h>
@@ -8,18 +9,23 @@
 static float lum3(vec3 c) { return gk_luminance(c.x, c.y, c.z); }
 static float clamp01(float x) { return x < 0.0f ? 0.0f : (x > 1.0f ? 1.0f : x); }
 
-static vec3 tex_sample(const gk_ref_scene *rs, int tex, float u, float v, int comp_base)
+/* Nearest texel with repeat wrapping (glTF's default sampler wrap); RGBA, white without a texture. */
+static const float *tex_texel(const gk_ref_scene *rs, int tex, float u, float v)
 {
-    (void)comp_base;
+    static const float white[4] = {1, 1, 1, 1};
     if (tex < 0 || tex >= rs->n_textures || !rs->textures[tex].rgba)
-        return v3(1, 1, 1);
+        return white;
     const gk_texture *t = &rs->textures[tex];
-    /* Nearest texel with repeat wrapping (glTF's default sampler wrap). */
     float fu = u - floorf(u), fv = v - floorf(v);
     int x = (int)(fu * t->width), y = (int)(fv * t->height);
     x = x >= t->width ? t->width - 1 : x;
     y = y >= t->height ? t->height - 1 : y;
-    const float *p = &t->rgba[4 * ((size_t)y * t->width + x)];
+    return &t->rgba[4 * ((size_t)y * t->width + x)];
+}
+
+static vec3 tex_sample(const gk_ref_scene *rs, int tex, float u, float v)
+{
+    const float *p = tex_texel(rs, tex, u, v);
     return v3(p[0], p[1], p[2]);
 }
 
@@ -33,9 +39,9 @@ void gk_surface_init(gk_surface *sf, const gk_ref_scene *rs, const gk_ref_tri *t
     sf->metallic = m->metallic;
     sf->roughness = m->roughness;
     if (m->base_color_tex >= 0)
-        sf->base = v3_mul(sf->base, tex_sample(rs, m->base_color_tex, u, v, 0));
+        sf->base = v3_mul(sf->base, tex_sample(rs, m->base_color_tex, u, v));
     if (m->metallic_roughness_tex >= 0) {
-        vec3 mr = tex_sample(rs, m->metallic_roughness_tex, u, v, 1);
+        vec3 mr = tex_sample(rs, m->metallic_roughness_tex, u, v);
         sf->roughness *= mr.y;
         sf->metallic *= mr.z;
     }
@@ -45,12 +51,22 @@ void gk_surface_init(gk_surface *sf, const gk_ref_scene *rs, const gk_ref_tri *t
     sf->alpha = r * r; /* >= 0.0025 as the spec clamps */
     sf->transmission = clamp01(m->transmission);
     sf->ior = m->ior > 1.0f ? m->ior : 1.5f;
-    sf->f0 = v3_lerp(v3(0.04f, 0.04f, 0.04f), sf->base, sf->metallic);
+    /* KHR_materials_specular with KHR_materials_ior: the dielectric lobe's weight and F0 colour. */
+    sf->spec_weight = fmaxf(m->specular, 0.0f) * tex_texel(rs, m->specular_tex, u, v)[3];
+    vec3 spec_color = v3_mul(v3(m->specular_color[0], m->specular_color[1], m->specular_color[2]),
+                             tex_sample(rs, m->specular_color_tex, u, v));
+    float r_ior = (m->ior - 1.0f) / (m->ior + 1.0f);
+    vec3 c0 = v3_scale(spec_color, r_ior * r_ior);
+    sf->c0 = v3(fminf(c0.x, 1.0f), fminf(c0.y, 1.0f), fminf(c0.z, 1.0f));
     if (rs->diffuse_only) {
         sf->metallic = 0.0f;
         sf->transmission = 0.0f;
+        sf->spec_weight = 0.0f;
     }
     sf->diffuse_only = rs->diffuse_only;
+    sf->c0_max = fmaxf(sf->c0.x, fmaxf(sf->c0.y, sf->c0.z));
+    sf->f0 = v3_lerp(v3_scale(sf->c0, sf->spec_weight), sf->base, sf->metallic);
+    sf->f90 = sf->spec_weight + (1.0f - sf->spec_weight) * sf->metallic;
     sf->mirror = sf->metallic > 0.5f && sf->roughness < 0.05f;
     sf->p_dielectric = (sf->transmission > 0.0f && sf->roughness < 0.05f) ? sf->transmission : 0.0f;
     float diffuse = (1.0f - sf->metallic) * lum3(sf->base);
@@ -66,10 +82,25 @@ void gk_surface_init(gk_surface *sf, const gk_ref_scene *rs, const gk_ref_tri *t
 
 bool gk_surface_has_smooth_part(const gk_surface *sf) { return sf->p_dielectric < 1.0f && sf->p_mirror < 1.0f; }
 
-static vec3 schlick(vec3 f0, float cos_t)
+/* The whole specular Fresnel term F = F0 + (F90 - F0) (1 - cos)^5 (brdf_spec.md). */
+static vec3 schlick(const gk_surface *sf, float cos_t)
 {
     float m = powf(clamp01(1.0f - cos_t), 5.0f);
-    return v3_add(f0, v3_scale(v3_sub(v3(1, 1, 1), f0), m));
+    return v3_add(sf->f0, v3_scale(v3_sub(v3(sf->f90, sf->f90, sf->f90), sf->f0), m));
+}
+
+/* The diffuse lobe's weight: (1 - metallic) (1 - w max(Fd)), fresnel_mix's share left to the base
+   layer, with Fd = c0 + (1 - c0)(1 - v.h)^5 the dielectric Fresnel before the weight. */
+static float diffuse_weight(const gk_surface *sf, float vh)
+{
+    float fd = sf->c0_max + (1.0f - sf->c0_max) * powf(clamp01(1.0f - vh), 5.0f);
+    return (1.0f - sf->metallic) * (1.0f - sf->spec_weight * fd);
+}
+
+/* Whether F can be non-zero: a glossy lobe to evaluate and sample. */
+static bool has_glossy_lobe(const gk_surface *sf)
+{
+    return !sf->mirror && !sf->diffuse_only && (sf->spec_weight > 0.0f || sf->metallic > 0.0f);
 }
 
 static float ggx_d(float nh, float a2)
@@ -90,10 +121,10 @@ static float smith_g1(float nv, float a2) { return 2.0f * nv / (nv + sqrtf(a2 + 
 /* Probability of the GGX lobe (vs diffuse) among the non-delta lobes, from the lobes' albedos. */
 static float p_specular(const gk_surface *sf, float nv)
 {
-    if (sf->mirror || sf->diffuse_only)
+    if (!has_glossy_lobe(sf))
         return 0.0f;
-    float spec = lum3(schlick(sf->f0, nv));
-    float diff = (1.0f - sf->metallic) * lum3(sf->base);
+    float spec = lum3(schlick(sf, nv));
+    float diff = diffuse_weight(sf, nv) * lum3(sf->base);
     if (diff <= 0.0f)
         return 1.0f;
     float p = spec / (spec + diff);
@@ -120,15 +151,16 @@ vec3 gk_bsdf_eval(const gk_surface *sf, vec3 wo, vec3 wi, float *pdf)
     float smooth_sel = opaque * (1.0f - sf->p_mirror);
     if (smooth_sel <= 0.0f)
         return v3(0, 0, 0);
-    vec3 f = v3_scale(sf->base, (1.0f - sf->metallic) / GK_PI);
+    vec3 h = v3_norm(v3_add(wo, wi));
+    float vh = fmaxf(v3_dot(wo, h), 0.0f);
+    vec3 f = v3_scale(sf->base, diffuse_weight(sf, vh) / GK_PI);
     float ps = p_specular(sf, nv);
     float pdf_spec = 0.0f;
-    if (!sf->mirror && !sf->diffuse_only) {
-        vec3 h = v3_norm(v3_add(wo, wi));
-        float nh = fmaxf(v3_dot(n, h), 0.0f), vh = fmaxf(v3_dot(wo, h), 0.0f);
+    if (has_glossy_lobe(sf)) {
+        float nh = fmaxf(v3_dot(n, h), 0.0f);
         float a2 = sf->alpha * sf->alpha;
         float d = ggx_d(nh, a2);
-        vec3 F = schlick(sf->f0, vh);
+        vec3 F = schlick(sf, vh);
         f = v3_add(f, v3_scale(F, d * smith_v(nl, nv, a2)));
         pdf_spec = smith_g1(nv, a2) * d / (4.0f * nv);
     }
@@ -199,7 +231,7 @@ bool gk_bsdf_sample_dir(const gk_surface *sf, vec3 wo, bool radiance_mode, gk_rn
         out->wi = reflect_about(wo, n);
         if (v3_dot(out->wi, ng) <= 0.0f)
             return false;
-        out->weight = v3_scale(schlick(sf->f0, nv), 1.0f / sf->p_mirror);
+        out->weight = v3_scale(schlick(sf, nv), 1.0f / sf->p_mirror);
         return true;
     }
     float ps = p_specular(sf, nv);

@@ -1,5 +1,6 @@
-/* The BRDF of app/core/brdf_spec.md for the path tracer: Lambert + GGX (height-correlated Smith,
- * Schlick Fresnel, glTF's simple mix), sampled by one-sample mixture of cosine-weighted diffuse and
+/* The BRDF of app/core/brdf_spec.md for the path tracer: glTF 2.0 Appendix B, Lambert and GGX
+ * (height-correlated Smith, Schlick Fresnel) mixed by fresnel_mix (the diffuse weighted by
+ * 1 - w max(Fd), KHR_materials_specular's weight w and F0 colour), sampled by one-sample mixture of cosine-weighted diffuse and
  * GGX visible normals (Heitz 2018); delta mirror (metallic > 0.5, roughness < 0.05) with reflectance
  * F(F0, cos); smooth dielectric (transmission > 0, roughness < 0.05) weighted by `transmission`,
  * Fresnel-chosen reflection or refraction, refraction tinted by base colour.
@@ -16,7 +17,11 @@ typedef struct gk_surface {
     vec3 base;             /* linear base colour (factor x texture) */
     float metallic, roughness, alpha;
     float transmission, ior;
-    vec3 f0;
+    float spec_weight;     /* KHR_materials_specular: specularFactor x specularTexture.a */
+    vec3 c0;               /* dielectric F0 colour: min(((ior-1)/(ior+1))^2 specular colour, 1) */
+    float c0_max;          /* its largest component (fresnel_mix's max_value) */
+    vec3 f0;               /* F0 = mix(spec_weight c0, base, metallic) */
+    float f90;             /* F90 = mix(spec_weight, 1, metallic) */
     bool mirror;           /* the specular lobe is a delta mirror */
     bool diffuse_only;     /* gk_ref_scene.diffuse_only: no GGX lobe */
     float p_dielectric;    /* probability of the delta dielectric lobe (= transmission if smooth) */

@@ -57,9 +57,9 @@ typedef struct gk_ref_scene {
     uint32_t *emissive_tris; float *emissive_cdf; int n_emissive; /* the mesh light's triangles */
     int mesh_light;        /* index of the GK_REF_MESH light or -1 */
     bool has_delta_lights, has_delta_surfaces;
-    /* Test hook (white-furnace tests of the transport): drop the GGX lobe so a surface's albedo is
-       exactly its base colour. brdf_spec's glTF mix adds F D V on top of the diffuse term, so with
-       it a closed box of base colour a has an albedo above a and no closed-form answer. */
+    /* Test hook (white-furnace tests of the transport): every surface pure Lambert (metallic,
+       transmission and the KHR_materials_specular weight 0), so a surface's albedo is exactly its
+       base colour and a closed box has a closed-form answer, whatever the materials say. */
     bool diffuse_only;
     vec3 centre;
     float radius;          /* bounding sphere of the geometry */

@@ -19,8 +19,8 @@ static int ensure_targets(gk_renderer *r, int w, int h, gk_err *e)
         return 0;
     gk_target_destroy(&r->gbuf);
     gk_target_destroy(&r->hdr);
-    const GLenum gfmt[3] = {GL_RGBA8, GL_RGBA16F, GL_RGBA16F};
-    if (gk_target_create(&r->gbuf, "gbuffer", w, h, 3, gfmt, GL_NEAREST, true, e) != 0)
+    const GLenum gfmt[4] = {GL_RGBA8, GL_RGBA16F, GL_RGBA16F, GL_RGBA8};
+    if (gk_target_create(&r->gbuf, "gbuffer", w, h, 4, gfmt, GL_NEAREST, true, e) != 0)
         return -1;
     const GLenum hfmt[1] = {GL_RGBA16F};
     if (gk_target_create(&r->hdr, "hdr", w, h, 1, hfmt, GL_LINEAR, false, e) != 0)
@@ -103,6 +103,9 @@ static const gk_uniform_field gbuffer_fields[] = {
     GK_UNIFORM_AS(gbuffer_uniforms, draw.u_mat_flags, "u_mat_flags"),
     GK_UNIFORM_AS(gbuffer_uniforms, draw.u_base_tex, "u_base_tex"),
     GK_UNIFORM_AS(gbuffer_uniforms, draw.u_mr_tex, "u_mr_tex"),
+    GK_UNIFORM_AS(gbuffer_uniforms, draw.u_specular, "u_specular"),
+    GK_UNIFORM_AS(gbuffer_uniforms, draw.u_spec_tex, "u_spec_tex"),
+    GK_UNIFORM_AS(gbuffer_uniforms, draw.u_spec_color_tex, "u_spec_color_tex"),
 };
 
 /* direct/emission.frag */
@@ -157,6 +160,7 @@ static int pass_gbuffer(gk_renderer *r, const mat4 *viewproj, vec3 eye, gk_err *
     glClearBufferfv(GL_COLOR, 0, zero);
     glClearBufferfv(GL_COLOR, 1, zero);
     glClearBufferfv(GL_COLOR, 2, zero);
+    glClearBufferfv(GL_COLOR, 3, zero);
     glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
     glClear(GL_DEPTH_BUFFER_BIT);
     glUseProgram(prog);
@@ -328,7 +332,7 @@ int gk_renderer_draw(gk_renderer *r, const gk_frame_params *fp, unsigned target_
     gk_scene_evaluate(s, fp ? (float)fp->time_s : 0.0f);
     gk_gbuffer_view gb = {
         .albedo = r->gbuf.color[0], .normal = r->gbuf.color[1], .emission = r->gbuf.color[2],
-        .depth = r->gbuf.depth, .width = r->render_w, .height = r->render_h,
+        .depth = r->gbuf.depth, .specular = r->gbuf.color[3], .width = r->render_w, .height = r->render_h,
     };
     gk_scene_camera(s, (float)r->opts.width / (float)r->opts.height, &gb.view, &gb.proj, &gb.eye);
     gb.view_proj = m4_mul(gb.proj, gb.view);

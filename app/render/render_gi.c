@@ -130,6 +130,7 @@ static const gk_uniform_field draw_scene_fields[] = {
     GK_UNIFORM(gk_draw_uniforms, u_metallic_roughness),
     GK_UNIFORM(gk_draw_uniforms, u_emissive),
     GK_UNIFORM(gk_draw_uniforms, u_mat_flags),
+    GK_UNIFORM(gk_draw_uniforms, u_specular),
 };
 
 static int render_light_maps(gk_render_gi *g, gk_renderer *r, gk_err *e)
@@ -257,6 +258,7 @@ int gk_render_gi_run(gk_render_gi *g, gk_renderer *r, const char *method, const 
     f.gbuf_normal = gb->normal;
     f.gbuf_emission = gb->emission;
     f.gbuf_depth = gb->depth;
+    f.gbuf_specular = gb->specular;
     f.direct_tex = 0; /* the method adds into the same HDR target: reading it would be a feedback loop */
     f.hdr_fbo = r->hdr.fbo;
     f.n_lights = g->n_lights;

@@ -14,7 +14,7 @@
 #define GK_MAX_SHADOW_METHODS 16 /* entries of gk_shadow_methods[]; a static assert in shadow_methods.c keeps them in step */
 
 /* Texture units of the lighting passes. */
-enum { UNIT_ALBEDO = 0, UNIT_NORMAL = 1, UNIT_EMISSION = 2, UNIT_DEPTH = 3, UNIT_SHADOW = 4 };
+enum { UNIT_ALBEDO = 0, UNIT_NORMAL = 1, UNIT_EMISSION = 2, UNIT_DEPTH = 3, UNIT_SPECULAR = 4, UNIT_SHADOW = 5 };
 
 /* The renderer's knobs, read each frame through handles (no names in the frame loop). */
 typedef struct gk_render_knobs {
@@ -70,7 +70,8 @@ struct gk_renderer {
     gk_scene_gpu gpu;
     bool have_gpu;
 
-    gk_target gbuf;             /* RT0 albedo+metallic RGBA8, RT1 normal+roughness RGBA16F, RT2 emission RGBA16F, depth 32F */
+    gk_target gbuf;             /* RT0 albedo+metallic RGBA8, RT1 normal+roughness RGBA16F, RT2 emission RGBA16F,
+                                   RT3 specular (sqrt c0, weight) RGBA8, depth 32F */
     gk_target hdr;              /* RGBA16F scene radiance at render scale */
     int render_w, render_h;     /* render size (output * render_scale) */
 

@@ -100,7 +100,7 @@ void gk_scene_gpu_free(gk_scene_gpu *g)
 static void set_material(const gk_scene_gpu *g, const gk_scene *s, const gk_draw_uniforms *u, const gk_material *m)
 {
     int flags = 0;
-    GLuint base = g->white_tex, mr = g->white_tex;
+    GLuint base = g->white_tex, mr = g->white_tex, spec = g->white_tex, spec_color = g->white_tex;
     if (m->base_color_tex >= 0 && m->base_color_tex < s->n_textures) {
         base = g->tex[m->base_color_tex];
         flags |= GK_MAT_BASE_TEX;
@@ -108,6 +108,14 @@ static void set_material(const gk_scene_gpu *g, const gk_scene *s, const gk_draw
     if (m->metallic_roughness_tex >= 0 && m->metallic_roughness_tex < s->n_textures) {
         mr = g->tex[m->metallic_roughness_tex];
         flags |= GK_MAT_MR_TEX;
+    }
+    if (m->specular_tex >= 0 && m->specular_tex < s->n_textures) {
+        spec = g->tex[m->specular_tex];
+        flags |= GK_MAT_SPEC_TEX;
+    }
+    if (m->specular_color_tex >= 0 && m->specular_color_tex < s->n_textures) {
+        spec_color = g->tex[m->specular_color_tex];
+        flags |= GK_MAT_SPEC_COLOR_TEX;
     }
     if (m->light_proxy)
         flags |= GK_MAT_LIGHT_PROXY;
@@ -117,10 +125,18 @@ static void set_material(const gk_scene_gpu *g, const gk_scene *s, const gk_draw
     glBindTexture(GL_TEXTURE_2D, base);
     glActiveTexture(GL_TEXTURE1);
     glBindTexture(GL_TEXTURE_2D, mr);
+    glActiveTexture(GL_TEXTURE2);
+    glBindTexture(GL_TEXTURE_2D, spec);
+    glActiveTexture(GL_TEXTURE3);
+    glBindTexture(GL_TEXTURE_2D, spec_color);
     glUniform4f(u->u_base_color, m->base_color[0], m->base_color[1], m->base_color[2], m->base_color[3]);
     glUniform2f(u->u_metallic_roughness, m->metallic, m->roughness);
     glUniform3f(u->u_emissive, m->emissive[0], m->emissive[1], m->emissive[2]);
     glUniform1i(u->u_mat_flags, flags);
+    float r_ior = (m->ior - 1.0f) / (m->ior + 1.0f);
+    float k = r_ior * r_ior;
+    glUniform4f(u->u_specular, k * m->specular_color[0], k * m->specular_color[1], k * m->specular_color[2],
+                m->specular);
 }
 
 void gk_draw_uniforms_lookup(GLuint prog, gk_draw_uniforms *u)
@@ -133,6 +149,9 @@ void gk_draw_uniforms_lookup(GLuint prog, gk_draw_uniforms *u)
     u->u_mat_flags = glGetUniformLocation(prog, "u_mat_flags");
     u->u_base_tex = glGetUniformLocation(prog, "u_base_tex");
     u->u_mr_tex = glGetUniformLocation(prog, "u_mr_tex");
+    u->u_specular = glGetUniformLocation(prog, "u_specular");
+    u->u_spec_tex = glGetUniformLocation(prog, "u_spec_tex");
+    u->u_spec_color_tex = glGetUniformLocation(prog, "u_spec_color_tex");
 }
 
 void gk_scene_gpu_draw(const gk_scene_gpu *g, const gk_scene *s, const gk_draw_uniforms *u, int flags)
@@ -140,6 +159,8 @@ void gk_scene_gpu_draw(const gk_scene_gpu *g, const gk_scene *s, const gk_draw_u
     if (flags & GK_DRAW_MATERIALS) {
         glUniform1i(u->u_base_tex, 0);
         glUniform1i(u->u_mr_tex, 1);
+        glUniform1i(u->u_spec_tex, 2);
+        glUniform1i(u->u_spec_color_tex, 3);
     }
     GLint loc_model = u->u_model;
     GLint loc_normal = u->u_normal_matrix;

@@ -22,7 +22,7 @@ int gk_scene_gpu_upload(gk_scene_gpu *g, const gk_scene *s, gk_err *e);
 void gk_scene_gpu_free(gk_scene_gpu *g);
 
 enum {
-    GK_DRAW_MATERIALS = 1,     /* set u_base_color, u_metallic_roughness, u_emissive, u_mat_flags, textures */
+    GK_DRAW_MATERIALS = 1,     /* set u_base_color, u_metallic_roughness, u_emissive, u_mat_flags, u_specular, textures */
     GK_DRAW_SKIP_PROXIES = 2,  /* leave out light_proxy meshes (shadow maps: the light stands in their place) */
 };
 
@@ -32,6 +32,8 @@ enum {
     GK_MAT_MR_TEX = 2,
     GK_MAT_LIGHT_PROXY = 4,
     GK_MAT_DOUBLE_SIDED = 8,
+    GK_MAT_SPEC_TEX = 16,       /* KHR_materials_specular specularTexture (A) */
+    GK_MAT_SPEC_COLOR_TEX = 32, /* KHR_materials_specular specularColorTexture (RGB) */
 };
 
 /* The uniforms gk_scene_gpu_draw sets, by location (-1: the program has no such uniform). A pass
@@ -41,10 +43,14 @@ typedef struct gk_draw_uniforms {
     GLint u_model, u_normal_matrix;                                       /* per node */
     GLint u_base_color, u_metallic_roughness, u_emissive, u_mat_flags;    /* per material (GK_DRAW_MATERIALS) */
     GLint u_base_tex, u_mr_tex;                                           /* samplers (GK_DRAW_MATERIALS) */
+    /* KHR_materials_specular (brdf_spec.md): u_specular = (((ior-1)/(ior+1))^2 specularColorFactor,
+       specularFactor); the shader multiplies the textures in and clamps c0 to 1. */
+    GLint u_specular, u_spec_tex, u_spec_color_tex;
 } gk_draw_uniforms;
 
 /* Draws every node's meshes (after gk_scene_evaluate) with the bound program: sets u_model and
- * u_normal_matrix per node; textures on units 0 (base colour) and 1 (metallic-roughness). */
+ * u_normal_matrix per node; textures on units 0 (base colour), 1 (metallic-roughness), 2 (specular)
+ * and 3 (specular colour). */
 void gk_scene_gpu_draw(const gk_scene_gpu *g, const gk_scene *s, const gk_draw_uniforms *u, int flags);
 /* The locations by name, for tests and programs built outside a program cache (never per frame). */
 void gk_draw_uniforms_lookup(GLuint prog, gk_draw_uniforms *u);

@@ -104,7 +104,7 @@ int gk_build_furnace(const char *dir, gk_err *e)
                     "conservation oracle of every GI method (none gives 1).",
                     NULL);
     gkw_material m = {"furnace", {F_ALBEDO, F_ALBEDO, F_ALBEDO, 1}, 0, 1, {F_EMISSION, F_EMISSION, F_EMISSION}, 0, 0, 0,
-                      false, false, NULL};
+                      false, false, NULL, true, 0, {1, 1, 1}}; /* Lambertian: Le / (1 - a) needs albedo a */
     int mi = gkw_add_material(d, &m);
     gkw_geom g = {0};
     vec3 P[8];

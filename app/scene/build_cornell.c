@@ -45,9 +45,14 @@ static void block(gkw_geom *g, const float top[4][3], float height_mm)
     }
 }
 
-static const gkw_material white = {"white", {0.725, 0.71, 0.68, 1}, 0, 1, {0, 0, 0}, 0, 0, 0, false, false, NULL};
-static const gkw_material red = {"red", {0.63, 0.065, 0.05, 1}, 0, 1, {0, 0, 0}, 0, 0, 0, false, false, NULL};
-static const gkw_material green = {"green", {0.14, 0.45, 0.091, 1}, 0, 1, {0, 0, 0}, 0, 0, 0, false, false, NULL};
+/* Lambertian (KHR_materials_specular specularFactor 0): the measured box is a set of diffuse
+   reflectance spectra, with no specular lobe. */
+static const gkw_material white = {"white", {0.725, 0.71, 0.68, 1}, 0, 1, {0, 0, 0}, 0, 0, 0, false, false, NULL,
+                                    true, 0, {1, 1, 1}};
+static const gkw_material red = {"red", {0.63, 0.065, 0.05, 1}, 0, 1, {0, 0, 0}, 0, 0, 0, false, false, NULL,
+                                  true, 0, {1, 1, 1}};
+static const gkw_material green = {"green", {0.14, 0.45, 0.091, 1}, 0, 1, {0, 0, 0}, 0, 0, 0, false, false, NULL,
+                                    true, 0, {1, 1, 1}};
 
 /* The room (walls, floor, ceiling) and optionally the two blocks, as in the measured data. */
 static void add_box(gkw_doc *d, bool blocks)

@@ -354,6 +354,57 @@ bool read_primitive(Loader &L, const Model &m, int mi, int pi, const tinygltf::P
     return true;
 }
 
+// KHR_materials_specular (brdf_spec.md): specularFactor (in [0, 1], default 1), specularColorFactor
+// (3 numbers >= 0, default 1), specularTexture (A: weight, data) and specularColorTexture (RGB,
+// sRGB colour). A malformed value is refused with the material named, never guessed.
+template <typename TexRef>
+bool read_specular(Loader &L, const tinygltf::Material &src, int mi, gk_material *d, TexRef &tex_ref)
+{
+    d->specular = 1.0f;
+    d->specular_color[0] = d->specular_color[1] = d->specular_color[2] = 1.0f;
+    d->specular_tex = d->specular_color_tex = -1;
+    auto it = src.extensions.find("KHR_materials_specular");
+    if (it == src.extensions.end())
+        return true;
+    const Value *ext = &it->second;
+    if (!ext->IsObject())
+        return L.fail("material %d ('%s'): KHR_materials_specular must be an object", mi, src.name.c_str());
+    if (const Value *f = member(ext, "specularFactor")) {
+        double v = f->IsNumber() ? f->GetNumberAsDouble() : -1.0;
+        if (!std::isfinite(v) || v < 0 || v > 1)
+            return L.fail("material %d ('%s'): specularFactor must be a number in [0, 1]", mi, src.name.c_str());
+        d->specular = (float)v;
+    }
+    if (const Value *c = member(ext, "specularColorFactor")) {
+        bool ok = c->IsArray() && c->ArrayLen() == 3;
+        for (int k = 0; ok && k < 3; k++) {
+            const Value &x = c->Get(k);
+            double v = x.IsNumber() ? x.GetNumberAsDouble() : -1.0;
+            ok = std::isfinite(v) && v >= 0;
+            if (ok)
+                d->specular_color[k] = (float)v;
+        }
+        if (!ok)
+            return L.fail("material %d ('%s'): specularColorFactor must be 3 finite numbers >= 0", mi,
+                          src.name.c_str());
+    }
+    struct { const char *key, *slot; int flag; int *out; } texs[] = {
+        {"specularTexture", "specular", GK_TEX_USED_AS_DATA, &d->specular_tex},
+        {"specularColorTexture", "specular colour", GK_TEX_USED_AS_COLOR, &d->specular_color_tex},
+    };
+    for (auto &t : texs) {
+        const Value *info = member(ext, t.key);
+        if (!info)
+            continue;
+        const Value *index = member(info, "index");
+        if (!index || !index->IsInt() || index->Get<int>() < 0)
+            return L.fail("material %d ('%s'): %s needs an index >= 0", mi, src.name.c_str(), t.key);
+        if (!tex_ref(index->Get<int>(), t.flag, mi, t.slot, t.out))
+            return false;
+    }
+    return true;
+}
+
 bool read_materials(Loader &L, const Model &m, gk_scene *s, std::vector<int> &tex_usage)
 {
     s->n_materials = (int)m.materials.size() + 1;
@@ -368,6 +419,9 @@ bool read_materials(Loader &L, const Model &m, gk_scene *s, std::vector<int> &te
     def->base_color_tex = def->metallic_roughness_tex = -1;
     def->metallic = def->roughness = 1.0f;
     def->ior = 1.5f;
+    def->specular = 1.0f;
+    def->specular_color[0] = def->specular_color[1] = def->specular_color[2] = 1.0f;
+    def->specular_tex = def->specular_color_tex = -1;
     auto tex_ref = [&](int ti, int flag, int mi, const char *slot, int *out) {
         if (ti < 0) {
             *out = -1;
@@ -418,6 +472,8 @@ bool read_materials(Loader &L, const Model &m, gk_scene *s, std::vector<int> &te
         d->transmission = (float)transmission;
         d->ior = (float)ior;
         d->double_sided = src.doubleSided;
+        if (!read_specular(L, src, mi, d, tex_ref))
+            return false;
         const Value *proxy = member(gikiosk_extras(src.extras), "light_proxy");
         d->light_proxy = proxy && proxy->IsBool() && proxy->Get<bool>();
         if (!std::isfinite(d->metallic) || !std::isfinite(d->roughness) || d->metallic < 0 || d->metallic > 1 ||

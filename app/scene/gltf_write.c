@@ -291,7 +291,8 @@ void gkw_param(gkw_doc *d, const char *key, int n, const double *v)
     memcpy(p->v, v, (size_t)n * sizeof(double));
 }
 
-static void write_materials(gkw_doc *d, sbuf *b, bool *ext_strength, bool *ext_trans, bool *ext_ior)
+static void write_materials(gkw_doc *d, sbuf *b, bool *ext_strength, bool *ext_trans, bool *ext_ior,
+                            bool *ext_specular)
 {
     sb_printf(b, ",\n\"materials\":[");
     int tex = 0;
@@ -312,7 +313,7 @@ static void write_materials(gkw_doc *d, sbuf *b, bool *ext_strength, bool *ext_t
         if (m->double_sided)
             sb_printf(b, ",\"doubleSided\":true");
         bool strength = m->emissive_strength > 0, trans = m->transmission > 0, ior = m->ior > 0;
-        if (strength || trans || ior) {
+        if (strength || trans || ior || m->with_specular) {
             sb_printf(b, ",\"extensions\":{");
             const char *sep = "";
             if (strength) {
@@ -333,7 +334,16 @@ static void write_materials(gkw_doc *d, sbuf *b, bool *ext_strength, bool *ext_t
                 sb_printf(b, "%s\"KHR_materials_ior\":{\"ior\":", sep);
                 sb_num(b, m->ior);
                 sb_printf(b, "}");
+                sep = ",";
                 *ext_ior = true;
+            }
+            if (m->with_specular) {
+                sb_printf(b, "%s\"KHR_materials_specular\":{\"specularFactor\":", sep);
+                sb_num(b, m->specular);
+                sb_printf(b, ",\"specularColorFactor\":");
+                sb_nums(b, m->specular_color, 3);
+                sb_printf(b, "}");
+                *ext_specular = true;
             }
             sb_printf(b, "}");
         }
@@ -508,9 +518,9 @@ int gkw_write(gkw_doc *d, const char *dir, gk_err *e)
     if (d->oom)
         return gk_fail(e, GK_ERUNTIME, "%s: out of memory while building the scene", d->name);
     sbuf b = {0};
-    bool ext_strength = false, ext_trans = false, ext_ior = false;
+    bool ext_strength = false, ext_trans = false, ext_ior = false, ext_specular = false;
     sb_printf(&b, "{\n\"asset\":{\"version\":\"2.0\",\"generator\":\"gikiosk build-scenes\"}");
-    write_materials(d, &b, &ext_strength, &ext_trans, &ext_ior);
+    write_materials(d, &b, &ext_strength, &ext_trans, &ext_ior, &ext_specular);
     sb_printf(&b, ",\n\"meshes\":[");
     for (int i = 0; i < d->n_meshes; i++) {
         const mesh *m = &d->meshes[i];
@@ -525,7 +535,7 @@ int gkw_write(gkw_doc *d, const char *dir, gk_err *e)
     write_nodes_and_scene(d, &b);
     write_lights_cameras_anims(d, &b);
     write_buffers(d, &b);
-    const char *used[4];
+    const char *used[5];
     int n_used = 0;
     if (d->n_lights)
         used[n_used++] = "KHR_lights_punctual";
@@ -533,6 +543,8 @@ int gkw_write(gkw_doc *d, const char *dir, gk_err *e)
         used[n_used++] = "KHR_materials_emissive_strength";
     if (ext_ior)
         used[n_used++] = "KHR_materials_ior";
+    if (ext_specular)
+        used[n_used++] = "KHR_materials_specular";
     if (ext_trans)
         used[n_used++] = "KHR_materials_transmission";
     if (n_used) {

@@ -1,7 +1,7 @@
 /* A small glTF 2.0 writer in C for the procedural scenes (build_*.c): JSON written by hand with a
  * fixed number format, one .bin buffer, so every build writes the same bytes. It writes only what
  * the builders need: triangle meshes (POSITION, NORMAL, optional TEXCOORD_0, u16/u32 indices),
- * metallic-roughness materials with the KHR emissive-strength/transmission/ior extensions,
+ * metallic-roughness materials with the KHR emissive-strength/transmission/ior/specular extensions,
  * KHR_lights_punctual with gikiosk extras, perspective cameras, TRS nodes, linear/step animations
  * and the scene's gikiosk extras. */
 #ifndef GK_GLTF_WRITE_H
@@ -30,6 +30,10 @@ typedef struct gkw_material {
     double transmission, ior;  /* written when transmission > 0 / ior != 0 */
     bool double_sided, light_proxy;
     const char *base_color_uri; /* image file next to the .gltf, or NULL */
+    /* KHR_materials_specular, written when with_specular (specularFactor 0 = pure Lambert, as the
+       Cornell box and the furnace are by definition); textures are not written. */
+    bool with_specular;
+    double specular, specular_color[3];
 } gkw_material;
 
 typedef struct gkw_light {

@@ -44,6 +44,13 @@ typedef struct gk_material {
     float emissive[3];        /* emissiveFactor * KHR_materials_emissive_strength, in nits */
     float transmission;       /* KHR_materials_transmission: 0 opaque .. 1 clear glass/water */
     float ior;                /* KHR_materials_ior, 1.5 by default */
+    /* KHR_materials_specular (the dielectric lobe of brdf_spec.md): specularFactor (1 by default;
+       0 = pure Lambert) times specularTexture's A, and specularColorFactor (linear, [1,1,1] by
+       default, may exceed 1) times specularColorTexture's RGB (sRGB-encoded). */
+    float specular;
+    float specular_color[3];
+    int specular_tex;         /* A = specular weight, -1 if none */
+    int specular_color_tex;   /* RGB = F0 colour, -1 if none */
     bool double_sided;
     bool light_proxy;         /* see the header comment */
 } gk_material;

@@ -5,6 +5,7 @@
 //   u_gb_albedo     RGBA8: rgb = base colour, a = metallic
 //   u_gb_normal     RGBA16F: xyz = world normal, w = roughness
 //   u_gb_emission   RGBA16F: rgb = emitted radiance (nits), a > 0.5 = light proxy
+//   u_gb_specular   RGBA8: rgb = sqrt(c0) (dielectric F0 colour), a = KHR_materials_specular weight
 //   u_inv_viewproj  inverse of the camera's projection * view
 //   u_eye           camera position (world)
 //   u_viewport      G-buffer size in pixels
@@ -13,10 +14,13 @@
 #ifndef GB_ALBEDO_PRECISION
 #define GB_ALBEDO_PRECISION mediump
 #endif
+#include "common/brdf.glsl"
+
 uniform GB_ALBEDO_PRECISION sampler2D u_gb_albedo;
 uniform highp sampler2D u_gb_normal;
 uniform highp sampler2D u_gb_emission;
 uniform highp sampler2D u_gb_depth;
+uniform mediump sampler2D u_gb_specular;
 uniform highp mat4 u_inv_viewproj;
 uniform highp vec3 u_eye;
 uniform highp vec2 u_viewport;
@@ -42,13 +46,25 @@ highp float gb_roughness(ivec2 px) { return texelFetch(u_gb_normal, px, 0).w; }
 GB_ALBEDO_PRECISION vec4 gb_albedo_metallic(ivec2 px) { return texelFetch(u_gb_albedo, px, 0); }
 highp vec4 gb_emission(ivec2 px) { return texelFetch(u_gb_emission, px, 0); }
 
+// The material at pixel px, as the BRDF takes it (common/brdf.glsl).
+gk_brdf_material gb_material(ivec2 px)
+{
+    gk_brdf_material m;
+    highp vec4 a = gb_albedo_metallic(px);
+    highp vec4 sp = texelFetch(u_gb_specular, px, 0);
+    m.base = a.rgb;
+    m.metallic = a.a;
+    m.roughness = texelFetch(u_gb_normal, px, 0).w;
+    m.spec_weight = sp.a;
+    m.c0 = sp.rgb * sp.rgb;
+    return m;
+}
+
 struct gk_surface {
     highp vec3 p;       // world position
     highp vec3 n;       // unit normal facing the viewer
     highp vec3 v;       // unit direction to the eye
-    highp vec3 base;
-    highp float metallic;
-    highp float roughness;
+    gk_brdf_material m;
     bool unlit;         // background or light proxy
 };
 
@@ -57,13 +73,9 @@ gk_surface gk_read_surface(ivec2 px)
     gk_surface s;
     highp float depth = gb_depth(px);
     s.p = gb_world_at((vec2(px) + 0.5) / u_viewport, depth);
-    GB_ALBEDO_PRECISION vec4 a = gb_albedo_metallic(px);
-    highp vec4 nr = texelFetch(u_gb_normal, px, 0);
-    s.n = normalize(nr.xyz);
+    s.n = normalize(texelFetch(u_gb_normal, px, 0).xyz);
     s.v = normalize(u_eye - s.p);
-    s.base = a.rgb;
-    s.metallic = a.a;
-    s.roughness = nr.a;
+    s.m = gb_material(px);
     s.unlit = gb_background(depth) || gb_emission(px).a > 0.5;
     return s;
 }

@@ -1,5 +1,7 @@
 // G-buffer: RT0 RGBA8 (base colour, metallic), RT1 RGBA16F (world normal facing the viewer,
-// roughness), RT2 RGBA16F (emitted radiance in nits, a = 1 for unlit light proxies); depth 32F.
+// roughness), RT2 RGBA16F (emitted radiance in nits, a = 1 for unlit light proxies), RT3 RGBA8
+// (KHR_materials_specular: rgb = sqrt(c0), a = weight; sqrt so the usual c0 = 0.04 keeps 8-bit
+// precision, 51/255, within 2%); depth 32F.
 precision highp float;
 in vec3 v_world;
 in vec3 v_normal;
@@ -10,15 +12,21 @@ uniform vec3 u_emissive;
 uniform int u_mat_flags;            // GK_MAT_* in app/render/scene_gpu.h
 uniform mediump sampler2D u_base_tex;
 uniform mediump sampler2D u_mr_tex;
+uniform vec4 u_specular;            // rgb ((ior-1)/(ior+1))^2 specularColorFactor, a specularFactor
+uniform mediump sampler2D u_spec_tex;
+uniform mediump sampler2D u_spec_color_tex;
 uniform vec3 u_eye;
 layout(location = 0) out mediump vec4 o_albedo;
 layout(location = 1) out vec4 o_normal;
 layout(location = 2) out vec4 o_emission;
+layout(location = 3) out mediump vec4 o_specular;
 
 const int MAT_BASE_TEX = 1;
 const int MAT_MR_TEX = 2;
 const int MAT_LIGHT_PROXY = 4;
 const int MAT_DOUBLE_SIDED = 8;
+const int MAT_SPEC_TEX = 16;
+const int MAT_SPEC_COLOR_TEX = 32;
 
 void main()
 {
@@ -30,6 +38,11 @@ void main()
         vec4 t = texture(u_mr_tex, v_uv);
         mr *= vec2(t.b, t.g);
     }
+    vec4 spec = u_specular;
+    if ((u_mat_flags & MAT_SPEC_TEX) != 0)
+        spec.a *= texture(u_spec_tex, v_uv).a;
+    if ((u_mat_flags & MAT_SPEC_COLOR_TEX) != 0)
+        spec.rgb *= texture(u_spec_color_tex, v_uv).rgb;
     vec3 n = normalize(v_normal);
     // The shading normal faces the viewer (as the path tracer's); emission only from the
     // front face unless the material is double-sided (brdf_spec.md).
@@ -41,4 +54,5 @@ void main()
     o_albedo = vec4(proxy ? vec3(0.0) : base.rgb, clamp(mr.x, 0.0, 1.0));
     o_normal = vec4(n, clamp(mr.y, 0.0, 1.0));
     o_emission = vec4(emits ? u_emissive : vec3(0.0), proxy ? 1.0 : 0.0);
+    o_specular = vec4(sqrt(clamp(spec.rgb, 0.0, 1.0)), clamp(spec.a, 0.0, 1.0));
 }

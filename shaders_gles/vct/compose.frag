@@ -5,7 +5,9 @@
 //     hdr' = hdr * a + rgb
 // Calibrated (default):  rgb = rho_d * D + F0 * L_spec,  a = 1, i.e.
 //     hdr' = direct + rho_d / pi * sum_k W_k L_k + F0 L_spec,
-//     rho_d = albedo (1 - metallic),  F0 = mix(0.04, albedo, metallic).
+//     rho_d = pi x the BRDF's diffuse part for gathered light (brdf_spec.md: albedo (1 - metallic)
+//     for a Lambertian surface, times (1 - w max(Fd)) with KHR_materials_specular's weight w),
+//     F0 = mix(w c0, albedo, metallic) (0.04 for the default dielectric).
 // FAITHFUL_COMPOSE (thesis code): out = albedo (direct + 0.75 GI) * min(0.5 + AO, 1); the renderer's
 //     direct image is already multiplied by albedo, so rgb = 0.75 albedo D f + L_spec f, a = f =
 //     min(0.5 + AO, 1).
@@ -62,15 +64,15 @@ void main()
         if (sw > 1e-4) { dif = sd / sw; spec = ss / sw; }
         else { dif = nd; spec = ns; }                  // no similar tap: nearest plausible one
     }
-    vec3 albedo = gb_albedo_metallic(px).rgb;
-    float metallic = vct_metallic_roughness(px).x;
+    gk_brdf_material mat = gb_material(px);
+    vec3 albedo = mat.base;
     spec *= u_spec_enabled;
 #if FAITHFUL_COMPOSE
     float f = min(0.5 + dif.a, 1.0);
     o_color = vec4((0.75 * albedo * dif.rgb + spec) * f, f);
 #else
-    vec3 rho_d = albedo * (1.0 - metallic);
-    vec3 F0 = mix(vec3(0.04), albedo, metallic);
+    vec3 rho_d = GK_PI * gk_brdf_diffuse_gathered(mat, dot(N, normalize(u_eye - X)));
+    vec3 F0 = mix(mat.spec_weight * mat.c0, albedo, mat.metallic);
     o_color = vec4(rho_d * dif.rgb + F0 * spec, 1.0);
 #endif
 }

@@ -45,6 +45,6 @@ void main()
     vec3 x = gb_world_at(v_uv, depth);
     vec3 n = gb_normal(px);
     vec3 E = upsample(u_ind, x - u_origin, n);
-    vec4 a = gb_albedo_metallic(px);
-    o_color = vec4((1.0 - a.a) * a.rgb / 3.14159265 * E, 0.0);
+    // The BRDF's diffuse part for light gathered from many directions (brdf_spec.md).
+    o_color = vec4(gk_brdf_diffuse_gathered(gb_material(px), dot(n, normalize(u_eye - x))) * E, 0.0);
 }

@@ -1,11 +1,14 @@
 // RSM texel: world position (+ the surface area the texel covers), normal facing the light, and
-// the reflected flux Φ = ρ_d · I(ω) · ΔΩ_texel (ρ_d = (1 − metallic)·base, brdf_spec.md).
+// the reflected flux Φ = ρ_d · I(ω) · ΔΩ_texel (ρ_d = π × the BRDF's diffuse part reflected to the
+// whole hemisphere, (1 − metallic)(1 − w max(Fd))·base with Fd's Schlick weight averaged as
+// brdf.glsl's gk_brdf_diffuse_gathered at μ = n·l, brdf_spec.md; textures are not sampled here).
 // ΔΩ_texel = (2 tanΘ / R)² / (1 + u² + v²)^{3/2} for a perspective face (photon-mapping §A.1.3).
 precision highp float;
 in vec3 v_world;
 in vec3 v_normal;
 uniform vec4 u_base_color;
 uniform vec2 u_metallic_roughness;
+uniform vec4 u_specular;       // rgb ((ior-1)/(ior+1))^2 specularColorFactor, a specularFactor
 uniform vec3 u_emissive;
 uniform int u_mat_flags;
 uniform vec3 u_light_pos;
@@ -47,8 +50,12 @@ void main()
     } else if (u_light_kind == 2) {
         I = max(c, 0.0);
     }
-    vec3 rho = (1.0 - clamp(u_metallic_roughness.x, 0.0, 1.0)) * u_base_color.rgb;
     float cos_y = max(dot(n, l), 0.05);
+    vec3 c0 = min(u_specular.rgb, vec3(1.0));
+    float c0_max = max(c0.r, max(c0.g, c0.b));
+    float fd = c0_max + (1.0 - c0_max) * 0.028 * pow(1.0 - clamp(dot(n, l), 0.0, 1.0), 2.6);
+    vec3 rho = (1.0 - clamp(u_metallic_roughness.x, 0.0, 1.0)) * (1.0 - clamp(u_specular.a, 0.0, 1.0) * fd) *
+               u_base_color.rgb;
     o_pos = vec4((v_world - u_origin) * u_code.x, d2 * dOmega / cos_y * u_code.y);
     o_nrm = vec4(n, 0.0);
     o_flux = vec4(rho * u_radiant * (I * dOmega * u_code.z), 1.0);

@@ -92,7 +92,17 @@ int gkt_material(gkt_scene *t, vec3 base, float metallic, float roughness)
     m->metallic = metallic;
     m->roughness = roughness;
     m->ior = 1.5f;
+    m->specular = 1.0f; /* KHR_materials_specular's defaults */
+    m->specular_color[0] = m->specular_color[1] = m->specular_color[2] = 1.0f;
+    m->specular_tex = m->specular_color_tex = -1;
     return t->s.n_materials++;
+}
+
+int gkt_material_lambert(gkt_scene *t, vec3 base)
+{
+    int m = gkt_material(t, base, 0.0f, 1.0f);
+    t->mats[m].specular = 0.0f;
+    return m;
 }
 
 static int add_node(gkt_scene *t)

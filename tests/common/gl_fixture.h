@@ -58,6 +58,9 @@ void gkt_scene_init(gkt_scene *t, const char *name);
 void gkt_scene_free(gkt_scene *t);
 /* A material without textures (ior 1.5); returns its index. */
 int gkt_material(gkt_scene *t, vec3 base, float metallic, float roughness);
+/* A Lambertian material (KHR_materials_specular specularFactor 0, roughness 1): albedo exactly
+ * base, as analytic answers of the form rho / pi E assume. */
+int gkt_material_lambert(gkt_scene *t, vec3 base);
 /* Adds g as a mesh with a root node drawing it (identity transform and world matrix); the scene
  * takes g's arrays (g is left empty). Returns the node index. */
 int gkt_object(gkt_scene *t, gkw_geom *g, int material);

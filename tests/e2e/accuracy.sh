@@ -3,7 +3,7 @@
 # user runs it (`gikiosk run --hdr --capture`, then `gikiosk compare`), at the references' size
 # (160x120). Every bound below is the error measured on llvmpipe (Mesa 22.3) times about 1.3-1.5,
 # so a regression trips it while llvmpipe rounding does not; the references' own noise floors
-# (tests/references/noise.csv: cornell-direct 0.005, cornell-spot 0.058 rel. RMSE) are far below
+# (tests/references/noise.csv: cornell-direct 0.005, cornell-spot 0.052 rel. RMSE) are far below
 # the direct-light bounds.
 . tests/e2e/lib.sh
 export EGL_PLATFORM=surfaceless
@@ -25,7 +25,7 @@ render() {
 
 # --- Direct light (issue: renderer core): cornell with method none against the reference's direct
 # component, for every shadow method at a 1024 map. Measured rel. RMSE / mean ratio:
-# hard 0.050 / 1.001, pcss 0.030 / 0.998, vssm 0.084 / 0.992, cssm 0.122 / 0.962. PCSS is the
+# hard 0.049 / 1.001, pcss 0.030 / 0.998, vssm 0.083 / 0.992, cssm 0.120 / 0.963. PCSS is the
 # framework reference and lands closest; the prefiltered methods trade accuracy for speed (cssm's
 # umbra is too bright at K = 4 terms, see tests/gpu/test_shadow_accuracy.c).
 for pair in hard:0.075 pcss:0.045 vssm:0.11 cssm:0.16; do
@@ -48,7 +48,7 @@ check "--gles 3.1 matches --gles 3.2 (rel_rmse $err < 1e-3)" lt "$err" 0.001
 
 # --- VPL indirect light (issue: VPLs with clustered VALs) on cornell-spot, where most light is
 # indirect. Measured (N 512, M 8, indirect at half resolution, block 2): full image rel. RMSE none
-# 0.487, vpl 0.253; the indirect part (vpl - none) carries 0.50 of the reference's indirect energy,
+# 0.465, vpl 0.225; the indirect part (vpl - none) carries 0.55 of the reference's indirect energy,
 # because vpl is one bounce and the reference has every bounce (a white box returns about as much
 # again in later bounces).
 B="shadow=pcss,vpl_n=512,vpl_m=8,vpl_res=0.5,vpl_block=2,vpl_vis=cssm"
@@ -60,7 +60,7 @@ none_err=$(json_field rel_rmse "$TMP/spot-none.json")
 vpl_err=$(json_field rel_rmse "$TMP/spot-vpl.json")
 echo "# cornell-spot full image: rel_rmse none $none_err, vpl $vpl_err"
 check "vpl well below none on cornell-spot ($vpl_err < 0.6 x $none_err)" lt "$vpl_err" "$(awk -v n="$none_err" 'BEGIN { print 0.6 * n }')"
-check "vpl rel_rmse on cornell-spot below 0.33" lt "$vpl_err" 0.33
+check "vpl rel_rmse on cornell-spot below 0.29 (1.3x the measurement)" lt "$vpl_err" 0.29
 if command -v oiiotool >/dev/null; then
     oiiotool "$TMP/spot-vpl.exr" "$TMP/spot-none.exr" --sub -o "$TMP/spot-indirect.exr"
     "$GIKIOSK" compare "$REFS/cornell-spot-indirect.exr" "$TMP/spot-indirect.exr" --json >"$TMP/spot-ind.json"

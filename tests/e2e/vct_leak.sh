@@ -33,13 +33,15 @@ for res in 32 64 128; do
     check "light-leak vct_res=$res thesis renders" leak "$res" thesis
     leak_thesis=$leak
     echo "# light-leak vct_res=$res: leak ratio default $leak_default, thesis $leak_thesis"
-    # Measured (llvmpipe): default 3.7% / 4.3% / 4.8%, thesis 13.9% / 15.9% / 15.7% at 32 / 64 / 128.
+    # Measured (llvmpipe): default 3.3% / 3.9% / 4.3%, thesis 13.2% / 15.1% / 14.9% at 32 / 64 / 128
+    # (before the glTF Appendix B BRDF, whose (1 - F) lowers the walls' diffuse reflection, 10%
+    # more: 3.7% / 4.3% / 4.8% and 13.9% / 15.9% / 15.7%).
     # Most of the default's leak is level 0: the wall's lit face and its dark face fall in two
     # neighbouring voxels, and a trilinear sample between their centres sees half the lit voxel's
     # (isotropic) radiance at full opacity. Directional injection halves it (measured 2.2-2.5%)
     # but costs the Cornell box accuracy (gk_vct_options.directional_injection); an anisotropic
     # level 0 (6x its memory) would remove it. Bound 1.5x the measurement.
-    check "vct_res=$res: default leaks under 7% of the lit wall ($leak_default)" lt "$leak_default" 0.07
+    check "vct_res=$res: default leaks under 6.5% of the lit wall ($leak_default)" lt "$leak_default" 0.065
     # the improvements must show: less than half the thesis's leak
     check "vct_res=$res: default leaks < half the thesis ($leak_default vs $leak_thesis)" \
         lt "$leak_default" "$(awk -v t="$leak_thesis" 'BEGIN { print t / 2 }')"

@@ -121,6 +121,14 @@ static inline double fx_spec(vec3 n, vec3 v, vec3 l, double f0, double roughness
     return F * D * V;
 }
 
+/* fresnel_mix's share for the diffuse lobe of the default dielectric (brdf_spec.md: specular
+ * weight 1, c0 = 0.04): 1 - Fd(v.h), Fd = 0.04 + 0.96 (1 - v.h)^5. */
+static inline double fx_diffuse_share(vec3 v, vec3 l)
+{
+    double vh = v3_dot(v, v3_norm(v3_add(v, l)));
+    return 1.0 - (0.04 + 0.96 * pow(1 - vh, 5));
+}
+
 /* Lambert polygon irradiance / radiance (the edge integral), polygon wholly above p's horizon. */
 static inline double fx_polygon_irradiance(vec3 p, vec3 n, const vec3 *verts, int count)
 {

@@ -56,7 +56,7 @@ static inline int vt_add_quads(vt_scene *v, int nq, const float (*q)[9], vec3 al
         vec3 c = v3(q[k][0], q[k][1], q[k][2]), u = v3(q[k][3], q[k][4], q[k][5]), w = v3(q[k][6], q[k][7], q[k][8]);
         gkb_quad(&geom, c, v3_add(c, u), v3_add(v3_add(c, u), w), v3_add(c, w), v3_cross(u, w));
     }
-    int mat = gkt_material(v, albedo, 0, 1);
+    int mat = gkt_material_lambert(v, albedo);
     v->mats[mat].emissive[0] = emission.x, v->mats[mat].emissive[1] = emission.y, v->mats[mat].emissive[2] = emission.z;
     int n = gkt_object(v, &geom, mat);
     v->nodes[n].animated = animated;
@@ -83,7 +83,8 @@ static inline int vt_add_box(vt_scene *v, vec3 lo, vec3 sz, vec3 albedo, bool an
 
 /* ---- G-buffer + HDR target ------------------------------------------------------------------ */
 /* gbuf: position (RGBA32F, w = window depth; for test masks only), normal (RGBA16F), albedo
-   (RGBA8) and depth, the renderer's layout (gi.h); hdr: RGBA32F. */
+   (RGBA8), specular (RGBA8, zero: Lambertian test surfaces, as the analytic answers assume) and
+   depth, the renderer's layout (gi.h); hdr: RGBA32F. */
 typedef struct vt_frame {
     int w, h;
     gk_target gbuf, hdr;
@@ -91,14 +92,14 @@ typedef struct vt_frame {
     vec3 eye;
 } vt_frame;
 
-static const GLenum vt_gbuf_formats[3] = {GL_RGBA32F, GL_RGBA16F, GL_RGBA8};
+static const GLenum vt_gbuf_formats[4] = {GL_RGBA32F, GL_RGBA16F, GL_RGBA8, GL_RGBA8};
 
 static inline void vt_frame_create(vt_frame *f, int w, int h, vec3 eye, vec3 target, vec3 up, float yfov)
 {
     const GLenum hdr[1] = {GL_RGBA32F};
     memset(f, 0, sizeof *f);
     f->w = w, f->h = h, f->eye = eye;
-    gkt_target(&f->gbuf, "test gbuffer", w, h, 3, vt_gbuf_formats, true);
+    gkt_target(&f->gbuf, "test gbuffer", w, h, 4, vt_gbuf_formats, true);
     gkt_target(&f->hdr, "test hdr", w, h, 1, hdr, false);
     f->view = m4_look_at(eye, target, up);
     f->proj = m4_perspective(yfov, (float)w / (float)h, 0.05f, 20.0f);
@@ -147,8 +148,8 @@ static inline int vt_gbuffer(vt_gl *g, vt_frame *f, const vt_scene *v)
         glVertexAttribPointer((GLuint)a, 3, GL_FLOAT, GL_FALSE, 9 * sizeof(float), (void *)(size_t)(a * 3 * sizeof(float)));
     }
     glBindFramebuffer(GL_FRAMEBUFFER, f->gbuf.fbo);
-    GLenum bufs[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
-    glDrawBuffers(3, bufs);
+    GLenum bufs[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3};
+    glDrawBuffers(4, bufs);
     glViewport(0, 0, f->w, f->h);
     glClearColor(0, 0, 0, 0);
     glClearDepthf(1.0f);
@@ -200,6 +201,7 @@ static inline int vt_render(void *vct, vt_frame *f, const vt_scene *v, const gk_
     fr.view = f->view, fr.proj = f->proj, fr.view_proj = f->view_proj, fr.inv_view_proj = f->inv_view_proj;
     fr.eye = f->eye;
     fr.gbuf_depth = f->gbuf.depth, fr.gbuf_normal = f->gbuf.color[1], fr.gbuf_albedo = f->gbuf.color[2];
+    fr.gbuf_specular = f->gbuf.color[3];
     /* the renderer's layout (gi.h): positions from depth, metallic/roughness in albedo.a/normal.w */
     fr.hdr_fbo = f->hdr.fbo;
     fr.n_lights = n_lights;

@@ -72,8 +72,9 @@ static inline int h_init_with(vpl_h *h, bool with_boxes, int w, int hh, gk_scene
     h->programs = gk_program_cache_create(NULL, h->gl.egl.gles_version);
     gkt_scene *b = &h->box;
     gkt_scene_init(b, "vpl-cornell-corner");
-    int grey = gkt_material(b, v3(0.75f, 0.75f, 0.75f), 0, 1), red = gkt_material(b, v3(0.75f, 0.1f, 0.1f), 0, 1),
-        green = gkt_material(b, v3(0.1f, 0.75f, 0.1f), 0, 1);
+    /* Lambertian, as the Cornell box (the tests' analytic one-bounce answers use rho / pi) */
+    int grey = gkt_material_lambert(b, v3(0.75f, 0.75f, 0.75f)), red = gkt_material_lambert(b, v3(0.75f, 0.1f, 0.1f)),
+        green = gkt_material_lambert(b, v3(0.1f, 0.75f, 0.1f));
     /* one-sided walls facing into the unit box */
     gkt_quad(b, v3(0, 0, 0), v3(1, 0, 0), v3(1, 0, 1), v3(0, 0, 1), v3(0, 1, 0), grey);   /* floor */
     gkt_quad(b, v3(0, 1, 0), v3(1, 1, 0), v3(1, 1, 1), v3(0, 1, 1), v3(0, -1, 0), grey);  /* ceiling */
@@ -101,9 +102,9 @@ static inline int h_init_with(vpl_h *h, bool with_boxes, int w, int hh, gk_scene
         return -1;
     }
     h->w = w, h->h = hh;
-    const GLenum gb[3] = {GL_RGBA8, GL_RGBA16F, GL_RGBA16F};
+    const GLenum gb[4] = {GL_RGBA8, GL_RGBA16F, GL_RGBA16F, GL_RGBA8}; /* the renderer's layout */
     const GLenum hf[1] = {GL_RGBA32F};
-    if (gkt_target(&h->gbuf, "test gbuffer", w, hh, 3, gb, true) || gkt_target(&h->hdr, "test hdr", w, hh, 1, hf, false))
+    if (gkt_target(&h->gbuf, "test gbuffer", w, hh, 4, gb, true) || gkt_target(&h->hdr, "test hdr", w, hh, 1, hf, false))
         return -1;
     h->eye = v3(0.5f, 0.5f, 0.98f);
     h->view = m4_look_at(h->eye, v3(0.5f, 0.5f, 0.0f), v3(0, 1, 0));
@@ -144,8 +145,8 @@ static inline int h_init_with(vpl_h *h, bool with_boxes, int w, int hh, gk_scene
         return -1;
     }
     glBindFramebuffer(GL_FRAMEBUFFER, h->gbuf.fbo);
-    const GLenum b3[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
-    glDrawBuffers(3, b3);
+    const GLenum b4[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3};
+    glDrawBuffers(4, b4);
     glViewport(0, 0, w, hh);
     glClearColor(0, 0, 0, 0);
     glClearDepthf(1);
@@ -182,6 +183,7 @@ static inline int h_frame(vpl_h *h, double t)
     f.scene = &h->scene, f.time_s = t, f.width = h->w, f.height = h->h;
     f.view = h->view, f.proj = h->proj, f.view_proj = h->vp, f.inv_view_proj = h->inv_vp, f.eye = h->eye;
     f.gbuf_albedo = h->gbuf.color[0], f.gbuf_normal = h->gbuf.color[1], f.gbuf_depth = h->gbuf.depth;
+    f.gbuf_specular = h->gbuf.color[3];
     f.hdr_fbo = h->hdr.fbo;
     f.n_lights = 1, f.lights = &h->gl_light, f.budget = &h->budget;
     f.draw_scene = h_draw_scene, f.draw_ctx = h;

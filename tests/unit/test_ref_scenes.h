@@ -43,6 +43,9 @@ static inline int ts_material(test_scene *t, float r, float g, float b, float me
     m->metallic = metallic;
     m->roughness = roughness;
     m->ior = 1.5f;
+    m->specular = 1.0f; /* KHR_materials_specular's defaults */
+    m->specular_color[0] = m->specular_color[1] = m->specular_color[2] = 1.0f;
+    m->specular_tex = m->specular_color_tex = -1;
     return t->s.n_materials++;
 }
 
@@ -135,8 +138,10 @@ static inline int ts_build(test_scene *t, gk_ref_scene *rs, int w, int h)
     return gk_ref_scene_build(rs, &t->s, view, proj, t->eye, w, h, &e);
 }
 
-/* brdf_spec.md transcribed independently of app/ref/materials.c: f for a dielectric-metal mix. */
-static inline float ts_brdf_spec(float base, float metallic, float roughness, vec3 n, vec3 wo, vec3 wi)
+/* brdf_spec.md transcribed independently of app/ref/materials.c: f for a dielectric-metal mix, grey
+ * base, KHR_materials_specular weight w and grey F0 colour c0. */
+static inline float ts_brdf_gltf(float base, float metallic, float roughness, float w, float c0, vec3 n, vec3 wo,
+                                 vec3 wi)
 {
     float a = roughness * roughness;
     a = a < 0.0025f ? 0.0025f : a;
@@ -145,12 +150,21 @@ static inline float ts_brdf_spec(float base, float metallic, float roughness, ve
     float nl = v3_dot(n, wi), nv = v3_dot(n, wo), nh = v3_dot(n, h), vh = v3_dot(wo, h);
     if (nl <= 0 || nv <= 0)
         return 0;
-    float f0 = 0.04f + (base - 0.04f) * metallic;
-    float F = f0 + (1 - f0) * powf(1 - vh, 5);
     float dd = nh * nh * (a2 - 1) + 1;
     float D = a2 / (3.14159265f * dd * dd);
     float V = 0.5f / (nl * sqrtf(nv * nv * (1 - a2) + a2) + nv * sqrtf(nl * nl * (1 - a2) + a2));
-    return (1 - metallic) * base / 3.14159265f + F * D * V;
+    float s5 = powf(1 - vh, 5);
+    /* Appendix B as its normative form: mix(dielectric, metal, metallic). */
+    float fd = c0 + (1 - c0) * s5;                                     /* fresnel_mix's Fresnel */
+    float dielectric = (1 - w * fd) * base / 3.14159265f + w * fd * D * V;
+    float metal = (base + (1 - base) * s5) * D * V;                   /* conductor_fresnel */
+    return (1 - metallic) * dielectric + metallic * metal;
+}
+
+/* The default material (no KHR_materials_specular: weight 1, ior 1.5 so c0 = 0.04). */
+static inline float ts_brdf_spec(float base, float metallic, float roughness, vec3 n, vec3 wo, vec3 wi)
+{
+    return ts_brdf_gltf(base, metallic, roughness, 1.0f, 0.04f, n, wo, wi);
 }
 
 #endif

@@ -175,6 +175,23 @@ static void broken_files_name_the_file_and_the_defect(void **state)
     expect_input_error("methods.gltf", "unknown method 'rtx'");
 
     expect_input_error("does-not-exist.gltf", "no such file");
+
+    /* KHR_materials_specular: out-of-range or malformed values are refused, naming the key */
+    const char *bad_specular[][2] = {
+        {"{\"specularFactor\":1.5}", "specularFactor"},
+        {"{\"specularFactor\":\"high\"}", "specularFactor"},
+        {"{\"specularColorFactor\":[1,1]}", "specularColorFactor"},
+        {"{\"specularColorFactor\":[1,-1,1]}", "specularColorFactor"},
+        {"{\"specularTexture\":{\"index\":\"x\"}}", "specularTexture"},
+        {"{\"specularColorTexture\":{\"index\":4}}", "specular colour texture 4"},
+    };
+    for (size_t i = 0; i < sizeof bad_specular / sizeof bad_specular[0]; i++) {
+        char materials[256];
+        snprintf(materials, sizeof materials, ",\"materials\":[{\"extensions\":{\"KHR_materials_specular\":%s}}]",
+                 bad_specular[i][0]);
+        write_gltf("badspec.gltf", "t.bin", 4, 3, 36, ",\"material\":0", materials);
+        expect_input_error("badspec.gltf", bad_specular[i][1]);
+    }
 }
 
 static void degenerate_triangles_are_dropped_and_counted(void **state)
@@ -230,6 +247,43 @@ static void base_colour_texture_is_decoded_to_linear(void **state)
     gk_scene_free(s);
 }
 
+/* KHR_materials_specular: factors read, textures referenced (colour texture decoded as sRGB, the
+ * weight texture as data), defaults where the extension is absent. */
+static void specular_extension_is_read(void **state)
+{
+    (void)state;
+    gk_image img = {0};
+    assert_int_equal(gk_image_alloc(&img, 2, 2, 4), 0);
+    for (int i = 0; i < 2 * 2 * 4; i++)
+        img.pixels[i] = 0.5f;
+    gk_err e = {0};
+    assert_int_equal(gk_image_write(path_of("half.png"), &img, NULL, &e), 0);
+    gk_image_free(&img);
+    write_gltf("spec.gltf", "t.bin", 4, 3, 36, ",\"material\":0",
+               ",\"materials\":[{\"extensions\":{\"KHR_materials_specular\":{\"specularFactor\":0.25,"
+               "\"specularColorFactor\":[2,1,0.5],\"specularTexture\":{\"index\":0},"
+               "\"specularColorTexture\":{\"index\":1}}}},{\"name\":\"plain\"}],"
+               "\"textures\":[{\"source\":0},{\"source\":1}],\"images\":[{\"uri\":\"half.png\"},{\"uri\":\"half.png\"}]");
+    gk_scene *s = gk_scene_load(path_of("spec.gltf"), &e);
+    if (!s)
+        print_error("%s\n", e.msg);
+    assert_non_null(s);
+    const gk_material *m = &s->materials[0];
+    assert_float_equal(m->specular, 0.25f, 1e-7f);
+    assert_float_equal(m->specular_color[0], 2.0f, 1e-7f);
+    assert_float_equal(m->specular_color[2], 0.5f, 1e-7f);
+    assert_int_equal(m->specular_tex, 0);
+    assert_int_equal(m->specular_color_tex, 1);
+    assert_float_equal(s->textures[0].rgba[3], 128.0f / 255.0f, 1e-3f);                      /* data */
+    assert_float_equal(s->textures[1].rgba[0], gk_srgb_to_linear(128.0f / 255.0f), 1e-3f); /* colour */
+    const gk_material *plain = &s->materials[1];
+    assert_float_equal(plain->specular, 1.0f, 0);
+    assert_float_equal(plain->specular_color[1], 1.0f, 0);
+    assert_int_equal(plain->specular_tex, -1);
+    assert_float_equal(s->materials[s->n_materials - 1].specular, 1.0f, 0); /* the glTF default material */
+    gk_scene_free(s);
+}
+
 static void memory_loads_read_no_files(void **state)
 {
     (void)state;
@@ -259,6 +313,7 @@ int main(void)
         cmocka_unit_test(broken_files_name_the_file_and_the_defect),
         cmocka_unit_test(degenerate_triangles_are_dropped_and_counted),
         cmocka_unit_test(base_colour_texture_is_decoded_to_linear),
+        cmocka_unit_test(specular_extension_is_read),
         cmocka_unit_test(memory_loads_read_no_files),
     };
     return cmocka_run_group_tests(tests, setup, teardown);

@@ -21,6 +21,20 @@ static vec3 tex_sample(const gk_texture *t, float u, float v)
     return v3(p[0], p[1], p[2]);
 }
 
+/* The share of the light a surface's diffuse lobe reradiates (brdf_spec.md's fresnel_mix):
+ * 1 - w max(Fd), with Fd's Schlick weight (1 - v.h)^5 averaged over cosine-weighted incident and
+ * outgoing directions, because a voxel's directions are not known: 0.028 (1 - mu)^2.6 (brdf.glsl's
+ * gk_brdf_diffuse_gathered) averaged over mu with weight 2 mu is 0.028 * 2 / (3.6 * 4.6) = 0.00338.
+ * 1 for a Lambertian material (w = 0); metallic is left out, as the voxels always were. */
+static float diffuse_share(const gk_material *mat)
+{
+    float r = (mat->ior - 1.0f) / (mat->ior + 1.0f);
+    float c0_max = 0.0f;
+    for (int c = 0; c < 3; c++)
+        c0_max = fmaxf(c0_max, fminf(r * r * mat->specular_color[c], 1.0f));
+    return 1.0f - mat->specular * (c0_max + (1.0f - c0_max) * 0.00338f);
+}
+
 static bool mesh_skipped(const gk_scene *s, const gk_mesh *m)
 {
     return m->material >= 0 && m->material < s->n_materials && s->materials[m->material].light_proxy;
@@ -47,6 +61,8 @@ static void emit_tri(const gk_scene *s, const gk_node *node, const gk_mesh *m, u
     }
     if (mat && mat->base_color_tex >= 0 && mat->base_color_tex < s->n_textures && m->uvs)
         alb = v3_mul(alb, tex_sample(&s->textures[mat->base_color_tex], uc, vc));
+    if (mat)
+        alb = v3_scale(alb, diffuse_share(mat));
     float *a = out + 12, *em = out + 16;
     a[0] = alb.x, a[1] = alb.y, a[2] = alb.z, a[3] = 1.0f;
     em[0] = emi.x, em[1] = emi.y, em[2] = emi.z, em[3] = 0.0f;

@@ -8,6 +8,7 @@ uniform vec3 u_eye;
 layout(location = 0) out vec4 o_pos;
 layout(location = 1) out vec4 o_normal;
 layout(location = 2) out vec4 o_albedo;
+layout(location = 3) out vec4 o_specular;   // KHR_materials_specular weight 0: Lambertian
 void main()
 {
     vec3 n = normalize(v_normal);
@@ -15,4 +16,5 @@ void main()
     o_pos = vec4(v_pos, gl_FragCoord.z);
     o_normal = vec4(n, 1.0);                    // w = roughness (renderer layout, gi.h)
     o_albedo = vec4(v_albedo, 0.0);             // a = metallic
+    o_specular = vec4(0.0);
 }

@@ -1,0 +1,52 @@
+#!/bin/sh
+# No implemented GI method may be worse than `none` on a scene it applies to (issue 11): every scene
+# with a reference x every method the kiosk runs there (`gikiosk scenes`), at the references' size
+# (160x120) and default budgets, each against one ruler per scene as the calibration uses it:
+# SCENE-1bounce.exr where it exists (vct and vpl are one bounce), else SCENE.exr; relative RMSE,
+# or absolute RMSE where the ruler is black (light-leak: all light there leaked). A method worse
+# than none fails, except the cases listed in KNOWN below, which are asserted to be still worse
+# (so fixing one shows here and its line must go) and printed with their numbers; they are
+# bounded by their own tests (vct_leak.sh, vpl_leak.sh) or open in issue 11.
+. tests/e2e/lib.sh
+export EGL_PLATFORM=surfaceless
+REFS=tests/references
+# scene/method pairs known to be worse than none, each with why:
+#   cornell-spot/vct: spot-light injection/cone sampling of the small lit patch (issue 11, open);
+#   light-leak/vct, light-leak/vpl: light through the 2 cm wall, the ruler is black.
+KNOWN="cornell-spot/vct light-leak/vct light-leak/vpl"
+
+json_field() { sed -n "s/.*\"$1\": \(\[[^]]*\]\|[^,}]*\).*/\1/p" "$2"; }
+le() { awk -v a="$1" -v b="$2" 'BEGIN { n = "^[-+]?[0-9.]+([eE][-+]?[0-9]+)?$"; exit !(a ~ n && b ~ n && a + 0 <= b + 0) }'; }
+
+# err SCENE METHOD RULER METRIC: renders the 2nd frame and prints its error against RULER
+err() {
+    rm -rf "$TMP/cap"
+    "$GIKIOSK" run --platform mock --scene "$1" --method "$2" --size 160x120 --frames 2 --hdr \
+        --capture "$TMP/cap" >"$TMP/run.log" 2>&1 || return 1
+    "$GIKIOSK" compare "$3" "$TMP/cap/000001-$1-$2.exr" --json >"$TMP/c.json" 2>/dev/null || return 1
+    json_field "$4" "$TMP/c.json"
+}
+
+"$GIKIOSK" scenes >"$TMP/scenes" 2>/dev/null
+awk 'NR > 1 && NF >= 5 && $1 != "METHODS:" { print $1, $5 }' "$TMP/scenes" >"$TMP/list"
+while read -r scene methods; do
+    ruler=$REFS/$scene-1bounce.exr
+    [ -f "$ruler" ] || ruler=$REFS/$scene.exr
+    [ -f "$ruler" ] || continue
+    metric=rel_rmse
+    [ "$scene" = light-leak ] && metric=rmse
+    none=$(err "$scene" none "$ruler" $metric)
+    check "$scene: none renders and compares ($metric $none)" test -n "$none"
+    for m in $(echo "$methods" | tr ',' ' '); do
+        [ "$m" = none ] && continue
+        e=$(err "$scene" "$m" "$ruler" $metric)
+        echo "# $scene vs $(basename "$ruler"): $metric none $none, $m $e"
+        case " $KNOWN " in
+            *" $scene/$m "*)
+                check "$scene/$m: known to be worse than none ($e > $none), listed in KNOWN" le "$none" "$e" ;;
+            *)
+                check "$scene/$m: no worse than none ($e <= $none)" le "$e" "$none" ;;
+        esac
+    done
+done <"$TMP/list"
+finish
