@@ -11,6 +11,7 @@ uniform int u_layer;                    // layer drawn
 uniform mat4 u_model;                   // the draw_scene contract (gi.h)
 uniform vec4 u_base_color;
 uniform vec2 u_metallic_roughness;
+uniform vec4 u_specular;                // the draw_scene contract (gi.h): the lists store no material
 uniform vec3 u_emissive;
 uniform int u_mat_flags;
 in vec3 v_normal;

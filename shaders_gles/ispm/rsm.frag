@@ -9,6 +9,7 @@ in vec3 v_world;
 in vec3 v_normal;
 uniform vec4 u_base_color;
 uniform vec2 u_metallic_roughness;
+uniform vec4 u_specular;       // rgb ((ior-1)/(ior+1))^2 specularColorFactor, a specularFactor (KHR_materials_specular)
 uniform vec3 u_emissive;
 uniform int u_mat_flags;
 uniform mat4 u_model;          // declared for draw_scene (gi.h); used by rsm.vert
@@ -28,9 +29,13 @@ void main()
         n = -n;
     float metallic = clamp(u_metallic_roughness.x, 0.0, 1.0), rough = clamp(u_metallic_roughness.y, 0.0, 1.0);
     bool specular = metallic > 0.5 && rough < 0.2;
-    // fresnel_mix at normal incidence (brdf_spec.md): F0 = mix(0.04, base, metallic)
-    vec3 s = mix(vec3(0.04), u_base_color.rgb, metallic);
-    vec3 d = (1.0 - metallic) * u_base_color.rgb;
+    // fresnel_mix at normal incidence (brdf_spec.md, glTF Appendix B with KHR_materials_specular):
+    // the dielectric's F0 = specularFactor * min(c0, 1), the metal's the base colour; the diffuse
+    // share is what the dielectric's Fresnel term leaves, (1 - w max(F0)) of the base colour
+    float w = clamp(u_specular.a, 0.0, 1.0);
+    vec3 c0 = min(u_specular.rgb, vec3(1.0));
+    vec3 s = mix(w * c0, u_base_color.rgb, metallic);
+    vec3 d = (1.0 - metallic) * (1.0 - w * max(c0.r, max(c0.g, c0.b))) * u_base_color.rgb;
     o_nrm = vec4(n * 0.5 + 0.5, specular ? 1.0 : 0.0);
     o_spec = vec4(s, rough);
     o_diff = vec4(d, 0.0);

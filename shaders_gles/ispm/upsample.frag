@@ -1,5 +1,5 @@
 // Joint bilateral upsampling of the splatted caustic irradiance (seed 000 pass 13, §3.3.2.4) and its
-// composition: L += ρ_d/π · E_caustic with ρ_d = (1 − metallic)·base (brdf_spec.md), added to the
+// composition: L += f_d · E_caustic with f_d the BRDF's diffuse part (fresnel_mix, brdf_spec.md), added to the
 // HDR image. Each full-resolution pixel takes the 3×3 low-resolution texels around it, weighted
 //   w = bilinear · max(n·n', 0)^k · 1/(1 + |d − d'|)   (d = distance to the camera, metres),
 // the low-resolution normal and distance being the G-buffer's at the texel's pixel (the splat read
@@ -42,5 +42,6 @@ void main()
             wsum += w;
         }
     vec3 E = wsum > 0.0 ? acc / wsum : vec3(0.0);
-    o_color = vec4((1.0 - s.metallic) * s.base / 3.14159265 * E, 0.0);
+    // the diffuse part of the glTF BRDF lit by the caustic's irradiance, as vpl's compose does it
+    o_color = vec4(gk_brdf_diffuse_gathered(s.m, dot(s.n, s.v)) * E, 0.0);
 }
