@@ -12,10 +12,8 @@ export EGL_PLATFORM=surfaceless
 REFS=tests/references
 # scene/method pairs known to be worse than none, each with why:
 #   cornell-spot/vct: spot-light injection/cone sampling of the small lit patch (issue 11, open);
-#   light-leak/vct, light-leak/vpl: light through the 2 cm wall, the ruler is black;
-#   caustic-ring/ispm: its caustic misses the reference's (energy 0.42 inside the caustic mask,
-#   IoU 0.09: test_ispm_ring.c), so the misplaced light costs more than the caustic gains (issue 14, open).
-KNOWN="cornell-spot/vct light-leak/vct light-leak/vpl caustic-ring/ispm"
+#   light-leak/vct, light-leak/vpl: light through the 2 cm wall, the ruler is black.
+KNOWN="cornell-spot/vct light-leak/vct light-leak/vpl"
 
 json_field() { sed -n "s/.*\"$1\": \(\[[^]]*\]\|[^,}]*\).*/\1/p" "$2"; }
 le() { awk -v a="$1" -v b="$2" 'BEGIN { n = "^[-+]?[0-9.]+([eE][-+]?[0-9]+)?$"; exit !(a ~ n && b ~ n && a + 0 <= b + 0) }'; }
