@@ -42,7 +42,6 @@ void main()
             wsum += w;
         }
     vec3 E = wsum > 0.0 ? acc / wsum : vec3(0.0);
-    // ρ_d/π of the metal/dielectric mix (the Fresnel share of the dielectric is left out here:
-    // the test harness's G-buffer has no specular target; a follow-up)
-    o_color = vec4((1.0 - s.m.metallic) * s.m.base / 3.14159265 * E, 0.0);
+    // the diffuse part of the glTF BRDF lit by the caustic's irradiance, as vpl's compose does it
+    o_color = vec4(gk_brdf_diffuse_gathered(s.m, dot(s.n, s.v)) * E, 0.0);
 }

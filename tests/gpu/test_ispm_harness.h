@@ -73,8 +73,8 @@ static inline int ih_gbuffer(ispm_h *h)
         return -1;
     }
     glBindFramebuffer(GL_FRAMEBUFFER, h->gbuf.fbo);
-    const GLenum b3[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
-    glDrawBuffers(3, b3);
+    const GLenum b4[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3};
+    glDrawBuffers(4, b4);
     glViewport(0, 0, h->w, h->h);
     glClearColor(0, 0, 0, 0);
     glClearDepthf(1);
@@ -109,9 +109,9 @@ static inline int ih_open(ispm_h *h, gk_scene *scene, int w, int hh)
     h->programs = gk_program_cache_create(NULL, h->gl.egl.gles_version);
     h->scene = scene;
     h->w = w, h->h = hh;
-    const GLenum gb[3] = {GL_RGBA8, GL_RGBA16F, GL_RGBA16F};
+    const GLenum gb[4] = {GL_RGBA8, GL_RGBA16F, GL_RGBA16F, GL_RGBA8}; /* the renderer's layout */
     const GLenum hf[1] = {GL_RGBA32F};
-    if (gkt_target(&h->gbuf, "test gbuffer", w, hh, 3, gb, true) || gkt_target(&h->hdr, "test hdr", w, hh, 1, hf, false))
+    if (gkt_target(&h->gbuf, "test gbuffer", w, hh, 4, gb, true) || gkt_target(&h->hdr, "test hdr", w, hh, 1, hf, false))
         return -1;
     h->img = malloc((size_t)w * hh * 4 * sizeof(float));
     h->albedo = malloc((size_t)w * hh * 4 * sizeof(float));
@@ -162,6 +162,7 @@ static inline int ih_frame(ispm_h *h)
     f.view = h->view, f.proj = h->proj, f.view_proj = h->vp, f.inv_view_proj = h->inv_vp, f.eye = h->eye;
     f.gbuf_albedo = h->gbuf.color[0], f.gbuf_normal = h->gbuf.color[1], f.gbuf_emission = h->gbuf.color[2];
     f.gbuf_depth = h->gbuf.depth;
+    f.gbuf_specular = h->gbuf.color[3];
     f.hdr_fbo = h->hdr.fbo;
     f.n_lights = 1, f.lights = &h->light, f.budget = &h->budget;
     f.draw_scene = ih_draw_scene, f.draw_ctx = h;

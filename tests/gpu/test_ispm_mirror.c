@@ -65,8 +65,9 @@ static double in_view_fraction(float cam_x)
 static void build(gkt_scene *t, int plate) /* plate: 0 none, 1 off-screen, 2 on-screen */
 {
     gkt_scene_init(t, "ispm-mirror");
-    int grey = gkt_material(t, v3(0.75f, 0.75f, 0.75f), 0, 1), mirror = gkt_material(t, v3(1, 1, 1), 1, 0),
-        dark = gkt_material(t, v3(0.5f, 0.1f, 0.1f), 0, 1);
+    /* Lambertian receivers (specularFactor 0): the energy checks below divide by rho/pi */
+    int grey = gkt_material_lambert(t, v3(0.75f, 0.75f, 0.75f)), mirror = gkt_material(t, v3(1, 1, 1), 1, 0),
+        dark = gkt_material_lambert(t, v3(0.5f, 0.1f, 0.1f));
     gkt_quad(t, v3(-3, 0, -3), v3(3, 0, -3), v3(3, 0, 3), v3(-3, 0, 3), v3(0, 1, 0), grey);
     float m = MIRROR_HALF;
     gkt_quad(t, v3(-m, MIRROR_Y, -m), v3(m, MIRROR_Y, -m), v3(m, MIRROR_Y, m), v3(-m, MIRROR_Y, m), v3(0, -1, 0), mirror);

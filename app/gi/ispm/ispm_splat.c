@@ -170,9 +170,10 @@ int ispm_upsample(ispm_state *s, const gk_gi_frame *f, gk_err *e)
     glUseProgram(prog);
     gk_gbuffer_view gv = gk_gi_gbuffer(f);
     gk_gbuffer_bind(&gv, &u->gb, 0, 0);
-    glActiveTexture(GL_TEXTURE4);
+    /* the splats on the first unit after the G-buffer's (GK_GBUFFER_UNITS: it grew a specular target) */
+    glActiveTexture(GL_TEXTURE0 + GK_GBUFFER_UNITS);
     glBindTexture(GL_TEXTURE_2D, s->splat_tex);
-    glUniform1i(u->u_low, 4);
+    glUniform1i(u->u_low, GK_GBUFFER_UNITS);
     glUniform1f(u->u_to_low, (float)s->splat_w / (float)f->width);
     glUniform1f(u->u_k, s->dbg.upsample_k);
     glDisable(GL_DEPTH_TEST);
