@@ -323,7 +323,7 @@ int gk_renderer_draw(gk_renderer *r, const gk_frame_params *fp, unsigned target_
     if (w < 1) w = 1;
     if (h < 1) h = 1;
     /* before the targets may be resized: the last frame's GI is still there to hold */
-    gk_gi_blend_begin_frame(r, fp ? fp->method : NULL, b, fk.gi_blend, e);
+    gk_gi_blend_begin_frame(r, fp ? fp->method : NULL, b, fk.gi_blend);
     if (ensure_targets(r, w, h, e) != 0)
         return -1;
     r->shown = r->hdr.color[0];

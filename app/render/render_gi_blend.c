@@ -74,7 +74,7 @@ static int hold_last_contribution(gk_renderer *r, gk_err *e)
     return 0;
 }
 
-void gk_gi_blend_begin_frame(gk_renderer *r, const char *method, const gk_budget *b, int blend_frames, gk_err *e)
+void gk_gi_blend_begin_frame(gk_renderer *r, const char *method, const gk_budget *b, int blend_frames)
 {
     gk_gi_blend *g = &r->blend;
     const char *m = method ? method : "none";
@@ -87,11 +87,12 @@ void gk_gi_blend_begin_frame(gk_renderer *r, const char *method, const gk_budget
         g->frames_left = 0;
         /* nothing to fade when neither side has GI, or when fading is off */
         if (blend_frames > 1 && r->have_frame && (g->pre_valid || gi_now)) {
-            if (hold_last_contribution(r, e) == 0) {
+            gk_err he = {0}; /* a fade that cannot start is no frame error: logged, the switch shows at once */
+            if (hold_last_contribution(r, &he) == 0) {
                 g->frames = blend_frames;
                 g->frames_left = blend_frames - 1;
             } else {
-                gk_log("renderer: GI cross-fade skipped: %s", e->msg);
+                gk_log("renderer: GI cross-fade skipped: %s", he.msg);
             }
         }
     }

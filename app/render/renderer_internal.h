@@ -95,7 +95,7 @@ void gk_render_knobs_read(gk_render_knobs *k, const gk_budget *b, gk_frame_knobs
 
 /* render_gi_blend.c. At the start of a frame, before targets are resized: notes what the frame
  * runs and, when that differs from the last frame, holds the GI contribution that frame showed. */
-void gk_gi_blend_begin_frame(gk_renderer *r, const char *method, const gk_budget *b, int blend_frames, gk_err *e);
+void gk_gi_blend_begin_frame(gk_renderer *r, const char *method, const gk_budget *b, int blend_frames);
 /* True when the gi pass has work this frame though the method adds nothing (a fade to none). */
 bool gk_gi_blend_active(const gk_renderer *r);
 /* Inside the gi pass: before the method (keeps the image before GI), after it (the fade). */
