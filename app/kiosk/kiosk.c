@@ -321,6 +321,9 @@ static int frame(kiosk *k, double now, gk_err *e)
         k->sched_skip--;
         return 0;
     }
+    for (int i = 0; i < k->budget.n; i++)
+        if (k->budget.def[i]->scales_pass)
+            gk_sched_observe_pass(&k->sched, i, gk_frame_report_ms(&report, k->budget.def[i]->scales_pass));
     gk_sched_change ch[GK_MAX_KNOBS * GK_MAX_KNOB_VALUES];
     int n = gk_sched_update(&k->sched, &k->budget, frame_ms, ch, (int)(sizeof ch / sizeof ch[0]));
     log_budget_changes(k, ch, n, frame_ms);

@@ -29,10 +29,12 @@ static const gk_knob_def knob_shadow = {
     .auto_max_level = 1,
 };
 
-/* Map rendering: a fixed geometry part plus fill ∝ texels (4x per step); lookups do not grow. */
+/* Map rendering: a fixed geometry part plus fill ∝ texels (4x per step); lookups do not grow, so
+ * the knob scales the `shadow` pass (which is ~0 when a static scene's maps are kept). */
 static const gk_knob_def knob_shadow_map = {
     .name = "shadow_map", .owner = "render", .n_values = 4,
     .values = {"256", "512", "1024", "2048"}, .cost = {1.0f, 1.6f, 3.4f, 10.6f}, .default_level = 2,
+    .scales_pass = "shadow",
 };
 
 /* VSSM kernel subdivision depth (dong-001.md §5.2; read by shadow/shadow_vssm.c, no effect for the

@@ -24,6 +24,11 @@ typedef struct gk_knob_def {
     bool fixed;                               /* a variant switch (the document's behaviour or an
                                                  improvement), not a cost/quality trade: the
                                                  scheduler never moves it; set with --budget */
+    const char *scales_pass;                  /* the timed pass (dotted path, "gi.vct_trace") whose time
+                                                 grows with this knob as cost[level] does, the other
+                                                 knobs held: the scheduler predicts a step from that
+                                                 pass's measured time (scheduler.h). NULL: the cost
+                                                 is a share of the frame, learnt from step responses */
 } gk_knob_def;
 
 typedef struct gk_budget {

@@ -21,8 +21,10 @@ void gk_sched_reset(gk_sched *s, const gk_sched_params *p, const gk_budget *b, c
 {
     memset(s, 0, sizeof *s);
     s->p = *p;
-    for (int k = 0; k < b->n; k++)
+    for (int k = 0; k < b->n; k++) {
         s->active[k] = active ? active[k] : true;
+        s->gain[k] = 1;
+    }
     s->warm = p->warmup;
 }
 
@@ -89,6 +91,21 @@ static void fit(gk_sched *s, const gk_budget *b, double ms)
             s->weight[k] = fmax(0, s->weight[k] + g * prior(b, k, b->level[k]));
 }
 
+void gk_sched_observe_pass(gk_sched *s, int k, double pass_ms)
+{
+    if (k >= 0 && k < GK_MAX_KNOBS)
+        s->pass_ms[k] = pass_ms > 0 && isfinite(pass_ms) ? pass_ms : 0;
+}
+
+/* Predicted change of the frame when pass-scaled knob k moves from level `from` to `to`, from the
+ * pass time measured at `from`; NAN when the pass time is unknown. */
+static double pass_delta(const gk_sched *s, const gk_budget *b, int k, double pass_ms, int from, int to)
+{
+    if (!b->def[k]->scales_pass || !(pass_ms > 0))
+        return NAN;
+    return s->gain[k] * pass_ms * (prior(b, k, to) / prior(b, k, from) - 1);
+}
+
 /* Step response: exactly one active knob changed level since the previous measured frame, so the
  * difference in frame time is its doing. Returns 1 when it updated the model. The base absorbs the
  * rest so the prediction matches this frame. */
@@ -108,6 +125,13 @@ static int fit_step(gk_sched *s, const gk_budget *b, double ms)
     double dprior = prior(b, changed, b->level[changed]) - prior(b, changed, s->prev_level[changed]);
     if (dprior == 0)
         return 0;
+    double predicted = pass_delta(s, b, changed, s->prev_pass_ms[changed], s->prev_level[changed], b->level[changed]);
+    if (isfinite(predicted) && predicted != 0) {
+        /* the pass-scaled prediction, corrected by what the step really did (bounded: one noisy
+           frame must not make the knob look free or ten times its cost) */
+        double g = s->gain[changed] * (ms - s->prev_ms) / predicted;
+        s->gain[changed] = fmin(fmax(0.5 * s->gain[changed] + 0.5 * g, 0.25), 4.0);
+    }
     double w = (ms - s->prev_ms) / dprior;
     if (w < 0)
         w = 0; /* noise larger than the step: the knob is cheap */
@@ -125,7 +149,22 @@ static int fit_step(gk_sched *s, const gk_budget *b, double ms)
 static double step_delta(const gk_sched *s, const gk_budget *b, int k, int dir)
 {
     int l = b->level[k];
+    double d = pass_delta(s, b, k, s->pass_ms[k], l, l + dir);
+    if (isfinite(d))
+        return d;
     return s->weight[k] * (prior(b, k, l + dir) - prior(b, k, l));
+}
+
+/* After a step of pass-scaled knob k, the predicted new time of its pass for every knob that scales
+ * the same pass, so a second step in the same frame is predicted from the grown (or shrunk) pass. */
+static void pass_moved(gk_sched *s, const gk_budget *b, int k, double delta)
+{
+    const char *pass = b->def[k]->scales_pass;
+    if (!pass || !(s->pass_ms[k] > 0))
+        return;
+    for (int j = 0; j < b->n; j++)
+        if (b->def[j]->scales_pass && strcmp(b->def[j]->scales_pass, pass) == 0 && s->pass_ms[j] > 0)
+            s->pass_ms[j] = fmax(s->pass_ms[j] + delta, 1e-3);
 }
 
 static double quality_per_step(const gk_budget *b, int k) { return 1.0 / (b->def[k]->n_values - 1); }
@@ -156,6 +195,7 @@ static int step_down(gk_sched *s, gk_budget *b, double ms, gk_sched_change *ch, 
         if (n >= max || n >= s->p.max_down_steps)
             break; /* measure before dropping further: the model may not know the savings yet */
         ch[n++] = (gk_sched_change){best, b->level[best], b->level[best] - 1};
+        pass_moved(s, b, best, -best_saved);
         b->level[best]--;
         predicted -= fmax(best_saved, 0);
         if (s->last_dir[best] > 0) {
@@ -187,8 +227,8 @@ static int step_up(gk_sched *s, gk_budget *b, gk_sched_change *ch, int max)
         for (int k = 0; k < b->n; k++) {
             if (!movable(s, b, k) || b->level[k] >= b->max_level[k] || s->frame < s->blocked_until[k])
                 continue;
-            if (n > 0 && !s->measured[k])
-                continue;
+            if (n > 0 && !s->measured[k] && !isfinite(pass_delta(s, b, k, s->pass_ms[k], b->level[k], b->level[k] + 1)))
+                continue; /* neither a step response nor its pass's time: one unknown step at a time */
             double added = fmax(step_delta(s, b, k, +1), 0);
             if (predicted + added >= goal)
                 continue;
@@ -202,6 +242,7 @@ static int step_up(gk_sched *s, gk_budget *b, gk_sched_change *ch, int max)
         if (best < 0)
             break;
         ch[n++] = (gk_sched_change){best, b->level[best], b->level[best] + 1};
+        pass_moved(s, b, best, best_added);
         b->level[best]++;
         predicted += best_added;
         if (s->last_dir[best] < 0)
@@ -226,8 +267,10 @@ int gk_sched_update(gk_sched *s, gk_budget *b, double frame_ms, gk_sched_change 
         fit(s, b, frame_ms);
     s->have_prev = true;
     s->prev_ms = frame_ms;
-    for (int k = 0; k < b->n; k++)
+    for (int k = 0; k < b->n; k++) {
         s->prev_level[k] = b->level[k];
+        s->prev_pass_ms[k] = s->pass_ms[k];
+    }
     const gk_sched_params *p = &s->p;
     if (frame_ms > p->target_ms) {
         s->under_count = 0;

@@ -7,6 +7,14 @@
  * weight (averaged into it); on other frames normalised least mean squares on the measured time
  * keeps the whole prediction calibrated (base and weights move along the feature vector).
  *
+ * A knob whose cost lives in one timed pass (gk_knob_def.scales_pass: the VCT cones, step and trace
+ * resolution all scale gi.vct_trace) is predicted from that pass instead: a step from level l to l'
+ * changes the frame by gain_k * pass_ms * (cost(l')/cost(l) - 1), with pass_ms measured on the
+ * frame just drawn (gk_sched_observe_pass) and gain_k (1 at first) fitted by its step responses.
+ * Such knobs interact multiplicatively (cones x trace pixels), which the additive model cannot
+ * express: seeded with equal shares it put the furnace's 6 -> 9 cones at +12 ms where the trace
+ * pass of 275 ms grew to 424 ms, two frames 11% over a 400 ms target (showcase tour).
+ *
  * Control (up: see gk_sched_params.max_up_steps, up_after_far): over target -> step down at once, as many steps as the model predicts are needed to get
  * under target*(1 - margin/2) but at most max_down_steps per measured frame, each time the knob whose step saves the most predicted time per
  * quality lost (quality of a step = 1/(number of values - 1)). Under target*(1 - margin) for
@@ -62,6 +70,9 @@ typedef struct gk_sched {
     bool have_prev;              /* the previous measured frame, for step responses */
     double prev_ms;
     int prev_level[GK_MAX_KNOBS];
+    double pass_ms[GK_MAX_KNOBS];      /* time of the knob's scales_pass on the newest frame (0: unknown) */
+    double prev_pass_ms[GK_MAX_KNOBS]; /* ... on the previous measured frame, for its step response */
+    double gain[GK_MAX_KNOBS];         /* measured / predicted change of a pass-scaled knob's step */
 } gk_sched;
 
 void gk_sched_params_defaults(gk_sched_params *p, double target_ms);
@@ -70,6 +81,10 @@ void gk_sched_reset(gk_sched *s, const gk_sched_params *p, const gk_budget *b, c
 /* Feeds the time of the frame just drawn at b's current levels; may change levels in b for the next
  * frame. Fills changes (up to max) and returns their count. */
 int gk_sched_update(gk_sched *s, gk_budget *b, double frame_ms, gk_sched_change *changes, int max);
+/* The time of knob k's scales_pass on the frame about to be fed to gk_sched_update (call before
+ * it, for each knob that has one; a pass that did not run is 0 and leaves the knob on the
+ * additive model). */
+void gk_sched_observe_pass(gk_sched *s, int k, double pass_ms);
 /* True when no knob the scheduler may move can step down: every active, unpinned knob is at the
  * lowest level its range allows. A frame over the target then cannot be helped by budgets. */
 bool gk_sched_at_floor(const gk_sched *s, const gk_budget *b);

@@ -20,11 +20,11 @@
 enum { K_PHOTONS, K_TRACE, K_SPLAT, K_POOL, K_TIER, K_COUNT };
 _Static_assert(K_COUNT == ISPM_KNOBS, "ispm_internal.h's ISPM_KNOBS counts the knobs");
 static const gk_knob_def knobs[K_COUNT] = {
-    {"ispm_photons", "ispm", 4, {"1024", "4096", "16384", "65536"}, {1.0f, 1.29f, 2.42f, 6.99f}, 1, 0, false},
-    {"ispm_trace", "ispm", 3, {"64", "128", "256"}, {1.0f, 1.47f, 2.4f}, 1, 0, false},
-    {"ispm_splat", "ispm", 3, {"0.25", "0.5", "1"}, {1.0f, 1.05f, 1.2f}, 1, 0, false},
+    {"ispm_photons", "ispm", 4, {"1024", "4096", "16384", "65536"}, {1.0f, 1.29f, 2.42f, 6.99f}, 1, 0, false, NULL},
+    {"ispm_trace", "ispm", 3, {"64", "128", "256"}, {1.0f, 1.47f, 2.4f}, 1, 0, false, NULL},
+    {"ispm_splat", "ispm", 3, {"0.25", "0.5", "1"}, {1.0f, 1.05f, 1.2f}, 1, 0, false, NULL},
     /* list-pool megabytes; 20 is the seed's */
-    {"ispm_pool", "ispm", 3, {"2", "8", "20"}, {1.0f, 1.0f, 1.0f}, 2, 0, false},
+    {"ispm_pool", "ispm", 3, {"2", "8", "20"}, {1.0f, 1.0f, 1.0f}, 2, 0, false, NULL},
     {"ispm_tier", "ispm", 2, {"peel", "lists"}, {1.0f, 1.0f}, 1, 0, .fixed = true},
 };
 

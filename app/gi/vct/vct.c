@@ -14,12 +14,14 @@
  * from 128^3 (P.6), so the prior is between res^2 and res^3. Cones: linear. Step multiplier m:
  * steps ~ 1/ln(1 + m a) for a ~ 1.1 (1/ln 3.2 = 0.86, 1/ln 2.65 = 1.03, 1/ln 2.1 = 1.35,
  * 1/ln 1.55 = 2.28, normalised). Trace scale: traced pixels ~ s^2. Mips: six directions vs one
- * hardware mip chain. */
-static const gk_knob_def knob_res = {"vct_res", "vct", 4, {"32", "64", "128", "256"}, {1, 4, 24, 160}, 1, 2, false}; /* 256^3 is past the 128 MiB SSBO limit on llvmpipe: a pinned value only */
-static const gk_knob_def knob_cones = {"vct_cones", "vct", 3, {"4", "6", "9"}, {1, 1.5f, 2.25f}, 1, 0, false};
-static const gk_knob_def knob_step = {"vct_step", "vct", 4, {"2", "1.5", "1", "0.5"}, {1, 1.2f, 1.57f, 2.65f}, 2, 0, false};
-static const gk_knob_def knob_scale = {"vct_trace_scale", "vct", 3, {"0.25", "0.5", "1"}, {1, 4, 16}, 1, 0, false};
-static const gk_knob_def knob_mips = {"vct_mips", "vct", 2, {"iso", "aniso"}, {1, 2}, 1, 0, false};
+ * hardware mip chain. The cones, step and trace-scale priors are of the trace pass alone, which
+ * each scales with the other two held (scales_pass): the scheduler predicts their steps from its
+ * measured time; resolution and mips spread over voxelize/inject/mips/trace and are learnt. */
+static const gk_knob_def knob_res = {"vct_res", "vct", 4, {"32", "64", "128", "256"}, {1, 4, 24, 160}, 1, 2, false, NULL}; /* 256^3 is past the 128 MiB SSBO limit on llvmpipe: a pinned value only */
+static const gk_knob_def knob_cones = {"vct_cones", "vct", 3, {"4", "6", "9"}, {1, 1.5f, 2.25f}, 1, 0, false, .scales_pass = "gi.vct_trace"};
+static const gk_knob_def knob_step = {"vct_step", "vct", 4, {"2", "1.5", "1", "0.5"}, {1, 1.2f, 1.57f, 2.65f}, 2, 0, false, .scales_pass = "gi.vct_trace"};
+static const gk_knob_def knob_scale = {"vct_trace_scale", "vct", 3, {"0.25", "0.5", "1"}, {1, 4, 16}, 1, 0, false, .scales_pass = "gi.vct_trace"};
+static const gk_knob_def knob_mips = {"vct_mips", "vct", 2, {"iso", "aniso"}, {1, 2}, 1, 0, false, NULL};
 /* default: gk_vct_default_options (conservative voxelization, fixed-point averaging, footprint
    clamp, ...); thesis: gk_vct_thesis_options, the thesis as published. A switch for measuring one
    against the other, never a scheduler pick. */

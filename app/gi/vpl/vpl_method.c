@@ -17,23 +17,25 @@
  *  vpl_vis: VSM 2 fetches, CSSM 6 (+ basis), exact N hard maps -> 1, 1.3, 20
  *  vpl_clamp: one max() per VPL                               -> 1, 1
  *  vpl_gather: multires shades every valid region with all N VPLs instead of N/B² per pixel;
- *              T5 at 64² measured ~1/16 as many regions as pixels, i.e. par with block 4     -> 1, 1.4 */
+ *              T5 at 64² measured ~1/16 as many regions as pixels, i.e. par with block 4     -> 1, 1.4
+ * Each prior is the method's whole cost with the other knobs held, so every trade knob scales the
+ * `gi` pass (scales_pass): the scheduler predicts a step from that pass's measured time. */
 enum { K_N, K_M, K_VAL_MAP, K_BLOCK, K_RES, K_BLUR, K_VIS, K_CLAMP, K_GATHER, K_COUNT };
 /* Levels of the variant knobs, in the order of their values below. */
 _Static_assert(K_COUNT == VPL_KNOBS, "vpl_internal.h's VPL_KNOBS counts the knobs");
 enum { VIS_VSM, VIS_CSSM, VIS_EXACT };
 enum { GATHER_INTERLEAVED, GATHER_MULTIRES };
 static const gk_knob_def knobs[K_COUNT] = {
-    {"vpl_n", "vpl", 3, {"256", "512", "1024"}, {1.0f, 1.69f, 3.07f}, 0, 0, false},
-    {"vpl_m", "vpl", 6, {"2", "4", "8", "16", "32", "adaptive"}, {1.0f, 1.006f, 1.018f, 1.041f, 1.086f, 1.05f}, 2, 0, false},
-    {"vpl_val_map", "vpl", 3, {"64", "128", "256"}, {1.0f, 1.02f, 1.11f}, 0, 0, false},
-    {"vpl_block", "vpl", 3, {"4", "2", "1"}, {1.0f, 3.07f, 11.35f}, 0, 0, false},
-    {"vpl_res", "vpl", 3, {"0.25", "0.5", "1"}, {1.0f, 3.7f, 14.5f}, 1, 0, false},
-    {"vpl_blur", "vpl", 3, {"2", "4", "8"}, {1.0f, 1.17f, 1.5f}, 1, 0, false},
+    {"vpl_n", "vpl", 3, {"256", "512", "1024"}, {1.0f, 1.69f, 3.07f}, 0, 0, false, .scales_pass = "gi"},
+    {"vpl_m", "vpl", 6, {"2", "4", "8", "16", "32", "adaptive"}, {1.0f, 1.006f, 1.018f, 1.041f, 1.086f, 1.05f}, 2, 0, false, .scales_pass = "gi"},
+    {"vpl_val_map", "vpl", 3, {"64", "128", "256"}, {1.0f, 1.02f, 1.11f}, 0, 0, false, .scales_pass = "gi"},
+    {"vpl_block", "vpl", 3, {"4", "2", "1"}, {1.0f, 3.07f, 11.35f}, 0, 0, false, .scales_pass = "gi"},
+    {"vpl_res", "vpl", 3, {"0.25", "0.5", "1"}, {1.0f, 3.7f, 14.5f}, 1, 0, false, .scales_pass = "gi"},
+    {"vpl_blur", "vpl", 3, {"2", "4", "8"}, {1.0f, 1.17f, 1.5f}, 1, 0, false, .scales_pass = "gi"},
     /* exact (one hard map per VPL) is the reference for clustering error, never a scheduler pick. */
-    {"vpl_vis", "vpl", 3, {"vsm", "cssm", "exact"}, {1.0f, 1.3f, 20.0f}, 1, .auto_max_level = 1},
+    {"vpl_vis", "vpl", 3, {"vsm", "cssm", "exact"}, {1.0f, 1.3f, 20.0f}, 1, .auto_max_level = 1, .scales_pass = "gi"},
     {"vpl_clamp", "vpl", 2, {"off", "on"}, {1.0f, 1.0f}, 1, 0, .fixed = true},
-    {"vpl_gather", "vpl", 2, {"interleaved", "multires"}, {1.0f, 1.4f}, 0, 0, false},
+    {"vpl_gather", "vpl", 2, {"interleaved", "multires"}, {1.0f, 1.4f}, 0, 0, false, .scales_pass = "gi"},
 };
 
 static void declare_knobs(gk_budget *b)
