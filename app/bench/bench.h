@@ -79,6 +79,11 @@ int gk_bench_sweep_parse(const char *text, const gk_budget *b, gk_bench_sweep *s
 /* The default sweep of a method: for "none" shadow x shadow_map, else each knob the method owns,
  * one at a time (the others at their defaults) — returned as several sweeps. */
 int gk_bench_default_sweeps(const gk_budget *b, const char *method, gk_bench_sweep *out, int max);
+/* The calibration's sweep (`--sweep each`): every knob the scheduler may move for this method --
+ * the renderer's own and the method's, not the fixed switches -- one at a time through the levels
+ * it may choose by itself (up to auto_max_level), the default level left out (the run measures the
+ * default configuration first). Returns the number of sweeps. */
+int gk_bench_each_knob_sweeps(const gk_budget *b, const char *method, gk_bench_sweep *out, int max);
 /* Number of combinations of a sweep, and the pin list ("K=V,K=V") of combination i. */
 int gk_bench_sweep_count(const gk_bench_sweep *s);
 void gk_bench_sweep_pins(const gk_bench_sweep *s, int index, char *out, int out_len);

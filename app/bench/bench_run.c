@@ -78,8 +78,10 @@ static int measure(bench_run *b, const char *method, const char *pins, gk_err *e
         return -1;
 
     /* The kiosk keeps shadow maps of static scenes between frames; a sweep over shadow knobs must
-       pay for them every frame to measure them, any other sweep measures the kiosk's steady state. */
-    gk_renderer_set_rerender_static_shadows(b->renderer, strstr(pins, "shadow") != NULL || b->o->rebuild_gi);
+       pay for them every frame to measure them, any other sweep (and the calibration's, which
+       predicts the kiosk's frames) measures the kiosk's steady state. */
+    bool each = strcmp(b->o->sweep, "each") == 0; /* the calibration measures the kiosk's steady state */
+    gk_renderer_set_rerender_static_shadows(b->renderer, (!each && strstr(pins, "shadow") != NULL) || b->o->rebuild_gi);
     gk_renderer_set_rebuild_gi(b->renderer, b->o->rebuild_gi);
     gk_renderer_cut(b->renderer); /* no cross-fade from the previous configuration's GI */
     int frames = b->o->frames, total = b->o->warmup + frames;
@@ -246,13 +248,18 @@ static int bench_scene(bench_run *b, const char *name, gk_err *e)
     for (int mi = 0; rc == 0 && mi < n_run; mi++) {
         gk_bench_sweep sweeps[GK_MAX_KNOBS];
         int n_sweeps;
-        if (b->o->sweep[0]) {
+        bool each = strcmp(b->o->sweep, "each") == 0;
+        if (each) {
+            /* the default configuration first: the calibration's reference row for this method */
+            rc = measure(b, run[mi], "", e);
+            n_sweeps = gk_bench_each_knob_sweeps(&knobs, run[mi], sweeps, GK_MAX_KNOBS);
+        } else if (b->o->sweep[0]) {
             rc = gk_bench_sweep_parse(b->o->sweep, &knobs, &sweeps[0], e);
             n_sweeps = 1;
         } else {
             n_sweeps = gk_bench_default_sweeps(&knobs, run[mi], sweeps, GK_MAX_KNOBS);
         }
-        if (rc == 0 && n_sweeps == 0)
+        if (rc == 0 && n_sweeps == 0 && !each)
             rc = measure(b, run[mi], "", e);
         for (int s = 0; rc == 0 && s < n_sweeps; s++) {
             int count = gk_bench_sweep_count(&sweeps[s]);

@@ -81,6 +81,29 @@ int gk_bench_default_sweeps(const gk_budget *b, const char *method, gk_bench_swe
     return n;
 }
 
+int gk_bench_each_knob_sweeps(const gk_budget *b, const char *method, gk_bench_sweep *out, int max)
+{
+    int n = 0;
+    for (int k = 0; k < b->n && n < max; k++) {
+        const gk_knob_def *d = b->def[k];
+        const char *owner = d->owner ? d->owner : "";
+        if (d->fixed || d->n_values < 2 || (strcmp(owner, "render") != 0 && strcmp(owner, method) != 0))
+            continue;
+        int top = d->auto_max_level > 0 ? d->auto_max_level : d->n_values - 1;
+        gk_bench_sweep *s = &out[n];
+        memset(s, 0, sizeof *s);
+        snprintf(s->knob[0], sizeof s->knob[0], "%s", d->name);
+        for (int l = 0; l <= top; l++)
+            if (l != d->default_level)
+                snprintf(s->values[0][s->n_values[0]++], sizeof s->values[0][0], "%s", d->values[l]);
+        if (s->n_values[0] > 0) {
+            s->n_axes = 1;
+            n++;
+        }
+    }
+    return n;
+}
+
 int gk_bench_sweep_count(const gk_bench_sweep *s)
 {
     int n = 1;

@@ -11,7 +11,8 @@
 static void usage(FILE *f)
 {
     fputs("usage: gikiosk bench [--scenes LIST] [--methods LIST] [--size WxH] [--frames N] [--warmup N]\n"
-          "                     [--sweep KNOB=V1,V2[;KNOB=V1,V2...]] [--scenes-dir DIR] [--references DIR]\n"
+          "                     [--sweep KNOB=V1,V2[;KNOB=V1,V2...] | --sweep each] [--scenes-dir DIR]\n"
+          "                     [--references DIR]\n"
           "                     [--gles 3.1|3.2] [--shader-dir DIR] [--rebuild-gi]\n"
           "                     [--target-ms MS] [--target-size WxH] [--one-ruler] --out DIR\n"
           "\n"
@@ -28,6 +29,9 @@ static void usage(FILE *f)
           "--one-ruler: every method of a scene is measured against one reference (SCENE-1bounce.exr\n"
           "where it exists, else SCENE.exr), so the methods compare on one axis (default: each against\n"
           "what it computes; none against SCENE-direct.exr).\n"
+          "--sweep each: the calibration's sweep (make calibrate): per method the default configuration,\n"
+          "then every knob the scheduler may move (the renderer's and the method's) one at a time through\n"
+          "its automatic levels.\n"
           "--rebuild-gi: the GI methods redo every frame what they otherwise keep between frames of a\n"
           "static scene (vct: voxelize, inject, mips) and shadow maps are re-rendered: the cost of a\n"
           "moving light or object, pass by pass.\n",

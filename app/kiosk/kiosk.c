@@ -5,6 +5,7 @@
 #include "kiosk.h"
 
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -74,6 +75,47 @@ static int catalogue_index(const char *method)
     return e ? (int)(e - all) : -1;
 }
 
+/* Hands the scheduler this visit's calibration: the default row of (scene, method) and, per active
+ * knob, the rows of its levels (app/sched/calibration.h). Logs the automatic levels the calibration
+ * shows no more accurate than the level below them: the scheduler does not climb to them here. */
+static void calibrate_visit(kiosk *k, const char *scene, const char *method, const bool *active)
+{
+    const gk_calib_row *def = k->have_calibration ? gk_calibration_find(&k->calibration, scene, method) : NULL;
+    if (!def)
+        return;
+    gk_sched_calibrate(&k->sched, def->frame_ms, def->error);
+    char skipped[512] = "";
+    int knobs = 0;
+    for (int i = 0; i < k->budget.n; i++) {
+        const gk_knob_def *d = k->budget.def[i];
+        if (!active[i] || d->fixed)
+            continue;
+        double ms[GK_MAX_KNOB_VALUES], err[GK_MAX_KNOB_VALUES], pass[GK_MAX_KNOB_VALUES];
+        int found = 0;
+        for (int l = 0; l < d->n_values; l++) {
+            const gk_calib_row *r = l == d->default_level
+                                        ? def
+                                        : gk_calibration_find_level(&k->calibration, scene, method, d->name, d->values[l]);
+            ms[l] = r ? r->frame_ms : NAN;
+            err[l] = r ? r->error : NAN;
+            pass[l] = r && d->scales_pass ? gk_calib_row_pass_ms(r, d->scales_pass) : NAN;
+            found += r && r != def;
+        }
+        if (!found)
+            continue; /* a table of the first format, or a knob newer than it: the priors */
+        gk_sched_calibrate_knob(&k->sched, i, ms, err, pass, d->n_values);
+        knobs++;
+        int top = d->auto_max_level > 0 ? d->auto_max_level : d->n_values - 1;
+        for (int l = 1; l <= top; l++)
+            if (!isnan(err[l]) && !isnan(err[l - 1]) && err[l] >= err[l - 1] && strlen(skipped) < sizeof skipped - 64)
+                snprintf(skipped + strlen(skipped), sizeof skipped - strlen(skipped), "%s%s=%s", skipped[0] ? "," : "",
+                         d->name, d->values[l]);
+    }
+    if (knobs)
+        gk_log("visit: %s with %s: %d knobs calibrated; levels not climbed to (measured no more accurate than the "
+               "level below): %s", scene, method, knobs, skipped[0] ? skipped : "none");
+}
+
 /* Starts showing the playlist's current (scene, method): the visit before it is remembered, and
  * this one starts from its own remembered levels and cost model, or from the knobs' defaults on a
  * first visit -- never from the previous scene's levels. Knobs that affect frames now: the
@@ -105,6 +147,7 @@ static void begin_visit(kiosk *k)
         }
         gk_budget_reset_defaults(&k->budget);
         gk_sched_reset(&k->sched, &k->sched_params, &k->budget, active);
+        calibrate_visit(k, gk_playlist_scene(&k->pl), method, active);
     }
     gk_recent_clear(&k->recent);
     k->floor_over = 0;
@@ -425,7 +468,11 @@ static int load_calibration(kiosk *k, const char *renderer, gk_err *e)
     gk_err ce = {0};
     if (gk_calibration_load(path, &k->calibration, &ce) == 0) {
         k->have_calibration = true;
-        gk_log("calibration: %s (%d scene x method rows)", path, k->calibration.n);
+        int defaults = 0;
+        for (int i = 0; i < k->calibration.n; i++)
+            defaults += k->calibration.rows[i].knob[0] == '\0';
+        gk_log("calibration: %s (%d scene x method rows, %d knob-level rows)", path, defaults,
+               k->calibration.n - defaults);
         return 0;
     }
     if (ce.code == GK_EINPUT) {

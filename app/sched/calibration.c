@@ -54,14 +54,36 @@ static bool parse_int(const char *s, int *v)
     return end != s && *end == '\0' && x > 0 && x <= 65536;
 }
 
-static const char *const header = "scene,method,width,height,frame_ms,error,metric,ruler";
+static const char *const header_v1 = "scene,method,width,height,frame_ms,error,metric,ruler";
+static const char *const header = "scene,method,width,height,frame_ms,error,metric,ruler,knob,value,passes";
 
-/* One data line into r; false with what is wrong in why. */
-static bool parse_row(char *line, gk_calib_row *r, const char **why)
+/* "PATH=MS PATH=MS ...": names of dotted identifiers, finite non-negative times. */
+static bool valid_passes(const char *s)
 {
-    char *f[8];
+    while (*s) {
+        const char *eq = strchr(s, '=');
+        if (!eq || eq == s)
+            return false;
+        for (const char *p = s; p < eq; p++)
+            if (!isalnum((unsigned char)*p) && *p != '_' && *p != '.')
+                return false;
+        char *end = NULL;
+        errno = 0;
+        double v = strtod(eq + 1, &end);
+        if (end == eq + 1 || errno || !isfinite(v) || v < 0 || (*end && *end != ' '))
+            return false;
+        s = *end ? end + 1 : end;
+    }
+    return true;
+}
+
+/* One data line into r (fields: 8 in the first format, 11 now); false with what is wrong in why. */
+static bool parse_row(char *line, int want, gk_calib_row *r, const char **why)
+{
+    char *f[11];
     int n = 0;
-    for (char *p = line; n < 8; n++) {
+    memset(r, 0, sizeof *r);
+    for (char *p = line; n < want; n++) {
         f[n] = p;
         char *comma = strchr(p, ',');
         if (!comma) {
@@ -71,8 +93,9 @@ static bool parse_row(char *line, gk_calib_row *r, const char **why)
         *comma = '\0';
         p = comma + 1;
     }
-    if (n != 8) {
-        *why = "expected 8 fields (scene,method,width,height,frame_ms,error,metric,ruler)";
+    if (n != want) {
+        *why = want == 8 ? "expected 8 fields (scene,method,width,height,frame_ms,error,metric,ruler)"
+                         : "expected 11 fields (scene,method,width,height,frame_ms,error,metric,ruler,knob,value,passes)";
         return false;
     }
     if (!f[0][0] || strlen(f[0]) >= sizeof r->scene || !f[1][0] || strlen(f[1]) >= sizeof r->method) {
@@ -97,7 +120,34 @@ static bool parse_row(char *line, gk_calib_row *r, const char **why)
         *why = "metric must be rel_rmse or rmse";
         return false;
     }
+    if (want == 8)
+        return true;
+    if (strlen(f[8]) >= sizeof r->knob || strlen(f[9]) >= sizeof r->value || !f[8][0] != !f[9][0]) {
+        *why = "knob and value: both empty (the default row) or both set, at most 31 and 23 bytes";
+        return false;
+    }
+    snprintf(r->knob, sizeof r->knob, "%s", f[8]);
+    snprintf(r->value, sizeof r->value, "%s", f[9]);
+    if (strlen(f[10]) >= sizeof r->passes || !valid_passes(f[10])) {
+        *why = "passes must be 'PATH=MS PATH=MS ...' (dotted pass paths, times >= 0)";
+        return false;
+    }
+    snprintf(r->passes, sizeof r->passes, "%s", f[10]);
     return true;
+}
+
+double gk_calib_row_pass_ms(const gk_calib_row *r, const char *path)
+{
+    size_t len = strlen(path);
+    for (const char *p = r->passes; *p;) {
+        if (!strncmp(p, path, len) && p[len] == '=')
+            return strtod(p + len + 1, NULL);
+        const char *space = strchr(p, ' ');
+        if (!space)
+            break;
+        p = space + 1;
+    }
+    return NAN;
 }
 
 int gk_calibration_load(const char *path, gk_calibration *c, gk_err *e)
@@ -118,7 +168,7 @@ int gk_calibration_load(const char *path, gk_calibration *c, gk_err *e)
         return gk_fail(e, GK_ERUNTIME, "%s: out of memory", path);
     }
     char line[1024];
-    int line_no = 0, rc = 0;
+    int line_no = 0, rc = 0, fields = 0;
     bool have_header = false;
     while (rc == 0 && fgets(line, sizeof line, f)) {
         line_no++;
@@ -132,7 +182,8 @@ int gk_calibration_load(const char *path, gk_calibration *c, gk_err *e)
         if (len == 0 || line[0] == '#')
             continue;
         if (!have_header) {
-            if (strcmp(line, header) != 0)
+            fields = !strcmp(line, header) ? 11 : !strcmp(line, header_v1) ? 8 : 0;
+            if (!fields)
                 rc = gk_fail(e, GK_EINPUT, "%s:%d: expected the header '%s'", path, line_no, header);
             have_header = true;
             continue;
@@ -142,11 +193,13 @@ int gk_calibration_load(const char *path, gk_calibration *c, gk_err *e)
             break;
         }
         const char *why = NULL;
-        if (!parse_row(line, &c->rows[c->n], &why))
+        gk_calib_row *r = &c->rows[c->n];
+        if (!parse_row(line, fields, r, &why))
             rc = gk_fail(e, GK_EINPUT, "%s:%d: %s", path, line_no, why);
-        else if (gk_calibration_find(c, c->rows[c->n].scene, c->rows[c->n].method))
-            rc = gk_fail(e, GK_EINPUT, "%s:%d: %s/%s listed twice", path, line_no, c->rows[c->n].scene,
-                         c->rows[c->n].method);
+        else if (r->knob[0] ? (bool)gk_calibration_find_level(c, r->scene, r->method, r->knob, r->value)
+                            : (bool)gk_calibration_find(c, r->scene, r->method))
+            rc = gk_fail(e, GK_EINPUT, "%s:%d: %s/%s%s%s%s%s listed twice", path, line_no, r->scene, r->method,
+                         r->knob[0] ? " " : "", r->knob, r->knob[0] ? "=" : "", r->value);
         else
             c->n++;
     }
@@ -163,7 +216,17 @@ int gk_calibration_load(const char *path, gk_calibration *c, gk_err *e)
 const gk_calib_row *gk_calibration_find(const gk_calibration *c, const char *scene, const char *method)
 {
     for (int i = 0; i < c->n; i++)
-        if (!strcmp(c->rows[i].scene, scene) && !strcmp(c->rows[i].method, method))
+        if (!c->rows[i].knob[0] && !strcmp(c->rows[i].scene, scene) && !strcmp(c->rows[i].method, method))
+            return &c->rows[i];
+    return NULL;
+}
+
+const gk_calib_row *gk_calibration_find_level(const gk_calibration *c, const char *scene, const char *method,
+                                              const char *knob, const char *value)
+{
+    for (int i = 0; i < c->n; i++)
+        if (!strcmp(c->rows[i].knob, knob) && !strcmp(c->rows[i].value, value) &&
+            !strcmp(c->rows[i].scene, scene) && !strcmp(c->rows[i].method, method))
             return &c->rows[i];
     return NULL;
 }

@@ -91,6 +91,27 @@ static void fit(gk_sched *s, const gk_budget *b, double ms)
             s->weight[k] = fmax(0, s->weight[k] + g * prior(b, k, b->level[k]));
 }
 
+void gk_sched_calibrate(gk_sched *s, double default_frame_ms, double default_error)
+{
+    s->cal_default_ms = default_frame_ms > 0 && isfinite(default_frame_ms) ? default_frame_ms : 0;
+    s->cal_default_err = default_error > 0 && isfinite(default_error) ? default_error : 0;
+}
+
+void gk_sched_calibrate_knob(gk_sched *s, int k, const double *frame_ms, const double *error, const double *pass_ms,
+                             int n_levels)
+{
+    if (k < 0 || k >= GK_MAX_KNOBS)
+        return;
+    s->calibrated[k] = false;
+    for (int l = 0; l < GK_MAX_KNOB_VALUES; l++) {
+        bool in = l < n_levels;
+        s->cal_ms[k][l] = in && frame_ms[l] > 0 && isfinite(frame_ms[l]) ? (float)frame_ms[l] : NAN;
+        s->cal_err[k][l] = in && error[l] >= 0 && isfinite(error[l]) ? (float)error[l] : NAN;
+        s->cal_pass[k][l] = in && pass_ms && pass_ms[l] > 0 && isfinite(pass_ms[l]) ? (float)pass_ms[l] : NAN;
+        s->calibrated[k] |= in && !isnan(s->cal_ms[k][l]) && !isnan(s->cal_err[k][l]);
+    }
+}
+
 void gk_sched_observe_pass(gk_sched *s, int k, double pass_ms)
 {
     if (k >= 0 && k < GK_MAX_KNOBS)
@@ -103,7 +124,21 @@ static double pass_delta(const gk_sched *s, const gk_budget *b, int k, double pa
 {
     if (!b->def[k]->scales_pass || !(pass_ms > 0))
         return NAN;
-    return s->gain[k] * pass_ms * (prior(b, k, to) / prior(b, k, from) - 1);
+    double ratio = prior(b, k, to) / prior(b, k, from);
+    /* measured pass ratio where both levels' passes took long enough to time (a kept shadow map's
+       pass is ~1 us: its ratio would be noise) */
+    if (s->calibrated[k] && s->cal_pass[k][from] >= 0.05f && s->cal_pass[k][to] >= 0.05f)
+        ratio = (double)s->cal_pass[k][to] / s->cal_pass[k][from];
+    return s->gain[k] * pass_ms * (ratio - 1);
+}
+
+/* Predicted change from the calibrated frame times of the two levels, scaled to this run; NAN when
+ * either level was not measured or the run's scale is not known yet. */
+static double calibrated_delta(const gk_sched *s, int k, int from, int to)
+{
+    if (!s->calibrated[k] || !(s->cal_scale > 0) || isnan(s->cal_ms[k][from]) || isnan(s->cal_ms[k][to]))
+        return NAN;
+    return s->gain[k] * s->cal_scale * ((double)s->cal_ms[k][to] - s->cal_ms[k][from]);
 }
 
 /* Step response: exactly one active knob changed level since the previous measured frame, so the
@@ -126,7 +161,9 @@ static int fit_step(gk_sched *s, const gk_budget *b, double ms)
     if (dprior == 0)
         return 0;
     double predicted = pass_delta(s, b, changed, s->prev_pass_ms[changed], s->prev_level[changed], b->level[changed]);
-    if (isfinite(predicted) && predicted != 0) {
+    if (!isfinite(predicted))
+        predicted = calibrated_delta(s, changed, s->prev_level[changed], b->level[changed]);
+    if (isfinite(predicted) && fabs(predicted) > 1e-3) {
         /* the pass-scaled prediction, corrected by what the step really did (bounded: one noisy
            frame must not make the knob look free or ten times its cost) */
         double g = s->gain[changed] * (ms - s->prev_ms) / predicted;
@@ -150,6 +187,8 @@ static double step_delta(const gk_sched *s, const gk_budget *b, int k, int dir)
 {
     int l = b->level[k];
     double d = pass_delta(s, b, k, s->pass_ms[k], l, l + dir);
+    if (!isfinite(d))
+        d = calibrated_delta(s, k, l, l + dir);
     if (isfinite(d))
         return d;
     return s->weight[k] * (prior(b, k, l + dir) - prior(b, k, l));
@@ -167,7 +206,15 @@ static void pass_moved(gk_sched *s, const gk_budget *b, int k, double delta)
             s->pass_ms[j] = fmax(s->pass_ms[j] + delta, 1e-3);
 }
 
-static double quality_per_step(const gk_budget *b, int k) { return 1.0 / (b->def[k]->n_values - 1); }
+/* What the step between level lo and lo + 1 of knob k is worth: the calibrated error it removes,
+ * relative to the default configuration's error (0 or less: the richer level measured no better),
+ * else 1/(levels - 1) of the knob's range. */
+static double step_quality(const gk_sched *s, const gk_budget *b, int k, int lo)
+{
+    if (s->calibrated[k] && !isnan(s->cal_err[k][lo]) && !isnan(s->cal_err[k][lo + 1]))
+        return ((double)s->cal_err[k][lo] - s->cal_err[k][lo + 1]) / (s->cal_default_err > 0 ? s->cal_default_err : 1);
+    return 1.0 / (b->def[k]->n_values - 1);
+}
 
 static int step_down(gk_sched *s, gk_budget *b, double ms, gk_sched_change *ch, int max)
 {
@@ -182,8 +229,9 @@ static int step_down(gk_sched *s, gk_budget *b, double ms, gk_sched_change *ch, 
                 continue;
             double saved = -step_delta(s, b, k, -1);
             /* A knob the model believes free still beats doing nothing: tiny score from its prior. */
+            /* a step that loses no measured accuracy is the first to go */
             double score = fmax(saved, 1e-9 * (prior(b, k, b->level[k]) - prior(b, k, b->level[k] - 1)))
-                           / quality_per_step(b, k);
+                           / fmax(step_quality(s, b, k, b->level[k] - 1), 1e-9);
             if (score > best_score) {
                 best_score = score;
                 best = k;
@@ -227,12 +275,16 @@ static int step_up(gk_sched *s, gk_budget *b, gk_sched_change *ch, int max)
         for (int k = 0; k < b->n; k++) {
             if (!movable(s, b, k) || b->level[k] >= b->max_level[k] || s->frame < s->blocked_until[k])
                 continue;
-            if (n > 0 && !s->measured[k] && !isfinite(pass_delta(s, b, k, s->pass_ms[k], b->level[k], b->level[k] + 1)))
-                continue; /* neither a step response nor its pass's time: one unknown step at a time */
+            if (n > 0 && !s->measured[k] && !isfinite(pass_delta(s, b, k, s->pass_ms[k], b->level[k], b->level[k] + 1)) &&
+                !isfinite(calibrated_delta(s, k, b->level[k], b->level[k] + 1)))
+                continue; /* neither a step response, its pass's time nor a calibration: one unknown step at a time */
+            double quality = step_quality(s, b, k, b->level[k]);
+            if (quality <= 0)
+                continue; /* measured no more accurate: not a richer level on this scene */
             double added = fmax(step_delta(s, b, k, +1), 0);
             if (predicted + added >= goal)
                 continue;
-            double score = quality_per_step(b, k) / fmax(added, 1e-6);
+            double score = quality / fmax(added, 1e-6);
             if (score > best_score) {
                 best_score = score;
                 best = k;
@@ -261,8 +313,11 @@ int gk_sched_update(gk_sched *s, gk_budget *b, double frame_ms, gk_sched_change 
     }
     if (!(frame_ms >= 0) || !isfinite(frame_ms))
         return 0;
-    if (!s->seeded)
+    if (!s->seeded) {
         seed(s, b, frame_ms);
+        /* the calibration was measured at another size (and machine load): its times scale by this */
+        s->cal_scale = s->cal_default_ms > 0 ? frame_ms / s->cal_default_ms : 0;
+    }
     else if (!fit_step(s, b, frame_ms))
         fit(s, b, frame_ms);
     s->have_prev = true;

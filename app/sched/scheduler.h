@@ -15,6 +15,15 @@
  * express: seeded with equal shares it put the furnace's 6 -> 9 cones at +12 ms where the trace
  * pass of 275 ms grew to 424 ms, two frames 11% over a 400 ms target (showcase tour).
  *
+ * Calibrated knobs (gk_sched_calibrate_knob, from `make calibrate`'s knob rows for this scene and
+ * method): a step's cost comes from the measured frame times of its levels (scaled by this run's
+ * first frame over the calibrated default frame, and corrected by the knob's step responses), a
+ * pass-scaled knob's ratio from the measured pass times; its quality from the measured error: a
+ * step's value is the error it removes, relative to the default's. A level the calibration shows
+ * no more accurate than the one below it is never climbed to, and dropping to it costs no quality
+ * (so it goes first when over target): knob orders from measurement. Uncalibrated knobs keep the
+ * priors and count each step as 1/(levels - 1) of the knob's range.
+ *
  * Control (up: see gk_sched_params.max_up_steps, up_after_far): over target -> step down at once, as many steps as the model predicts are needed to get
  * under target*(1 - margin/2) but at most max_down_steps per measured frame, each time the knob whose step saves the most predicted time per
  * quality lost (quality of a step = 1/(number of values - 1)). Under target*(1 - margin) for
@@ -72,7 +81,14 @@ typedef struct gk_sched {
     int prev_level[GK_MAX_KNOBS];
     double pass_ms[GK_MAX_KNOBS];      /* time of the knob's scales_pass on the newest frame (0: unknown) */
     double prev_pass_ms[GK_MAX_KNOBS]; /* ... on the previous measured frame, for its step response */
-    double gain[GK_MAX_KNOBS];         /* measured / predicted change of a pass-scaled knob's step */
+    double gain[GK_MAX_KNOBS];         /* measured / predicted change of a pass-scaled or calibrated
+                                          knob's step */
+    bool calibrated[GK_MAX_KNOBS];
+    float cal_ms[GK_MAX_KNOBS][GK_MAX_KNOB_VALUES];   /* calibrated frame time per level (NAN: not measured) */
+    float cal_err[GK_MAX_KNOBS][GK_MAX_KNOB_VALUES];  /* calibrated error per level */
+    float cal_pass[GK_MAX_KNOBS][GK_MAX_KNOB_VALUES]; /* calibrated time of the knob's scales_pass */
+    double cal_default_ms, cal_default_err;           /* the calibration's default row */
+    double cal_scale;                  /* this run's frame time / the calibrated one (set at seeding) */
 } gk_sched;
 
 void gk_sched_params_defaults(gk_sched_params *p, double target_ms);
@@ -85,6 +101,12 @@ int gk_sched_update(gk_sched *s, gk_budget *b, double frame_ms, gk_sched_change 
  * it, for each knob that has one; a pass that did not run is 0 and leaves the knob on the
  * additive model). */
 void gk_sched_observe_pass(gk_sched *s, int k, double pass_ms);
+/* The calibration of this visit (call after gk_sched_reset): the default configuration's frame time
+ * and error, then per knob the frame time, error and scales_pass time of each level (NAN where not
+ * measured; the default level's are the default row's). */
+void gk_sched_calibrate(gk_sched *s, double default_frame_ms, double default_error);
+void gk_sched_calibrate_knob(gk_sched *s, int k, const double *frame_ms, const double *error, const double *pass_ms,
+                             int n_levels);
 /* True when no knob the scheduler may move can step down: every active, unpinned knob is at the
  * lowest level its range allows. A frame over the target then cannot be helped by budgets. */
 bool gk_sched_at_floor(const gk_sched *s, const gk_budget *b);

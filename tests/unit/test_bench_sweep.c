@@ -111,12 +111,48 @@ static void black_reference_ranks_by_leaked_radiance(void **state)
     assert_false(rows[2].pareto); /* slower and leaks more than row 1 */
 }
 
+/* `--sweep each` (the calibration's): the renderer's and the method's movable knobs, one at a time,
+ * their automatic levels without the default; switches (fixed) and other methods' knobs left out. */
+static void each_knob_sweeps_cover_the_movable_knobs(void **state)
+{
+    (void)state;
+    static const gk_knob_def richest_manual = {.name = "vct_step", .owner = "vct", .n_values = 4,
+                                               .values = {"2", "1.5", "1", "0.5"}, .cost = {1, 2, 3, 4},
+                                               .default_level = 2, .auto_max_level = 2};
+    static const gk_knob_def variant = {.name = "vct_variant", .owner = "vct", .n_values = 2,
+                                        .values = {"default", "thesis"}, .cost = {1, 1}, .fixed = true};
+    static const gk_knob_def other = {.name = "vpl_n", .owner = "vpl", .n_values = 2, .values = {"256", "512"},
+                                      .cost = {1, 2}};
+    gk_budget b;
+    setup_budget(&b);
+    gk_budget_add(&b, &richest_manual);
+    gk_budget_add(&b, &variant);
+    gk_budget_add(&b, &other);
+    gk_bench_sweep s[GK_MAX_KNOBS];
+    int n = gk_bench_each_knob_sweeps(&b, "vct", s, GK_MAX_KNOBS);
+    assert_int_equal(n, 4); /* shadow, shadow_map, vct_res, vct_step */
+    char pins[256];
+    const char *want[] = {"shadow=hard", "shadow_map=256", "shadow_map=1024", "vct_res=32", "vct_step=2", "vct_step=1.5"};
+    int w = 0;
+    for (int i = 0; i < n; i++) {
+        assert_int_equal(s[i].n_axes, 1);
+        for (int c = 0; c < gk_bench_sweep_count(&s[i]); c++) {
+            gk_bench_sweep_pins(&s[i], c, pins, sizeof pins);
+            assert_true(w < 6);
+            assert_string_equal(pins, want[w++]);
+        }
+    }
+    assert_int_equal(w, 6); /* vct_step=0.5 is past auto_max_level: a reference mode, not calibrated */
+    assert_int_equal(gk_bench_each_knob_sweeps(&b, "none", s, GK_MAX_KNOBS), 2); /* the renderer's only */
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(sweep_is_a_cartesian_product),
         cmocka_unit_test(sweep_rejects_unknown_knobs_and_values),
         cmocka_unit_test(default_sweeps_follow_the_method),
+        cmocka_unit_test(each_knob_sweeps_cover_the_movable_knobs),
         cmocka_unit_test(pareto_front_keeps_only_undominated_points),
         cmocka_unit_test(black_reference_ranks_by_leaked_radiance),
     };

@@ -6,11 +6,13 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <cmocka.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
+#include "render/renderer.h"
 #include "sched/calibration.h"
 
 static const char *write_tmp(const char *text)
@@ -44,6 +46,37 @@ static void parses_and_finds(void **state)
     remove(p);
 }
 
+#define HEADER2 "scene,method,width,height,frame_ms,error,metric,ruler,knob,value,passes\n"
+
+static void knob_rows_and_passes(void **state)
+{
+    (void)state;
+    const char *p = write_tmp(HEADER2 "spot,vct,640,360,300,0.48,rel_rmse,r,,,gi=290.5 gi.vct_trace=275\n"
+                                      "spot,vct,640,360,440,0.47,rel_rmse,r,vct_cones,9,gi=430 gi.vct_trace=424.25\n"
+                                      "spot,vct,640,360,250,0.49,rel_rmse,r,vct_cones,4,\n");
+    gk_calibration c;
+    gk_err e = {0};
+    assert_int_equal(gk_calibration_load(p, &c, &e), 0);
+    assert_int_equal(c.n, 3);
+    const gk_calib_row *d = gk_calibration_find(&c, "spot", "vct");
+    assert_non_null(d);
+    assert_true(d->frame_ms == 300 && d->knob[0] == '\0'); /* the default row, not a knob's */
+    assert_true(gk_calib_row_pass_ms(d, "gi") == 290.5);
+    assert_true(gk_calib_row_pass_ms(d, "gi.vct_trace") == 275);
+    assert_true(isnan(gk_calib_row_pass_ms(d, "gi.vct"))); /* a prefix is not a pass */
+    assert_true(isnan(gk_calib_row_pass_ms(d, "shadow")));
+    const gk_calib_row *r = gk_calibration_find_level(&c, "spot", "vct", "vct_cones", "9");
+    assert_non_null(r);
+    assert_true(r->frame_ms == 440 && r->error == 0.47 && gk_calib_row_pass_ms(r, "gi.vct_trace") == 424.25);
+    r = gk_calibration_find_level(&c, "spot", "vct", "vct_cones", "4");
+    assert_non_null(r);
+    assert_true(isnan(gk_calib_row_pass_ms(r, "gi")));
+    assert_null(gk_calibration_find_level(&c, "spot", "vct", "vct_cones", "6"));
+    assert_null(gk_calibration_find_level(&c, "spot", "vpl", "vct_cones", "9"));
+    gk_calibration_free(&c);
+    remove(p);
+}
+
 static void bad_rows_name_file_and_line(void **state)
 {
     (void)state;
@@ -55,8 +88,13 @@ static void bad_rows_name_file_and_line(void **state)
         HEADER "spot,none,160,120,3,0.3,psnr,r\n",                /* metric */
         HEADER "spot,none,160,120,3,0.3,rel_rmse,r\nspot,none,160,120,3,0.3,rel_rmse,r\n", /* twice */
         "scene,method\nspot,none\n",                              /* header */
+        HEADER2 "spot,none,160,120,3,0.3,rel_rmse,r\n",          /* 8 fields under the 11-field header */
+        HEADER2 "spot,none,160,120,3,0.3,rel_rmse,r,shadow,,\n", /* a knob without a value */
+        HEADER2 "spot,none,160,120,3,0.3,rel_rmse,r,,,gi=fast\n", /* a pass time */
+        HEADER2 "spot,none,160,120,3,0.3,rel_rmse,r,,,gi 3\n",   /* PATH=MS */
+        HEADER2 "spot,none,160,120,3,0.3,rel_rmse,r,shadow,hard,\nspot,none,160,120,3,0.3,rel_rmse,r,shadow,hard,\n",
     };
-    const int line[] = {3, 3, 3, 3, 3, 4, 1};
+    const int line[] = {3, 3, 3, 3, 3, 4, 1, 2, 2, 2, 2, 3};
     for (int i = 0; i < (int)(sizeof bad / sizeof bad[0]); i++) {
         const char *p = write_tmp(bad[i]);
         gk_calibration c;
@@ -127,8 +165,8 @@ static void shipped_table_never_chooses_worse_than_none(void **state)
     const double targets[] = {1, 100, 400, 1e6};
     int checked = 0;
     for (int i = 0; i < c.n; i++) {
-        if (strcmp(c.rows[i].method, "none") != 0)
-            continue;
+        if (strcmp(c.rows[i].method, "none") != 0 || c.rows[i].knob[0])
+            continue; /* each scene's default row of none */
         for (int t = 0; t < 4; t++) {
             int pick = gk_calibration_choose(&c, c.rows[i].scene, all, 3, targets[t], 640.0 * 360, NULL, 0);
             assert_true(pick >= 0);
@@ -141,6 +179,46 @@ static void shipped_table_never_chooses_worse_than_none(void **state)
     gk_calibration_free(&c);
 }
 
+/* The shipped table has, for every default row, a row for every automatic level of every knob the
+ * scheduler may move for that method (the scheduler's cost and quality model reads them): the
+ * knob sets are those of `gikiosk bench --sweep each` (gk_bench_each_knob_sweeps), listed here
+ * from the knob definitions the renderer and the methods declare. */
+static void shipped_table_has_every_knob_level(void **state)
+{
+    (void)state;
+    gk_calibration c;
+    gk_err e = {0};
+    assert_int_equal(gk_calibration_load("config/calibration/llvmpipe.csv", &c, &e), 0);
+    gk_budget b;
+    gk_budget_init(&b);
+    gk_renderer_declare_knobs(NULL, &b); /* declares only: the renderer is not used */
+    int checked = 0;
+    for (int i = 0; i < c.n; i++) {
+        const gk_calib_row *d = &c.rows[i];
+        if (d->knob[0])
+            continue;
+        for (int k = 0; k < b.n; k++) {
+            const gk_knob_def *def = b.def[k];
+            const char *owner = def->owner ? def->owner : "";
+            if (def->fixed || (strcmp(owner, "render") != 0 && strcmp(owner, d->method) != 0))
+                continue;
+            int top = def->auto_max_level > 0 ? def->auto_max_level : def->n_values - 1;
+            for (int l = 0; l <= top; l++) {
+                if (l == def->default_level)
+                    continue;
+                const gk_calib_row *r = gk_calibration_find_level(&c, d->scene, d->method, def->name, def->values[l]);
+                if (!r)
+                    fail_msg("%s/%s: no row for %s=%s", d->scene, d->method, def->name, def->values[l]);
+                assert_true(r->width == d->width && r->height == d->height);
+                checked++;
+            }
+        }
+    }
+    print_message("# %d knob-level rows checked\n", checked);
+    assert_true(checked > 100);
+    gk_calibration_free(&c);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -148,6 +226,8 @@ int main(void)
         cmocka_unit_test(bad_rows_name_file_and_line),
         cmocka_unit_test(choice_rules),
         cmocka_unit_test(shipped_table_never_chooses_worse_than_none),
+        cmocka_unit_test(knob_rows_and_passes),
+        cmocka_unit_test(shipped_table_has_every_knob_level),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -367,6 +367,78 @@ static void pass_scaled_knobs_are_predicted_from_their_pass(void **state)
     assert_true(worst > 400); /* what the pass's time prevents */
 }
 
+/* Calibrated knobs: costs and errors per level as `make calibrate` measures them (one knob changed
+ * from the defaults). Knob m's two richest levels measured no more accurate than level 1 (as
+ * shadow_map 2048 against 1024 on cornell-spot at the references' size); q's every level is better.
+ * True frame = 20 + m_ms + q_ms, true error m_err + q_err. */
+static const gk_knob_def knob_m = {.name = "m", .owner = "t", .n_values = 4, .values = {"0", "1", "2", "3"},
+                                   .cost = {1, 2, 3, 4}, .default_level = 0};
+static const gk_knob_def knob_q = {.name = "q", .owner = "t", .n_values = 3, .values = {"0", "1", "2"},
+                                   .cost = {1, 2, 3}, .default_level = 0};
+static const double m_ms[] = {10, 12, 20, 60}, m_err[] = {0.30, 0.28, 0.28, 0.281};
+static const double q_ms[] = {10, 30, 60}, q_err[] = {0.5, 0.3, 0.2};
+
+static void calibrated_run(bool calibrated, double target, int m0, int q0, int *max_m, int *first_knob,
+                           double *worst)
+{
+    gk_budget b;
+    gk_budget_init(&b);
+    gk_budget_add(&b, &knob_m);
+    gk_budget_add(&b, &knob_q);
+    b.level[0] = m0;
+    b.level[1] = q0;
+    gk_sched_params p;
+    gk_sched_params_defaults(&p, target);
+    gk_sched s;
+    gk_sched_reset(&s, &p, &b, NULL);
+    if (calibrated) {
+        /* the calibration's frames: the knob's level with the other at the start levels */
+        double fm[4], fq[3], em[4], eq[3];
+        for (int l = 0; l < 4; l++)
+            fm[l] = 20 + m_ms[l] + q_ms[q0], em[l] = m_err[l] + q_err[q0];
+        for (int l = 0; l < 3; l++)
+            fq[l] = 20 + m_ms[m0] + q_ms[l], eq[l] = q_err[l] + m_err[m0];
+        gk_sched_calibrate(&s, 20 + m_ms[m0] + q_ms[q0], m_err[m0] + q_err[q0]);
+        gk_sched_calibrate_knob(&s, 0, fm, em, NULL, 4);
+        gk_sched_calibrate_knob(&s, 1, fq, eq, NULL, 3);
+    }
+    sim m = {.rng = 3, .load = 1, .noise = 0.02};
+    *max_m = b.level[0];
+    *first_knob = -1;
+    *worst = 0;
+    for (int f = 0; f < 400; f++) {
+        double ms = (20 + m_ms[b.level[0]] + q_ms[b.level[1]]) * (1 + m.noise * (2 * frand(&m) - 1));
+        if (f > 60 && ms > *worst)
+            *worst = ms;
+        gk_sched_change ch[GK_MAX_KNOBS * GK_MAX_KNOB_VALUES];
+        int n = gk_sched_update(&s, &b, ms, ch, (int)(sizeof ch / sizeof ch[0]));
+        if (n > 0 && *first_knob < 0)
+            *first_knob = ch[0].knob;
+        if (b.level[0] > *max_m)
+            *max_m = b.level[0];
+    }
+}
+
+static void calibrated_levels_no_more_accurate_are_not_climbed(void **state)
+{
+    (void)state;
+    int max_m, first;
+    double worst;
+    /* Room for everything (1000 ms target): q climbs to its richest, m stops at level 1. */
+    calibrated_run(true, 1000, 0, 0, &max_m, &first, &worst);
+    print_message("# calibrated, room: m reached level %d\n", max_m);
+    assert_int_equal(max_m, 1);
+    calibrated_run(false, 1000, 0, 0, &max_m, &first, &worst);
+    print_message("# uncalibrated, room: m reached level %d\n", max_m);
+    assert_int_equal(max_m, 3); /* the priors alone climb to levels that buy nothing */
+    /* Over the target at the start (m 3, q 2: 140 ms for 100 ms): the step that loses no measured
+       accuracy goes first (m 3 -> 2), and the judged frames settle under the target. */
+    calibrated_run(true, 100, 3, 2, &max_m, &first, &worst);
+    print_message("# calibrated, over: first knob moved %d, worst judged frame %.1f ms\n", first, worst);
+    assert_int_equal(first, 0);
+    assert_true(worst <= 100);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -379,6 +451,7 @@ int main(void)
         cmocka_unit_test(climbs_fast_far_under_target),
         cmocka_unit_test(fit_learns_true_costs),
         cmocka_unit_test(pass_scaled_knobs_are_predicted_from_their_pass),
+        cmocka_unit_test(calibrated_levels_no_more_accurate_are_not_climbed),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
