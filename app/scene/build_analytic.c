@@ -47,8 +47,8 @@ static int build_shadow(const char *name, bool stacked, const char *dir, gk_err 
                               "under a 1 x 1 area light of unit radiance at y = 4; the visibility is analytic "
                               "(params). Tests soft-shadow exactness (VSSM, CSSM, PCSS) with method none.",
                     "none");
-    gkw_material recv = {"receiver", {T_ALBEDO, T_ALBEDO, T_ALBEDO, 1}, 0, 1, {0, 0, 0}, 0, 0, 0, false, false, NULL};
-    gkw_material black = {"occluder", {0, 0, 0, 1}, 0, 1, {0, 0, 0}, 0, 0, 0, false, false, NULL};
+    gkw_material recv = {"receiver", {T_ALBEDO, T_ALBEDO, T_ALBEDO, 1}, 0, 1, {0, 0, 0}, 0, 0, 0, false, false, NULL, false, 0, {0, 0, 0}};
+    gkw_material black = {"occluder", {0, 0, 0, 1}, 0, 1, {0, 0, 0}, 0, 0, 0, false, false, NULL, false, 0, {0, 0, 0}};
     int mr = gkw_add_material(d, &recv), mb = gkw_add_material(d, &black);
     float h = (float)T_RECEIVER_SIZE / 2;
     gkw_geom g = {0};
@@ -141,7 +141,7 @@ int gk_build_light_leak(const char *dir, gk_err *e)
                     "any light there is leakage through the thin wall (voxel cone tracing, light propagation "
                     "grids, VPL clusters).",
                     NULL);
-    gkw_material m = {"white", {0.8, 0.8, 0.8, 1}, 0, 1, {0, 0, 0}, 0, 0, 0, false, false, NULL};
+    gkw_material m = {"white", {0.8, 0.8, 0.8, 1}, 0, 1, {0, 0, 0}, 0, 0, 0, false, false, NULL, false, 0, {0, 0, 0}};
     int mi = gkw_add_material(d, &m);
     gkw_geom g = {0};
     gkb_box(&g, v3(-4, 0, -2), v3(4, 3, 2), true);

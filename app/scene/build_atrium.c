@@ -103,13 +103,13 @@ int gk_build_atrium(const char *dir, gk_err *e)
                     "coloured drapes, open to the sky; ~80k triangles. Sun (directional, 2000 lux) plus two lamps "
                     "in the arcades. The performance scene for the scheduler and the bench (vct, vpl, lightmap).",
                     NULL);
-    gkw_material stone = {"stone", {0.58, 0.52, 0.42, 1}, 0, 0.9, {0, 0, 0}, 0, 0, 0, false, false, NULL};
-    gkw_material floor_m = {"floor", {0.45, 0.42, 0.38, 1}, 0, 0.8, {0, 0, 0}, 0, 0, 0, false, false, NULL};
+    gkw_material stone = {"stone", {0.58, 0.52, 0.42, 1}, 0, 0.9, {0, 0, 0}, 0, 0, 0, false, false, NULL, false, 0, {0, 0, 0}};
+    gkw_material floor_m = {"floor", {0.45, 0.42, 0.38, 1}, 0, 0.8, {0, 0, 0}, 0, 0, 0, false, false, NULL, false, 0, {0, 0, 0}};
     static const double cloth[3][4] = {{0.55, 0.05, 0.04, 1}, {0.05, 0.35, 0.08, 1}, {0.05, 0.09, 0.45, 1}};
     int ms = gkw_add_material(d, &stone), mf = gkw_add_material(d, &floor_m), mc[3];
     for (int k = 0; k < 3; k++) {
         gkw_material m = {k == 0 ? "drape-red" : k == 1 ? "drape-green" : "drape-blue",
-                          {cloth[k][0], cloth[k][1], cloth[k][2], 1}, 0, 1, {0, 0, 0}, 0, 0, 0, true, false, NULL};
+                          {cloth[k][0], cloth[k][1], cloth[k][2], 1}, 0, 1, {0, 0, 0}, 0, 0, 0, true, false, NULL, false, 0, {0, 0, 0}};
         mc[k] = gkw_add_material(d, &m);
     }
     gkw_geom g = {0};

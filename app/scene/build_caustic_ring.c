@@ -24,8 +24,8 @@ int gk_build_caustic_ring(const char *dir, gk_err *e)
                     "the light into a cardioid caustic inside the ring. Tests caustic methods (ispm, lgv, "
                     "lightmap) and the caustic paths of the path tracer.",
                     NULL);
-    gkw_material room = {"room", {0.75, 0.75, 0.75, 1}, 0, 1, {0, 0, 0}, 0, 0, 0, false, false, NULL};
-    gkw_material gold = {"mirror-gold", {0.95, 0.9, 0.6, 1}, 1, 0, {0, 0, 0}, 0, 0, 0, false, false, NULL};
+    gkw_material room = {"room", {0.75, 0.75, 0.75, 1}, 0, 1, {0, 0, 0}, 0, 0, 0, false, false, NULL, false, 0, {0, 0, 0}};
+    gkw_material gold = {"mirror-gold", {0.95, 0.9, 0.6, 1}, 1, 0, {0, 0, 0}, 0, 0, 0, false, false, NULL, false, 0, {0, 0, 0}};
     int mroom = gkw_add_material(d, &room), mgold = gkw_add_material(d, &gold);
     gkw_geom g = {0};
     const float X = 4, Y = 3;

@@ -108,7 +108,7 @@ int gk_build_cornell(const char *dir, gk_err *e)
     gkw_light l = {"ceiling-light", "point", {1, 1, 1}, CEILING_RADIANCE * LIGHT_W * LIGHT_H, 0, 0, 0,
                    {LIGHT_W, LIGHT_H}};
     gkb_light_node(d, &l, v3(0.278f, y, 0.2795f), v3(0, -1, 0), v3(0, 0, 1));
-    gkw_material proxy = {"light", {0, 0, 0, 1}, 0, 1, {1, 1, 1}, CEILING_RADIANCE, 0, 0, false, true, NULL};
+    gkw_material proxy = {"light", {0, 0, 0, 1}, 0, 1, {1, 1, 1}, CEILING_RADIANCE, 0, 0, false, true, NULL, false, 0, {0, 0, 0}};
     gkw_geom g = {0};
     gkb_quad(&g, v3(0.213f, y, 0.227f), v3(0.343f, y, 0.227f), v3(0.343f, y, 0.332f), v3(0.213f, y, 0.332f),
              v3(0, -1, 0));
