@@ -62,7 +62,7 @@ TEST_SHADERS := $(shell find tests/shaders -type f 2>/dev/null | LC_ALL=C sort)
 TEST_SHADER_STAMP := $(BUILD)/tests/shaders/.stamp
 $(TESTLIB_OBJS): CFLAGS_ALL += -DGK_TEST_SHADERS=\"$(abspath $(BUILD))/tests/shaders\"
 
-.PHONY: all run test test-only bench calibrate references scenes deps install asan fuzz clean shaders-check
+.PHONY: all run test test-only bench calibrate references scenes ltc deps install asan fuzz clean shaders-check
 all: $(BIN)
 
 $(BUILD)/obj/%.o: %.c
@@ -160,6 +160,15 @@ references: deps $(BIN)
 
 scenes: deps $(BIN)
 	$(BIN) build-scenes config/scenes
+
+# The LTC tables of the rectangle lights' GGX term (tools/ltc_fit.c, about 2.5 minutes): rewrites
+# app/render/ltc_table.c, which is committed.
+ltc: $(BUILD)/tools/ltc_fit
+	$(BUILD)/tools/ltc_fit app/render/ltc_table.c
+
+$(BUILD)/tools/ltc_fit: tools/ltc_fit.c
+	@mkdir -p $(dir $@)
+	$(CC) -std=c11 -O2 -Wall -Wextra $(WERROR) $< -o $@ -lm
 
 install: $(BIN)
 	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/share/gikiosk/scenes \

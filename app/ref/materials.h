@@ -4,7 +4,8 @@
  * GGX visible normals (Heitz 2018); delta mirror (metallic > 0.5, roughness < 0.05) with reflectance
  * F(F0, cos); smooth dielectric (transmission > 0, roughness < 0.05) weighted by `transmission`,
  * Fresnel-chosen reflection or refraction, refraction tinted by base colour.
- * Known simplification: rough transmission (roughness >= 0.05) is rendered as the opaque BRDF. */
+ * Known simplifications: rough transmission (roughness >= 0.05) is rendered as the opaque BRDF; the
+ * smooth dielectric's Fresnel ignores KHR_materials_specular (brdf_spec.md). */
 #ifndef GK_REF_MATERIALS_H
 #define GK_REF_MATERIALS_H
 

@@ -119,7 +119,7 @@ static const gk_uniform_field emission_fields[] = {GK_GBUFFER_FIELDS(emission_un
 typedef struct light_uniforms {
     gk_gbuffer_uniforms gb;
     GLint u_light_pos, u_light_dir, u_light_u, u_light_v, u_light_color, u_light_range, u_light_cone,
-        u_light_radius, u_light_size;
+        u_light_radius, u_light_size, u_ltc;
 } light_uniforms;
 static const gk_uniform_field light_fields[] = {
     GK_GBUFFER_FIELDS(light_uniforms, gb),
@@ -132,6 +132,7 @@ static const gk_uniform_field light_fields[] = {
     GK_UNIFORM(light_uniforms, u_light_cone),
     GK_UNIFORM(light_uniforms, u_light_radius),
     GK_UNIFORM(light_uniforms, u_light_size),
+    GK_UNIFORM(light_uniforms, u_ltc),
 };
 
 /* compose/compose.frag */
@@ -225,6 +226,10 @@ static int pass_direct(gk_renderer *r, const gk_shadow_method *m, const frame_li
         vec3 pos, dir, u, v;
         gk_scene_light_frame(s, fl[i].node, &pos, &dir, &u, &v);
         set_light_uniforms(lu, l, pos, dir, u, v);
+        glActiveTexture(GL_TEXTURE0 + UNIT_LTC);
+        glBindTexture(GL_TEXTURE_2D, r->ltc_tex);
+        glBindSampler(UNIT_LTC, 0);
+        glUniform1i(lu->u_ltc, UNIT_LTC);
         if (fl[i].shadowed &&
             m->bind(r->shadow_state[mi], r->progs, slot++, &fl[i].view, prog, UNIT_SHADOW, e) != 0) {
             glDisable(GL_BLEND);

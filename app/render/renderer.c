@@ -4,8 +4,29 @@
 #include <string.h>
 
 #include "base/log.h"
+#include "ltc_table.h"
 #include "render_gi.h"
 #include "renderer_internal.h"
+
+/* The LTC tables as one RGBA32F texture (rows 0..N-1: Minv, N..2N-1: A, B), read with texelFetch
+ * and filtered in the shader (RGBA32F is not filterable in GLES 3.1 core; fp16 cannot hold Minv at
+ * the smallest roughness). */
+static GLuint create_ltc_texture(void)
+{
+    static float texels[GK_LTC_N * 2 * GK_LTC_N * 4];
+    memcpy(texels, gk_ltc_minv, sizeof gk_ltc_minv);
+    float *amp = texels + GK_LTC_N * GK_LTC_N * 4;
+    for (int i = 0; i < GK_LTC_N * GK_LTC_N; i++) {
+        amp[4 * i] = gk_ltc_amp[2 * i];
+        amp[4 * i + 1] = gk_ltc_amp[2 * i + 1];
+        amp[4 * i + 2] = amp[4 * i + 3] = 0.0f;
+    }
+    GLuint tex = gk_texture_2d(GL_RGBA32F, GK_LTC_N, 2 * GK_LTC_N, GL_NEAREST);
+    glBindTexture(GL_TEXTURE_2D, tex);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, GK_LTC_N, 2 * GK_LTC_N, GL_RGBA, GL_FLOAT, texels);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    return tex;
+}
 
 gk_renderer *gk_renderer_create(const gk_render_opts *opts, gk_err *e)
 {
@@ -37,6 +58,7 @@ gk_renderer *gk_renderer_create(const gk_render_opts *opts, gk_err *e)
     r->gi = gk_render_gi_create();
     gk_render_knobs_init(&r->knobs);
     glGenVertexArrays(1, &r->empty_vao);
+    r->ltc_tex = create_ltc_texture();
     if (!r->progs || !r->timer || !r->gi) {
         gk_renderer_destroy(r);
         gk_fail(e, GK_ERUNTIME, "renderer: out of memory");
@@ -73,6 +95,8 @@ void gk_renderer_destroy(gk_renderer *r)
         gk_render_gi_destroy(r->gi);
     if (r->empty_vao)
         glDeleteVertexArrays(1, &r->empty_vao);
+    if (r->ltc_tex)
+        glDeleteTextures(1, &r->ltc_tex);
     gk_timer_destroy(r->timer);
     gk_program_cache_destroy(r->progs);
     free(r->shader_dir);

@@ -14,7 +14,8 @@
 #define GK_MAX_SHADOW_METHODS 16 /* entries of gk_shadow_methods[]; a static assert in shadow_methods.c keeps them in step */
 
 /* Texture units of the lighting passes. */
-enum { UNIT_ALBEDO = 0, UNIT_NORMAL = 1, UNIT_EMISSION = 2, UNIT_DEPTH = 3, UNIT_SPECULAR = 4, UNIT_SHADOW = 5 };
+enum { UNIT_ALBEDO = 0, UNIT_NORMAL = 1, UNIT_EMISSION = 2, UNIT_DEPTH = 3, UNIT_SPECULAR = 4, UNIT_SHADOW = 5,
+       UNIT_LTC = 15 /* the last unit GLES 3.1 guarantees a fragment shader: after every shadow method's */ };
 
 /* The renderer's knobs, read each frame through handles (no names in the frame loop). */
 typedef struct gk_render_knobs {
@@ -64,6 +65,7 @@ struct gk_renderer {
     gk_program_cache *progs;
     gk_timer *timer;
     GLuint empty_vao;           /* full-screen passes draw gl_VertexID-only triangles */
+    GLuint ltc_tex;             /* RGBA32F GK_LTC_N x 2 GK_LTC_N: rect lights' GGX (ltc_table.h) */
 
     gk_scene *scene;
     unsigned scene_generation;  /* bumped by every set_scene: caches compare this, not pointers */

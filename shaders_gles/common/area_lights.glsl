@@ -5,8 +5,8 @@
 //    to the receiver's upper hemisphere (Lambert 1760; e.g. Arvo 1995);
 //  - sphere: the exact form factor with horizon clipping (Snyder 1996, as in Frostbite's
 //    illuminanceSphereOrDisk), pi sin^2(sigma) cos(theta) when fully above the horizon.
-// GGX over area lights uses a representative point (Karis 2013): LTC would be better but needs
-// fitted tables that cannot be downloaded or fitted here.
+// GGX over rectangle lights uses linearly transformed cosines (common/ltc.glsl, tables fitted by
+// tools/ltc_fit.c); over spheres and discs a representative point (Karis 2013).
 #define GK_POLY_MAX 18
 
 highp float gk_polygon_irradiance(highp vec3 p, highp vec3 n, highp vec3 verts[GK_POLY_MAX], int count)

@@ -5,6 +5,7 @@
 // GK_LIGHT_SPOT (defined for spot lights of any shape) masks by the spot cone, seen from the
 // light's centre.
 #include "common/area_lights.glsl"
+#include "common/ltc.glsl"
 
 uniform highp vec3 u_light_pos;
 uniform highp vec3 u_light_dir;       // emitter axis (node -Z); directional: the travel direction
@@ -75,20 +76,31 @@ highp vec3 gk_light_radiance(gk_surface s)
         return vec3(0.0);
     e_over_l = gk_rect_irradiance(s.p, s.n, u_light_pos, u_light_u * (0.5 * u_light_size.x),
                                   u_light_v * (0.5 * u_light_size.y));
-    l_rep = gk_planar_rep_dir(s.p, s.n, s.v, u_light_pos, u_light_dir, u_light_u, u_light_v,
-                              0.5 * u_light_size, false);
-    area_radius = sqrt(u_light_size.x * u_light_size.y / GK_PI);
     radiance_scale = 1.0 / (u_light_size.x * u_light_size.y);
 #endif
     highp vec3 e = u_light_color * (radiance_scale * e_over_l * win);
-    // Diffuse: exact (Lambert form factor), its fresnel_mix weight (1 - w max(Fd)) taken towards
-    // the light's centre (over a 0.8 x 0.5 m light at 1 m it differs from the irradiance-weighted
-    // mean by 1.5e-4, tests/gpu/test_render_direct.c). Specular: GGX at the representative point with Karis' normalisation
-    // (alpha / alpha')^2, alpha' = alpha + r / (2 d) -- an approximation.
+#if GK_LIGHT_KIND == 5
+    // Rectangle: the GGX lobe by linearly transformed cosines (common/ltc.glsl), F applied as
+    // F0 A + (F90 - F0) B; the diffuse lobe's fresnel_mix share (1 - w max(Fd)) taken towards the
+    // light's centre (over a 0.8 x 0.5 m light at 1 m it differs from the irradiance-weighted mean
+    // by 1.5e-4, tests/gpu/test_render_direct.c).
+    highp vec2 ab;
+    highp float lobe = gk_ltc_rect(s.p, s.n, s.v, s.m.roughness, u_light_pos, u_light_u * (0.5 * u_light_size.x),
+                                   u_light_v * (0.5 * u_light_size.y), ab);
+    highp vec3 f0 = mix(s.m.spec_weight * s.m.c0, s.m.base, s.m.metallic);
+    highp float f90 = mix(s.m.spec_weight, 1.0, s.m.metallic);
+    highp float vh_c = clamp(dot(s.v, normalize(s.v - to_p / d)), 0.0, 1.0);
+    return e * gk_brdf_diffuse(s.m, vh_c) +
+           u_light_color * (radiance_scale * win * lobe) * (f0 * ab.x + (f90 - f0) * ab.y);
+#else
+    // Sphere, disc: diffuse exact (Lambert form factor) with the fresnel_mix share towards the
+    // light's centre, as for the rectangle; specular GGX at the representative point with Karis'
+    // normalisation (alpha / alpha')^2, alpha' = alpha + r / (2 d) -- an approximation.
     highp float alpha = gk_alpha(s.m.roughness);
     highp float alpha_w = min(1.0, alpha + area_radius / (2.0 * d));
     highp float norm = (alpha / alpha_w) * (alpha / alpha_w);
     highp float vh_c = clamp(dot(s.v, normalize(s.v - to_p / d)), 0.0, 1.0);
     return e * (gk_brdf_diffuse(s.m, vh_c) + gk_brdf_specular(s.n, s.v, l_rep, s.m, norm));
+#endif
 #endif
 }

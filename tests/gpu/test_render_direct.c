@@ -97,7 +97,7 @@ static void point_light_over_plane(void **state)
 /* Rect light W x H = 0.8 x 0.5 m at 1 m, facing down, I = 5 cd: L_e = I / (W H).
  * Diffuse vs the closed-form polygon irradiance times fresnel_mix's share (1 - Fd) at the
  * representative direction, and vs a quadrature with (1 - Fd) taken per direction; specular
- * (representative point) vs a 64x64 midpoint quadrature of F D V L cos cos / r^2 over the rectangle. */
+ * (linearly transformed cosines) vs a 64x64 midpoint quadrature of F D V L cos cos / r^2 over the rectangle. */
 static void rect_light_over_plane(void **state)
 {
     (void)state;
@@ -157,10 +157,12 @@ static void rect_light_over_plane(void **state)
     gk_image_free(&b);
     /* Diffuse measured 1.4e-3 (RGBA16F truncation as above): the edge integral is exact. */
     assert_true(max_diff < 3e-3);
-    /* Specular is the representative-point approximation (no LTC tables here): measured 0.17
-       mean relative error at roughness 0.6; 0.3 bounds it and still fails a lobe that is
-       missing (error 1.0) or not normalised (errors of several x). */
-    assert_true(spec_rel < 0.3);
+    /* Specular by linearly transformed cosines (common/ltc.glsl, tables fitted by tools/ltc_fit.c):
+       measured 0.130 mean relative error at roughness 0.6 (the views here are about 30-70 degrees,
+       where the fit is weakest: tests/unit/test_ltc_table.c). The representative point it
+       replaced measured 0.171; the bound 0.15 fails a fallback to it, a missing lobe (1.0) or
+       a lobe not normalised (several x). */
+    assert_true(spec_rel < 0.15);
     gkt_scene_free(&lit);
     gkt_scene_free(&black);
 }
