@@ -19,8 +19,9 @@ static const gk_knob_def knob_render_scale = {
  * cost 6-20x PCSS on this platform without being more accurate, so the scheduler climbs hard -> pcss
  * and stops (auto_max_level); vssm and cssm stay selectable (`--budget shadow=vssm`, the thesis's
  * methods, measured side by side by `make bench`). The seeds' claim that VSSM beats PCSS for large
- * penumbrae is about GPU texture bandwidth; a GPU calibration may reorder these (a follow-up: knob
- * orders read from the platform's calibration). DESIGN §5 names VSSM the default; the default is
+ * penumbrae is about GPU texture bandwidth; a GPU calibration may reorder these (within the automatic
+ * levels the calibration's knob rows already skip, per scene, a level measured no more accurate;
+ * promoting vssm/cssm into them from a board's calibration is a follow-up). DESIGN §5 names VSSM the default; the default is
  * PCSS because it measured better here (README, "Soft shadows"). Cost priors: the frame ratios
  * above, hard 1 : pcss 2 : vssm 12 : cssm 13. */
 static const gk_knob_def knob_shadow = {
