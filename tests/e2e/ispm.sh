@@ -16,7 +16,8 @@ for gles in 3.2 3.1; do
     "$GIKIOSK" compare "$TMP/$gles-lists/000001-caustic-ring-ispm.exr" "$TMP/$gles-peel/000001-caustic-ring-ispm.exr" \
         --json >"$TMP/cmp.json"
     err=$(sed 's/.*"rel_rmse": *\([0-9.e+-]*\).*/\1/' "$TMP/cmp.json")
-    # measured rel_rmse between the tiers 0.0166 (whole image, vpl included): peeling keeps 4 layers
+    # measured rel_rmse between the tiers 0.0207 (whole image, vpl included; 0.0166 before the plane
+    # hit test, which finds more hits on the ring that the 4 layers keep or lose): peeling keeps 4 layers
     # where the lists keep every fragment; bound 0.03
     check "lists and peeling agree on caustic-ring at --gles $gles (rel_rmse $err)" \
         awk -v e="$err" 'BEGIN { exit !(e < 0.03) }'

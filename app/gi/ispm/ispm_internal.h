@@ -9,7 +9,7 @@
 #define ISPM_RSM_RES 256     /* research A.4's llvmpipe size (the seed: 512²) */
 #define ISPM_RSM_LEVELS 9    /* 256 .. 1 */
 #define ISPM_PEEL_LAYERS 4   /* tier B: the seed's Fig. 4.2b compares against 4 layers */
-#define ISPM_NODE_BYTES 12   /* Node in shaders_gles/ispm/common.glsl */
+#define ISPM_NODE_BYTES 16   /* Node in shaders_gles/ispm/common.glsl */
 #define ISPM_PHOTON_BYTES 48
 #define ISPM_HIT_BYTES 48
 /* Header of the photon buffer (ISPM_PHOTON_HEADER in common.glsl), in uints. */
@@ -20,7 +20,7 @@ enum {
 #define ISPM_PH_HEADER_BYTES (ISPM_PH_HEADER_UINTS * 4)
 enum { ISPM_LL_COUNT = 0, ISPM_LL_CAPACITY = 1, ISPM_LL_OVERFLOW = 2 };
 
-#define ISPM_KNOBS 5
+#define ISPM_KNOBS 6
 
 /* The light as the photon passes see it this frame (ispm_photons.c). */
 typedef struct ispm_light {
@@ -44,7 +44,7 @@ typedef struct ispm_state {
     const gk_gi_method *vpl;
     void *vpl_self;
     /* budget this frame */
-    int photons, trace_res, tier;
+    int photons, trace_res, tier, bounces;
     float splat_scale;
     long pool_bytes;
     /* scene */

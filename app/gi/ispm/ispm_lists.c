@@ -107,7 +107,7 @@ static int ensure_peel(ispm_state *s, gk_err *e)
     glGenTextures(ISPM_PEEL_LAYERS, s->peel_tex);
     for (int k = 0; k < ISPM_PEEL_LAYERS; k++) {
         glBindTexture(GL_TEXTURE_2D, s->peel_tex[k]);
-        glTexStorage2D(GL_TEXTURE_2D, 1, GL_RG32UI, res, res);
+        glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA32UI, res, res);
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     }

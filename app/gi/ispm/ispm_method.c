@@ -16,8 +16,11 @@
  *   ispm_trace:   7·R/128 + 4 (the lists' share is in the 4)        -> 7.5, 11, 18 ms -> 1, 1.47, 2.4
  *   ispm_splat:   splat 0.3–1 ms of 11 ∝ pixels (scale²)            -> 1, 1.05, 1.2
  *   ispm_pool:    memory only (clearing is per pixel, not per node) -> 1, 1, 1
- *   ispm_tier:    a switch, never moved by the scheduler            -> 1, 1 */
-enum { K_PHOTONS, K_TRACE, K_SPLAT, K_POOL, K_TIER, K_COUNT };
+ *   ispm_tier:    a switch, never moved by the scheduler            -> 1, 1
+ *   ispm_bounces: a switch (1 = the seed's single specular bounce; 2, 3 = specular chains, research
+ *                 L7), never moved by the scheduler; a further bounce marches again the photons that
+ *                 met a mirror (on caustic-ring about a quarter of them)   -> 1, 1.25, 1.3 */
+enum { K_PHOTONS, K_TRACE, K_SPLAT, K_POOL, K_TIER, K_BOUNCES, K_COUNT };
 _Static_assert(K_COUNT == ISPM_KNOBS, "ispm_internal.h's ISPM_KNOBS counts the knobs");
 static const gk_knob_def knobs[K_COUNT] = {
     {"ispm_photons", "ispm", 4, {"1024", "4096", "16384", "65536"}, {1.0f, 1.29f, 2.42f, 6.99f}, 1, 0, false},
@@ -26,6 +29,7 @@ static const gk_knob_def knobs[K_COUNT] = {
     /* list-pool megabytes; 20 is the seed's */
     {"ispm_pool", "ispm", 3, {"2", "8", "20"}, {1.0f, 1.0f, 1.0f}, 2, 0, false},
     {"ispm_tier", "ispm", 2, {"peel", "lists"}, {1.0f, 1.0f}, 1, 0, .fixed = true},
+    {"ispm_bounces", "ispm", 3, {"1", "2", "3"}, {1.0f, 1.25f, 1.3f}, 0, 0, .fixed = true},
 };
 
 static void declare_knobs(gk_budget *b)
@@ -58,6 +62,11 @@ void gk_ispm_default_debug(gk_ispm_debug *d)
     d->h_pixels = 1.5f;      /* L15: a disk of 1.5 splat pixels deposits Φ within 2% (measured) */
     d->eps_abs_rel = 0.0005f;
     d->eps_slope = 1.0f;     /* research A.1.11: k = 1 found all 400 hits on the right surface */
+    d->hit_px = 1.0f;        /* the pixel and half a pixel round it: a ray stepped one pixel along its
+                                major axis passes diagonal neighbours it does not sample */
+    d->edge_on_cos = 0.1f;   /* within 5.7° of edge-on (caustic-ring: the ring facet that took
+                                photons 16 cm from it is seen at cos 0.01) */
+    d->edge_reach = 3.0f;
     d->upsample_k = 16.0f;   /* research A.2: k = 8–32 */
 }
 
@@ -125,6 +134,8 @@ static void read_budget(ispm_state *s, const gk_budget *b)
     s->trace_res = knob_int(s, b, K_TRACE, 128);
     s->splat_scale = gk_knob_number(b, &s->knob[K_SPLAT], 0.5f);
     s->pool_bytes = (long)(gk_knob_number(b, &s->knob[K_POOL], 20.0f) * 1048576.0f);
+    s->bounces = knob_int(s, b, K_BOUNCES, 1);
+    s->bounces = s->bounces < 1 ? 1 : s->bounces;
     int tier = gk_knob_level(b, &s->knob[K_TIER], GK_ISPM_TIER_LISTS);
     if (tier == GK_ISPM_TIER_LISTS && !s->lists_ok) {
         if (!s->logged_tier)
