@@ -39,6 +39,8 @@ typedef struct gk_ispm_debug {
     float eps_abs_rel;       /* hit threshold: constant part, fraction of the scene diameter */
     float eps_slope;         /* hit threshold: multiple of the ray's depth step (0: the seed's constant ε) */
     float upsample_k;        /* normal exponent of the bilateral weights */
+    float density_k;         /* ispm_radius=density: photons a disk holds (density.comp) */
+    float density_cell;      /* its grid's cell side in output pixels */
     bool caustics_only;      /* leave out vpl's indirect light (tests of the caustic alone) */
     bool measure;            /* read the counters back every frame (synchronously) */
 } gk_ispm_debug;
