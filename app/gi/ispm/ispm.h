@@ -41,6 +41,7 @@ typedef struct gk_ispm_debug {
     float upsample_k;        /* normal exponent of the bilateral weights */
     float density_k;         /* ispm_radius=density: photons a disk holds (density.comp) */
     float density_cell;      /* its grid's cell side in output pixels */
+    long pool_nodes;         /* > 0: the list pool holds this many nodes, whatever ispm_pool says (L11) */
     bool caustics_only;      /* leave out vpl's indirect light (tests of the caustic alone) */
     bool measure;            /* read the counters back every frame (synchronously) */
 } gk_ispm_debug;

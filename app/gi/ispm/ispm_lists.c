@@ -31,7 +31,8 @@ static const gk_uniform_field pl_fields[] = {GK_UNIFORM_AS(pl_uniforms, u_layers
 static void ensure_buffers(ispm_state *s)
 {
     int res = s->trace_res;
-    long nodes = s->tier == GK_ISPM_TIER_PEEL ? (long)res * res * ISPM_PEEL_LAYERS : s->pool_bytes / ISPM_NODE_BYTES;
+    long nodes = s->tier == GK_ISPM_TIER_PEEL ? (long)res * res * ISPM_PEEL_LAYERS
+                 : s->dbg.pool_nodes > 0 ? s->dbg.pool_nodes : s->pool_bytes / ISPM_NODE_BYTES;
     if (!s->nodes_ssbo || nodes != s->nodes_cap) {
         if (!s->nodes_ssbo)
             glGenBuffers(1, &s->nodes_ssbo);
