@@ -275,7 +275,7 @@ static void test_l3_edge_energy(void **state)
     }
     move_camera(1.2f);
     /* disks at the edge lose their off-screen part, hits off-screen are lost whole; measured worst
-       difference 0.0086 of Φ (splats reaching in from just off-screen hits), bound 0.02 */
+       difference 0.0047 of Φ (0.0086 with the depth hit test) (splats reaching in from just off-screen hits), bound 0.02 */
     printf("# L3 worst |splatted - in view| = %.4f of Φ\n", worst);
     assert_true(worst < 0.02);
 }
