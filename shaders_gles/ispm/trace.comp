@@ -7,14 +7,13 @@
 //     step| (slope-scaled; u_eps_slope = 0 is its constant threshold), the smallest |Δz| wins;
 //   the plane test (u_plane = 1, default): the ray meets the node's plane (its depth at the pixel
 //     centre and its normal) within u_hit_px pixels of the pixel centre, the nearest along the ray
-//     wins. A node seen (nearly) edge-on (|cos| <
-//     u_edge_on_cos to the view ray) hits only within u_edge_reach pixel footprints of its own
-//     point: its plane meets every ray crossing the pixel, also far from the fragment (on
-//     caustic-ring another facet of the ring took 1% of the photons, L9). A depth compared at the pixel centre
-//     misses surfaces seen at a grazing angle, whose depth
-//     changes by more than ε across the pixel: on caustic-ring 4.7% of the photon power went through
-//     the ring's 2 cm wall onto the floor behind it (research L10's tunnelling). A node's plane
-//     behind the photon's origin is no hit either (the outer face of the wall a photon leaves).
+//     wins; a plane behind the photon's origin is no hit (the outer face of the wall it leaves).
+//     A depth compared at the pixel centre misses surfaces seen at a grazing angle, whose depth
+//     changes by more than ε across the pixel: on caustic-ring 4.7% of the photon power went
+//     through the ring's 2 cm wall onto the floor behind it (research L10's tunnelling). A node
+//     seen (nearly) edge-on (|cos| < u_edge_on_cos to the view ray) hits only within u_edge_reach
+//     pixel footprints of its own point: its plane meets every ray crossing the pixel, also far
+//     from the fragment (on caustic-ring another facet of the ring took 1% of the photons, L9).
 //   Self-intersection rule: a node whose geometric normal faces along the ray (dot(n, dir) > 0) is
 //   the back of what the ray leaves, not a hit (u_backface = 0 turns the rule off for L9).
 // Specular chains (u_bounces > 1, not in the seed, research L7): a hit on a mirror node (Node.spec)
