@@ -261,8 +261,9 @@ static long memory_bytes(const void *self)
     b += (long)ISPM_RSM_RES * ISPM_RSM_RES * 4 * 4 / 3;      /* count pyramid */
     b += ISPM_PH_HEADER_BYTES + (long)s->capacity * (ISPM_PHOTON_BYTES + ISPM_HIT_BYTES);
     b += s->nodes_cap * ISPM_NODE_BYTES + (long)s->ll_res * s->ll_res * 16;
-    if (s->peel_fbo)
-        b += (long)s->peel_res * s->peel_res * (8 * ISPM_PEEL_LAYERS + 4);
+    if (s->peel_fbo)   /* RGBA32UI layers (depth, normal, Node.spec) + a 32-bit depth buffer */
+        b += (long)s->peel_res * s->peel_res * (16 * ISPM_PEEL_LAYERS + 4);
+    b += s->grid_cap * 4;   /* ispm_radius=density's counts */
     b += (long)s->splat_w * s->splat_h * 8;
     return b;
 }
