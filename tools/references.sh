@@ -4,7 +4,9 @@
 #   scene has caustic paths, i.e. its caustics render is not black), and for the scenes the one-bounce
 #   GI methods are measured on (cornell, cornell-spot) SCENE-1bounce.exr = `--bounces 2`, all path
 #   types: direct light + exactly one diffuse bounce, the ruler for vct and vpl, which compute one
-#   bounce (tests/e2e/gi_bounce.sh). Fixed size and seed; each one's noise floor is recorded in
+#   bounce (tests/e2e/gi_bounce.sh), and where the scene has caustics SCENE-caustics1.exr =
+#   `--paths caustics --caustic-specular 1`: the caustics of one mirror/glass bounce, L S D E, the
+#   ruler of ispm with the seed's single bounce (ispm_bounces=1). Fixed size and seed; each one's noise floor is recorded in
 #   tests/references/noise.csv (file,spp,seed,rel_rmse_floor).
 # The floor is measured by the renderer itself from two independent halves of the samples (see
 # app/ref/render.h) and is also stored in each EXR (gikiosk:noise_floor).
@@ -18,7 +20,7 @@
 #        tools/references.sh --bench BIN          (cornell, 1 vs 2 threads: samples/s, rays/s)
 # env:   SCENES_DIR (default config/scenes; built into a temp dir if it has no scenes),
 #        OUT_DIR (default tests/references), SIZE (default 160x120), SPP_SCALE (default 1),
-#        VARIANTS (default "all direct indirect caustics 1bounce": which images to render)
+#        VARIANTS (default "all direct indirect caustics caustics1 1bounce": which images to render)
 set -eu
 
 bench=0
@@ -29,7 +31,7 @@ SCENES_DIR=${SCENES_DIR:-config/scenes}
 OUT_DIR=${OUT_DIR:-tests/references}
 SIZE=${SIZE:-160x120}
 SPP_SCALE=${SPP_SCALE:-1}
-VARIANTS=${VARIANTS:-all direct indirect caustics 1bounce}
+VARIANTS=${VARIANTS:-all direct indirect caustics caustics1 1bounce}
 SEED=1
 
 if [ ! -f "$SCENES_DIR/cornell.gltf" ] && [ ! -f "$SCENES_DIR/cornell.glb" ]; then
@@ -89,7 +91,10 @@ for scene in $scenes; do
     fi
     spp=$(( $(spp_for "$scene") * SPP_SCALE ))
     for variant in $VARIANTS; do
-        paths=$variant bounces=unlimited
+        paths=$variant bounces=unlimited specular=unlimited
+        if [ "$variant" = caustics1 ]; then
+            paths=caustics specular=1   # one specular vertex: the seed's single bounce
+        fi
         if [ "$variant" = 1bounce ]; then
             case $scene in cornell | cornell-spot) ;; *) continue ;; esac
             paths=all bounces=2   # D vertices: the first surface seen + one bounce
@@ -98,9 +103,9 @@ for scene in $scenes; do
         out=$OUT_DIR/$file
         start=$(date +%s)
         mask=
-        if [ "$paths" = caustics ]; then mask=$scene-caustics-mask.png; fi
+        if [ "$paths" = caustics ]; then mask=$scene-$variant-mask.png; fi
         "$BIN" reference --scene "$scene" --scenes-dir "$SCENES_DIR" --size "$SIZE" --spp "$spp" \
-            --paths "$paths" --bounces "$bounces" --seed "$SEED" --out "$out" \
+            --paths "$paths" --bounces "$bounces" --caustic-specular "$specular" --seed "$SEED" --out "$out" \
             ${mask:+--caustic-mask "$OUT_DIR/$mask"}
         if [ "$paths" = caustics ] && [ "$(max_of "$out")" = "0.000000 0.000000 0.000000" ]; then
             rm -f "$out" "$OUT_DIR/$mask"   # no caustic paths in this scene

@@ -37,6 +37,10 @@ static void usage(FILE *f)
           "                      lights aimed at the mirror/glass surfaces (default guided),\n"
           "                      or emitted as the light emits; both unbiased, guided wastes none\n"
           "  --caustic-grid N    guided: cells per axis of the target grid (default 1)\n"
+          "  --caustic-specular N  keep caustic paths with at most N mirror/glass vertices,\n"
+          "                      L S{1..N} D E, of the light tracer (point and spot lights;\n"
+          "                      default unlimited): the ruler of a method with N specular\n"
+          "                      bounces (ispm_bounces)\n"
           "  --caustic-mask FILE.png  also write the caustic mask of this image (pixels above 1/4\n"
           "                      of its peak luminance) and store the noise floor inside and\n"
           "                      outside it in the EXR (gikiosk:noise_floor_in_mask/_outside_mask)\n"
@@ -139,6 +143,13 @@ static int parse_args(int argc, char **argv, args *a)
             if (parse_int(k, v, 1, 64, &n))
                 return -1;
             a->o.caustic_grid = (int)n;
+        } else if (!strcmp(k, "--caustic-specular")) {
+            int b = gk_ref_bounces_parse(v);
+            if (b == -2 || b == 0) {
+                fprintf(stderr, "gikiosk reference: --caustic-specular: '%s' is not an integer in [1, 1000] or 'unlimited'\n", v);
+                return -1;
+            }
+            a->o.caustic_specular = b;
         }
         else if (!strcmp(k, "--size")) {
             int w, h;
@@ -302,8 +313,9 @@ int gk_cmd_reference(int argc, char **argv)
                         "inside, %s outside\n", a.mask_out, mask_px_s, peak, in_s, out_s);
     }
     char cmd[2048], spp_s[32], seed_s[32], floor_s[32], secs_s[32], size_s[32], tris_s[32], bounces_s[32];
-    char grid_s[32];
+    char grid_s[32], spec_s[32];
     snprintf(grid_s, sizeof grid_s, "%d", a.o.caustic_grid);
+    gk_ref_bounces_name(a.o.caustic_specular, spec_s, sizeof spec_s);
     join_command(argc, argv, cmd, sizeof cmd);
     snprintf(spp_s, sizeof spp_s, "%d", a.o.spp);
     snprintf(seed_s, sizeof seed_s, "%llu", (unsigned long long)a.o.seed);
@@ -318,7 +330,7 @@ int gk_cmd_reference(int argc, char **argv)
         {"gikiosk:bounces", gk_ref_bounces_name(a.o.max_diffuse, bounces_s, sizeof bounces_s)},
         {"gikiosk:render_seconds", secs_s}, {"gikiosk:size", size_s}, {"gikiosk:triangles", tris_s},
         {"gikiosk:caustic_emit", a.o.caustic_emit == GK_CAUSTIC_EMIT_GUIDED ? "guided" : "light"},
-        {"gikiosk:caustic_grid", grid_s},
+        {"gikiosk:caustic_grid", grid_s}, {"gikiosk:caustic_specular", spec_s},
         {"gikiosk:noise_floor", floor_s},
     };
     int nkv = (int)(sizeof kv / sizeof kv[0]) - (isfinite(r.noise_floor) ? 0 : 1);

@@ -53,7 +53,7 @@ static void connect_camera(const gk_ref_scene *rs, const gk_surface *sf, vec3 x,
     splat(ctx, px, py, v3_scale(v3_mul(flux, f), we));
 }
 
-void gk_trace_light(const gk_ref_scene *rs, const gk_caustic_emitter *em, int max_depth, gk_rng *rng,
+void gk_trace_light(const gk_ref_scene *rs, const gk_caustic_emitter *em, int max_depth, int max_specular, gk_rng *rng,
                     gk_splat_fn splat, void *ctx, gk_trace_stats *st)
 {
     vec3 o, d, flux;
@@ -73,7 +73,8 @@ void gk_trace_light(const gk_ref_scene *rs, const gk_caustic_emitter *em, int ma
         gk_surface_init(&sf, rs, &rs->tris[h.tri], h.b1, h.b2);
         vec3 w_in = v3_scale(d, -1.0f);
         /* First diffuse vertex after a specular chain: connect it to the eye (L S+ D E). */
-        if (n_specular > 0 && gk_surface_has_smooth_part(&sf))
+        if (n_specular > 0 && gk_surface_has_smooth_part(&sf) &&
+            (max_specular == GK_BOUNCES_UNLIMITED || n_specular <= max_specular))
             connect_camera(rs, &sf, x, w_in, flux, splat, ctx, st);
         /* Continue only through delta lobes; a non-delta bounce would make a second D vertex,
            which the eye pass already counts (indirect). */

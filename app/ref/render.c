@@ -41,6 +41,7 @@ void gk_ref_options_default(gk_ref_options *o)
     o->max_diffuse = GK_BOUNCES_UNLIMITED;
     o->caustic_emit = GK_CAUSTIC_EMIT_GUIDED;
     o->caustic_grid = GK_CAUSTIC_GRID_DEFAULT;
+    o->caustic_specular = GK_BOUNCES_UNLIMITED;
 }
 
 int gk_ref_bounces_parse(const char *s)
@@ -148,7 +149,7 @@ static void render_chunk(job *j, int chunk, gk_trace_stats *st)
         for (size_t p = 0; p < npix; p++) {
             gk_rng rng;
             gk_rng_seed(&rng, j->o->seed, p, (uint64_t)s, 1);
-            gk_trace_light(rs, j->emitter, j->o->max_depth, &rng, splat_into, &c, st);
+            gk_trace_light(rs, j->emitter, j->o->max_depth, j->o->caustic_specular, &rng, splat_into, &c, st);
         }
     j->chunk[chunk] = img;
 }

@@ -33,6 +33,9 @@ typedef struct gk_ref_options {
                             surfaces, caustic_emit.h) or GK_CAUSTIC_EMIT_LIGHT (the lights' own
                             emission); both unbiased, the image differs only in noise */
     int caustic_grid;    /* cells per axis of the guided photons' target grid (default 1) */
+    int caustic_specular; /* the light tracer's caustic paths with at most this many mirror/glass
+                            vertices, L S{1..N} D E (GK_BOUNCES_UNLIMITED by default): the ruler of
+                            a caustic method with N specular bounces (ispm's ispm_bounces) */
 } gk_ref_options;
 
 typedef struct gk_ref_result {

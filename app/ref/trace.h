@@ -60,11 +60,13 @@ vec3 gk_trace_eye(const gk_ref_scene *rs, vec3 o, vec3 d, unsigned mask, int max
 
 /* One light path; its camera connections are passed to splat(ctx, px, py, rgb)
  * as image-plane measurement contributions (to be divided by the number of light paths).
+ * max_specular: connect only paths with at most that many specular vertices (GK_BOUNCES_UNLIMITED:
+ * all); like max_diffuse it restricts the integrand, not the sampling.
  * em: photons emitted towards the specular geometry (caustic_emit.h); NULL: the lights' own
  * emission (gk_light_photon). Both are unbiased; em wastes no photon where no caustic can start. */
 typedef void (*gk_splat_fn)(void *ctx, int px, int py, vec3 value);
 struct gk_caustic_emitter;
-void gk_trace_light(const gk_ref_scene *rs, const struct gk_caustic_emitter *em, int max_depth, gk_rng *rng,
+void gk_trace_light(const gk_ref_scene *rs, const struct gk_caustic_emitter *em, int max_depth, int max_specular, gk_rng *rng,
                     gk_splat_fn splat, void *ctx, gk_trace_stats *st);
 
 #endif

@@ -1,15 +1,19 @@
 // Shared declarations of the ispm passes (seed 000 §3.3; photon-mapping-000-004.md A.1.9–A.1.12,
 // Appendix D). Buffer layouts are std430 and mirrored in app/gi/ispm/ispm_internal.h.
 //
-// Node   : one camera-frustum fragment of a per-pixel list (Algorithm 3.4's FragmentNode, 12 bytes):
-//          linear view depth, geometric normal as half-float spherical (θ, φ), next node (-1 = end).
+// Node   : one camera-frustum fragment of a per-pixel list (Algorithm 3.4's FragmentNode, 12 bytes,
+//          plus 4): linear view depth, geometric normal as half-float spherical (θ, φ), next node
+//          (-1 = end), and the surface's mirror reflectance (packUnorm4x8: rgb = specular albedo,
+//          a = roughness; 0 on surfaces that are not mirrors), which the trace's further specular
+//          bounces need (ispm_bounces > 1; the seed's single bounce reads only the first three).
 // Pixel  : a list head plus the list's min/max depth (float bits; depth > 0 so uint order = float
 //          order) and its length (the L8 test reads it).
 // Photon : first hit on a specular RSM texel after reflection: origin (w = 1 valid, 0 absorbed),
-//          direction, reflected power (w = light→reflector distance).
-// Hit    : the photon's second hit: position (w = 1 valid), receiver normal (w = splat radius h),
-//          power (w = total path length light→reflector→receiver).
-struct Node { highp float depth; highp uint nrm; highp int next; };
+//          direction (w = the photon's random-number key as a float, exact below 2^24: its RSM block or slot),
+//          reflected power (w = light→reflector distance).
+// Hit    : the photon's last hit (the second with the seed's one bounce): position (w = 1 valid),
+//          receiver normal (w = splat radius h), power (w = total path length light→…→receiver).
+struct Node { highp float depth; highp uint nrm; highp int next; highp uint spec; };
 struct Pixel { highp int head; highp uint zmin; highp uint zmax; highp uint count; };
 struct Photon { highp vec4 org; highp vec4 dir; highp vec4 pow_d1; };
 struct Hit { highp vec4 pos_valid; highp vec4 nrm_h; highp vec4 pow_dist; };
@@ -51,4 +55,51 @@ highp uint ispm_hash(highp uint v)
 highp float ispm_random(highp uint key, highp uint k)
 {
     return float(ispm_hash(ispm_hash(key) ^ (k * 0x9E3779B9u)) >> 8u) * (1.0 / 16777216.0);
+}
+
+// The specular albedo s of a material and whether it reflects photons (a "specular" surface of the
+// scene features, app/scene/features.c: metallic > 0.5, roughness < 0.2). fresnel_mix at normal
+// incidence (app/core/brdf_spec.md, glTF Appendix B with KHR_materials_specular): the dielectric's
+// F0 = specularFactor · min(c0, 1), the metal's the base colour. Shared by rsm.frag (the first
+// bounce) and the lists (further bounces), so both bounce off the same mirror.
+highp vec3 ispm_specular_albedo(highp vec3 base, highp float metallic, highp vec4 specular)
+{
+    return mix(clamp(specular.a, 0.0, 1.0) * min(specular.rgb, vec3(1.0)), base, metallic);
+}
+
+bool ispm_is_specular(highp float metallic, highp float rough)
+{
+    return metallic > 0.5 && rough < 0.2;
+}
+
+// A reflected direction about the mirror direction rm: the Phong lobe with the corrected sampling
+// θ = arccos(ξ^{1/(α+1)}) (errata A.7 item 1) in the frame of Algorithm 3.3, Phong exponent from
+// roughness (Blinn-Phong ↔ GGX: α = 2/r⁴ − 2); roughness ≤ 0.01 is a mirror. Random numbers k0, k0+1
+// of key.
+highp vec3 ispm_phong_lobe(highp vec3 rm, highp float rough, highp uint key, highp uint k0)
+{
+    if (rough <= 0.01)
+        return rm;
+    highp float alpha = min(2.0 / (rough * rough * rough * rough) - 2.0, 1.0e6);
+    highp float cosT = pow(ispm_random(key, k0), 1.0 / (alpha + 1.0));
+    highp float sinT = sqrt(max(0.0, 1.0 - cosT * cosT));
+    highp float phi = 6.28318531 * ispm_random(key, k0 + 1u);
+    highp vec3 ox, oy;
+    if (abs(rm.y) > 1.0 - 1e-6) {           // Algorithm 3.3: Oz' parallel to Oy
+        ox = vec3(1.0, 0.0, 0.0);
+        oy = vec3(0.0, 0.0, -1.0);
+    } else {
+        ox = normalize(cross(vec3(0.0, 1.0, 0.0), rm));
+        oy = cross(rm, ox);
+    }
+    return normalize(ox * (sinT * cos(phi)) + oy * (sinT * sin(phi)) + rm * cosT);
+}
+
+// Node.spec of a surface: its specular albedo and roughness packed, 0 when it is not a mirror.
+highp uint ispm_node_spec(highp vec4 base_color, highp vec2 metallic_roughness, highp vec4 specular)
+{
+    highp float metallic = clamp(metallic_roughness.x, 0.0, 1.0), rough = clamp(metallic_roughness.y, 0.0, 1.0);
+    if (!ispm_is_specular(metallic, rough))
+        return 0u;
+    return max(packUnorm4x8(vec4(ispm_specular_albedo(base_color.rgb, metallic, specular), rough)), 1u);
 }

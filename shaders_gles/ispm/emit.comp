@@ -136,27 +136,11 @@ void main()
         return;   // diffuse (vpl's part) or absorbed
     vec3 win = normalize(x - u_light_pos);
     vec3 rm = reflect(win, n);
-    vec3 r = rm;
-    // Phong exponent from roughness (Blinn-Phong ↔ GGX: α = 2/r⁴ − 2); roughness 0 is a mirror.
-    if (rough > 0.01) {
-        float alpha = min(2.0 / (rough * rough * rough * rough) - 2.0, 1.0e6);
-        float cosT = pow(ispm_random(key, 1u), 1.0 / (alpha + 1.0));   // errata A.7 item 1
-        float sinT = sqrt(max(0.0, 1.0 - cosT * cosT));
-        float phi = 6.28318531 * ispm_random(key, 2u);
-        vec3 ox, oy;
-        if (abs(rm.y) > 1.0 - 1e-6) {           // Algorithm 3.3: Oz' parallel to Oy
-            ox = vec3(1.0, 0.0, 0.0);
-            oy = vec3(0.0, 0.0, -1.0);
-        } else {
-            ox = normalize(cross(vec3(0.0, 1.0, 0.0), rm));
-            oy = cross(rm, ox);
-        }
-        r = normalize(ox * (sinT * cos(phi)) + oy * (sinT * sin(phi)) + rm * cosT);
-    }
+    vec3 r = ispm_phong_lobe(rm, rough, key, 1u);
     if (dot(r, n) <= 0.0)
         return;   // below the surface: absorbed
     atomicAdd(ph_reflected, 1u);
     ph[slot].org.w = 1.0;
-    ph[slot].dir = vec4(r, 0.0);
+    ph[slot].dir = vec4(r, float(key));   // the key (< 2^24, exact): further bounces draw from it (L13)
     ph[slot].pow_d1 = vec4(flux * s / ps, length(x - u_light_pos));
 }

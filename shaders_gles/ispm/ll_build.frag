@@ -1,7 +1,8 @@
 // Per-pixel linked lists (Algorithm 3.4; research Appendix D.1), tier A: every fragment in the
 // camera frustum, depth test and culling off, appended with SSBO atomics. Needs fragment-stage
 // storage blocks, which GLES 3.1 does not guarantee (ispm_lists.c probes for them). Nodes keep the
-// geometric normal as authored (not face-forward): the trace's self-intersection rule needs it.
+// geometric normal as authored (not face-forward): the trace's self-intersection rule needs it;
+// and a mirror's reflectance, for the trace's further bounces.
 // A full pool drops the fragment and counts it (research L11).
 precision highp float;
 precision highp int;
@@ -13,7 +14,7 @@ uniform int u_width;
 uniform mat4 u_model;                 // the draw_scene contract (gi.h): used by ll_build.vert
 uniform vec4 u_base_color;
 uniform vec2 u_metallic_roughness;
-uniform vec4 u_specular;                // the draw_scene contract (gi.h): the lists store no material
+uniform vec4 u_specular;                // the draw_scene contract (gi.h)
 uniform vec3 u_emissive;
 uniform int u_mat_flags;
 in vec3 v_normal;
@@ -35,6 +36,7 @@ void main()
     }
     nodes[idx].depth = z;
     nodes[idx].nrm = ispm_encode_normal(normalize(v_normal));
+    nodes[idx].spec = ispm_node_spec(u_base_color, u_metallic_roughness, u_specular);
     nodes[idx].next = atomicExchange(px[pix].head, int(idx));
     uint zb = floatBitsToUint(z);
     atomicMin(px[pix].zmin, zb);

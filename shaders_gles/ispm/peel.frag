@@ -1,7 +1,7 @@
 // Tier B (no fragment storage blocks): K-layer depth peeling, core GLES 3.0. Layer k keeps the
 // nearest fragment behind layer k-1 (depth test LESS on a cleared depth buffer, fragments not behind
-// the previous layer discarded) and writes (linear depth bits, encoded geometric normal) into its own
-// RG32UI texture; peel_lists.comp turns the layers into the same lists the trace reads. What lies
+// the previous layer discarded) and writes (linear depth bits, encoded geometric normal, Node.spec)
+// into its own RGBA32UI texture; peel_lists.comp turns the layers into the same lists the trace reads. What lies
 // beyond K layers is missing: the leak of the seed's Fig. 4.2b (research L8).
 precision highp float;
 precision highp int;
@@ -11,11 +11,11 @@ uniform int u_layer;                    // layer drawn
 uniform mat4 u_model;                   // the draw_scene contract (gi.h)
 uniform vec4 u_base_color;
 uniform vec2 u_metallic_roughness;
-uniform vec4 u_specular;                // the draw_scene contract (gi.h): the lists store no material
+uniform vec4 u_specular;                // the draw_scene contract (gi.h)
 uniform vec3 u_emissive;
 uniform int u_mat_flags;
 in vec3 v_normal;
-layout(location = 0) out uvec2 o_layer;
+layout(location = 0) out uvec4 o_layer;
 
 const int MAT_LIGHT_PROXY = 4;
 
@@ -30,5 +30,6 @@ void main()
         if (prev == 0u || z <= uintBitsToFloat(prev) * (1.0 + 1e-5))
             discard;
     }
-    o_layer = uvec2(floatBitsToUint(z), ispm_encode_normal(normalize(v_normal)));
+    o_layer = uvec4(floatBitsToUint(z), ispm_encode_normal(normalize(v_normal)),
+                    ispm_node_spec(u_base_color, u_metallic_roughness, u_specular), 0u);
 }

@@ -17,13 +17,13 @@ void main()
     int head = -1;
     uint zmin = 0x7f800000u, zmax = 0u, count = 0u;
     for (int k = u_k - 1; k >= 0; k--) {
-        uvec2 v = k == 0 ? texelFetch(u_layers[0], p, 0).rg
-                : k == 1 ? texelFetch(u_layers[1], p, 0).rg
-                : k == 2 ? texelFetch(u_layers[2], p, 0).rg : texelFetch(u_layers[3], p, 0).rg;   // constant indices (ESSL 3.10)
+        uvec3 v = k == 0 ? texelFetch(u_layers[0], p, 0).rgb
+                : k == 1 ? texelFetch(u_layers[1], p, 0).rgb
+                : k == 2 ? texelFetch(u_layers[2], p, 0).rgb : texelFetch(u_layers[3], p, 0).rgb;   // constant indices (ESSL 3.10)
         if (v.x == 0u)
             continue;   // cleared: no fragment this deep
         int idx = pix * u_k + k;
-        nodes[idx] = Node(uintBitsToFloat(v.x), v.y, head);
+        nodes[idx] = Node(uintBitsToFloat(v.x), v.y, head, v.z);
         head = idx;
         zmin = min(zmin, v.x), zmax = max(zmax, v.x), count++;
     }

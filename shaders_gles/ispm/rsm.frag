@@ -5,6 +5,8 @@
 // target (GLES 3.1 has none without extensions).
 // Specular as the scene features define it (app/scene/features.c): metallic > 0.5, roughness < 0.2.
 precision highp float;
+precision highp int;
+#include "ispm/common.glsl"
 in vec3 v_world;
 in vec3 v_normal;
 uniform vec4 u_base_color;
@@ -28,13 +30,12 @@ void main()
     if (dot(n, u_light_pos - v_world) < 0.0)
         n = -n;
     float metallic = clamp(u_metallic_roughness.x, 0.0, 1.0), rough = clamp(u_metallic_roughness.y, 0.0, 1.0);
-    bool specular = metallic > 0.5 && rough < 0.2;
-    // fresnel_mix at normal incidence (brdf_spec.md, glTF Appendix B with KHR_materials_specular):
-    // the dielectric's F0 = specularFactor * min(c0, 1), the metal's the base colour; the diffuse
-    // share is what the dielectric's Fresnel term leaves, (1 - w max(F0)) of the base colour
+    bool specular = ispm_is_specular(metallic, rough);
+    // the specular albedo (common.glsl); the diffuse share is what the dielectric's Fresnel term
+    // leaves, (1 - w max(F0)) of the base colour
     float w = clamp(u_specular.a, 0.0, 1.0);
     vec3 c0 = min(u_specular.rgb, vec3(1.0));
-    vec3 s = mix(w * c0, u_base_color.rgb, metallic);
+    vec3 s = ispm_specular_albedo(u_base_color.rgb, metallic, u_specular);
     vec3 d = (1.0 - metallic) * (1.0 - w * max(c0.r, max(c0.g, c0.b))) * u_base_color.rgb;
     o_nrm = vec4(n * 0.5 + 0.5, specular ? 1.0 : 0.0);
     o_spec = vec4(s, rough);

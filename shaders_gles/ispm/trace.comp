@@ -1,16 +1,30 @@
 // Photon tracing by a compute march through the per-pixel lists (seed 000 pass 11, Algorithm 3.5;
 // research A.1.11 form (a), Appendix D.2). One invocation per photon slot: the reflected ray is
 // clipped to the near plane and to the trace image, projected, and stepped one pixel along its major
-// axis; at each pixel the list's nodes within ε of the ray's depth are hit candidates, the nearest
-// in depth wins (order-independent), and the first pixel with a hit ends the march.
-//   ε = u_eps_abs + u_eps_slope·|Δz per step| (slope-scaled; u_eps_slope = 0 is the seed's
-//   constant threshold; k = 1 found every hit on the right surface in the research's experiment).
+// axis; at each pixel the list's nodes are hit candidates, and the first pixel with a hit ends the
+// march. Two hit tests:
+//   the seed's (u_plane = 0): |node depth − ray depth| < ε, ε = u_eps_abs + u_eps_slope·|Δz per
+//     step| (slope-scaled; u_eps_slope = 0 is its constant threshold), the smallest |Δz| wins;
+//   the plane test (u_plane = 1, default): the ray meets the node's plane (its depth at the pixel
+//     centre and its normal) within u_hit_px pixels of the pixel centre, the nearest along the ray
+//     wins; a plane behind the photon's origin is no hit (the outer face of the wall it leaves).
+//     A depth compared at the pixel centre misses surfaces seen at a grazing angle, whose depth
+//     changes by more than ε across the pixel: on caustic-ring 4.7% of the photon power went
+//     through the ring's 2 cm wall onto the floor behind it (research L10's tunnelling). A node
+//     seen (nearly) edge-on (|cos| < u_edge_on_cos to the view ray) hits only within u_edge_reach
+//     pixel footprints of its own point: its plane meets every ray crossing the pixel, also far
+//     from the fragment (on caustic-ring another facet of the ring took 1% of the photons, L9).
 //   Self-intersection rule: a node whose geometric normal faces along the ray (dot(n, dir) > 0) is
 //   the back of what the ray leaves, not a hit (u_backface = 0 turns the rule off for L9).
+// Specular chains (u_bounces > 1, not in the seed, research L7): a hit on a mirror node (Node.spec)
+// reflects the photon again (power × the mirror's specular albedo, the Phong lobe of its roughness
+// from the photon's key) and the march restarts there, until a non-mirror surface or u_bounces
+// specular bounces in all (the emission's counts); with u_bounces = 1 a mirror hit ends the photon
+// as in the seed (the mirror's ρ_d of 0 shows nothing of it).
 // The hit carries its splat radius h = C0 · d / sqrt(cosθ) · sqrt(ΔΩ) (seed: h = C0/√p · √(A/N),
 // p = cosθ/d²), read here as the solid angle one photon stands for, ΔΩ = 4^l · ΔΩ_texel, so that
 // A/N is the footprint a photon's block would light through a plane mirror at unit distance
-// (research A.7 item 9 leaves A open); d is the whole path light→reflector→receiver, cosθ is
+// (research A.7 item 9 leaves A open); d is the whole path light→reflector(s)→receiver, cosθ is
 // clamped at u_cos_min and h to [u_h_min, u_h_max] (L14).
 precision highp float;
 precision highp int;
@@ -27,26 +41,31 @@ uniform float u_near;
 uniform float u_tmax;           // ray length (scene diameter)
 uniform float u_eps_abs, u_eps_slope;
 uniform int u_backface;
-uniform int u_reach;             // 1: the reach test below
+uniform int u_plane;            // 1: the plane test; 0: the seed's depth test
+uniform float u_hit_px;         // the plane test's reach around the pixel centre (pixels)
+uniform float u_edge_on_cos;    // nodes seen at |cos| below this are "edge-on"
+uniform float u_edge_reach;     // an edge-on node's plane hit: at most this many pixel footprints off
+uniform float u_skip_rel;       // empty-space skip margin, relative depth (see march)
+uniform int u_bounces;          // specular bounces in all (1: the seed's)
 uniform int u_capacity;
 uniform float u_c0, u_omega_texel, u_cos_min, u_h_min, u_h_max;
 
-void main()
+uint work = 0u;                 // march steps + list nodes visited (L19)
+
+// The view-space point of trace pixel p at linear depth z (the lists' node positions).
+vec3 pixel_point(ivec2 p, float z)
 {
-    int i = int(gl_GlobalInvocationID.x);
-    if (i >= u_capacity)
-        return;
-    hits[i].pos_valid = vec4(0.0);
-    if (uint(i) >= min(ph_count, uint(u_capacity)))
-        return;
-    Photon P = ph[i];
-    if (P.org.w == 0.0)
-        return;
-    vec3 o = P.org.xyz, r = normalize(P.dir.xyz);
+    vec2 ndc = (vec2(p) + 0.5) / vec2(u_res) * 2.0 - 1.0;
+    return z * vec3((ndc.x + u_proj[2][0]) / u_proj[0][0], (ndc.y + u_proj[2][1]) / u_proj[1][1], -1.0);
+}
+
+// The first surface the ray o + r·t (t in (0, u_tmax]) meets in the lists: its node and t.
+bool march(vec3 o, vec3 r, out int hit_node, out float hit_t)
+{
     vec3 a = (u_view * vec4(o, 1.0)).xyz;
     vec3 b = (u_view * vec4(o + r * u_tmax, 1.0)).xyz;
     if (a.z > -u_near && b.z > -u_near)
-        return;   // wholly behind the near plane
+        return false;   // wholly behind the near plane
     float ta = 0.0, tb = 1.0;
     if (a.z > -u_near)
         ta = (-u_near - a.z) / (b.z - a.z);
@@ -64,7 +83,7 @@ void main()
         float lo = -sa[ax], hi = res[ax] - sa[ax], dv = dsv[ax];
         if (abs(dv) < 1e-9) {
             if (lo > 0.0 || hi < 0.0)
-                return;
+                return false;
         } else {
             float t0 = lo / dv, t1 = hi / dv;
             s0 = max(s0, min(t0, t1));
@@ -72,63 +91,117 @@ void main()
         }
     }
     if (s0 > s1)
-        return;   // never on screen
+        return false;   // never on screen
     float len = max(abs(dsv.x), abs(dsv.y)) * (s1 - s0);
     int n = int(ceil(len)) + 1;
     float ds = n > 1 ? (s1 - s0) / float(n - 1) : 0.0;
-    uint work = 0u;
+    mat3 view_rot = mat3(u_view);
+    float px_angle = 2.0 * max(1.0 / u_proj[0][0], 1.0 / u_proj[1][1]) / float(max(u_res.x, u_res.y));
+    vec3 AB = B - A;
     for (int k = 0; k < n; ++k) {   // outward: the first hit is the nearest
         work++;
         float s = s0 + float(k) * ds;
-        ivec2 pxy = clamp(ivec2(floor(mix(sa, sb, s))), ivec2(0), u_res - 1);
+        vec2 sp = mix(sa, sb, s);
+        ivec2 pxy = clamp(ivec2(floor(sp)), ivec2(0), u_res - 1);
         float zr = 1.0 / mix(ia, ib, s);   // the ray's linear depth here
         float zr1 = 1.0 / mix(ia, ib, min(1.0, s + max(ds, 1e-6)));
         float eps = u_eps_abs + u_eps_slope * abs(zr1 - zr);
         int pix = pxy.y * u_res.x + pxy.x;
         Pixel q = px[pix];
-        if (q.head < 0 || zr < uintBitsToFloat(q.zmin) - eps || zr > uintBitsToFloat(q.zmax) + eps)
-            continue;   // empty space
-        float best = eps;
+        // Empty space: the ray's depth is outside the list's range. With the plane test a node's
+        // surface may lie off its centre depth by its slope over the reach (u_skip_rel of the
+        // depth: the slope of a surface seen at u_edge_on_cos).
+        float margin = eps + (u_plane == 1 ? u_skip_rel * zr + abs(zr1 - zr) : 0.0);
+        if (q.head < 0 || zr < uintBitsToFloat(q.zmin) - margin || zr > uintBitsToFloat(q.zmax) + margin)
+            continue;
+        float best = u_plane == 1 ? 2.0 : eps;   // plane test: the least u; seed: the least |Δz|
         int best_idx = -1;
-        float dzab = B.z - A.z;
+        float best_u = 0.0;
         for (int idx = q.head; idx != -1; idx = nodes[idx].next) {
             work++;
-            float dz = abs(nodes[idx].depth - zr);
-            if (dz < best && (u_backface == 0 || dot(ispm_decode_normal(nodes[idx].nrm), r) < 0.0)) {
-                // Reach test (not in the seed; u_reach = 0 turns it off): the ray must reach the
-                // node's depth within a pixel and a half of here. Near its origin a ray leaving the
-                // inner wall of a 2 cm ring is within ε of the outer wall's fragments, which face
-                // it; they took 29% of caustic-ring's photons (test_ispm_ring, L9).
-                if (u_reach == 1 && abs(dzab) > 1e-6 * abs(A.z)) {
-                    float un = (-nodes[idx].depth - A.z) / dzab;
-                    float sn = un * ia / (ib + un * (ia - ib));
-                    if (un < 0.0 || un > 1.0 || abs(sn - s) * max(abs(dsv.x), abs(dsv.y)) > 1.5)
-                        continue;
-                }
-                best = dz;
-                best_idx = idx;
+            Node nd = nodes[idx];
+            vec3 nw = ispm_decode_normal(nd.nrm);
+            if (u_backface == 1 && dot(nw, r) >= 0.0)
+                continue;
+            vec3 pn = pixel_point(pxy, nd.depth), nv = view_rot * nw;
+            float den = dot(AB, nv);
+            if (u_plane == 1) {
+                if (abs(den) < 1e-12)
+                    continue;   // along the plane
+                float u = dot(pn - A, nv) / den;
+                if (u < 0.0 || u > 1.0 || u >= best)
+                    continue;
+                vec3 Q = A + AB * u;
+                vec4 cq = u_proj * vec4(Q, 1.0);
+                vec2 d = (cq.xy / cq.w * 0.5 + 0.5) * res - (vec2(pxy) + 0.5);
+                if (max(abs(d.x), abs(d.y)) > u_hit_px)
+                    continue;
+                // a node seen nearly edge-on: its plane meets every ray crossing the pixel, also
+                // far from the fragment; only within u_edge_reach pixel footprints of it
+                if (abs(dot(nv, pn)) < u_edge_on_cos * length(pn) && distance(Q, pn) > u_edge_reach * nd.depth * px_angle)
+                    continue;
+                best = u, best_idx = idx, best_u = u;
+            } else {
+                // the seed's test
+                float dz = abs(nd.depth - zr);
+                if (dz >= best)
+                    continue;
+                // where the ray reaches the node's depth (the surface's depth at this pixel)
+                float u = (s * ib) / mix(ia, ib, s);   // perspective-correct parameter on [A, B]
+                if (abs(AB.z) > 1e-6 * abs(A.z))
+                    u = clamp((-nd.depth - A.z) / AB.z, 0.0, 1.0);
+                best = dz, best_idx = idx, best_u = u;
             }
         }
         if (best_idx >= 0) {
-            vec3 nh = ispm_decode_normal(nodes[best_idx].nrm);
-            // The hit is where the ray reaches the node's depth (the surface's depth at this pixel),
-            // not the ray's depth at the sample: along a surface's normal the sample is off by up
-            // to ε, which put whole splats outside the "same surface" slab (L15 lost 2.3%).
-            float u = (s * ib) / mix(ia, ib, s);   // perspective-correct parameter on [A, B]
-            if (abs(dzab) > 1e-6 * abs(A.z))
-                u = clamp((-nodes[best_idx].depth - A.z) / dzab, 0.0, 1.0);
-            float t = mix(ta, tb, u) * u_tmax;
-            float cos_t = abs(dot(nh, r));
-            float dist = P.pow_d1.w + t;
-            float omega = u_omega_texel * float(1u << (2u * ph_level));
-            float h = clamp(u_c0 * dist * sqrt(omega / max(cos_t, u_cos_min)), u_h_min, u_h_max);
-            hits[i].pos_valid = vec4(o + r * t, 1.0);
-            hits[i].nrm_h = vec4(dot(nh, r) < 0.0 ? nh : -nh, h);
-            hits[i].pow_dist = vec4(P.pow_d1.xyz, dist);
-            atomicAdd(ph_hits, 1u);
-            atomicAdd(ph_steps, work);
-            return;
+            hit_node = best_idx;
+            hit_t = mix(ta, tb, best_u) * u_tmax;
+            return true;
         }
+    }
+    return false;
+}
+
+void main()
+{
+    int i = int(gl_GlobalInvocationID.x);
+    if (i >= u_capacity)
+        return;
+    hits[i].pos_valid = vec4(0.0);
+    if (uint(i) >= min(ph_count, uint(u_capacity)))
+        return;
+    Photon P = ph[i];
+    if (P.org.w == 0.0)
+        return;
+    vec3 o = P.org.xyz, r = normalize(P.dir.xyz), power = P.pow_d1.xyz;
+    uint key = uint(P.dir.w);
+    float dist = P.pow_d1.w;
+    for (int bounce = 1; bounce <= u_bounces; bounce++) {
+        int node;
+        float t;
+        if (!march(o, r, node, t))
+            break;
+        Node nd = nodes[node];
+        vec3 nh = ispm_decode_normal(nd.nrm);
+        vec3 x = o + r * t;
+        dist += t;
+        if (nd.spec != 0u && bounce < u_bounces) {   // a mirror: reflect and march on
+            vec4 sr = unpackUnorm4x8(nd.spec);
+            vec3 nf = dot(nh, r) < 0.0 ? nh : -nh;
+            vec3 rn = ispm_phong_lobe(reflect(r, nf), sr.a, key, 1u + 2u * uint(bounce));
+            if (dot(rn, nf) <= 0.0)
+                break;   // below the surface: absorbed
+            o = x, r = rn, power *= sr.rgb;
+            continue;
+        }
+        float cos_t = abs(dot(nh, r));
+        float omega = u_omega_texel * float(1u << (2u * ph_level));
+        float h = clamp(u_c0 * dist * sqrt(omega / max(cos_t, u_cos_min)), u_h_min, u_h_max);
+        hits[i].pos_valid = vec4(x, 1.0);
+        hits[i].nrm_h = vec4(dot(nh, r) < 0.0 ? nh : -nh, h);
+        hits[i].pow_dist = vec4(power, dist);
+        atomicAdd(ph_hits, 1u);
+        break;
     }
     atomicAdd(ph_steps, work);
 }

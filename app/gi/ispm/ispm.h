@@ -25,7 +25,10 @@ typedef struct gk_ispm_debug {
     unsigned shuffle;        /* != 0: permute the block order per frame with this seed (emulates a
                                 GPU's nondeterministic compaction order on llvmpipe, L13) */
     bool no_backface_rule;   /* L9: keep hits on surfaces the ray leaves */
-    bool faithful_hit;       /* the seed's |Δz| < ε alone, without the reach test (trace.comp) */
+    bool faithful_hit;       /* the seed's |Δz| < ε instead of the plane test (trace.comp) */
+    float hit_px;            /* the plane test's reach around a pixel centre, in trace pixels */
+    float edge_on_cos;       /* nodes seen at a smaller |cos| are edge-on (trace.comp) */
+    float edge_reach;        /* an edge-on node's plane hit: at most this many pixel footprints off */
     bool faithful_kernel;    /* L15: the seed's 1/(πh²) normalisation */
     bool cone_kernel;        /* cone instead of the Gaussian */
     float delta;             /* Gaussian δ (0.25) */
@@ -36,6 +39,9 @@ typedef struct gk_ispm_debug {
     float eps_abs_rel;       /* hit threshold: constant part, fraction of the scene diameter */
     float eps_slope;         /* hit threshold: multiple of the ray's depth step (0: the seed's constant ε) */
     float upsample_k;        /* normal exponent of the bilateral weights */
+    float density_k;         /* ispm_radius=density: photons a disk holds (density.comp) */
+    float density_cell;      /* its grid's cell side in output pixels */
+    long pool_nodes;         /* > 0: the list pool holds this many nodes, whatever ispm_pool says (L11) */
     bool caustics_only;      /* leave out vpl's indirect light (tests of the caustic alone) */
     bool measure;            /* read the counters back every frame (synchronously) */
 } gk_ispm_debug;

@@ -9,7 +9,7 @@
 #define ISPM_RSM_RES 256     /* research A.4's llvmpipe size (the seed: 512²) */
 #define ISPM_RSM_LEVELS 9    /* 256 .. 1 */
 #define ISPM_PEEL_LAYERS 4   /* tier B: the seed's Fig. 4.2b compares against 4 layers */
-#define ISPM_NODE_BYTES 12   /* Node in shaders_gles/ispm/common.glsl */
+#define ISPM_NODE_BYTES 16   /* Node in shaders_gles/ispm/common.glsl */
 #define ISPM_PHOTON_BYTES 48
 #define ISPM_HIT_BYTES 48
 /* Header of the photon buffer (ISPM_PHOTON_HEADER in common.glsl), in uints. */
@@ -20,7 +20,7 @@ enum {
 #define ISPM_PH_HEADER_BYTES (ISPM_PH_HEADER_UINTS * 4)
 enum { ISPM_LL_COUNT = 0, ISPM_LL_CAPACITY = 1, ISPM_LL_OVERFLOW = 2 };
 
-#define ISPM_KNOBS 5
+#define ISPM_KNOBS 7
 
 /* The light as the photon passes see it this frame (ispm_photons.c). */
 typedef struct ispm_light {
@@ -44,7 +44,8 @@ typedef struct ispm_state {
     const gk_gi_method *vpl;
     void *vpl_self;
     /* budget this frame */
-    int photons, trace_res, tier;
+    int photons, trace_res, tier, bounces;
+    bool density_radius;     /* ispm_radius=density */
     float splat_scale;
     long pool_bytes;
     /* scene */
@@ -63,6 +64,8 @@ typedef struct ispm_state {
     bool lists_ok;           /* start-up probe */
     /* splat + upsample */
     GLuint splat_fbo, splat_tex, splat_vao, empty_vao;
+    GLuint grid_ssbo;        /* ispm_density.c's photon counts per screen cell */
+    long grid_cap;
     GLenum splat_fmt;        /* RGBA32F with EXT_color_buffer_float + EXT_float_blend, else RGBA16F */
     int splat_w, splat_h;
     /* view of the last frame's lists (tests) */
@@ -85,6 +88,8 @@ int ispm_build_lists(ispm_state *s, const gk_gi_frame *f, gk_err *e);
 int ispm_trace(ispm_state *s, const gk_gi_frame *f, gk_err *e);
 int ispm_splat(ispm_state *s, const gk_gi_frame *f, gk_err *e);
 int ispm_upsample(ispm_state *s, const gk_gi_frame *f, gk_err *e);
+/* ispm_density.c: the splat radii from the hits' density (between trace and splat). */
+int ispm_density_radius(ispm_state *s, const gk_gi_frame *f, gk_err *e);
 void ispm_free_gpu(ispm_state *s);
 
 #endif

@@ -31,7 +31,8 @@ static const gk_uniform_field pl_fields[] = {GK_UNIFORM_AS(pl_uniforms, u_layers
 static void ensure_buffers(ispm_state *s)
 {
     int res = s->trace_res;
-    long nodes = s->tier == GK_ISPM_TIER_PEEL ? (long)res * res * ISPM_PEEL_LAYERS : s->pool_bytes / ISPM_NODE_BYTES;
+    long nodes = s->tier == GK_ISPM_TIER_PEEL ? (long)res * res * ISPM_PEEL_LAYERS
+                 : s->dbg.pool_nodes > 0 ? s->dbg.pool_nodes : s->pool_bytes / ISPM_NODE_BYTES;
     if (!s->nodes_ssbo || nodes != s->nodes_cap) {
         if (!s->nodes_ssbo)
             glGenBuffers(1, &s->nodes_ssbo);
@@ -107,7 +108,7 @@ static int ensure_peel(ispm_state *s, gk_err *e)
     glGenTextures(ISPM_PEEL_LAYERS, s->peel_tex);
     for (int k = 0; k < ISPM_PEEL_LAYERS; k++) {
         glBindTexture(GL_TEXTURE_2D, s->peel_tex[k]);
-        glTexStorage2D(GL_TEXTURE_2D, 1, GL_RG32UI, res, res);
+        glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA32UI, res, res);
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     }

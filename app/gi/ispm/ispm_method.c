@@ -16,8 +16,13 @@
  *   ispm_trace:   7·R/128 + 4 (the lists' share is in the 4)        -> 7.5, 11, 18 ms -> 1, 1.47, 2.4
  *   ispm_splat:   splat 0.3–1 ms of 11 ∝ pixels (scale²)            -> 1, 1.05, 1.2
  *   ispm_pool:    memory only (clearing is per pixel, not per node) -> 1, 1, 1
- *   ispm_tier:    a switch, never moved by the scheduler            -> 1, 1 */
-enum { K_PHOTONS, K_TRACE, K_SPLAT, K_POOL, K_TIER, K_COUNT };
+ *   ispm_tier:    a switch, never moved by the scheduler            -> 1, 1
+ *   ispm_bounces: a switch (1 = the seed's single specular bounce; 2, 3 = specular chains, research
+ *                 L7), never moved by the scheduler; a further bounce marches again the photons that
+ *                 met a mirror (on caustic-ring about a quarter of them)   -> 1, 1.25, 1.3
+ *   ispm_radius:  a switch (seed = the seed's splat radius, density = from the hits' density,
+ *                 ispm_density.c), never moved by the scheduler; two passes over the hits -> 1, 1.05 */
+enum { K_PHOTONS, K_TRACE, K_SPLAT, K_POOL, K_TIER, K_BOUNCES, K_RADIUS, K_COUNT };
 _Static_assert(K_COUNT == ISPM_KNOBS, "ispm_internal.h's ISPM_KNOBS counts the knobs");
 static const gk_knob_def knobs[K_COUNT] = {
     {"ispm_photons", "ispm", 4, {"1024", "4096", "16384", "65536"}, {1.0f, 1.29f, 2.42f, 6.99f}, 1, 0, false, NULL},
@@ -26,6 +31,8 @@ static const gk_knob_def knobs[K_COUNT] = {
     /* list-pool megabytes; 20 is the seed's */
     {"ispm_pool", "ispm", 3, {"2", "8", "20"}, {1.0f, 1.0f, 1.0f}, 2, 0, false, NULL},
     {"ispm_tier", "ispm", 2, {"peel", "lists"}, {1.0f, 1.0f}, 1, 0, .fixed = true},
+    {"ispm_bounces", "ispm", 3, {"1", "2", "3"}, {1.0f, 1.25f, 1.3f}, 0, 0, .fixed = true},
+    {"ispm_radius", "ispm", 2, {"seed", "density"}, {1.0f, 1.05f}, 0, 0, .fixed = true},
 };
 
 static void declare_knobs(gk_budget *b)
@@ -58,7 +65,16 @@ void gk_ispm_default_debug(gk_ispm_debug *d)
     d->h_pixels = 1.5f;      /* L15: a disk of 1.5 splat pixels deposits Φ within 2% (measured) */
     d->eps_abs_rel = 0.0005f;
     d->eps_slope = 1.0f;     /* research A.1.11: k = 1 found all 400 hits on the right surface */
-    d->upsample_k = 16.0f;   /* research A.2: k = 8–32 */
+    d->hit_px = 1.0f;        /* the pixel and half a pixel round it: a ray stepped one pixel along its
+                                major axis passes diagonal neighbours it does not sample */
+    d->edge_on_cos = 0.1f;   /* within 5.7° of edge-on (caustic-ring: the ring facet that took
+                                photons 16 cm from it is seen at cos 0.01) */
+    d->edge_reach = 3.0f;
+    d->upsample_k = 16.0f;
+    d->density_k = 32.0f;     /* caustic-ring, ispm_bounces=3, richest budget: k = 16/32/64 gave whole-image
+                                rel. RMSE 0.454/0.436/0.443, mask IoU 0.605/0.586/0.450 (seed radius:
+                                0.459, 0.517) */
+    d->density_cell = 2.0f;  /* 2 and 4 pixels: the same within 0.003 */   /* research A.2: k = 8–32 */
 }
 
 static int knob_int(ispm_state *s, const gk_budget *b, int k, int fallback)
@@ -125,6 +141,9 @@ static void read_budget(ispm_state *s, const gk_budget *b)
     s->trace_res = knob_int(s, b, K_TRACE, 128);
     s->splat_scale = gk_knob_number(b, &s->knob[K_SPLAT], 0.5f);
     s->pool_bytes = (long)(gk_knob_number(b, &s->knob[K_POOL], 20.0f) * 1048576.0f);
+    s->bounces = knob_int(s, b, K_BOUNCES, 1);
+    s->bounces = s->bounces < 1 ? 1 : s->bounces;
+    s->density_radius = gk_knob_level(b, &s->knob[K_RADIUS], 0) == 1;
     int tier = gk_knob_level(b, &s->knob[K_TIER], GK_ISPM_TIER_LISTS);
     if (tier == GK_ISPM_TIER_LISTS && !s->lists_ok) {
         if (!s->logged_tier)
@@ -202,7 +221,8 @@ static int caustics(ispm_state *s, const gk_gi_frame *f, gk_err *e)
         return -1;
     s->st.capacity = s->capacity;
     gk_pass_begin(f->pass, "ispm_splat");
-    rc = ispm_splat(s, f, e);
+    rc = s->density_radius ? ispm_density_radius(s, f, e) : 0;
+    rc = rc ? rc : ispm_splat(s, f, e);
     gk_pass_end(f->pass);
     if (rc)
         return -1;
@@ -241,8 +261,9 @@ static long memory_bytes(const void *self)
     b += (long)ISPM_RSM_RES * ISPM_RSM_RES * 4 * 4 / 3;      /* count pyramid */
     b += ISPM_PH_HEADER_BYTES + (long)s->capacity * (ISPM_PHOTON_BYTES + ISPM_HIT_BYTES);
     b += s->nodes_cap * ISPM_NODE_BYTES + (long)s->ll_res * s->ll_res * 16;
-    if (s->peel_fbo)
-        b += (long)s->peel_res * s->peel_res * (8 * ISPM_PEEL_LAYERS + 4);
+    if (s->peel_fbo)   /* RGBA32UI layers (depth, normal, Node.spec) + a 32-bit depth buffer */
+        b += (long)s->peel_res * s->peel_res * (16 * ISPM_PEEL_LAYERS + 4);
+    b += s->grid_cap * 4;   /* ispm_radius=density's counts */
     b += (long)s->splat_w * s->splat_h * 8;
     return b;
 }
@@ -256,9 +277,9 @@ void ispm_free_gpu(ispm_state *s)
     glDeleteTextures(ISPM_PEEL_LAYERS, s->peel_tex);
     glDeleteTextures(1, &s->splat_tex);
     glDeleteRenderbuffers(1, &s->peel_depth);
-    GLuint bufs[8] = {s->counts_ssbo, s->photon_ssbo, s->hit_buf, s->nodes_ssbo, s->pixels_ssbo, s->ctr_ssbo,
-                      s->readback[0], s->readback[1]};
-    glDeleteBuffers(8, bufs);
+    GLuint bufs[9] = {s->counts_ssbo, s->photon_ssbo, s->hit_buf, s->nodes_ssbo, s->pixels_ssbo, s->ctr_ssbo,
+                      s->readback[0], s->readback[1], s->grid_ssbo};
+    glDeleteBuffers(9, bufs);
     GLuint vaos[2] = {s->splat_vao, s->empty_vao};
     glDeleteVertexArrays(2, vaos);
 }
