@@ -11,7 +11,9 @@
 # is recorded there instead (column `metric`). Writes config/calibration/CLASS.csv, CLASS from the
 # GL renderer string (llvmpipe here); other platforms: run this on the board.
 # Usage: tools/calibrate.sh BIN   (environment: OUT=work dir, DEST=config/calibration, FRAMES,
-# SCENES=comma list: only those, for trying it out -- the table then covers only them)
+# SCENES=comma list: only those, for trying it out -- the table then covers only them; METHODS=comma
+# list: measure only those methods and keep the existing table's rows of the others, e.g. after adding
+# a method: METHODS=lightmap make calibrate)
 set -eu
 BIN=${1:-build/gikiosk}
 OUT=${OUT:-out/calibration}
@@ -26,9 +28,11 @@ size=$(oiiotool --info "$REFS/cornell.exr" | sed -n 's/.*: *\([0-9]*\) x *\([0-9
 rm -rf "$OUT"
 mkdir -p "$(dirname "$OUT")"
 TIME_SIZE=${TIME_SIZE:-640x360}
-"$BIN" bench --scenes "$scenes" --sweep each --size "$size" \
+METHODS=${METHODS:-}
+only=${METHODS:+--methods $METHODS}
+"$BIN" bench --scenes "$scenes" $only --sweep each --size "$size" \
     --frames 1 --warmup 2 --references "$REFS" --out "$OUT" 2>"$OUT.log" || { cat "$OUT.log" >&2; exit 1; }
-"$BIN" bench --scenes "$scenes" --sweep each --size "$TIME_SIZE" \
+"$BIN" bench --scenes "$scenes" $only --sweep each --size "$TIME_SIZE" \
     --frames "$FRAMES" --warmup 2 --references "$REFS" --out "$OUT/time" 2>"$OUT.time.log" ||
     { cat "$OUT.time.log" >&2; exit 1; }
 renderer=$(sed -n 's/^gikiosk: OpenGL ES .* on \(.*\)$/\1/p' "$OUT.log" | head -1)
@@ -58,6 +62,10 @@ tmp=$(mktemp "$DEST/.calibration.XXXXXX")
     echo "# at each automatic level; frame time and pass times at ${TIME_SIZE} (median of $FRAMES frames after 2 warm-up); error at"
     echo "# ${size} against the scene's ruler (SCENE-1bounce.exr where it exists, else SCENE.exr): rel_rmse, or rmse where the ruler is black"
     echo "scene,method,width,height,frame_ms,error,metric,ruler,knob,value,passes"
+    if [ -n "$METHODS" ] && [ -f "$DEST/$class.csv" ]; then
+        # the other methods' rows as they were (measured in an earlier run)
+        awk -F, -v m=",$METHODS," 'NR > 1 && !/^#/ && $1 != "scene" && index(m, "," $2 ",") == 0' "$DEST/$class.csv"
+    fi
     while read -r row scene method knob value ms passes; do
         [ "$knob" = "-" ] && knob= && value=
         [ "$passes" = "-" ] && passes=
