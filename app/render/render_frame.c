@@ -286,13 +286,15 @@ bool gk_renderer_gi_failed(const gk_renderer *r, const char *method)
     return gk_render_gi_failed(r->gi, r, method);
 }
 
-/* Runs the GI method as the `gi` pass, with the cross-fade of render_gi_blend.c around it. A method
-   that fails is logged once (render_gi.c then skips it until the next scene) and the frame keeps its
-   direct light: a kiosk keeps showing something. */
+/* Whether this frame has a `gi` pass: a method other than none, or a cross-fade still running. */
 static bool gi_runs(const gk_renderer *r, const gk_frame_params *fp)
 {
     return (fp && fp->method && strcmp(fp->method, "none") != 0) || gk_gi_blend_active(r);
 }
+
+/* Runs the GI method as the `gi` pass, with the cross-fade of render_gi_blend.c around it. A method
+   that fails is logged once (render_gi.c then skips it until the next scene) and the frame keeps its
+   direct light: a kiosk keeps showing something. */
 
 static void pass_gi(gk_renderer *r, const gk_frame_params *fp, const gk_frame_knobs *fk, const gk_pass_ctx *ctx)
 {
