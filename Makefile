@@ -101,24 +101,41 @@ $(BUILD)/tests/gpu/%: tests/gpu/%.c $(LIB) $(TESTLIB_OBJS) | $(TEST_SHADER_STAMP
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_ALL) -Itests $< $(TESTLIB_OBJS) $(LIB) -o $@ $(LIBS) -lcmocka
 
-# The glTF loader fuzz target (libFuzzer, clang). Built and run briefly by `make test`. Only the
-# loader's modules (scene, core, io) are compiled with clang and the sanitizers, and the C++ shims
-# (tinygltf, OpenImageIO) with clang++: the fuzz build does not depend on the rest of the program
-# (the commands live in app/cli/, so no exclusions are needed). Of app/gi/ only the catalogue of
-# method names comes along: a leaf without GL that scene/ reads to derive a scene's methods.
-FUZZ_BIN  := $(BUILD)/fuzz/fuzz_gltf
-FUZZ_SRCS := $(filter base/% app/scene/% app/core/% app/io/% app/gi/gi_catalogue.c,$(C_SRCS) $(CXX_SRCS))
+# The fuzz targets (libFuzzer, clang; tests/fuzz/fuzz_*.c): gltf (the loader from memory),
+# gltf_files (the loader from a scene folder: URIs, confinement, file readers), config (kiosk.ini),
+# script (button scripts), image (the EXR/PNG readers of `compare`). Built and run briefly by
+# `make test` (FUZZ_TEST_SECONDS each); `make fuzz` runs each for FUZZ_SECONDS. Only the modules
+# they reach (base, scene, core, io, the config and script parsers, the budget they fill) are
+# compiled with clang and the sanitizers, and the C++ shims (tinygltf, OpenImageIO) with clang++,
+# into one archive, so each target links only what it calls (the commands live in app/cli/, so no
+# exclusions are needed). Of app/gi/ only the catalogue of method names comes along: a leaf
+# without GL that scene/ and the config read.
+FUZZ_TARGETS := gltf gltf_files config script image
+FUZZ_BINS := $(FUZZ_TARGETS:%=$(BUILD)/fuzz/fuzz_%)
+FUZZ_SRCS := $(filter base/% app/scene/% app/core/% app/io/% app/gi/gi_catalogue.c app/kiosk/config.c \
+	app/sched/budget.c platform/script.c,$(C_SRCS) $(CXX_SRCS))
 FUZZ_OBJS := $(addprefix $(BUILD)/fuzzobj/obj/,$(addsuffix .o,$(basename $(FUZZ_SRCS))))
-$(FUZZ_BIN): tests/fuzz/fuzz_gltf.c $(FUZZ_SRCS) $(wildcard base/*.h app/scene/*.h app/core/*.h app/io/*.h) app/gi/gi_catalogue.h
+FUZZ_LIB  := $(BUILD)/fuzzobj/libfuzzed.a
+FUZZ_HDRS := $(wildcard base/*.h app/scene/*.h app/core/*.h app/io/*.h app/kiosk/config.h app/sched/budget.h \
+	platform/platform.h platform/script.h platform/gesture.h) app/gi/gi_catalogue.h tests/fuzz/fuzz_files.h
+FUZZ_SECONDS ?= 60
+FUZZ_TEST_SECONDS ?= 5
+$(FUZZ_LIB): $(FUZZ_SRCS) $(FUZZ_HDRS)
 	@mkdir -p $(dir $@)
 	$(MAKE) --no-print-directory BUILD=$(BUILD)/fuzzobj CC=clang CXX=clang++ OPT=-O1 WERROR= \
 		SANITIZE="-fsanitize=fuzzer-no-link,address,undefined" $(FUZZ_OBJS)
-	clang $(filter-out -Werror,$(CFLAGS_ALL)) -fsanitize=fuzzer-no-link,address,undefined -c tests/fuzz/fuzz_gltf.c \
-		-o $(BUILD)/fuzzobj/fuzz_gltf.o
+	rm -f $@ && ar rcs $@ $(FUZZ_OBJS)
+$(BUILD)/fuzz/fuzz_%: tests/fuzz/fuzz_%.c $(FUZZ_LIB)
+	@mkdir -p $(dir $@)
+	clang $(filter-out -Werror,$(CFLAGS_ALL)) -fsanitize=fuzzer-no-link,address,undefined -c $< \
+		-o $(BUILD)/fuzzobj/fuzz_$*.o
 	@# linked by clang++ so UBSan's C++ runtime (vptr checks of the shims) comes along
-	clang++ -fsanitize=fuzzer,address,undefined $(BUILD)/fuzzobj/fuzz_gltf.o $(FUZZ_OBJS) -o $@ \
+	clang++ -fsanitize=fuzzer,address,undefined $(BUILD)/fuzzobj/fuzz_$*.o $(FUZZ_LIB) -o $@ \
 		$(PKG_LIBS) -lpthread -lm
-fuzz: $(FUZZ_BIN)
+# Runs every target for FUZZ_SECONDS on a copy of its seed corpus (tests/fuzz/corpus/TARGET/);
+# findings are kept under $(BUILD)/fuzz-artifacts/.
+fuzz: $(FUZZ_BINS)
+	@for t in $(FUZZ_TARGETS); do BUILD=$(BUILD) sh tests/fuzz/run_fuzz.sh $(BUILD)/fuzz/fuzz_$$t $(FUZZ_SECONDS) || exit 1; done
 
 # libgpiod 2.x compile check on Debian 12 (only 1.6 there): bookworm-backports debs unpacked into
 # $(BUILD)/gpiod2/, platform/gpiod_v2.c compiled against them; skips cleanly when offline.
@@ -136,8 +153,8 @@ run: deps $(BIN)
 test: deps
 	@$(MAKE) --no-print-directory test-only
 
-test-only: $(BIN) $(UNIT_BINS) $(GPU_BINS) $(if $(NO_FUZZ),,$(FUZZ_BIN))
-	@sh tests/run.sh $(BUILD)
+test-only: $(BIN) $(UNIT_BINS) $(GPU_BINS) $(if $(NO_FUZZ),,$(FUZZ_BINS))
+	@FUZZ_TEST_SECONDS=$(FUZZ_TEST_SECONDS) sh tests/run.sh $(BUILD)
 
 # AddressSanitizer + UBSan over the whole suite. Leak checking stays on for the unit tests; in the
 # programs that run Mesa (gpu tests, the binary in e2e tests) it is off, because llvmpipe's worker

@@ -115,9 +115,10 @@ static int create_framebuffer(mock *m, int w, int h, gk_err *e)
 }
 
 /* The mock's size cap (DCI 4K). On llvmpipe a frame's time grows with its pixels: issue 12 measured
- * 23 s at 4096x4096 with GI, so about 12 s here at most; a stop request is honoured between frames,
- * so this cap bounds how long SIGTERM waits. Larger sizes are refused, not left to run for minutes
- * a frame. */
+ * 23 s at 4096x4096 with GI, so about 12 s here at most; a stop request is honoured between a
+ * frame's passes (app/render/render_frame.c), so this cap bounds how long SIGTERM waits through the
+ * longest pass at this size (board/gikiosk.service's TimeoutStopSec). Larger sizes are refused, not
+ * left to run for minutes a frame. */
 #define GK_MOCK_MAX_SIDE 4096
 #define GK_MOCK_MAX_PIXELS (4096 * 2160)
 

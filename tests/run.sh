@@ -65,9 +65,10 @@ done
 for t in $(find tests/e2e -name '*.sh' ! -name 'lib.sh' 2>/dev/null | LC_ALL=C sort); do
     run_one "$t" mesa_env sh "$t"
 done
-if [ -x "$BUILD/fuzz/fuzz_gltf" ]; then
-    run_one fuzz/gltf sh tests/fuzz/run_fuzz.sh "$BUILD/fuzz/fuzz_gltf"
-fi
+# Each fuzz target briefly (FUZZ_TEST_SECONDS, 5 s each by default; `make fuzz` runs them longer).
+for t in $(find "$BUILD/fuzz" -name 'fuzz_*' -type f -perm -u+x 2>/dev/null | LC_ALL=C sort); do
+    run_one "fuzz/${t##*/fuzz_}" sh tests/fuzz/run_fuzz.sh "$t" "${FUZZ_TEST_SECONDS:-5}"
+done
 if [ "$skipped" -gt 0 ]; then
     echo "$skipped skipped (counted in neither):"
     cat "$log/skipped.txt"

@@ -14,6 +14,7 @@ extern "C" {
 #include "base/outfile.h"
 #include "base/readfile.h"
 #include "io/image_io.h"
+#include "io/image_layout.h"
 }
 
 namespace {
@@ -168,6 +169,9 @@ extern "C" int gk_image_read(const char *path, gk_image *img, gk_err *e)
     // otherwise read forever, and a directory or FIFO would block or read as garbage.
     if (gk_check_regular_file(path, "image", kMaxImageFileBytes, e))
         return -1;
+    // Lengths in PNG chunks and EXR headers must fit in the file before OIIO allocates them.
+    if (gk_image_check_layout(path, e))
+        return -1;
     try {
         OIIO::ImageSpec config = read_config();
         auto in = OIIO::ImageInput::open(path, &config);
@@ -197,6 +201,8 @@ extern "C" int gk_image_read_attr(const char *path, const char *key, char *out, 
 {
     if (out && out_len > 0)
         out[0] = '\0';
+    if (gk_check_regular_file(path, "image", kMaxImageFileBytes, e) || gk_image_check_layout(path, e))
+        return -1;
     try {
         auto in = OIIO::ImageInput::open(path);
         if (!in)

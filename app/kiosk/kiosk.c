@@ -6,6 +6,7 @@
 
 #include <errno.h>
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -49,6 +50,11 @@ typedef struct kiosk {
     char last_scene[GK_NAME_LEN], last_method[GK_METHOD_LEN];
     long floor_over;                     /* judged frames of this visit over the target at the floor */
     gk_notify notify;                    /* systemd readiness + watchdog (Type=notify) */
+    char stop_after[16];                 /* the pass that ran last when a frame was abandoned */
+    /* Test hook (GIKIOSK_TEST_SIGTERM_AT=FRAME:PASS, tests/e2e/stop_mid_frame.sh): raise SIGTERM
+       as that frame's pass begins, the worst moment for a stop (all of that pass runs after it). */
+    long test_sigterm_frame;
+    char test_sigterm_pass[16];
 } kiosk;
 
 /* Judged frames over the target at the floor before the kiosk says (once a visit) that the scene
@@ -308,7 +314,33 @@ static void drop_failed_method(kiosk *k)
     begin_visit(k);
 }
 
-/* One frame: draw (HUD included), present, record. */
+/* The renderer's stop question, asked before each top-level pass (gk_frame_stop_fn): a stop
+ * signal (SIGTERM, SIGINT, SIGHUP, SIGQUIT) abandons the frame, so systemd's stop timeout has to
+ * cover one pass, not one frame. The mock's end of script is no signal: that frame finishes. */
+static bool stop_between_passes(void *user, const char *next_pass, const char *last_pass)
+{
+    kiosk *k = user;
+    bool stop = gk_platform_quit_requested(k->plat);
+    snprintf(k->stop_after, sizeof k->stop_after, "%s", last_pass ? last_pass : "(none)");
+    if (!stop && k->test_sigterm_pass[0] && k->frame == k->test_sigterm_frame &&
+        strcmp(next_pass, k->test_sigterm_pass) == 0) {
+        gk_log("test hook: SIGTERM raised as frame %ld's %s pass begins", k->frame, next_pass);
+        raise(SIGTERM);
+    }
+    return stop;
+}
+
+/* Reads GIKIOSK_TEST_SIGTERM_AT=FRAME:PASS (the test hook above); anything else is ignored. */
+static void read_test_hook(kiosk *k)
+{
+    const char *v = getenv("GIKIOSK_TEST_SIGTERM_AT");
+    char pass[16];
+    if (v && sscanf(v, "%ld:%15[a-z]", &k->test_sigterm_frame, pass) == 2)
+        snprintf(k->test_sigterm_pass, sizeof k->test_sigterm_pass, "%s", pass);
+}
+
+/* One frame: draw (HUD included), present, record. Returns 1 when a stop request abandoned the
+ * frame between its passes (nothing presented, recorded or captured), 0 when it was shown. */
 static int frame(kiosk *k, double now, gk_err *e)
 {
     const char *scene = gk_playlist_scene(&k->pl), *method = gk_playlist_method(&k->pl);
@@ -319,8 +351,17 @@ static int frame(kiosk *k, double now, gk_err *e)
     }
     gk_frame_report report;
     unsigned fbo = gk_platform_framebuffer(k->plat);
-    if (gk_renderer_draw(k->r, &fp, fbo, &report, e))
+    fp.stop = stop_between_passes;
+    fp.stop_user = k;
+    int drawn = gk_renderer_draw(k->r, &fp, fbo, &report, e);
+    if (drawn < 0)
         return -1;
+    if (drawn == GK_FRAME_ABANDONED) {
+        gk_log("stop requested: frame %ld abandoned after its %s pass (not shown, recorded or captured)", k->frame,
+               k->stop_after);
+        k->have_frame = false; /* the renderer's image is part of a frame: no visit-end capture */
+        return 1;
+    }
     /* The frame's cost is the report's total: the sum of the top-level passes on the renderer's one
      * clock (GPU time where it trusts timer queries, CPU time around a fence elsewhere). Present is
      * left out: on KMS it waits for the flip. With GPU timer queries the first GK_TIMER_LAG
@@ -426,8 +467,11 @@ static int loop(kiosk *k, gk_err *e)
             if (capture_visit_end(k, e) || enter_scene(k, e))
                 return -1;
         }
-        if (frame(k, now, e))
+        int shown = frame(k, now, e);
+        if (shown < 0)
             return -1;
+        if (shown == 1)
+            break;
     }
     return capture_visit_end(k, e);
 }
@@ -513,6 +557,7 @@ int gk_kiosk_run(const gk_kiosk_opts *o, const gk_kiosk_config *c, gk_err *e)
     k->o = o;
     k->c = c;
     k->visit_scene = k->visit_method = -1;
+    read_test_hook(k);
     if (!(k->visits = calloc(1, sizeof *k->visits))) {
         free(k);
         return gk_fail(e, GK_ERUNTIME, "out of memory");

@@ -291,14 +291,21 @@ bool gk_renderer_gi_failed(const gk_renderer *r, const char *method)
     return gk_render_gi_failed(r->gi, r, method);
 }
 
+/* Whether this frame has a `gi` pass: a method other than none, or a cross-fade still running. */
+static bool gi_runs(const gk_renderer *r, const gk_frame_params *fp)
+{
+    return (fp && fp->method && strcmp(fp->method, "none") != 0) || gk_gi_blend_active(r);
+}
+
 /* Runs the GI method as the `gi` pass, with the cross-fade of render_gi_blend.c around it. A method
    that fails is logged once (render_gi.c then skips it until the next scene) and the frame keeps its
    direct light: a kiosk keeps showing something. */
+
 static void pass_gi(gk_renderer *r, const gk_frame_params *fp, const gk_frame_knobs *fk, const gk_pass_ctx *ctx)
 {
     const char *method = fp ? fp->method : NULL;
     bool run_method = method && strcmp(method, "none") != 0;
-    if (!run_method && !gk_gi_blend_active(r))
+    if (!gi_runs(r, fp))
         return;
     gk_err gi_err = {0};
     gk_pass_begin(ctx, "gi");
@@ -311,6 +318,16 @@ static void pass_gi(gk_renderer *r, const gk_frame_params *fp, const gk_frame_kn
     if (rc == 0 && gk_gi_blend_after_method(r, ctx, &gi_err) != 0)
         gk_log("renderer: GI cross-fade failed, showing the new GI at once: %s", gi_err.msg);
     gk_pass_end(ctx);
+}
+
+/* True when fp->stop asks to abandon the frame before pass `next`; *last is the pass that ran last
+   and becomes `next` when the frame goes on. */
+static bool stop_before(const gk_frame_params *fp, const char *next, const char **last)
+{
+    if (fp && fp->stop && fp->stop(fp->stop_user, next, *last))
+        return true;
+    *last = next;
+    return false;
 }
 
 int gk_renderer_draw(gk_renderer *r, const gk_frame_params *fp, unsigned target_fbo, gk_frame_report *report,
@@ -359,28 +376,37 @@ int gk_renderer_draw(gk_renderer *r, const gk_frame_params *fp, unsigned target_
     while (glGetError() != GL_NO_ERROR) {
     }
     gk_timer_frame_begin(r->timer);
-    gk_pass_begin(&ctx, "shadow");
-    int rc = pass_shadows(r, &fk, &ctx, fl, n, e);
-    gk_pass_end(&ctx);
-    if (rc == 0) {
+    /* Each top-level pass asks fp->stop first (stop_before): a stop request abandons the frame
+       there. In CPU timing mode every pass ends on a fence, so the pass in flight is all the work
+       a stop waits for; with GPU timing the queued GL work of that pass still drains on exit. */
+    const char *last = NULL;
+    bool abandoned = stop_before(fp, "shadow", &last);
+    int rc = 0;
+    if (!abandoned) {
+        gk_pass_begin(&ctx, "shadow");
+        rc = pass_shadows(r, &fk, &ctx, fl, n, e);
+        gk_pass_end(&ctx);
+    }
+    if (rc == 0 && !abandoned && !(abandoned = stop_before(fp, "gbuffer", &last))) {
         gk_pass_begin(&ctx, "gbuffer");
         rc = pass_gbuffer(r, &gb.view_proj, gb.eye, e);
         gk_pass_end(&ctx);
     }
-    if (rc == 0) {
+    if (rc == 0 && !abandoned && !(abandoned = stop_before(fp, "direct", &last))) {
         gk_pass_begin(&ctx, "direct");
         rc = pass_direct(r, m, fl, n, &gb, e);
         gk_pass_end(&ctx);
     }
-    if (rc == 0) {
+    if (rc == 0 && !abandoned && gi_runs(r, fp) && !(abandoned = stop_before(fp, "gi", &last)))
         pass_gi(r, fp, &fk, &ctx);
+    if (rc == 0 && !abandoned && !(abandoned = stop_before(fp, "compose", &last))) {
         if (!r->exposure_known)
             measure_exposure(r); /* once per scene, outside every pass: a one-off read-back */
         gk_pass_begin(&ctx, "compose");
         rc = gk_render_compose(r, target_fbo, r->opts.width, r->opts.height, false, e);
         gk_pass_end(&ctx);
     }
-    if (rc == 0 && fp && fp->overlay) {
+    if (rc == 0 && !abandoned && fp && fp->overlay && !(abandoned = stop_before(fp, "hud", &last))) {
         gk_pass_begin(&ctx, "hud");
         fp->overlay(fp->overlay_user, &ctx, target_fbo);
         gk_pass_end(&ctx);
@@ -393,6 +419,10 @@ int gk_renderer_draw(gk_renderer *r, const gk_frame_params *fp, unsigned target_
     glBindFramebuffer(GL_FRAMEBUFFER, target_fbo);
     if (rc != 0)
         return -1;
+    if (abandoned) {
+        r->have_frame = false; /* the targets hold part of a frame: nothing to capture */
+        return GK_FRAME_ABANDONED;
+    }
     GLenum err = glGetError();
     if (err != GL_NO_ERROR)
         return gk_fail(e, GK_ERUNTIME, "renderer: GL error %s during the frame", gk_gl_error_name(err));

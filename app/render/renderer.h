@@ -28,13 +28,24 @@ typedef struct gk_render_opts {
  * clock: the kiosk's HUD. Never part of captures (they read the HDR image). */
 typedef void (*gk_overlay_fn)(void *user, const gk_pass_ctx *ctx, unsigned target_fbo);
 
+/* Asked before each top-level pass of a frame (shadow, gbuffer, direct, gi, compose, hud) with the
+ * pass about to run and the one that ran last (NULL before the first): true abandons the frame.
+ * The kiosk answers a stop request (SIGTERM) this way, so a stop waits for the pass in flight,
+ * not for the rest of the frame. A GI method's own passes run as the one `gi` pass. */
+typedef bool (*gk_frame_stop_fn)(void *user, const char *next_pass, const char *last_pass);
+
 typedef struct gk_frame_params {
     double time_s;            /* animation time */
     const char *method;       /* GI method: "none", "vct", ... */
     const gk_budget *budget;  /* current knob levels */
     gk_overlay_fn overlay;    /* optional */
     void *overlay_user;
+    gk_frame_stop_fn stop;    /* optional */
+    void *stop_user;
 } gk_frame_params;
+
+/* gk_renderer_draw's result for a frame that fp->stop abandoned. */
+#define GK_FRAME_ABANDONED 1
 
 typedef struct gk_renderer gk_renderer;
 
@@ -61,7 +72,10 @@ void gk_renderer_set_rebuild_gi(gk_renderer *r, bool on);
  * (report may be NULL): top-level passes shadow, gbuffer, direct, gi (the GI method's passes nested
  * under it), compose, hud; total_ms is their sum. On llvmpipe the report is this frame's; with GPU
  * timer queries it is GK_TIMER_LAG frames old. A GI method that fails is reported once through
- * gk_renderer_gi_failed and the frame keeps its direct light. */
+ * gk_renderer_gi_failed and the frame keeps its direct light. Returns 0, -1 on error, or
+ * GK_FRAME_ABANDONED when fp->stop asked to stop between passes: target_fbo and the HDR image
+ * then hold part of a frame, which must be neither presented nor captured (gk_renderer_capture
+ * refuses until a frame is finished). */
 int gk_renderer_draw(gk_renderer *r, const gk_frame_params *fp, unsigned target_fbo, gk_frame_report *report,
                      gk_err *e);
 /* The last frame's knob levels as they ran: its budget, with the levels a pass could not run

@@ -17,6 +17,7 @@
 #include <vector>
 
 extern "C" {
+#include "base/confine.h"
 #include "base/log.h"
 #include "scene_internal.h"
 }
@@ -53,31 +54,19 @@ struct Loader {
 // no devices or FIFOs that could block), and nothing at all for documents loaded from memory.
 // A buffer's uri is confined to the scene's folder like an image's (texture.c): the file it names,
 // symlinks and `..` resolved, must lie inside base_dir, else it is not read at all (so no byte of
-// a file outside can reach an error message). The scene file itself (gk_scene_load) has no base.
+// a file outside can reach an error message; base/confine.h). The scene file itself (gk_scene_load)
+// has no base.
 struct FsContext {
     bool allow_files;
     const char *base_dir; // nullptr: any regular file (the scene file named on the command line)
 };
-
-bool inside_base(const std::string &abs, const char *base_dir)
-{
-    char *root = realpath(base_dir, nullptr), *file = realpath(abs.c_str(), nullptr);
-    bool inside = false;
-    if (root && file) {
-        size_t n = strlen(root);
-        inside = strncmp(file, root, n) == 0 && (file[n] == '/' || (n == 1 && root[0] == '/'));
-    }
-    free(root);
-    free(file);
-    return inside;
-}
 
 bool fs_exists(const std::string &abs, void *user)
 {
     const FsContext *ctx = static_cast<const FsContext *>(user);
     struct stat st;
     return ctx->allow_files && stat(abs.c_str(), &st) == 0 && S_ISREG(st.st_mode) &&
-           (!ctx->base_dir || inside_base(abs, ctx->base_dir));
+           (!ctx->base_dir || gk_path_inside_dir(abs.c_str(), ctx->base_dir));
 }
 
 std::string fs_expand(const std::string &p, void *) { return p; }

@@ -4,7 +4,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
+#include "base/confine.h"
 #include "core/tonemap.h"
 #include "io/image_io.h"
 #include "scene_internal.h"
@@ -62,6 +64,12 @@ int gk_scene_load_textures(gk_scene *s, const char *base_dir, const int *tex_usa
             return gk_fail(e, GK_EINPUT, "%s: texture %d: image uri '%s' must be relative, inside the scene's folder",
                            s->path, i, t->uri);
         snprintf(path, sizeof path, "%s/%s", base_dir, rel);
+        /* the name passed, but a symlink in the folder may still point outside it (found by
+           tests/fuzz/fuzz_gltf_files.c): resolved, the file must lie inside, as a buffer's must */
+        struct stat st;
+        if (stat(path, &st) == 0 && !gk_path_inside_dir(path, base_dir))
+            return gk_fail(e, GK_EINPUT, "%s: texture %d: image '%s' lies outside the scene's folder (a symlink out of it)",
+                           s->path, i, t->uri);
         gk_image img = {0};
         gk_err ie = {0};
         if (gk_image_read(path, &img, &ie) != 0)

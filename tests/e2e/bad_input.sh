@@ -51,6 +51,18 @@ printf 'ABCD' >"$TMP/scene/sub/in.bin"
 printf '{"asset": {"version": "2.0"}, "buffers": [{"byteLength": 4, "uri": "sub/in.bin"}]}\n' >"$TMP/scene/inside.gltf"
 expect_exit 0 "a buffer inside the scene's folder is read" $GIKIOSK scenes --check "$TMP/scene/inside.gltf"
 
+# --- image uris too: a symlink in the folder that points out of it is refused, not read (found by
+# tests/fuzz/fuzz_gltf_files.c: images were confined by name only)
+oiiotool --pattern constant:color=1,0,0 2x2 3 -d uint8 -o "$TMP/outside/secret.png"
+cp "$TMP/outside/secret.png" "$TMP/scene/in.png"
+ln -sf "$TMP/outside/secret.png" "$TMP/scene/link.png"
+for img in link.png in.png; do
+    printf '{"asset": {"version": "2.0"}, "images": [{"uri": "%s"}], "textures": [{"source": 0}], "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}]}\n' "$img" >"$TMP/scene/img-$img.gltf"
+done
+expect_exit 2 "image uri 'link.png' (a symlink out of the folder) exits 2" $GIKIOSK scenes --check "$TMP/scene/img-link.png.gltf"
+stderr_has "image 'link.png' lies outside the scene's folder" "the image is named"
+expect_exit 0 "an image inside the scene's folder is read" $GIKIOSK scenes --check "$TMP/scene/img-in.png.gltf"
+
 # --- compare: NaN pixels are counted and never a success
 # an all-NaN 16x16 RGB image: a PFM (float32, little-endian quiet NaN 0x7fc00000) made EXR
 { printf 'PF\n16 16\n-1.0\n'; i=0; while [ $i -lt 768 ]; do printf '\000\000\300\177'; i=$((i + 1)); done; } >"$TMP/nan.pfm"

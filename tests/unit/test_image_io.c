@@ -217,6 +217,64 @@ static void corrupt_file_is_input_error(void **state)
     gk_image_free(&a);
 }
 
+/* Patches 4 bytes of a file at offset. */
+static void patch4(const char *path, long at, const unsigned char v[4])
+{
+    FILE *f = fopen(path, "r+b");
+    assert_non_null(f);
+    assert_int_equal(fseek(f, at, SEEK_SET), 0);
+    assert_int_equal(fwrite(v, 1, 4, f), 4);
+    fclose(f);
+}
+
+/* A length in a PNG chunk or an EXR header attribute that runs past the end of the file is refused
+ * before OpenImageIO allocates it (found by tests/fuzz/fuzz_image.c: a 350-byte PNG whose tEXt
+ * chunk claimed 1.7 GB, a 536-byte EXR whose attribute claimed 1.9 GB, each made the reader use
+ * about 2 GB before it failed); the same files with their own lengths read. */
+static void lengths_beyond_the_file_are_refused_before_reading(void **state)
+{
+    gk_image a, b = {0};
+    assert_int_equal(gk_image_alloc(&a, 4, 4, 3), 0);
+    fill_gradient(&a, 1.0f);
+    gk_err e = {0};
+    const char *png = tmp_path(state, "long-chunk.png");
+    assert_int_equal(gk_image_write(png, &a, NULL, &e), 0);
+    assert_int_equal(gk_image_read(png, &b, &e), 0);
+    gk_image_free(&b);
+    /* the chunk after IHDR (8 signature + 25 IHDR bytes) claims 0x6a000064 bytes */
+    patch4(png, 33, (const unsigned char[4]){0x6a, 0x00, 0x00, 0x64});
+    assert_int_equal(gk_image_read(png, &b, &e), -1);
+    assert_int_equal(e.code, GK_EINPUT);
+    assert_non_null(strstr(e.msg, "long-chunk.png: corrupt PNG: chunk"));
+    assert_non_null(strstr(e.msg, "at byte 33 claims 1778384996 bytes"));
+    assert_null(b.pixels);
+    char out[16];
+    gk_err e2 = {0};
+    assert_int_equal(gk_image_read_attr(png, "k", out, sizeof out, &e2), -1);
+    assert_non_null(strstr(e2.msg, "claims 1778384996 bytes"));
+
+    const char *exr = tmp_path(state, "long-attr.exr");
+    assert_int_equal(gk_image_write(exr, &a, NULL, &e), 0);
+    assert_int_equal(gk_image_read(exr, &b, &e), 0);
+    gk_image_free(&b);
+    /* the first header attribute, `name\0type\0size` from byte 8: its size claims 0x71ffff00 */
+    FILE *f = fopen(exr, "rb");
+    assert_non_null(f);
+    char head[128];
+    assert_int_equal(fread(head, 1, sizeof head, f), sizeof head);
+    fclose(f);
+    const char *name = head + 8, *type = name + strlen(name) + 1;
+    patch4(exr, (long)(type + strlen(type) + 1 - head), (const unsigned char[4]){0x00, 0xff, 0xff, 0x71});
+    assert_int_equal(gk_image_read(exr, &b, &e), -1);
+    assert_int_equal(e.code, GK_EINPUT);
+    char want[160];
+    snprintf(want, sizeof want, "long-attr.exr: corrupt OpenEXR: header attribute '%s' (%s) claims 1912602368 bytes",
+             name, type);
+    assert_non_null(strstr(e.msg, want));
+    assert_null(b.pixels);
+    gk_image_free(&a);
+}
+
 static void write_errors(void **state)
 {
     gk_image a;
@@ -255,6 +313,7 @@ int main(void)
         cmocka_unit_test(png_metadata_round_trip),
         cmocka_unit_test(missing_file_is_input_error_naming_it),
         cmocka_unit_test(corrupt_file_is_input_error),
+        cmocka_unit_test(lengths_beyond_the_file_are_refused_before_reading),
         cmocka_unit_test(write_errors),
         cmocka_unit_test(alloc_rejects_bad_sizes),
     };

@@ -1,0 +1,106 @@
+/* See image_layout.h. Reads only headers: PNG chunk headers by seeking from one to the next, the
+ * EXR header attribute by attribute; no pixel data. */
+#include "image_layout.h"
+
+#include <stdbool.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <string.h>
+#include <sys/stat.h>
+
+static const unsigned char png_signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+static const unsigned char exr_magic[4] = {0x76, 0x2f, 0x31, 0x01};
+
+/* PNG (ISO 15948 §5.3): length (4 bytes, big-endian, at most 2^31-1), type, data, CRC. */
+static int check_png(FILE *f, const char *path, long long size, gk_err *e)
+{
+    long long at = 8;
+    while (at + 8 <= size) {
+        unsigned char h[8];
+        if (fseeko(f, (off_t)at, SEEK_SET) != 0 || fread(h, 1, 8, f) != 8)
+            return gk_fail(e, GK_EINPUT, "%s: cannot read the PNG chunk header at byte %lld", path, at);
+        uint32_t len = (uint32_t)h[0] << 24 | (uint32_t)h[1] << 16 | (uint32_t)h[2] << 8 | h[3];
+        char type[5] = {(char)h[4], (char)h[5], (char)h[6], (char)h[7], 0};
+        for (int i = 0; i < 4; i++)
+            if (!((type[i] >= 'A' && type[i] <= 'Z') || (type[i] >= 'a' && type[i] <= 'z')))
+                type[i] = '?';
+        if (at + 12 + (long long)len > size)
+            return gk_fail(e, GK_EINPUT, "%s: corrupt PNG: chunk %s at byte %lld claims %u bytes, the file has %lld left",
+                           path, type, at, len, size - at - 12 > 0 ? size - at - 12 : 0);
+        if (memcmp(type, "IEND", 4) == 0)
+            return 0;
+        at += 12 + (long long)len;
+    }
+    return 0; /* ends without IEND: libpng says what is missing */
+}
+
+/* OpenEXR (file layout, "Header"): magic, version (flags in bytes 5..7), then attributes
+ * `name\0 type\0 size(int32 LE) value[size]` up to an empty name; a multi-part file has one such
+ * header per part and an empty header after the last. */
+static int check_exr(FILE *f, const char *path, long long size, gk_err *e)
+{
+    unsigned char version[4];
+    if (fseeko(f, 4, SEEK_SET) != 0 || fread(version, 1, 4, f) != 4)
+        return gk_fail(e, GK_EINPUT, "%s: corrupt OpenEXR: the file ends in its version field", path);
+    bool multipart = (version[1] & 0x10) != 0; /* flag bit 12 */
+    long long at = 8;
+    for (;;) {
+        int c = fgetc(f);
+        if (c == EOF)
+            return gk_fail(e, GK_EINPUT, "%s: corrupt OpenEXR: the file ends inside its header", path);
+        at++;
+        if (c == 0) { /* an empty name: the end of a header (in a multi-part file, of one part's) */
+            if (!multipart)
+                return 0;
+            int next = fgetc(f);
+            if (next == 0 || next == EOF)
+                return 0; /* the empty header after the last part */
+            ungetc(next, f);
+            continue;
+        }
+        char name[256], type[256];
+        int n = 0;
+        name[n++] = (char)c;
+        while ((c = fgetc(f)) != EOF && c != 0 && n < 255)
+            name[n++] = (char)c, at++;
+        name[n] = 0;
+        at++;
+        if (c != 0)
+            return gk_fail(e, GK_EINPUT, "%s: corrupt OpenEXR: a header attribute name is unterminated", path);
+        n = 0;
+        while ((c = fgetc(f)) != EOF && c != 0 && n < 255)
+            type[n++] = (char)c, at++;
+        type[n] = 0;
+        at++;
+        unsigned char s[4];
+        if (c != 0 || fread(s, 1, 4, f) != 4)
+            return gk_fail(e, GK_EINPUT, "%s: corrupt OpenEXR: header attribute '%s' is cut short", path, name);
+        at += 4;
+        int32_t len = (int32_t)((uint32_t)s[0] | (uint32_t)s[1] << 8 | (uint32_t)s[2] << 16 | (uint32_t)s[3] << 24);
+        if (len < 0 || at + len > size)
+            return gk_fail(e, GK_EINPUT, "%s: corrupt OpenEXR: header attribute '%s' (%s) claims %d bytes, the file has "
+                           "%lld left", path, name, type, len, size - at);
+        if (fseeko(f, (off_t)(at + len), SEEK_SET) != 0)
+            return gk_fail(e, GK_EINPUT, "%s: cannot read the OpenEXR header", path);
+        at += len;
+    }
+}
+
+int gk_image_check_layout(const char *path, gk_err *e)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return 0; /* the reader reports what stops it opening the file */
+    struct stat st;
+    unsigned char head[8];
+    size_t got = fread(head, 1, sizeof head, f);
+    int rc = 0;
+    if (fstat(fileno(f), &st) == 0) {
+        if (got == 8 && memcmp(head, png_signature, 8) == 0)
+            rc = check_png(f, path, (long long)st.st_size, e);
+        else if (got >= 4 && memcmp(head, exr_magic, 4) == 0)
+            rc = check_exr(f, path, (long long)st.st_size, e);
+    }
+    fclose(f);
+    return rc;
+}
