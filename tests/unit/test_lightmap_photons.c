@@ -306,7 +306,8 @@ static void kdtree_matches_brute_force(void **state)
         s.hits[i] = (lm_hit){v3(c[0], c[1], 0.1f * c[2]), v3((float)i, 1, 0), i, 0, LM_HIT_INDIRECT};
     }
     lm_kdtree t = {0};
-    lm_kdtree_build(&t, &s, 1u << LM_HIT_INDIRECT);
+    const lm_store *one = &s;
+    lm_kdtree_build(&t, &one, 1, 1u << LM_HIT_INDIRECT);
     assert_int_equal(t.n, n);
     for (int q = 0; q < 20; q++) {
         vec3 p = v3(0.05f * (float)q, 0.5f, 0.0f);

@@ -37,11 +37,12 @@ static void build(kd_item *it, unsigned char *axis, int lo, int hi)
     build(it, axis, mid + 1, hi);
 }
 
-void lm_kdtree_build(lm_kdtree *t, const lm_store *s, unsigned kind_mask)
+void lm_kdtree_build(lm_kdtree *t, const lm_store *const *stores, int n_stores, unsigned kind_mask)
 {
     int n = 0;
-    for (int i = 0; i < s->n; i++)
-        n += (kind_mask >> s->hits[i].kind) & 1u;
+    for (int q = 0; q < n_stores; q++)
+        for (int i = 0; i < stores[q]->n; i++)
+            n += (kind_mask >> stores[q]->hits[i].kind) & 1u;
     if (n > t->cap) {
         int nc = n + n / 2 + 16;
         vec3 *p = realloc(t->pts, sizeof *p * (size_t)nc), *w = p ? realloc(t->pow, sizeof *w * (size_t)nc) : NULL;
@@ -62,9 +63,12 @@ void lm_kdtree_build(lm_kdtree *t, const lm_store *s, unsigned kind_mask)
         return;
     }
     int k = 0;
-    for (int i = 0; i < s->n; i++)
-        if ((kind_mask >> s->hits[i].kind) & 1u)
-            it[k++] = (kd_item){s->hits[i].pos, s->hits[i].power};
+    for (int q = 0; q < n_stores; q++) {
+        const lm_store *s = stores[q];
+        for (int i = 0; i < s->n; i++)
+            if ((kind_mask >> s->hits[i].kind) & 1u)
+                it[k++] = (kd_item){s->hits[i].pos, s->hits[i].power};
+    }
     build(it, t->axis, 0, n);
     for (int i = 0; i < n; i++)
         t->pts[i] = it[i].p, t->pow[i] = it[i].pw;
@@ -152,12 +156,26 @@ vec3 lm_kdtree_knn(const lm_kdtree *t, vec3 p, int k, float *r_k)
 void lm_aim_update_chart(const lm_atlas *a, const lm_photons *ph, int ci, mat4 world, lm_kdtree *tree, float *irr)
 {
     const lm_chart *c = &a->charts[ci];
-    const lm_store *s = &ph->stores[ci];
-    lm_kdtree_build(tree, s, 1u << LM_HIT_INDIRECT);
+    /* the photon map of the surface and of those that could contribute to it */
+    int nc = a->contrib_first[ci + 1] - a->contrib_first[ci];
+    const lm_store *local[64];
+    const lm_store **stores = nc + 1 <= 64 ? local : malloc(sizeof *stores * (size_t)(nc + 1));
+    if (!stores)
+        return;
+    stores[0] = &ph->stores[ci];
+    float area = c->area;
+    for (int k = 0; k < nc; k++) {
+        int d = a->contrib[a->contrib_first[ci] + k];
+        stores[k + 1] = &ph->stores[d];
+        area += a->charts[d].area;
+    }
+    lm_kdtree_build(tree, stores, nc + 1, 1u << LM_HIT_INDIRECT);
+    if (stores != local)
+        free(stores);
     vec3 all = v3(0, 0, 0);
     for (int i = 0; i < tree->n; i++)
         all = v3_add(all, tree->pow[i]);
-    float area = c->area > 0.0f ? c->area : 1e-12f;
+    area = area > 0.0f ? area : 1e-12f;
     for (int j = 0; j < c->h; j++)
         for (int i = 0; i < c->w; i++) {
             vec3 E;

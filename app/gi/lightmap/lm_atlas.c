@@ -38,6 +38,7 @@ typedef struct proto {
     float umin, umax, vmin, vmax;
     float world_u, world_v;               /* world metres per object unit along tu, tv */
     float area;
+    vec3 wmin, wmax, wn;
 } proto;
 
 static void frame_of(vec3 n, vec3 *tu, vec3 *tv)
@@ -156,6 +157,8 @@ static int build_protos(const gk_scene *s, proto **out, int *n_out, tri_key **ke
                 p->d = v3_dot(p->n, t0);
                 frame_of(p->n, &p->tu, &p->tv);
                 p->umin = p->vmin = INFINITY, p->umax = p->vmax = -INFINITY;
+                p->wmin = v3(INFINITY, INFINITY, INFINITY), p->wmax = v3(-INFINITY, -INFINITY, -INFINITY);
+                p->wn = v3_norm(m4_dir(m4_transpose(m4_inverse(nd->world)), p->n));
                 for (size_t q = k; q < j; q++) {
                     vec3 w[3];
                     for (int v = 0; v < 3; v++) {
@@ -164,6 +167,7 @@ static int build_protos(const gk_scene *s, proto **out, int *n_out, tri_key **ke
                         p->umin = fminf(p->umin, u), p->umax = fmaxf(p->umax, u);
                         p->vmin = fminf(p->vmin, vv), p->vmax = fmaxf(p->vmax, vv);
                         w[v] = m4_point(nd->world, pv);
+                        p->wmin = v3_min(p->wmin, w[v]), p->wmax = v3_max(p->wmax, w[v]);
                     }
                     p->area += 0.5f * v3_len(v3_cross(v3_sub(w[1], w[0]), v3_sub(w[2], w[0])));
                 }
@@ -192,6 +196,104 @@ static void size_charts(lm_atlas *a, const proto *ps, float texel)
     }
 }
 
+static bool contributes(const lm_chart *c, const lm_chart *d, float texel)
+{
+    if (v3_dot(c->wn, d->wn) < 0.906f) /* cos 25 degrees */
+        return false;
+    vec3 cc = v3_scale(v3_add(c->wmin, c->wmax), 0.5f), dc = v3_scale(v3_add(d->wmin, d->wmax), 0.5f);
+    if (fabsf(v3_dot(c->wn, v3_sub(dc, cc))) > 0.5f * texel)
+        return false;
+    vec3 gap = v3_max(v3_sub(d->wmin, c->wmax), v3_sub(c->wmin, d->wmax));
+    return gap.x <= texel && gap.y <= texel && gap.z <= texel;
+}
+
+/* A uniform grid over the charts' bounds (grown by a texel) finds the candidate pairs. */
+static int find_contributors(lm_atlas *a)
+{
+    int n = a->n_charts;
+    a->contrib_first = calloc((size_t)n + 1, sizeof *a->contrib_first);
+    if (!a->contrib_first)
+        return -1;
+    if (n == 0)
+        return 0;
+    vec3 lo = a->charts[0].wmin, hi = a->charts[0].wmax;
+    for (int i = 1; i < n; i++)
+        lo = v3_min(lo, a->charts[i].wmin), hi = v3_max(hi, a->charts[i].wmax);
+    float t = a->texel_size;
+    vec3 ext = v3_sub(hi, lo);
+    float cell = fmaxf(t, v3_maxc(ext) / 64.0f);
+    int gx = (int)(ext.x / cell) + 1, gy = (int)(ext.y / cell) + 1, gz = (int)(ext.z / cell) + 1;
+    long cells = (long)gx * gy * gz;
+    int *count = calloc((size_t)cells + 1, sizeof *count), *mark = malloc(sizeof *mark * (size_t)n);
+    int *list = NULL, *out = NULL;
+    long total = 0, out_n = 0, out_cap = 0;
+#define CELL_RANGE(ch)                                                                                               \
+    int x0 = (int)(((ch)->wmin.x - t - lo.x) / cell), x1 = (int)(((ch)->wmax.x + t - lo.x) / cell);                 \
+    int y0 = (int)(((ch)->wmin.y - t - lo.y) / cell), y1 = (int)(((ch)->wmax.y + t - lo.y) / cell);                 \
+    int z0 = (int)(((ch)->wmin.z - t - lo.z) / cell), z1 = (int)(((ch)->wmax.z + t - lo.z) / cell);                 \
+    x0 = x0 < 0 ? 0 : x0, y0 = y0 < 0 ? 0 : y0, z0 = z0 < 0 ? 0 : z0;                                             \
+    x1 = x1 >= gx ? gx - 1 : x1, y1 = y1 >= gy ? gy - 1 : y1, z1 = z1 >= gz ? gz - 1 : z1;
+    if (!count || !mark)
+        goto fail;
+    for (int pass = 0; pass < 2; pass++) {
+        for (int i = 0; i < n; i++) {
+            CELL_RANGE(&a->charts[i]);
+            for (int z = z0; z <= z1; z++)
+                for (int y = y0; y <= y1; y++)
+                    for (int x = x0; x <= x1; x++) {
+                        long k = ((long)z * gy + y) * gx + x;
+                        if (pass == 0)
+                            count[k + 1]++;
+                        else
+                            list[count[k]++] = i;
+                    }
+        }
+        if (pass == 0) {
+            for (long k = 0; k < cells; k++)
+                count[k + 1] += count[k];
+            total = count[cells];
+            list = malloc(sizeof *list * (size_t)(total > 0 ? total : 1));
+            if (!list)
+                goto fail;
+        }
+    }
+    /* count[k] is now the end of cell k's list; its start is count[k - 1] (0 for the first) */
+    for (int i = 0; i < n; i++)
+        mark[i] = -1;
+    for (int i = 0; i < n; i++) {
+        const lm_chart *c = &a->charts[i];
+        a->contrib_first[i] = (int)out_n;
+        CELL_RANGE(c);
+        for (int z = z0; z <= z1; z++)
+            for (int y = y0; y <= y1; y++)
+                for (int x = x0; x <= x1; x++) {
+                    long k = ((long)z * gy + y) * gx + x;
+                    for (long q = k > 0 ? count[k - 1] : 0; q < count[k]; q++) {
+                        int j = list[q];
+                        if (j == i || mark[j] == i || !contributes(c, &a->charts[j], t))
+                            continue;
+                        mark[j] = i;
+                        if (out_n == out_cap) {
+                            out_cap = out_cap ? 2 * out_cap : 256;
+                            int *no = realloc(out, sizeof *out * (size_t)out_cap);
+                            if (!no)
+                                goto fail;
+                            out = no;
+                        }
+                        out[out_n++] = j;
+                    }
+                }
+    }
+#undef CELL_RANGE
+    a->contrib_first[n] = (int)out_n;
+    a->contrib = out ? out : malloc(sizeof(int));
+    free(count), free(mark), free(list);
+    return a->contrib ? 0 : -1;
+fail:
+    free(count), free(mark), free(list), free(out);
+    return -1;
+}
+
 int lm_atlas_build(lm_atlas *a, const gk_scene *s, int texels_across, gk_err *e)
 {
     memset(a, 0, sizeof *a);
@@ -214,6 +316,7 @@ int lm_atlas_build(lm_atlas *a, const gk_scene *s, int texels_across, gk_err *e)
         c->u0 = p->umin, c->v0 = p->vmin;
         c->plane_d = p->d;
         c->area = p->area;
+        c->wmin = p->wmin, c->wmax = p->wmax, c->wn = p->wn;
         largest = fmaxf(largest, fmaxf((p->umax - p->umin) * p->world_u, (p->vmax - p->vmin) * p->world_v));
     }
     /* The seed's rule: the largest surface gets texels_across texels along its longer side. */
@@ -228,6 +331,8 @@ int lm_atlas_build(lm_atlas *a, const gk_scene *s, int texels_across, gk_err *e)
         texel *= 1.5f; /* too many texels for one atlas: coarser, until it fits */
     }
     a->texel_size = texel;
+    if (find_contributors(a))
+        goto oom;
 
     /* Vertices: every drawn (node, mesh), charted or not, in node order. */
     int n_draws = 0, n_verts = 0;
@@ -324,6 +429,7 @@ fail:
 void lm_atlas_free(lm_atlas *a)
 {
     free(a->charts), free(a->draws), free(a->verts), free(a->vert_chart), free(a->ref_chart), free(a->texel_chart);
+    free(a->contrib_first), free(a->contrib);
     memset(a, 0, sizeof *a);
 }
 

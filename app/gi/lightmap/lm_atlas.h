@@ -35,6 +35,7 @@ typedef struct lm_chart {
     float u0, v0;            /* chart coordinates of the rect's corner (object units) */
     float su, sv;            /* texels per object unit along tu and tv */
     float area;              /* world-space area of its triangles (m²), at set-up */
+    vec3 wmin, wmax, wn;     /* world bounds and unit normal, at set-up */
 } lm_chart;
 
 /* One (node, mesh) pair as drawn with light-map UVs: n_verts vertices from first_vert
@@ -61,6 +62,13 @@ typedef struct lm_atlas {
     int *ref_chart;
     uint32_t n_ref;
     int *texel_chart;        /* width x height: the chart whose rect or gutter holds the texel, -1 */
+    /* The surfaces that "could contribute" to a chart's photon map (seed 004 §3): charts facing the
+       same way (normals within 25 degrees), nearly in its plane (centre off it by at most half a
+       texel) and within a texel of it -- the facets of a curved or finely split surface, whose
+       photons a small chart needs. CSR: chart c's are contrib[contrib_first[c] ..
+       contrib_first[c + 1]), itself not included. */
+    int *contrib_first;
+    int *contrib;
 } lm_atlas;
 
 #define LM_VERT_FLOATS 5
