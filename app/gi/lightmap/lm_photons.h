@@ -27,7 +27,7 @@
 #include "ref/ref_scene.h"
 
 #define LM_PHOTONS_PER_GROUP 40
-#define LM_MAX_HITS 8
+#define LM_MAX_HITS 16
 
 /* What lit a stored hit, in the reference's path classes (ref/trace.h): the light directly (L D),
  * through delta surfaces only (L S+ D: caustics), or after a non-delta bounce (indirect). */
