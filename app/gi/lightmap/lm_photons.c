@@ -137,7 +137,10 @@ void lm_trace_photon(const lm_photons *ph, const gk_ref_scene *rs, const int *re
     flux = v3_scale(flux, ph->scale);
     gk_rng rng;
     gk_rng_seed(&rng, LM_PHOTON_SEED, (uint64_t)k, 0, 0);
-    int n_diffuse = 0, n_specular = 0;
+    /* The renderer's direct pass lights surfaces from the scene's lights, not from emissive meshes
+       (it only shows their emission), so a GI method adds the light of emissive surfaces too (as
+       vct's voxel emission does): their photons count as indirect from the first hit. */
+    int n_diffuse = rs->lights[m->light].kind == GK_REF_MESH ? 1 : 0, n_specular = 0;
     for (int depth = 0; depth < LM_MAX_HITS; depth++) {
         gk_scene_hit h;
         if (!gk_scene_intersect(rs, o, d, INFINITY, &h) || h.light >= 0)

@@ -30,7 +30,9 @@
 #define LM_MAX_HITS 16
 
 /* What lit a stored hit, in the reference's path classes (ref/trace.h): the light directly (L D),
- * through delta surfaces only (L S+ D: caustics), or after a non-delta bounce (indirect). */
+ * through delta surfaces only (L S+ D: caustics), or after a non-delta bounce (indirect). Light
+ * from emissive meshes counts as indirect from the first hit: the renderer's direct pass does not
+ * compute it. */
 enum { LM_HIT_DIRECT = 0, LM_HIT_CAUSTIC = 1, LM_HIT_INDIRECT = 2 };
 
 typedef struct lm_hit {
