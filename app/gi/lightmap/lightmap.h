@@ -21,6 +21,9 @@ typedef struct gk_lightmap_stats {
     float texel_size;            /* metres */
     int threads;
     uint64_t uploads;            /* atlases uploaded to the GPU */
+    int gathered;                /* IIM texels gathered this frame */
+    uint64_t gathered_total;
+    long queued;                 /* IIM texels waiting */
     bool shown;                  /* the frame added indirect light (a result existed) */
 } gk_lightmap_stats;
 

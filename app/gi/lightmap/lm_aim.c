@@ -153,7 +153,8 @@ vec3 lm_kdtree_knn(const lm_kdtree *t, vec3 p, int k, float *r_k)
     return sum;
 }
 
-void lm_aim_update_chart(const lm_atlas *a, const lm_photons *ph, int ci, mat4 world, lm_kdtree *tree, float *irr)
+void lm_aim_update_chart(const lm_atlas *a, const lm_photons *ph, int ci, mat4 world, lm_kdtree *tree, float *irr,
+                         unsigned kind_mask)
 {
     const lm_chart *c = &a->charts[ci];
     /* the photon map of the surface and of those that could contribute to it */
@@ -169,7 +170,7 @@ void lm_aim_update_chart(const lm_atlas *a, const lm_photons *ph, int ci, mat4 w
         stores[k + 1] = &ph->stores[d];
         area += a->charts[d].area;
     }
-    lm_kdtree_build(tree, stores, nc + 1, 1u << LM_HIT_INDIRECT);
+    lm_kdtree_build(tree, stores, nc + 1, kind_mask);
     if (stores != local)
         free(stores);
     vec3 all = v3(0, 0, 0);

@@ -31,10 +31,11 @@ void lm_kdtree_free(lm_kdtree *t);
 /* Sum of the k nearest hits' power to p and the distance to the k-th (k = min(k, n)). */
 vec3 lm_kdtree_knn(const lm_kdtree *t, vec3 p, int k, float *r_k);
 
-/* Fills chart ci's interior texels of irr (RGBA floats per atlas texel: indirect E in rgb, a = 1)
- * and its gutter, from the indirect hits of the chart and its contributors (lm_atlas.h); the area
+/* Fills chart ci's interior texels of irr (RGBA floats per atlas texel: E in rgb, a = 1) and its
+ * gutter, from the hits of the kinds in kind_mask (1 << LM_HIT_*) of the chart and its contributors (lm_atlas.h); the area
  * cap and the few-hits case use their summed area. world: the chart's node world matrix. */
-void lm_aim_update_chart(const lm_atlas *a, const lm_photons *ph, int ci, mat4 world, lm_kdtree *tree, float *irr);
+void lm_aim_update_chart(const lm_atlas *a, const lm_photons *ph, int ci, mat4 world, lm_kdtree *tree, float *irr,
+                         unsigned kind_mask);
 
 /* The surfaces due for an update, in Δ_f/area order, within a budget of texels (the first one
  * always): writes their indices to out (room for n_charts), returns the count. */

@@ -13,16 +13,23 @@
  * the frame, which the scheduler measures.
  *   lightmap_groups: photons = groups x 40 (the seed's 77 groups); one retrace per group a frame
  *   lightmap_aim:    AIM texels a frame (the seed caps IIM texels at 20; AIMs "a limited amount")
+ *   lightmap_iim:    IIM texels gathered a frame (the seed: at most 20); 0 shows the AIM's indirect
+ *                    part instead. A gather is a render of the scene: Table 2 puts it at 0.75 ms
+ *                    + 0.006 ms per 1,000 polygons of a 28 ms frame, so 20 gathers ~ +54%:
+ *                    1 + 0.027 per texel
+ *   lightmap_gather: gather render size (Table 2: 8², 16², 32² cost within 4% of each other)
  *   lightmap_texels: the resolution rule (the seed: 5 texels along the largest surface); a change
  *                    re-parameterises the scene and re-emits every photon, so the scheduler never
  *                    moves it
  *   lightmap_sync:   async (the seed: the frame uses the last complete result) or lockstep (the
  *                    frame waits for its tick: deterministic captures for tests and measurements) */
-enum { K_GROUPS, K_AIM, K_TEXELS, K_SYNC, K_COUNT };
+enum { K_GROUPS, K_AIM, K_IIM, K_GATHER, K_TEXELS, K_SYNC, K_COUNT };
 _Static_assert(K_COUNT == LM_KNOBS, "lm_internal.h's LM_KNOBS counts the knobs");
 static const gk_knob_def knobs[K_COUNT] = {
     {"lightmap_groups", "lightmap", 4, {"77", "154", "308", "616"}, {1.0f, 1.02f, 1.05f, 1.1f}, 0, 0, false},
     {"lightmap_aim", "lightmap", 4, {"20", "80", "320", "1280"}, {1.0f, 1.01f, 1.02f, 1.04f}, 1, 0, false},
+    {"lightmap_iim", "lightmap", 4, {"0", "5", "20", "80"}, {1.0f, 1.14f, 1.54f, 3.16f}, 2, 0, false},
+    {"lightmap_gather", "lightmap", 3, {"8", "16", "32"}, {1.0f, 1.01f, 1.04f}, 1, 0, false},
     {"lightmap_texels", "lightmap", 3, {"5", "10", "20"}, {1.0f, 1.0f, 1.0f}, 0, 0, .fixed = true},
     {"lightmap_sync", "lightmap", 2, {"async", "lockstep"}, {1.0f, 1.0f}, 0, 0, .fixed = true},
 };
@@ -133,8 +140,13 @@ static int render(void *self, const gk_gi_frame *f, gk_err *e)
     if (s->st.worker.failed)
         return gk_fail(e, GK_ERUNTIME, "%s", s->st.worker.error);
     s->st.shown = s->seen > 0;
+    s->st.gathered = 0;
     if (!s->st.shown)
         return 0; /* no complete result yet: direct light only */
+    int iim = (int)gk_knob_number(b, &s->knob[K_IIM], 20.0f);
+    s->iim_on = iim > 0;
+    if (s->iim_on && lm_display_gather(s, f, iim, (int)gk_knob_number(b, &s->knob[K_GATHER], 16.0f), e))
+        return -1;
     if (lm_display_draw(s, f, e))
         return -1;
     GLenum err = glGetError();
@@ -146,7 +158,8 @@ static int render(void *self, const gk_gi_frame *f, gk_err *e)
 static long memory_bytes(const void *self)
 {
     const lm_state *s = self;
-    long b = (long)s->atlas.width * s->atlas.height * 8;         /* RGBA16F atlas */
+    long b = (long)s->atlas.width * s->atlas.height * 8 * 5;     /* RGBA16F: 2 AIMs, 3 IIMs */
+    b += (long)s->gather.res * s->gather.res * s->gather.max_tiles * (16 + 4); /* gather tiles */
     b += (long)s->uv_w * s->uv_h * (8 + 4);                      /* RG32UI + depth 32F */
     b += (long)s->atlas.n_verts * LM_VERT_FLOATS * 4;            /* vertices */
     return b;

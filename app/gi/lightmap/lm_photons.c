@@ -197,7 +197,7 @@ static void store_delta(lm_store *s, const lm_path_hit *h, double sign)
     double l = lum(h->power);
     s->delta_f += l;
     if (h->kind == LM_HIT_INDIRECT)
-        s->delta_i += l;
+        s->delta_i += l, s->delta_g += l;
     s->energy += sign * l;
 }
 

@@ -47,6 +47,7 @@ typedef struct lm_store {    /* the photon-hits of one surface */
     lm_hit *hits;
     int n, cap;
     double delta_f, delta_i; /* energy added or removed since the surface's last AIM update */
+    double delta_g;          /* Δ_i since the surface's texels were last queued for the final gather */
     double energy;           /* luminance power stored now */
 } lm_store;
 

@@ -28,13 +28,15 @@ struct lm_worker {
     gk_ref_scene rs;
     lm_photons ph;
     bool have_ph;
+    bool first_publication;
     lm_tick_settings set;
     lm_path *scratch;            /* fresh paths, photon-indexed */
     int *scratch_j;              /* per group: the photon retraced (-1: all of them) */
     int *selected;
     lm_kdtree *trees;            /* one per thread */
-    float *work_irr;             /* the coordinator's atlas */
-    float *pub_irr;              /* the published atlas (under mu) */
+    float *work_irr, *work_full; /* the coordinator's atlases: indirect and full irradiance */
+    float *pub_irr, *pub_full;   /* the published ones (under mu) */
+    float *pub_queue;            /* per chart: > 0 queues its texels for the final gather (under mu) */
     lm_worker_stats st;          /* under mu */
 
     /* the pool */
@@ -192,7 +194,12 @@ static void aim_chart(lm_worker *w, int item, int thread)
 {
     int ci = w->selected[item];
     const lm_chart *c = &w->atlas->charts[ci];
-    lm_aim_update_chart(w->atlas, &w->ph, ci, w->nodes[c->node].world, &w->trees[thread], w->work_irr);
+    /* the indirect part (shown without the final gather) and the full illumination (what the
+       final gather sees on the surfaces) */
+    lm_aim_update_chart(w->atlas, &w->ph, ci, w->nodes[c->node].world, &w->trees[2 * thread], w->work_irr,
+                        1u << LM_HIT_INDIRECT);
+    lm_aim_update_chart(w->atlas, &w->ph, ci, w->nodes[c->node].world, &w->trees[2 * thread + 1], w->work_full,
+                        (1u << LM_HIT_DIRECT) | (1u << LM_HIT_CAUSTIC) | (1u << LM_HIT_INDIRECT));
 }
 
 static void tick(lm_worker *w, const mat4 *worlds)
@@ -221,6 +228,8 @@ static void tick(lm_worker *w, const mat4 *worlds)
         }
         w->have_ph = true;
         memset(w->work_irr, 0, sizeof(float) * 4 * texels);
+        memset(w->work_full, 0, sizeof(float) * 4 * texels);
+        w->first_publication = true;
     }
     lm_photons *ph = &w->ph;
     int P = ph->per_group;
@@ -262,6 +271,19 @@ static void tick(lm_worker *w, const mat4 *worlds)
     pthread_mutex_lock(&w->mu);
     if (n_sel > 0) {
         memcpy(w->pub_irr, w->work_irr, sizeof(float) * 4 * texels);
+        memcpy(w->pub_full, w->work_full, sizeof(float) * 4 * texels);
+        /* the final gather's queue: surfaces whose indirect light changed (Δ_i, the seed's order),
+           every surface after the first publication; merged with what the frame has not taken */
+        for (int i = 0; i < a->n_charts; i++) {
+            lm_store *s = &ph->stores[i];
+            bool due = s->delta_g > 0.0 && s->delta_g > LM_DELTA_REL * s->energy;
+            if (w->first_publication || due) {
+                float prio = (float)(s->delta_g > 0.0 ? s->delta_g : 1e-30);
+                w->pub_queue[i] = w->pub_queue[i] > prio ? w->pub_queue[i] : prio;
+                s->delta_g = 0.0;
+            }
+        }
+        w->first_publication = false;
         w->st.result_seq++;
     }
     w->st.ticks++;
@@ -322,13 +344,17 @@ lm_worker *lm_worker_create(const gk_scene *scene, const lm_atlas *atlas, int th
     w->selected = calloc((size_t)(atlas->n_charts > 0 ? atlas->n_charts : 1), sizeof *w->selected);
     w->work_irr = calloc(texels * 4 + 4, sizeof(float));
     w->pub_irr = calloc(texels * 4 + 4, sizeof(float));
+    w->work_full = calloc(texels * 4 + 4, sizeof(float));
+    w->pub_full = calloc(texels * 4 + 4, sizeof(float));
+    w->pub_queue = calloc((size_t)(atlas->n_charts > 0 ? atlas->n_charts : 1), sizeof(float));
     w->n_threads = threads < 1 ? 1 : threads;
-    w->trees = calloc((size_t)w->n_threads, sizeof *w->trees);
+    w->trees = calloc(2 * (size_t)w->n_threads, sizeof *w->trees);
     w->threads = calloc((size_t)w->n_threads, sizeof *w->threads);
-    if (!w->nodes || !w->built_worlds || !w->req_worlds || !w->selected || !w->work_irr || !w->pub_irr || !w->trees ||
-        !w->threads) {
+    if (!w->nodes || !w->built_worlds || !w->req_worlds || !w->selected || !w->work_irr || !w->pub_irr ||
+        !w->work_full || !w->pub_full || !w->pub_queue || !w->trees || !w->threads) {
         free(w->nodes), free(w->built_worlds), free(w->req_worlds), free(w->selected), free(w->work_irr);
-        free(w->pub_irr), free(w->trees), free(w->threads), free(w);
+        free(w->pub_irr), free(w->work_full), free(w->pub_full), free(w->pub_queue), free(w->trees), free(w->threads);
+        free(w);
         gk_fail(e, GK_ERUNTIME, "lightmap: out of memory");
         return NULL;
     }
@@ -381,11 +407,11 @@ void lm_worker_destroy(lm_worker *w)
         gk_ref_scene_free(&w->rs);
     if (w->have_ph)
         lm_photons_free(&w->ph);
-    for (int i = 0; w->trees && i < w->n_threads; i++)
+    for (int i = 0; w->trees && i < 2 * w->n_threads; i++)
         lm_kdtree_free(&w->trees[i]);
     free(w->scratch), free(w->scratch_j);
     free(w->nodes), free(w->built_worlds), free(w->req_worlds), free(w->selected), free(w->work_irr);
-    free(w->pub_irr), free(w->trees), free(w->threads);
+    free(w->pub_irr), free(w->work_full), free(w->pub_full), free(w->pub_queue), free(w->trees), free(w->threads);
     pthread_mutex_destroy(&w->mu);
     pthread_cond_destroy(&w->cv_work);
     pthread_cond_destroy(&w->cv_idle);
@@ -416,12 +442,13 @@ void lm_worker_wait(lm_worker *w)
     pthread_mutex_unlock(&w->mu);
 }
 
-bool lm_worker_take(lm_worker *w, uint64_t *seen, void (*fn)(void *ctx, const float *irr), void *ctx)
+bool lm_worker_take(lm_worker *w, uint64_t *seen, lm_take_fn fn, void *ctx)
 {
     bool called = false;
     pthread_mutex_lock(&w->mu);
     if (w->st.result_seq != *seen) {
-        fn(ctx, w->pub_irr);
+        fn(ctx, w->pub_irr, w->pub_full, w->pub_queue);
+        memset(w->pub_queue, 0, sizeof(float) * (size_t)(w->atlas->n_charts > 0 ? w->atlas->n_charts : 1));
         *seen = w->st.result_seq;
         called = true;
     }

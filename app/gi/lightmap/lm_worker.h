@@ -49,10 +49,13 @@ void lm_worker_destroy(lm_worker *w);
 void lm_worker_submit(lm_worker *w, const gk_scene *evaluated, const lm_tick_settings *set);
 /* Blocks until no tick is pending or running (tests, lockstep mode). */
 void lm_worker_wait(lm_worker *w);
-/* Calls fn(ctx, irradiance RGBA floats of width x height texels) with the newest published atlas
- * when it is newer than *seen (then updates *seen); returns whether it called. Holds the pool's
- * lock only for the call (the coordinator waits for it just when publishing). */
-bool lm_worker_take(lm_worker *w, uint64_t *seen, void (*fn)(void *ctx, const float *irr), void *ctx);
+/* Calls fn with the newest published atlases (RGBA floats of width x height texels: the indirect
+ * and the full irradiance) and the final gather's queue (per chart: > 0 = gather its texels with
+ * that priority, the surface's Δ_i; cleared once taken) when they are newer than *seen (then
+ * updates *seen); returns whether it called. Holds the pool's lock only for the call (the
+ * coordinator waits for it just when publishing). */
+typedef void (*lm_take_fn)(void *ctx, const float *indirect, const float *full, const float *queue);
+bool lm_worker_take(lm_worker *w, uint64_t *seen, lm_take_fn fn, void *ctx);
 void lm_worker_get_stats(lm_worker *w, lm_worker_stats *out);
 /* Copies each group's invalidation count (room for `cap`); returns the group count. */
 int lm_worker_group_invalidations(lm_worker *w, unsigned *out, int cap);
