@@ -36,11 +36,19 @@ static gk_scene *load(const char *name)
     return s;
 }
 
-typedef struct copy_ctx { float *dst; size_t n; } copy_ctx;
-static void copy_irr(void *ctx, const float *irr)
+typedef struct copy_ctx {
+    float *dst;
+    size_t n;
+    bool *queued;      /* per chart: queued for the final gather in any publication taken (or NULL) */
+    int n_charts;
+} copy_ctx;
+static void copy_irr(void *ctx, const float *indirect, const float *full, const float *queue)
 {
+    (void)full;
     copy_ctx *c = ctx;
-    memcpy(c->dst, irr, sizeof(float) * c->n);
+    memcpy(c->dst, indirect, sizeof(float) * c->n);
+    for (int i = 0; c->queued && i < c->n_charts; i++)
+        c->queued[i] |= queue[i] > 0.0f;
 }
 
 /* Ticks until no surface is pending (at most max), returns the ticks taken. */
@@ -68,7 +76,7 @@ static void static_run(const gk_scene *s, const lm_atlas *a, int threads, int ti
     int t0 = converge(w, s, &set, 200);
     size_t n = (size_t)a->width * (size_t)a->height * 4;
     uint64_t seen = 0;
-    copy_ctx c = {out, n};
+    copy_ctx c = {out, n, NULL, 0};
     assert_true(lm_worker_take(w, &seen, copy_irr, &c));
     float *later = malloc(sizeof(float) * n);
     lm_worker_stats st;
@@ -87,7 +95,7 @@ static void static_run(const gk_scene *s, const lm_atlas *a, int threads, int ti
     assert_int_equal(st.invalidations_total, inv0);
     assert_int_equal(st.texels_total, tex0);
     /* nothing new was published; the atlas is what it was */
-    copy_ctx c2 = {later, n};
+    copy_ctx c2 = {later, n, NULL, 0};
     assert_false(lm_worker_take(w, &seen, copy_irr, &c2));
     double sum = 0;
     for (size_t i = 0; i < n; i += 4)
@@ -199,7 +207,7 @@ static void locality_two_rooms(void **state)
     size_t n = (size_t)a.width * (size_t)a.height * 4;
     float *before = malloc(sizeof(float) * n), *after = malloc(sizeof(float) * n);
     uint64_t seen = 0;
-    copy_ctx c = {before, n};
+    copy_ctx c = {before, n, NULL, 0};
     lm_worker_take(w, &seen, copy_irr, &c);
     unsigned inv0[77], inv1[77];
     float first[3 * 77];
@@ -211,16 +219,21 @@ static void locality_two_rooms(void **state)
     gk_scene_evaluate(&t.s, 0.0f);
     int detected_by = -1;
     lm_worker_stats st;
+    bool *queued = calloc((size_t)a.n_charts, sizeof *queued);
+    copy_ctx c2 = {after, n, queued, a.n_charts};
     for (int i = 0; i < 2 * LM_PHOTONS_PER_GROUP; i++) {
         lm_worker_submit(w, &t.s, &set);
         lm_worker_wait(w);
+        lm_worker_take(w, &seen, copy_irr, &c2);
         lm_worker_get_stats(w, &st);
         if (st.invalidated > 0 && detected_by < 0)
             detected_by = i + 1;
     }
-    converge(w, &t.s, &set, 100);
-    copy_ctx c2 = {after, n};
-    lm_worker_take(w, &seen, copy_irr, &c2);
+    for (int i = 0; i < 100; i++) {
+        lm_worker_submit(w, &t.s, &set);
+        lm_worker_wait(w);
+        lm_worker_take(w, &seen, copy_irr, &c2);
+    }
     assert_int_equal(lm_worker_group_invalidations(w, inv1, 77), 77);
     int in_a = 0, in_b = 0, inv_a = 0, inv_b = 0;
     for (int g = 0; g < 77; g++) {
@@ -229,8 +242,10 @@ static void locality_two_rooms(void **state)
         inv_a += !room_b && inv1[g] > inv0[g];
         inv_b += room_b && inv1[g] > inv0[g];
     }
-    /* room B's charts: texels bit-identical */
-    int texels_b = 0, changed_b = 0, changed_a = 0;
+    /* room B's charts: texels bit-identical, none queued for the final gather */
+    int texels_b = 0, changed_b = 0, changed_a = 0, queued_a = 0, queued_b = 0;
+    for (int ci = 0; ci < a.n_charts; ci++)
+        queued_a += queued[ci] && a.charts[ci].node != 2, queued_b += queued[ci] && a.charts[ci].node == 2;
     for (int ci = 0; ci < a.n_charts; ci++) {
         const lm_chart *ch = &a.charts[ci];
         bool room_b = a.charts[ci].node == 2; /* the second room's node (object, light, object...) */
@@ -244,8 +259,11 @@ static void locality_two_rooms(void **state)
             }
     }
     print_message("# two rooms: groups A %d (%d invalidated), B %d (%d invalidated); detected after %d ticks; "
-                  "texels changed: room A %d, room B %d of %d\n", in_a, inv_a, in_b, inv_b, detected_by, changed_a,
-                  changed_b, texels_b);
+                  "texels changed: room A %d, room B %d of %d; surfaces queued for the gather: A %d, B %d\n", in_a,
+                  inv_a, in_b, inv_b, detected_by, changed_a, changed_b, texels_b, queued_a, queued_b);
+    assert_true(queued_a > 0);
+    assert_int_equal(queued_b, 0);
+    free(queued);
     assert_true(in_a > 20 && in_b > 20);
     assert_true(inv_a > 0);
     assert_int_equal(inv_b, 0);
