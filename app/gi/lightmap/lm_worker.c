@@ -29,6 +29,7 @@ struct lm_worker {
     lm_photons ph;
     bool have_ph;
     bool first_publication;
+    int publications_since_queue;
     lm_tick_settings set;
     lm_path *scratch;            /* fresh paths, photon-indexed */
     int *scratch_j;              /* per group: the photon retraced (-1: all of them) */
@@ -272,18 +273,26 @@ static void tick(lm_worker *w, const mat4 *worlds)
     if (n_sel > 0) {
         memcpy(w->pub_irr, w->work_irr, sizeof(float) * 4 * texels);
         memcpy(w->pub_full, w->work_full, sizeof(float) * 4 * texels);
-        /* the final gather's queue: surfaces whose indirect light changed (Δ_i, the seed's order),
-           every surface after the first publication; merged with what the frame has not taken */
-        for (int i = 0; i < a->n_charts; i++) {
-            lm_store *s = &ph->stores[i];
-            bool due = s->delta_g > 0.0 && s->delta_g > LM_DELTA_REL * s->energy;
-            if (w->first_publication || due) {
-                float prio = (float)(s->delta_g > 0.0 ? s->delta_g : 1e-30);
-                w->pub_queue[i] = w->pub_queue[i] > prio ? w->pub_queue[i] : prio;
-                s->delta_g = 0.0;
+        /* The final gather's queue: surfaces whose indirect light changed (Δ_i, the seed's order),
+           every surface the first time; merged with what the frame has not taken yet. A texel's
+           gather sees the other surfaces' AIMs, so the queue waits until the AIM updates have
+           caught up (no surface over the threshold), or for 8 publications while they do not
+           (a moving light keeps them busy): a texel gathered from half-updated AIMs would keep
+           that state, its own Δ_i being spent. */
+        w->publications_since_queue++;
+        if (pending == 0 || w->publications_since_queue >= 8) {
+            for (int i = 0; i < a->n_charts; i++) {
+                lm_store *s = &ph->stores[i];
+                bool due = s->delta_g > 0.0 && s->delta_g > LM_DELTA_REL * s->energy;
+                if (w->first_publication || due) {
+                    float prio = (float)(s->delta_g > 0.0 ? s->delta_g : 1e-30);
+                    w->pub_queue[i] = w->pub_queue[i] > prio ? w->pub_queue[i] : prio;
+                    s->delta_g = 0.0;
+                }
             }
+            w->first_publication = false;
+            w->publications_since_queue = 0;
         }
-        w->first_publication = false;
         w->st.result_seq++;
     }
     w->st.ticks++;
