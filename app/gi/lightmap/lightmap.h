@@ -2,10 +2,11 @@
  *   light-map atlas of the scene's planar surfaces (lm_atlas.h, at scene load) ->
  *   CPU photon tracing on a worker pool with selective redistribution (lm_photons.h, lm_worker.h)
  *   -> approximated illumination maps from the 100 nearest photon-hits per texel, in Δ order under
- *   a texel budget (lm_aim.h) -> uploaded as a texture -> added to the renderer's direct light as
- *   diffuse BRDF x indirect irradiance at the pixel's light-map UV (lm_display.c).
- * Not built (yet): the GPU final gather into IIMs and the caustic points; the displayed indirect
- * light is the AIM's, from the photons that bounced diffusely at least once.
+ *   a texel budget (lm_aim.h) -> uploaded as textures -> GPU final gather per queued texel into
+ *   the indirect illumination map, blended (lm_gather.h, lm_display.c) -> added to the renderer's
+ *   direct light as diffuse BRDF x indirect irradiance at the pixel's light-map UV.
+ * lightmap_iim=0 shows the AIM's indirect part (photons that bounced diffusely) instead of the IIM.
+ * Not built: the caustic points (Halton caustic photons, 7x7 filter, tile culling).
  * This header is the method's own (tests); the renderer sees only `gk_gi_lightmap` (gi.h). */
 #ifndef GK_GI_LIGHTMAP_H
 #define GK_GI_LIGHTMAP_H

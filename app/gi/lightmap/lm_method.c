@@ -1,5 +1,5 @@
 /* The `lightmap` method behind gi.h: knobs, the scene's atlas and worker pool, per-frame
- * orchestration (submit a tick, take the newest AIM atlas, draw), statistics. */
+ * orchestration (submit a tick, take the newest AIM atlases, gather IIM texels, draw), statistics. */
 #include <stdlib.h>
 #include <string.h>
 
