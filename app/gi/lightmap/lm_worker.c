@@ -5,7 +5,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 #include <unistd.h>
 
 #include "lm_aim.h"
@@ -122,20 +121,12 @@ static void fail_tick(lm_worker *w, const char *msg)
     pthread_mutex_unlock(&w->mu);
 }
 
-static double now_ms(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec * 1e3 + (double)t.tv_nsec * 1e-6;
-}
-
 /* The tracer's scene follows the request's node matrices; rebuilt only when one changed. */
 static int refresh_scene(lm_worker *w, const mat4 *worlds)
 {
     int n = w->view.n_nodes;
     if (w->have_rs && !memcmp(w->built_worlds, worlds, sizeof *worlds * (size_t)n))
         return 0;
-    double t0 = now_ms();
     for (int i = 0; i < n; i++)
         w->nodes[i].world = worlds[i];
     if (w->have_rs)
@@ -156,9 +147,6 @@ static int refresh_scene(lm_worker *w, const mat4 *worlds)
         fail_tick(w, msg);
         return -1;
     }
-    pthread_mutex_lock(&w->mu);
-    w->st.rebuild_ms = now_ms() - t0;
-    pthread_mutex_unlock(&w->mu);
     return 0;
 }
 

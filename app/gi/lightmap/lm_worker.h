@@ -34,7 +34,6 @@ typedef struct lm_worker_stats {
     /* since the start */
     uint64_t traced_total, invalidations_total, texels_total;
     uint64_t result_seq;     /* publications of the atlas */
-    double rebuild_ms;       /* last rebuild of the tracer's scene (BVH), CPU wall ms */
     bool failed;             /* the tracer could not run (message in error) */
     char error[1024];
 } lm_worker_stats;
