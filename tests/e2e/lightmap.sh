@@ -53,20 +53,20 @@ done
 # Bounds: measured (llvmpipe, lockstep: deterministic) + 10%. rel. RMSE, whole image / indirect
 # term (energy), none 0.326 and 0.465 on the whole image, vpl 0.199 and 0.224:
 #                      IIM (default)                     AIM only (lightmap_iim=0)
-#   cornell,  77 x 40  0.0732 / 0.321 (0.82)             0.0973 / 0.439 (0.77)
-#   cornell, 616 x 40  0.0497 / 0.201 (0.999)            0.0548 / 0.228 (0.994)
-#   cornell-spot,  77  0.1204 / 0.444 (1.04)             0.1233 / 0.462 (0.87)
-#   cornell-spot, 616  0.1091 / 0.401 (0.97)             0.0948 / 0.345 (0.995)
+#   cornell,  77 x 40  0.0778 / 0.344 (0.81)             0.0999 / 0.452 (0.76)
+#   cornell, 616 x 40  0.0494 / 0.198 (0.982)            0.0572 / 0.241 (0.981)
+#   cornell-spot,  77  0.1195 / 0.440 (1.03)             0.1277 / 0.478 (0.85)
+#   cornell-spot, 616  0.1097 / 0.404 (0.96)             0.0968 / 0.353 (0.981)
 # The seed's 3,080 photons leave cornell's indirect light ~20% short by chance; 24,640 reach it.
-check "cornell, IIM: whole image ($full_cornell_77_20 <= 0.081)" in_range "$full_cornell_77_20" 0 0.081
+check "cornell, IIM: whole image ($full_cornell_77_20 <= 0.086)" in_range "$full_cornell_77_20" 0 0.086
 check "cornell, IIM, 616 groups: whole image ($full_cornell_616_20 <= 0.055)" in_range "$full_cornell_616_20" 0 0.055
-check "cornell, IIM, 616 groups: indirect ($ind_cornell_616_20 <= 0.221)" in_range "$ind_cornell_616_20" 0 0.221
-check "cornell, IIM, 616 groups: indirect energy ($ratio_cornell_616_20 within 3%)" in_range "$ratio_cornell_616_20" 0.97 1.03
-check "cornell, AIM only: whole image ($full_cornell_77_0 <= 0.107)" in_range "$full_cornell_77_0" 0 0.107
-check "cornell, AIM only, 616 groups: whole image ($full_cornell_616_0 <= 0.061)" in_range "$full_cornell_616_0" 0 0.061
-check "cornell-spot, IIM: whole image ($full_cornell_spot_77_20 <= 0.133)" in_range "$full_cornell_spot_77_20" 0 0.133
-check "cornell-spot, IIM, 616 groups: whole image ($full_cornell_spot_616_20 <= 0.120)" in_range "$full_cornell_spot_616_20" 0 0.120
-check "cornell-spot, AIM only, 616 groups: whole image ($full_cornell_spot_616_0 <= 0.105)" in_range "$full_cornell_spot_616_0" 0 0.105
+check "cornell, IIM, 616 groups: indirect ($ind_cornell_616_20 <= 0.218)" in_range "$ind_cornell_616_20" 0 0.218
+check "cornell, IIM, 616 groups: indirect energy ($ratio_cornell_616_20 within 5%)" in_range "$ratio_cornell_616_20" 0.95 1.05
+check "cornell, AIM only: whole image ($full_cornell_77_0 <= 0.110)" in_range "$full_cornell_77_0" 0 0.110
+check "cornell, AIM only, 616 groups: whole image ($full_cornell_616_0 <= 0.063)" in_range "$full_cornell_616_0" 0 0.063
+check "cornell-spot, IIM: whole image ($full_cornell_spot_77_20 <= 0.132)" in_range "$full_cornell_spot_77_20" 0 0.132
+check "cornell-spot, IIM, 616 groups: whole image ($full_cornell_spot_616_20 <= 0.121)" in_range "$full_cornell_spot_616_20" 0 0.121
+check "cornell-spot, AIM only, 616 groups: whole image ($full_cornell_spot_616_0 <= 0.107)" in_range "$full_cornell_spot_616_0" 0 0.107
 
 # stability: a static cornell, every knob pinned, frames 100..149 gather nothing and frames 99 and
 # 149 are bit-identical (B.6 #2: 0 invalidations and 0 AIM updates are test_lightmap_photons.c's)

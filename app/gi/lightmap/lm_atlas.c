@@ -1,6 +1,9 @@
 /* Light-map parameterisation: planar charts per (node, mesh), shelf packing, gutters (lm_atlas.h). */
 #include "lm_atlas.h"
 
+#define LM_CONTRIB_COS 0.906f /* cos 25 degrees */
+#define LM_CONTRIB_MAX 64
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -196,18 +199,19 @@ static void size_charts(lm_atlas *a, const proto *ps, float texel)
     }
 }
 
-static bool contributes(const lm_chart *c, const lm_chart *d, float texel)
+/* Charts that touch (bounds within a hair of each other) and face the same way (25 degrees): the
+   facets of one curved or split surface. */
+static bool touches(const lm_chart *c, const lm_chart *d, float hair)
 {
-    if (v3_dot(c->wn, d->wn) < 0.906f) /* cos 25 degrees */
-        return false;
-    vec3 cc = v3_scale(v3_add(c->wmin, c->wmax), 0.5f), dc = v3_scale(v3_add(d->wmin, d->wmax), 0.5f);
-    if (fabsf(v3_dot(c->wn, v3_sub(dc, cc))) > 0.5f * texel)
+    if (v3_dot(c->wn, d->wn) < LM_CONTRIB_COS)
         return false;
     vec3 gap = v3_max(v3_sub(d->wmin, c->wmax), v3_sub(c->wmin, d->wmax));
-    return gap.x <= texel && gap.y <= texel && gap.z <= texel;
+    return gap.x <= hair && gap.y <= hair && gap.z <= hair;
 }
 
-/* A uniform grid over the charts' bounds (grown by a texel) finds the candidate pairs. */
+/* The touching pairs through a uniform grid (64 cells along the longest side), then for each
+   chart a breadth-first walk over touching charts that face within 25 degrees of it, until their
+   area reaches a texel's (or LM_CONTRIB_MAX charts): its contributors. */
 static int find_contributors(lm_atlas *a)
 {
     int n = a->n_charts;
@@ -219,21 +223,22 @@ static int find_contributors(lm_atlas *a)
     vec3 lo = a->charts[0].wmin, hi = a->charts[0].wmax;
     for (int i = 1; i < n; i++)
         lo = v3_min(lo, a->charts[i].wmin), hi = v3_max(hi, a->charts[i].wmax);
-    float t = a->texel_size;
     vec3 ext = v3_sub(hi, lo);
-    float cell = fmaxf(t, v3_maxc(ext) / 64.0f);
+    float hair = 1e-4f * v3_len(ext);
+    float cell = fmaxf(v3_maxc(ext) / 64.0f, 1e-6f);
     int gx = (int)(ext.x / cell) + 1, gy = (int)(ext.y / cell) + 1, gz = (int)(ext.z / cell) + 1;
     long cells = (long)gx * gy * gz;
     int *count = calloc((size_t)cells + 1, sizeof *count), *mark = malloc(sizeof *mark * (size_t)n);
-    int *list = NULL, *out = NULL;
-    long total = 0, out_n = 0, out_cap = 0;
+    int *list = NULL, *adj = NULL, *adj_first = calloc((size_t)n + 1, sizeof *adj_first);
+    int *queue = malloc(sizeof *queue * (LM_CONTRIB_MAX + 1)), *out = NULL;
+    long total = 0, adj_n = 0, adj_cap = 0, out_n = 0, out_cap = 0;
 #define CELL_RANGE(ch)                                                                                               \
-    int x0 = (int)(((ch)->wmin.x - t - lo.x) / cell), x1 = (int)(((ch)->wmax.x + t - lo.x) / cell);                 \
-    int y0 = (int)(((ch)->wmin.y - t - lo.y) / cell), y1 = (int)(((ch)->wmax.y + t - lo.y) / cell);                 \
-    int z0 = (int)(((ch)->wmin.z - t - lo.z) / cell), z1 = (int)(((ch)->wmax.z + t - lo.z) / cell);                 \
+    int x0 = (int)(((ch)->wmin.x - hair - lo.x) / cell), x1 = (int)(((ch)->wmax.x + hair - lo.x) / cell);           \
+    int y0 = (int)(((ch)->wmin.y - hair - lo.y) / cell), y1 = (int)(((ch)->wmax.y + hair - lo.y) / cell);           \
+    int z0 = (int)(((ch)->wmin.z - hair - lo.z) / cell), z1 = (int)(((ch)->wmax.z + hair - lo.z) / cell);           \
     x0 = x0 < 0 ? 0 : x0, y0 = y0 < 0 ? 0 : y0, z0 = z0 < 0 ? 0 : z0;                                             \
     x1 = x1 >= gx ? gx - 1 : x1, y1 = y1 >= gy ? gy - 1 : y1, z1 = z1 >= gz ? gz - 1 : z1;
-    if (!count || !mark)
+    if (!count || !mark || !adj_first || !queue)
         goto fail;
     for (int pass = 0; pass < 2; pass++) {
         for (int i = 0; i < n; i++) {
@@ -262,7 +267,7 @@ static int find_contributors(lm_atlas *a)
         mark[i] = -1;
     for (int i = 0; i < n; i++) {
         const lm_chart *c = &a->charts[i];
-        a->contrib_first[i] = (int)out_n;
+        adj_first[i] = (int)adj_n;
         CELL_RANGE(c);
         for (int z = z0; z <= z1; z++)
             for (int y = y0; y <= y1; y++)
@@ -270,27 +275,58 @@ static int find_contributors(lm_atlas *a)
                     long k = ((long)z * gy + y) * gx + x;
                     for (long q = k > 0 ? count[k - 1] : 0; q < count[k]; q++) {
                         int j = list[q];
-                        if (j == i || mark[j] == i || !contributes(c, &a->charts[j], t))
+                        if (j == i || mark[j] == i || !touches(c, &a->charts[j], hair))
                             continue;
                         mark[j] = i;
-                        if (out_n == out_cap) {
-                            out_cap = out_cap ? 2 * out_cap : 256;
-                            int *no = realloc(out, sizeof *out * (size_t)out_cap);
-                            if (!no)
+                        if (adj_n == adj_cap) {
+                            adj_cap = adj_cap ? 2 * adj_cap : 1024;
+                            int *na = realloc(adj, sizeof *adj * (size_t)adj_cap);
+                            if (!na)
                                 goto fail;
-                            out = no;
+                            adj = na;
                         }
-                        out[out_n++] = j;
+                        adj[adj_n++] = j;
                     }
                 }
     }
+    adj_first[n] = (int)adj_n;
 #undef CELL_RANGE
+    float texel_area = a->texel_size * a->texel_size;
+    for (int i = 0; i < n; i++)
+        mark[i] = -1;
+    for (int i = 0; i < n; i++) {
+        const lm_chart *c = &a->charts[i];
+        a->contrib_first[i] = (int)out_n;
+        int head = 0, tail = 0;
+        float area = c->area;
+        queue[tail++] = i;
+        mark[i] = i;
+        while (head < tail && area < texel_area && tail <= LM_CONTRIB_MAX) {
+            int u = queue[head++];
+            for (int q = adj_first[u]; q < adj_first[u + 1] && area < texel_area && tail <= LM_CONTRIB_MAX; q++) {
+                int d = adj[q];
+                if (mark[d] == i || v3_dot(c->wn, a->charts[d].wn) < LM_CONTRIB_COS)
+                    continue;
+                mark[d] = i;
+                queue[tail++] = d;
+                area += a->charts[d].area;
+                if (out_n == out_cap) {
+                    out_cap = out_cap ? 2 * out_cap : 256;
+                    int *no = realloc(out, sizeof *out * (size_t)out_cap);
+                    if (!no)
+                        goto fail;
+                    out = no;
+                }
+                out[out_n++] = d;
+            }
+        }
+    }
     a->contrib_first[n] = (int)out_n;
     a->contrib = out ? out : malloc(sizeof(int));
-    free(count), free(mark), free(list);
+    free(count), free(mark), free(list), free(adj), free(adj_first), free(queue);
     return a->contrib ? 0 : -1;
 fail:
-    free(count), free(mark), free(list), free(out);
+    free(count), free(mark), free(list), free(adj), free(adj_first), free(queue), free(out);
     return -1;
 }
 

@@ -62,11 +62,11 @@ typedef struct lm_atlas {
     int *ref_chart;
     uint32_t n_ref;
     int *texel_chart;        /* width x height: the chart whose rect or gutter holds the texel, -1 */
-    /* The surfaces that "could contribute" to a chart's photon map (seed 004 §3): charts facing the
-       same way (normals within 25 degrees), nearly in its plane (centre off it by at most half a
-       texel) and within a texel of it -- the facets of a curved or finely split surface, whose
-       photons a small chart needs. CSR: chart c's are contrib[contrib_first[c] ..
-       contrib_first[c + 1]), itself not included. */
+    /* The surfaces that "could contribute" to a chart's photon map (seed 004 §3): for a chart
+       smaller than a texel, the charts reached from it over touching charts that face within 25
+       degrees of it, until their area reaches a texel's (at most 64) -- the facets of a curved or
+       finely split surface, whose photons a small chart needs. CSR: chart c's are
+       contrib[contrib_first[c] .. contrib_first[c + 1]), itself not included. */
     int *contrib_first;
     int *contrib;
 } lm_atlas;
