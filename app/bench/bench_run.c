@@ -152,12 +152,14 @@ static int measure(bench_run *b, const char *method, const char *pins, gk_err *e
         snprintf(exr, sizeof exr, "%s/captures/%s-%s-%03d.exr", b->o->out_dir, b->scene->name, method, r->n_rows);
         rc = gk_renderer_capture(b->renderer, NULL, exr, e);
         /* Each method is judged on what it computes: none (direct light only) against the
-           reference's direct component; the GI methods, which all compute one diffuse bounce,
-           against the one-bounce reference where the scene has one (summary C.1), else the full
+           reference's direct component; the one-bounce GI methods (vct, vpl, ispm) against the
+           one-bounce reference where the scene has one (summary C.1), else the full image;
+           lightmap, whose photons bounce until Russian roulette ends them, against the full
            image. The reference column says which. */
         bool none = strcmp(method, "none") == 0 && !b->o->one_ruler;
         bool direct = none && b->reference_direct.pixels;
-        bool one_bounce = !none && b->reference_1bounce.pixels;
+        bool every_bounce = strcmp(method, "lightmap") == 0 && !b->o->one_ruler;
+        bool one_bounce = !none && !every_bounce && b->reference_1bounce.pixels;
         const gk_image *ref = direct ? &b->reference_direct : one_bounce ? &b->reference_1bounce : &b->reference;
         snprintf(row->reference, sizeof row->reference, "%s%s", ref->pixels ? b->scene->name : "",
                  direct ? "-direct" : one_bounce ? "-1bounce" : "");

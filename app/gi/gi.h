@@ -22,6 +22,8 @@
 typedef struct gk_gi_context {
     gk_program_cache *programs;  /* load shaders by path under shaders_gles/ (app/gl/gl_program.h) */
     int gles_version;            /* 31: portable path only; 32: capability-checked fast paths allowed */
+    int cpu_workers;             /* worker threads a method may run on the CPU ([cpu] workers of the
+                                    config); 0: its default (cores - 1) */
 } gk_gi_context;
 
 /* One light as the renderer sees it this frame, with its shadow map (for light injection,

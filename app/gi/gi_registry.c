@@ -8,11 +8,13 @@
 extern const gk_gi_method gk_gi_vct;
 extern const gk_gi_method gk_gi_vpl;
 extern const gk_gi_method gk_gi_ispm;
+extern const gk_gi_method gk_gi_lightmap;
 
 static const gk_gi_method *const registry[] = {
     &gk_gi_vct,
     &gk_gi_vpl,
     &gk_gi_ispm,
+    &gk_gi_lightmap,
     NULL, /* sentinel: keeps the array valid C even with no method registered */
 };
 

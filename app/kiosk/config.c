@@ -135,7 +135,7 @@ typedef struct parse_ctx {
     gk_err *e;
 } parse_ctx;
 
-static const char *const sections[] = {"display", "frame", "buttons", "playlist", "budgets", NULL};
+static const char *const sections[] = {"display", "frame", "buttons", "playlist", "cpu", "budgets", NULL};
 
 static int fail_at(parse_ctx *p, const char *fmt, const char *a, const char *b)
 {
@@ -179,7 +179,7 @@ static char *reader(char *str, int num, void *stream)
             for (int i = 0; sections[i]; i++)
                 known |= !strcmp(sections[i], sec);
             if (!known)
-                fail_at(p, "unknown section [%s] (known: display, frame, buttons, playlist, budgets)%s", sec, "");
+                fail_at(p, "unknown section [%s] (known: display, frame, buttons, playlist, cpu, budgets)%s", sec, "");
         }
     }
     return str;
@@ -442,6 +442,11 @@ static int handler(void *user, const char *section, const char *name, const char
         return buttons_key(p, name, val);
     if (!strcmp(section, "playlist"))
         return playlist_key(p, name, val);
+    if (!strcmp(section, "cpu")) {
+        if (!strcmp(name, "workers")) /* 0 = cores - 1; 64 is more threads than any board has cores */
+            return int_in(p, name, val, 0, 64, &p->c->cpu_workers);
+        return fail_at(p, "unknown key '%s' in [%s]", name, "cpu");
+    }
     if (!strcmp(section, "budgets"))
         return budgets_key(p, name, val);
     if (!section[0])

@@ -50,6 +50,9 @@ typedef struct gk_kiosk_config {
     double pause_after_input_s;
     int n_methods;
     gk_method_entry methods[GK_MAX_PLAYLIST];
+    /* [cpu] */
+    int cpu_workers;                   /* threads a GI method may run on the CPU (lightmap's photon
+                                          tracing), 0 = cores - 1 */
     /* [budgets] */
     int n_ranges;
     gk_budget_range ranges[GK_MAX_KNOBS];

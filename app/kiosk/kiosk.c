@@ -537,6 +537,7 @@ static int open_renderer(kiosk *k, gk_err *e)
     gk_render_opts ro = {
         .width = k->width, .height = k->height, .gles_version = k->o->gles ? k->o->gles : gles,
         .shader_dir = k->o->shader_dir, .gpu_timer_queries = !software, /* meaningless on llvmpipe */
+        .cpu_workers = k->c->cpu_workers,
     };
     if (!(k->r = gk_renderer_create(&ro, e)))
         return -1;

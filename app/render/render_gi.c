@@ -213,7 +213,7 @@ bool gk_render_gi_failed(const gk_render_gi *g, const gk_renderer *r, const char
 static int prepare(gk_render_gi *g, gk_renderer *r, const gk_gi_method *m, int k, bool *changed, gk_err *e)
 {
     if (!g->state[k]) {
-        gk_gi_context ctx = {.programs = r->progs, .gles_version = r->caps.gles};
+        gk_gi_context ctx = {.programs = r->progs, .gles_version = r->caps.gles, .cpu_workers = r->opts.cpu_workers};
         if (!(g->state[k] = m->create(&ctx, e)))
             return -1;
     }

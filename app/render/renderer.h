@@ -22,6 +22,7 @@ typedef struct gk_render_opts {
                                      (the bench, to measure a method's per-frame cost) */
     bool rebuild_gi;          /* GI methods redo their cached static work every frame (the bench's
                                  --rebuild-gi: what a moving light or object costs) */
+    int cpu_workers;          /* threads a GI method may run on the CPU ([cpu] workers), 0 = cores - 1 */
 } gk_render_opts;
 
 /* Drawn over the finished frame in target_fbo as the frame's last pass (`hud`), on the renderer's

@@ -177,8 +177,8 @@ gk_scene *gk_scene_load_memory(const void *data, size_t size, const char *path, 
  * (model no more than a scene needs): "none" always, first; then, in the catalogue's order, every
  * method of the catalogue (app/gi/gi_catalogue.h) whose needs the scene all has
  * (gk_scene_gi_needs): vct, vpl and radiosity when light bounces between diffuse surfaces
- * (features.has_interreflection), ispm and lgv with caustics, lightmap when the scene is static,
- * volcaustics with a participating medium (none in the scene model yet, so never).
+ * (features.has_interreflection) and lightmap (its photons follow animated nodes), ispm and lgv with
+ * caustics, volcaustics with a participating medium (none in the scene model yet, so never).
  * The scene's extras "methods" list, when given, replaces the derived list ("none" stays first). */
 int gk_scene_methods(const gk_scene *s, const char **names, int max);
 /* The GK_GI_NEEDS_* bits (app/gi/gi_catalogue.h) a scene with these features has. */

@@ -1,0 +1,58 @@
+/* State shared by the lightmap method's files (not for other modules). */
+#ifndef GK_LM_INTERNAL_H
+#define GK_LM_INTERNAL_H
+
+#include "gl/gl.h"
+#include "gl/gl_program.h"
+#include "lightmap.h"
+#include "lm_atlas.h"
+#include "lm_gather.h"
+
+#define LM_KNOBS 6
+#define LM_IIM_TAU_S 0.25 /* the IIM blend (research B.2's recommendation; the seed: "fairly fast") */
+
+typedef struct lm_state {
+    gk_gi_context ctx;
+    gk_program_cache *own_cache;
+    gk_knob knob[LM_KNOBS];
+    gk_lightmap_stats st;
+    int threads_override;
+    /* the scene: the method's own copy loaded from the scene's file (the worker threads read it
+       while the renderer's may be freed), or borrowed when the scene has no file (tests) */
+    gk_scene *own_scene;
+    const gk_scene *scene;       /* what the atlas and the worker were built from */
+    const gk_scene *source;      /* the renderer's scene it stands for */
+    lm_atlas atlas;
+    bool have_atlas;
+    lm_worker *worker;
+    uint64_t seen;               /* the worker's last publication uploaded */
+    /* GPU */
+    GLuint vao, vbo, empty_vao;
+    GLuint irr_tex;              /* AIM, indirect irradiance (shown without the final gather) */
+    float irr_scale;             /* the texture holds E / irr_scale */
+    GLuint full_tex;             /* AIM, full irradiance (what the final gather sees) */
+    float full_scale;
+    /* final gather: IIMs (the gathered one and the two shown, blended) and the texel queue */
+    bool iim_on;                 /* lightmap_iim > 0 this frame */
+    GLuint iim_gathered, iim_shown[2];
+    int iim_cur;
+    bool iim_blend_started;
+    double last_time;
+    lm_gather gather;
+    float *queue_prio;           /* per chart: its Δ_i when queued, 0 when none of its texels waits */
+    int *queue_left, *queue_cursor;
+    lm_gather_job *jobs;
+    int *order;
+    GLuint uv_fbo, uv_tex, uv_depth;
+    int uv_w, uv_h;
+} lm_state;
+
+/* lm_display.c */
+int lm_display_setup(lm_state *s, gk_err *e);       /* VBO of the atlas vertices, irradiance texture */
+void lm_display_upload(void *state, const float *indirect, const float *full, const float *queue);
+/* The final gather of up to `texels` queued texels at res² and the IIM blend. */
+int lm_display_gather(lm_state *s, const gk_gi_frame *f, int texels, int res, gk_err *e);
+int lm_display_draw(lm_state *s, const gk_gi_frame *f, gk_err *e);
+void lm_display_free(lm_state *s);
+
+#endif

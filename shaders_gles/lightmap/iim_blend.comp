@@ -1,0 +1,16 @@
+// The seed's two IIMs "switched with a blend" to avoid popping (B.1.5): the displayed map moves
+// towards the gathered one by u_alpha = 1 - exp(-dt / τ) a frame (research B.2: τ = 0.25 s).
+precision highp float;
+layout(local_size_x = 8, local_size_y = 8) in;
+uniform highp sampler2D u_gathered;
+uniform highp sampler2D u_shown;
+layout(rgba16f, binding = 0) uniform writeonly highp image2D u_next;
+uniform float u_alpha;
+void main()
+{
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 size = textureSize(u_gathered, 0);
+    if (p.x >= size.x || p.y >= size.y)
+        return;
+    imageStore(u_next, p, mix(texelFetch(u_shown, p, 0), texelFetch(u_gathered, p, 0), u_alpha));
+}
