@@ -74,6 +74,8 @@ static int measure(bench_run *b, const char *method, const char *pins, gk_err *e
     gk_budget budget;
     gk_budget_init(&budget);
     gk_renderer_declare_knobs(b->renderer, &budget);
+    if (b->o->budget[0] && gk_budget_pin_list(&budget, b->o->budget, e) < 0)
+        return -1;
     if (pins[0] && gk_budget_pin_list(&budget, pins, e) < 0)
         return -1;
 

@@ -12,7 +12,7 @@ static void usage(FILE *f)
 {
     fputs("usage: gikiosk bench [--scenes LIST] [--methods LIST] [--size WxH] [--frames N] [--warmup N]\n"
           "                     [--sweep KNOB=V1,V2[;KNOB=V1,V2...] | --sweep each] [--scenes-dir DIR]\n"
-          "                     [--references DIR]\n"
+          "                     [--references DIR] [--budget KNOB=VALUE[,KNOB=VALUE...]]\n"
           "                     [--gles 3.1|3.2] [--shader-dir DIR] [--rebuild-gi]\n"
           "                     [--target-ms MS] [--target-size WxH] [--one-ruler] --out DIR\n"
           "\n"
@@ -29,6 +29,7 @@ static void usage(FILE *f)
           "--one-ruler: every method of a scene is measured against one reference (SCENE-1bounce.exr\n"
           "where it exists, else SCENE.exr), so the methods compare on one axis (default: each against\n"
           "what it computes; none against SCENE-direct.exr).\n"
+          "--budget: knob values pinned in every configuration (the sweep's own pins come after).\n"
           "--sweep each: the calibration's sweep (make calibrate): per method the default configuration,\n"
           "then every knob the scheduler may move (the renderer's and the method's) one at a time through\n"
           "its automatic levels.\n"
@@ -91,6 +92,8 @@ int gk_cmd_bench(int argc, char **argv)
             snprintf(o.scenes, sizeof o.scenes, "%s", v);
         else if (!strcmp(a, "--methods"))
             snprintf(o.methods, sizeof o.methods, "%s", v);
+        else if (!strcmp(a, "--budget"))
+            snprintf(o.budget, sizeof o.budget, "%s", v);
         else if (!strcmp(a, "--sweep"))
             snprintf(o.sweep, sizeof o.sweep, "%s", v);
         else if (!strcmp(a, "--out"))

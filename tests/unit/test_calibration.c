@@ -192,6 +192,10 @@ static void shipped_table_has_every_knob_level(void **state)
     gk_budget b;
     gk_budget_init(&b);
     gk_renderer_declare_knobs(NULL, &b); /* declares only: the renderer is not used */
+    /* a full budget refuses further knobs (gk_budget_add returns -1): lightmap_sync was lost so
+       once every method's knobs passed 32 */
+    assert_true(b.n < GK_MAX_KNOBS);
+    assert_true(gk_budget_find(&b, "lightmap_sync") >= 0);
     int checked = 0;
     for (int i = 0; i < c.n; i++) {
         const gk_calib_row *d = &c.rows[i];
