@@ -120,7 +120,7 @@ static inline int ih_open(ispm_h *h, gk_scene *scene, int w, int hh)
         return -1;
     gk_budget_init(&h->budget);
     gk_gi_ispm.declare_knobs(&h->budget);
-    gk_gi_context ctx = {h->programs, h->gl.egl.gles_version};
+    gk_gi_context ctx = {.programs = h->programs, .gles_version = h->gl.egl.gles_version};
     h->self = gk_gi_ispm.create(&ctx, &e);
     if (!h->self || gk_gi_ispm.set_scene(h->self, scene, &e)) {
         fprintf(stderr, "ispm: %s\n", e.msg);

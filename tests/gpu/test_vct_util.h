@@ -251,7 +251,7 @@ static inline void vt_budget(gk_budget *b, const char *pins)
 
 static inline void *vt_create(vt_gl *g)
 {
-    gk_gi_context ctx = {g->programs, 31};
+    gk_gi_context ctx = {.programs = g->programs, .gles_version = 31};
     gk_err e = {0};
     void *v = gk_gi_vct.create(&ctx, &e);
     if (!v)

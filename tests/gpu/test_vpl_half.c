@@ -43,7 +43,7 @@ static int teardown(void **state)
 static void *create_with(const char *value, gk_err *e)
 {
     setenv("GK_VPL_TARGETS", value, 1);
-    gk_gi_context ctx = {H.programs, H.gl.egl.gles_version};
+    gk_gi_context ctx = {.programs = H.programs, .gles_version = H.gl.egl.gles_version};
     void *self = gk_gi_vpl.create(&ctx, e);
     unsetenv("GK_VPL_TARGETS");
     if (self && gk_gi_vpl.set_scene(self, S, e)) {

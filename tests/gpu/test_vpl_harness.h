@@ -132,7 +132,7 @@ static inline int h_init_with(vpl_h *h, bool with_boxes, int w, int hh, gk_scene
     gk_budget_init(&h->budget);
     h->m = &gk_gi_vpl;
     h->m->declare_knobs(&h->budget);
-    gk_gi_context ctx = {h->programs, h->gl.egl.gles_version};
+    gk_gi_context ctx = {.programs = h->programs, .gles_version = h->gl.egl.gles_version};
     h->self = h->m->create(&ctx, &e);
     if (!h->self || h->m->set_scene(h->self, s, &e)) {
         fprintf(stderr, "vpl: %s\n", e.msg);
