@@ -47,6 +47,7 @@ struct lm_worker {
     job_fn fn;
     int items, next, done;
     uint64_t gen;
+    bool helpers_quit;           /* under job_mu (quit is under mu: one flag per lock) */
 };
 
 int lm_default_threads(void)
@@ -84,9 +85,9 @@ static void *helper_main(void *p)
     uint64_t seen = 0;
     for (;;) {
         pthread_mutex_lock(&a.w->job_mu);
-        while (a.w->gen == seen && !a.w->quit)
+        while (a.w->gen == seen && !a.w->helpers_quit)
             pthread_cond_wait(&a.w->job_cv, &a.w->job_mu);
-        if (a.w->quit) {
+        if (a.w->helpers_quit) {
             pthread_mutex_unlock(&a.w->job_mu);
             return NULL;
         }
@@ -395,7 +396,7 @@ void lm_worker_destroy(lm_worker *w)
     pthread_cond_broadcast(&w->cv_work);
     pthread_mutex_unlock(&w->mu);
     pthread_mutex_lock(&w->job_mu);
-    w->quit = true;
+    w->helpers_quit = true;
     pthread_cond_broadcast(&w->job_cv);
     pthread_mutex_unlock(&w->job_mu);
     for (int i = 0; i < w->n_threads; i++)
