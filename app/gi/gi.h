@@ -26,6 +26,11 @@ typedef struct gk_gi_context {
                                     config); 0: its default (cores - 1) */
 } gk_gi_context;
 
+/* For a method made without the renderer (tests, tools): when ctx has no program cache, creates one
+ * at ctx's GLES version (31 when unset) and puts it in ctx. Returns the cache the method then owns
+ * and destroys, or NULL when ctx already had one. */
+gk_program_cache *gk_gi_context_own_programs(gk_gi_context *ctx);
+
 /* One light as the renderer sees it this frame, with its shadow map (for light injection,
  * reflective shadow maps and visibility). */
 typedef struct gk_gi_light {

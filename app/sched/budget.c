@@ -37,6 +37,12 @@ int gk_budget_add(gk_budget *b, const gk_knob_def *def)
     return i;
 }
 
+void gk_knob_handles(gk_knob *out, const gk_knob_def *defs, int n)
+{
+    for (int i = 0; i < n; i++)
+        out[i] = (gk_knob){&defs[i], -1};
+}
+
 gk_knob gk_budget_knob(const gk_budget *b, const gk_knob_def *def)
 {
     gk_knob k = {def, -1};

@@ -71,6 +71,8 @@ void gk_budget_format_active(const gk_budget *b, const char *method, char *out, 
 gk_knob gk_budget_knob(const gk_budget *b, const gk_knob_def *def);
 /* Re-points k at b when b's layout differs from what k was resolved against. False when b lacks it. */
 bool gk_knob_resolve(const gk_budget *b, gk_knob *k);
+/* n unresolved handles, one per definition: what a module keeps for the knobs it declares. */
+void gk_knob_handles(gk_knob *out, const gk_knob_def *defs, int n);
 /* The definition the resolved handle reads in b (k->def, or a same-named one), NULL if absent. */
 const gk_knob_def *gk_knob_def_in(const gk_budget *b, gk_knob *k);
 /* Level of the knob in b, or fallback when b is NULL or lacks it. */

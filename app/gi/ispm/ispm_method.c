@@ -90,12 +90,8 @@ static void *create(const gk_gi_context *ctx, gk_err *e)
         return NULL;
     }
     s->ctx = *ctx;
-    for (int i = 0; i < K_COUNT; i++)
-        s->knob[i] = (gk_knob){&knobs[i], -1};
-    if (!s->ctx.programs) {
-        s->own_cache = gk_program_cache_create(NULL, ctx->gles_version ? ctx->gles_version : 31);
-        s->ctx.programs = s->own_cache;
-    }
+    gk_knob_handles(s->knob, knobs, K_COUNT);
+    s->own_cache = gk_gi_context_own_programs(&s->ctx);
     gk_ispm_default_debug(&s->dbg);
     gk_gl_caps caps;
     gk_gl_caps_query(&caps, s->ctx.gles_version ? s->ctx.gles_version : 31);
