@@ -104,4 +104,12 @@ stderr_has "unknown knob 'shadows'" "bench: the message names the knob"
 expect_exit 2 "bench: missing --out exits 2" "$GIKIOSK" bench --scenes shadow-planes
 expect_exit 2 "bench: unknown scene exits 2" "$GIKIOSK" bench --scenes no-such-scene --out "$TMP/d"
 stderr_has "no-such-scene" "bench: the message names the scene"
+expect_exit 2 "bench: unknown knob in --budget exits 2" "$GIKIOSK" bench --scenes shadow-planes --budget "shadows=hard" --out "$TMP/e"
+stderr_has "unknown knob 'shadows'" "bench: the --budget message names the knob"
+# --budget pins a knob in every configuration: each row of a shadow_map sweep has shadow=hard
+expect_exit 0 "bench: --budget shadow=hard under a shadow_map sweep" "$GIKIOSK" bench --scenes shadow-planes \
+    --methods none --budget shadow=hard --sweep "shadow_map=256,512" --frames 1 --warmup 0 --out "$TMP/f"
+c_shadow=$(head -1 "$TMP/f/bench.csv" | tr ',' '\n' | grep -n '^shadow$' | cut -d: -f1)
+check "bench: every row ran with the pinned shadow=hard" \
+    awk -F, -v c="$c_shadow" 'NR > 1 { n++; if ($c != "hard") bad = 1 } END { exit bad || n != 2 }' "$TMP/f/bench.csv"
 finish
