@@ -1,0 +1,166 @@
+// Materials (core metallic-roughness, KHR_materials_specular, emissive strength, transmission,
+// ior) and the images textures refer to.
+#include "gltf_internal.hpp"
+
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+
+namespace gkgltf {
+
+namespace {
+
+// KHR_materials_specular (brdf_spec.md): specularFactor (in [0, 1], default 1), specularColorFactor
+// (3 numbers >= 0, default 1), specularTexture (A: weight, data) and specularColorTexture (RGB,
+// sRGB colour). A malformed value is refused with the material named, never guessed.
+template <typename TexRef>
+bool read_specular(Loader &L, const tinygltf::Material &src, int mi, gk_material *d, TexRef &tex_ref)
+{
+    d->specular = 1.0f;
+    d->specular_color[0] = d->specular_color[1] = d->specular_color[2] = 1.0f;
+    d->specular_tex = d->specular_color_tex = -1;
+    auto it = src.extensions.find("KHR_materials_specular");
+    if (it == src.extensions.end())
+        return true;
+    const Value *ext = &it->second;
+    if (!ext->IsObject())
+        return L.fail("material %d ('%s'): KHR_materials_specular must be an object", mi, src.name.c_str());
+    if (const Value *f = member(ext, "specularFactor")) {
+        double v = f->IsNumber() ? f->GetNumberAsDouble() : -1.0;
+        if (!std::isfinite(v) || v < 0 || v > 1)
+            return L.fail("material %d ('%s'): specularFactor must be a number in [0, 1]", mi, src.name.c_str());
+        d->specular = (float)v;
+    }
+    if (const Value *c = member(ext, "specularColorFactor")) {
+        bool ok = c->IsArray() && c->ArrayLen() == 3;
+        for (int k = 0; ok && k < 3; k++) {
+            const Value &x = c->Get(k);
+            double v = x.IsNumber() ? x.GetNumberAsDouble() : -1.0;
+            ok = std::isfinite(v) && v >= 0;
+            if (ok)
+                d->specular_color[k] = (float)v;
+        }
+        if (!ok)
+            return L.fail("material %d ('%s'): specularColorFactor must be 3 finite numbers >= 0", mi,
+                          src.name.c_str());
+    }
+    struct { const char *key, *slot; int flag; int *out; } texs[] = {
+        {"specularTexture", "specular", GK_TEX_USED_AS_DATA, &d->specular_tex},
+        {"specularColorTexture", "specular colour", GK_TEX_USED_AS_COLOR, &d->specular_color_tex},
+    };
+    for (auto &t : texs) {
+        const Value *info = member(ext, t.key);
+        if (!info)
+            continue;
+        const Value *index = member(info, "index");
+        if (!index || !index->IsInt() || index->Get<int>() < 0)
+            return L.fail("material %d ('%s'): %s needs an index >= 0", mi, src.name.c_str(), t.key);
+        if (!tex_ref(index->Get<int>(), t.flag, mi, t.slot, t.out))
+            return false;
+    }
+    return true;
+}
+
+
+} // namespace
+
+bool read_materials(Loader &L, const Model &m, gk_scene *s, std::vector<int> &tex_usage)
+{
+    s->n_materials = (int)m.materials.size() + 1;
+    s->materials = (gk_material *)calloc((size_t)s->n_materials, sizeof(gk_material));
+    if (!s->materials)
+        return L.fail("out of memory");
+    // The glTF default material (spec §3.9.6): white, metallic 1, roughness 1, appended last.
+    gk_material *def = &s->materials[s->n_materials - 1];
+    snprintf(def->name, sizeof def->name, "default");
+    for (int c = 0; c < 4; c++)
+        def->base_color[c] = 1.0f;
+    def->base_color_tex = def->metallic_roughness_tex = -1;
+    def->metallic = def->roughness = 1.0f;
+    def->ior = 1.5f;
+    def->specular = 1.0f;
+    def->specular_color[0] = def->specular_color[1] = def->specular_color[2] = 1.0f;
+    def->specular_tex = def->specular_color_tex = -1;
+    auto tex_ref = [&](int ti, int flag, int mi, const char *slot, int *out) {
+        if (ti < 0) {
+            *out = -1;
+            return true;
+        }
+        if ((size_t)ti >= m.textures.size())
+            return L.fail("material %d: %s texture %d does not exist", mi, slot, ti);
+        tex_usage[(size_t)ti] |= flag;
+        *out = ti;
+        return true;
+    };
+    for (size_t i = 0; i < m.materials.size(); i++) {
+        const tinygltf::Material &src = m.materials[i];
+        gk_material *d = &s->materials[i];
+        int mi = (int)i;
+        copy_name(d->name, sizeof d->name, src.name);
+        const auto &pbr = src.pbrMetallicRoughness;
+        if (pbr.baseColorFactor.size() != 4 || !finite_all(pbr.baseColorFactor))
+            return L.fail("material %d ('%s'): baseColorFactor must be 4 finite numbers", mi, src.name.c_str());
+        if (src.emissiveFactor.size() != 3 || !finite_all(src.emissiveFactor))
+            return L.fail("material %d ('%s'): emissiveFactor must be 3 finite numbers", mi, src.name.c_str());
+        for (int c = 0; c < 4; c++)
+            d->base_color[c] = (float)pbr.baseColorFactor[(size_t)c];
+        d->metallic = (float)pbr.metallicFactor;
+        d->roughness = (float)pbr.roughnessFactor;
+        if (!tex_ref(pbr.baseColorTexture.index, GK_TEX_USED_AS_COLOR, mi, "base colour", &d->base_color_tex) ||
+            !tex_ref(pbr.metallicRoughnessTexture.index, GK_TEX_USED_AS_DATA, mi, "metallic-roughness",
+                     &d->metallic_roughness_tex))
+            return false;
+        double strength = 1.0, transmission = 0.0, ior = 1.5;
+        auto ext = [&](const char *name, const char *key, double *v) {
+            auto it = src.extensions.find(name);
+            if (it == src.extensions.end())
+                return;
+            const Value *x = member(&it->second, key);
+            if (x && x->IsNumber())
+                *v = x->GetNumberAsDouble();
+        };
+        ext("KHR_materials_emissive_strength", "emissiveStrength", &strength);
+        ext("KHR_materials_transmission", "transmissionFactor", &transmission);
+        ext("KHR_materials_ior", "ior", &ior);
+        if (!std::isfinite(strength) || strength < 0 || !std::isfinite(transmission) || transmission < 0 ||
+            transmission > 1 || !std::isfinite(ior) || (ior != 0 && ior < 1))
+            return L.fail("material %d ('%s'): emissive strength, transmission or ior out of range", mi,
+                          src.name.c_str());
+        for (int c = 0; c < 3; c++)
+            d->emissive[c] = (float)(src.emissiveFactor[(size_t)c] * strength);
+        d->transmission = (float)transmission;
+        d->ior = (float)ior;
+        d->double_sided = src.doubleSided;
+        if (!read_specular(L, src, mi, d, tex_ref))
+            return false;
+        const Value *proxy = member(gikiosk_extras(src.extras), "light_proxy");
+        d->light_proxy = proxy && proxy->IsBool() && proxy->Get<bool>();
+        if (!std::isfinite(d->metallic) || !std::isfinite(d->roughness) || d->metallic < 0 || d->metallic > 1 ||
+            d->roughness < 0 || d->roughness > 1)
+            return L.fail("material %d ('%s'): metallic/roughness must lie in [0, 1]", mi, src.name.c_str());
+    }
+    return true;
+}
+
+bool read_textures(Loader &L, const Model &m, gk_scene *s)
+{
+    s->n_textures = (int)m.textures.size();
+    s->textures = (gk_texture *)calloc(m.textures.size() + 1, sizeof(gk_texture));
+    if (!s->textures)
+        return L.fail("out of memory");
+    for (size_t i = 0; i < m.textures.size(); i++) {
+        int src = m.textures[i].source;
+        if (src < 0 || (size_t)src >= m.images.size())
+            return L.fail("texture %zu: image %d does not exist", i, src);
+        const tinygltf::Image &img = m.images[(size_t)src];
+        if (img.uri.empty() || img.uri.compare(0, 5, "data:") == 0)
+            return L.fail("image %d: embedded images are not supported; reference an image file by uri", src);
+        if (img.uri.size() >= sizeof s->textures[i].uri)
+            return L.fail("image %d: uri is too long", src);
+        copy_name(s->textures[i].uri, sizeof s->textures[i].uri, img.uri);
+    }
+    return true;
+}
+
+} // namespace gkgltf
