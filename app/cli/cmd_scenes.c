@@ -56,6 +56,35 @@ static const char *light_kind(const gk_light *l)
     return buf;
 }
 
+/* What of glTF the file uses, what gikiosk converts, and what it ignores. */
+static void print_gltf_use(const gk_scene_gltf_use *u)
+{
+    printf("gltf reads:  %s", u->extensions_read[0] ? u->extensions_read : "core glTF 2.0");
+    const struct { int n; const char *what; } counts[] = {
+        {u->embedded_images, "embedded images"},
+        {u->sparse_accessors, "sparse accessors"},
+        {u->quantized_accessors, "quantized accessors"},
+        {u->strips_fans, "strips/fans converted to triangles"},
+    };
+    for (size_t i = 0; i < sizeof counts / sizeof counts[0]; i++)
+        if (counts[i].n)
+            printf("; %d %s", counts[i].n, counts[i].what);
+    printf("\n");
+    printf("gltf skips:  %s", u->extensions_ignored);
+    bool any = u->extensions_ignored[0] != '\0';
+    const struct { int n; const char *what; } skips[] = {
+        {u->not_drawn, "points/lines primitives not drawn"},
+        {u->orthographic_cameras, "orthographic cameras never used as the view"},
+        {u->skins, "skins drawn unskinned"},
+    };
+    for (size_t i = 0; i < sizeof skips / sizeof skips[0]; i++)
+        if (skips[i].n) {
+            printf("%s%d %s", any ? "; " : "", skips[i].n, skips[i].what);
+            any = true;
+        }
+    printf("%s\n", any ? "" : "-");
+}
+
 static int check(const char *path)
 {
     gk_err e = {0};
@@ -71,7 +100,8 @@ static int check(const char *path)
     printf("triangles:   %u drawn, %u degenerate dropped, %d meshes\n", s->n_triangles, s->n_degenerate_dropped,
            s->n_meshes);
     printf("materials:   %d (with the default), textures: %d\n", s->n_materials, s->n_textures);
-    printf("lights:      %d\n", s->n_lights);
+    printf("lights:      %d%s\n", s->n_lights,
+           s->default_lighting ? " (the file has none: the default studio, key/fill/rim directional)" : "");
     for (int i = 0; i < s->n_lights; i++)
         printf("  %-16s %-18s intensity %g %s\n", s->lights[i].name, light_kind(&s->lights[i]), s->lights[i].intensity,
                s->lights[i].type == GK_LIGHT_DIRECTIONAL ? "lux" : "cd");
@@ -84,6 +114,7 @@ static int check(const char *path)
     if (s->has_exposure)
         printf("exposure:    %+.2f EV\n", s->exposure_ev);
     printf("features:    %s\n", feat);
+    print_gltf_use(&s->gltf);
     printf("methods:     %s\n", meth);
     printf("description: %s\n", s->description[0] ? s->description : "-");
     gk_scene_free(s);

@@ -161,6 +161,46 @@ extern "C" void gk_image_free(gk_image *img)
     img->width = img->height = img->channels = 0;
 }
 
+namespace {
+
+// Reads the first subimage of an opened input into img as float, at most 4 channels.
+int read_opened(OIIO::ImageInput *in, const char *path, gk_image *img, gk_err *e)
+{
+    const OIIO::ImageSpec &spec = in->spec();
+    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || spec.depth > 1)
+        return gk_fail(e, GK_EINPUT, "%s: not a 2D image (%dx%dx%d, %d channels)", path, spec.width, spec.height,
+                       spec.depth, spec.nchannels);
+    int channels = std::min(spec.nchannels, 4);
+    if (gk_image_alloc(img, spec.width, spec.height, channels) != 0)
+        return gk_fail(e, GK_EINPUT, "%s: image too large (%dx%d)", path, spec.width, spec.height);
+    if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, img->pixels)) {
+        std::string err = one_line(in->geterror());
+        gk_image_free(img);
+        return gk_fail(e, GK_EINPUT, "%s: cannot read image: %s", path, err.c_str());
+    }
+    in->close();
+    return 0;
+}
+
+// The format of an encoded image from its signature: what glTF images are (PNG, JPEG), plus the
+// KTX2 container of KHR_texture_basisu, recognised only to be refused by name.
+const char *sniff_extension(const unsigned char *d, size_t n)
+{
+    static const unsigned char png[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    static const unsigned char ktx2[12] = {0xab, 'K', 'T', 'X', ' ', '2', '0', 0xbb, '\r', '\n', 0x1a, '\n'};
+    if (n >= 8 && memcmp(d, png, 8) == 0)
+        return "png";
+    if (n >= 3 && d[0] == 0xff && d[1] == 0xd8 && d[2] == 0xff)
+        return "jpg";
+    if (n >= 12 && memcmp(d, ktx2, 12) == 0)
+        return "ktx2";
+    if (n >= 4 && memcmp(d, "\x76\x2f\x31\x01", 4) == 0)
+        return "exr";
+    return "";
+}
+
+} // namespace
+
 extern "C" int gk_image_read(const char *path, gk_image *img, gk_err *e)
 {
     img->width = img->height = img->channels = 0;
@@ -177,23 +217,46 @@ extern "C" int gk_image_read(const char *path, gk_image *img, gk_err *e)
         auto in = OIIO::ImageInput::open(path, &config);
         if (!in)
             return gk_fail(e, GK_EINPUT, "%s: cannot read image: %s", path, one_line(OIIO::geterror()).c_str());
-        const OIIO::ImageSpec &spec = in->spec();
-        if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || spec.depth > 1)
-            return gk_fail(e, GK_EINPUT, "%s: not a 2D image (%dx%dx%d, %d channels)", path, spec.width,
-                           spec.height, spec.depth, spec.nchannels);
-        int channels = std::min(spec.nchannels, 4);
-        if (gk_image_alloc(img, spec.width, spec.height, channels) != 0)
-            return gk_fail(e, GK_EINPUT, "%s: image too large (%dx%d)", path, spec.width, spec.height);
-        if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, img->pixels)) {
-            std::string err = one_line(in->geterror());
-            gk_image_free(img);
-            return gk_fail(e, GK_EINPUT, "%s: cannot read image: %s", path, err.c_str());
-        }
-        in->close();
-        return 0;
+        return read_opened(in.get(), path, img, e);
     } catch (const std::exception &ex) {
         gk_image_free(img);
         return gk_fail(e, GK_EINPUT, "%s: cannot read image: %s", path, ex.what());
+    }
+}
+
+extern "C" int gk_image_read_memory(const void *data, size_t size, const char *name, gk_image *img, gk_err *e)
+{
+    img->width = img->height = img->channels = 0;
+    img->pixels = nullptr;
+    if (!data || size == 0)
+        return gk_fail(e, GK_EINPUT, "%s: the image holds no bytes", name);
+    if (size > kMaxImageFileBytes)
+        return gk_fail(e, GK_EINPUT, "%s: image too large (%zu bytes)", name, size);
+    if (gk_image_check_layout_memory(data, size, name, e))
+        return -1;
+    std::string ext = sniff_extension((const unsigned char *)data, size);
+    if (ext.empty())
+        ext = lower_extension(name);
+    if (ext == "ktx2")
+        return gk_fail(e, GK_EINPUT, "%s: KTX2 / Basis Universal images (KHR_texture_basisu) are not supported: no "
+                       "Debian library decodes them; ship PNG or JPEG", name);
+    if (ext.empty())
+        return gk_fail(e, GK_EINPUT, "%s: unrecognised image format (PNG and JPEG are what glTF allows)", name);
+    try {
+        OIIO::ImageSpec config = read_config();
+        // OIIO picks the reader by the name's extension and reads through the proxy, handed over
+        // as the "oiio:ioproxy" attribute of the open configuration (OIIO 2.x).
+        OIIO::Filesystem::IOMemReader reader(const_cast<void *>(data), size);
+        void *proxy = &reader;
+        config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+        std::string fake = std::string("embedded.") + ext;
+        auto in = OIIO::ImageInput::open(fake, &config);
+        if (!in)
+            return gk_fail(e, GK_EINPUT, "%s: cannot read image: %s", name, one_line(OIIO::geterror()).c_str());
+        return read_opened(in.get(), name, img, e);
+    } catch (const std::exception &ex) {
+        gk_image_free(img);
+        return gk_fail(e, GK_EINPUT, "%s: cannot read image: %s", name, ex.what());
     }
 }
 

@@ -26,6 +26,10 @@ void gk_image_free(gk_image *img);
  * img is allocated here (free it with gk_image_free); files with more than 4 channels keep the
  * first 4. Missing, unreadable or corrupt files: GK_EINPUT naming the file and OIIO's error. */
 int gk_image_read(const char *path, gk_image *img, gk_err *e);
+/* Reads an encoded image held in memory (PNG, JPEG, or any format OIIO reads from memory), as
+ * gk_image_read does a file. `name` is used in messages; its extension (".png", ".jpg") names
+ * the format when given, else the format is recognised from the data's first bytes. */
+int gk_image_read_memory(const void *data, size_t size, const char *name, gk_image *img, gk_err *e);
 /* Reads one string attribute ("gikiosk:command") into out; returns 0 if found, 1 if the file has
  * no such attribute (e untouched, out set to ""), -1 when the file cannot be read (GK_EINPUT). */
 int gk_image_read_attr(const char *path, const char *key, char *out, int out_len, gk_err *e);

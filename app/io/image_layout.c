@@ -86,21 +86,36 @@ static int check_exr(FILE *f, const char *path, long long size, gk_err *e)
     }
 }
 
+static int check_stream(FILE *f, const char *path, long long size, gk_err *e)
+{
+    unsigned char head[8];
+    size_t got = fread(head, 1, sizeof head, f);
+    if (got == 8 && memcmp(head, png_signature, 8) == 0)
+        return check_png(f, path, size, e);
+    if (got >= 4 && memcmp(head, exr_magic, 4) == 0)
+        return check_exr(f, path, size, e);
+    return 0;
+}
+
 int gk_image_check_layout(const char *path, gk_err *e)
 {
     FILE *f = fopen(path, "rb");
     if (!f)
         return 0; /* the reader reports what stops it opening the file */
     struct stat st;
-    unsigned char head[8];
-    size_t got = fread(head, 1, sizeof head, f);
-    int rc = 0;
-    if (fstat(fileno(f), &st) == 0) {
-        if (got == 8 && memcmp(head, png_signature, 8) == 0)
-            rc = check_png(f, path, (long long)st.st_size, e);
-        else if (got >= 4 && memcmp(head, exr_magic, 4) == 0)
-            rc = check_exr(f, path, (long long)st.st_size, e);
-    }
+    int rc = fstat(fileno(f), &st) == 0 ? check_stream(f, path, (long long)st.st_size, e) : 0;
+    fclose(f);
+    return rc;
+}
+
+int gk_image_check_layout_memory(const void *data, size_t size, const char *name, gk_err *e)
+{
+    if (!data || size == 0)
+        return 0;
+    FILE *f = fmemopen((void *)data, size, "rb");
+    if (!f)
+        return 0;
+    int rc = check_stream(f, name, (long long)size, e);
     fclose(f);
     return rc;
 }

@@ -15,5 +15,7 @@
  * passes unchecked. Returns 0, or -1 with GK_EINPUT naming path, the chunk or attribute and the
  * sizes. */
 int gk_image_check_layout(const char *path, gk_err *e);
+/* The same check on an image held in memory (a glTF's embedded image); name is used in messages. */
+int gk_image_check_layout_memory(const void *data, size_t size, const char *name, gk_err *e);
 
 #endif

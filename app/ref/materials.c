@@ -9,24 +9,44 @@
 static float lum3(vec3 c) { return gk_luminance(c.x, c.y, c.z); }
 static float clamp01(float x) { return x < 0.0f ? 0.0f : (x > 1.0f ? 1.0f : x); }
 
-/* Nearest texel with repeat wrapping (glTF's default sampler wrap); RGBA, white without a texture. */
-static const float *tex_texel(const gk_ref_scene *rs, int tex, float u, float v)
+/* Bilinear filtering with repeat wrapping: what the GLES renderer's textures do (GL_LINEAR, no
+ * mipmaps, GL_REPEAT: app/render/scene_gpu.c), so both renderers see the same colour at every
+ * point; texel centres lie at (i + 0.5) / size. RGBA into out, white without a texture. */
+static void tex_bilinear(const gk_ref_scene *rs, int tex, float u, float v, float out[4])
 {
-    static const float white[4] = {1, 1, 1, 1};
-    if (tex < 0 || tex >= rs->n_textures || !rs->textures[tex].rgba)
-        return white;
+    if (tex < 0 || tex >= rs->n_textures || !rs->textures[tex].rgba) {
+        out[0] = out[1] = out[2] = out[3] = 1.0f;
+        return;
+    }
     const gk_texture *t = &rs->textures[tex];
-    float fu = u - floorf(u), fv = v - floorf(v);
-    int x = (int)(fu * t->width), y = (int)(fv * t->height);
-    x = x >= t->width ? t->width - 1 : x;
-    y = y >= t->height ? t->height - 1 : y;
-    return &t->rgba[4 * ((size_t)y * t->width + x)];
+    float x = (u - floorf(u)) * (float)t->width - 0.5f, y = (v - floorf(v)) * (float)t->height - 0.5f;
+    float fx = floorf(x), fy = floorf(y), wx = x - fx, wy = y - fy;
+    int x0 = (int)fx, y0 = (int)fy;
+    for (int c = 0; c < 4; c++)
+        out[c] = 0.0f;
+    for (int j = 0; j < 2; j++)
+        for (int i = 0; i < 2; i++) {
+            int xi = ((x0 + i) % t->width + t->width) % t->width;
+            int yj = ((y0 + j) % t->height + t->height) % t->height;
+            float w = (i ? wx : 1.0f - wx) * (j ? wy : 1.0f - wy);
+            const float *p = &t->rgba[4 * ((size_t)yj * (size_t)t->width + (size_t)xi)];
+            for (int c = 0; c < 4; c++)
+                out[c] += w * p[c];
+        }
 }
 
 static vec3 tex_sample(const gk_ref_scene *rs, int tex, float u, float v)
 {
-    const float *p = tex_texel(rs, tex, u, v);
+    float p[4];
+    tex_bilinear(rs, tex, u, v, p);
     return v3(p[0], p[1], p[2]);
+}
+
+static float tex_alpha(const gk_ref_scene *rs, int tex, float u, float v)
+{
+    float p[4];
+    tex_bilinear(rs, tex, u, v, p);
+    return p[3];
 }
 
 void gk_surface_init(gk_surface *sf, const gk_ref_scene *rs, const gk_ref_tri *t, float b1, float b2)
@@ -52,7 +72,7 @@ void gk_surface_init(gk_surface *sf, const gk_ref_scene *rs, const gk_ref_tri *t
     sf->transmission = clamp01(m->transmission);
     sf->ior = m->ior > 1.0f ? m->ior : 1.5f;
     /* KHR_materials_specular with KHR_materials_ior: the dielectric lobe's weight and F0 colour. */
-    sf->spec_weight = fmaxf(m->specular, 0.0f) * tex_texel(rs, m->specular_tex, u, v)[3];
+    sf->spec_weight = fmaxf(m->specular, 0.0f) * tex_alpha(rs, m->specular_tex, u, v);
     vec3 spec_color = v3_mul(v3(m->specular_color[0], m->specular_color[1], m->specular_color[2]),
                              tex_sample(rs, m->specular_color_tex, u, v));
     float r_ior = (m->ior - 1.0f) / (m->ior + 1.0f);

@@ -27,6 +27,8 @@ struct Loader {
     const char *path;
     gk_err *e;
     bool failed = false;
+    bool quantization = false; // the file uses KHR_mesh_quantization (integer positions, normals, UVs)
+    gk_scene_gltf_use use{};   // counted while reading, copied into the scene
 
     bool fail(const char *fmt, ...) __attribute__((format(printf, 2, 3)))
     {
@@ -64,20 +66,36 @@ inline void copy_name(char *dst, size_t cap, const std::string &src)
     snprintf(dst, cap, "%s", src.c_str());
 }
 
-// One accessor, resolved to bytes: every byte it reads lies inside its bufferView and buffer.
+// One accessor, resolved to bytes: every byte it reads lies inside its bufferView and buffer, or
+// inside `dense`, the accessor's own copy when it is sparse (§3.6.2.3: the base data, or zeros,
+// with the sparse values substituted). Not copyable: base may point into dense.
 struct View {
     const unsigned char *base = nullptr;
     size_t stride = 0, count = 0;
     int comps = 0, ctype = 0;
     bool normalized = false;
+    std::vector<unsigned char> dense;
+    View() = default;
+    View(const View &) = delete;
+    View &operator=(const View &) = delete;
+};
+
+// Which component types read_floats accepts. Float always; the integer kinds are those glTF 2.0
+// allows for the attribute (§3.7.2.1), widened by KHR_mesh_quantization when the file uses it.
+enum class Ints {
+    none,            // float only (positions and normals without quantization, animation times)
+    normalized,      // normalized UNSIGNED_BYTE/SHORT and BYTE/SHORT (texture coordinates, rotations)
+    normalized_or_not // any 8/16-bit integer, normalized or not (KHR_mesh_quantization positions, UVs)
 };
 
 // gltf_accessor.cpp
 bool resolve(Loader &L, const Model &m, int ai, const char *what, int want_type, std::initializer_list<int> ctypes,
              View *v);
 float component(const View &v, size_t i, int c);
-float *read_floats(Loader &L, const Model &m, int ai, const char *what, int type, bool allow_normalized,
-                   size_t *count_out);
+float *read_floats(Loader &L, const Model &m, int ai, const char *what, int type, Ints ints, size_t *count_out);
+
+// An index of UNSIGNED_BYTE, _SHORT or _INT at q.
+uint32_t read_index(const unsigned char *q, int ctype);
 
 // gltf_mesh.cpp
 bool read_primitive(Loader &L, const Model &m, int mi, int pi, const tinygltf::Primitive &p, int default_material,

@@ -92,10 +92,14 @@ bool fs_write(std::string *err, const std::string &, const std::vector<unsigned 
     return false;
 }
 
-// Images are read by texture.c through OpenImageIO; tinygltf must not decode them itself.
-bool image_noop(tinygltf::Image *, const int, std::string *, std::string *, int, int, const unsigned char *, int,
-                void *)
+// Images are decoded by texture.c through OpenImageIO, never by tinygltf. An image file (uri set)
+// is read there, confined to the scene's folder; an embedded one (a GLB chunk or a base64 data:
+// uri, no uri left) only reaches us here, so its encoded bytes are kept in image->image.
+bool image_keep_embedded(tinygltf::Image *image, const int, std::string *, std::string *, int, int,
+                         const unsigned char *bytes, int size, void *)
 {
+    if (image->uri.empty() && bytes && size > 0)
+        image->image.assign(bytes, bytes + size);
     return true;
 }
 
@@ -140,6 +144,7 @@ gk_scene *convert(Loader &L, const Model &m, const char *base_dir)
         }
     }
     ok = ok && read_nodes(L, m, s, mesh_first, mesh_count) && read_animations(L, m, s);
+    s->gltf = L.use;
     if (ok && gk_scene_finish(s, base_dir, tex_usage.data(), L.e) != 0)
         ok = false;
     if (!ok) {
@@ -149,10 +154,11 @@ gk_scene *convert(Loader &L, const Model &m, const char *base_dir)
     return s;
 }
 
-// The extensions the loader reads (lights, emissive strength, transmission, ior): a file may
-// require these; any other required one is refused by name.
-const char *const kSupportedExtensions[] = {"KHR_lights_punctual", "KHR_materials_emissive_strength",
-                                            "KHR_materials_transmission", "KHR_materials_ior"};
+// The extensions the loader reads: a file may require these; any other required one is refused by
+// name, and any other one a file merely uses is logged by name (its effect is not shown).
+const char *const kSupportedExtensions[] = {"KHR_lights_punctual",        "KHR_materials_emissive_strength",
+                                            "KHR_materials_transmission", "KHR_materials_ior",
+                                            "KHR_materials_specular",     "KHR_mesh_quantization"};
 
 bool extension_supported(const std::string &name)
 {
@@ -181,7 +187,7 @@ gk_scene *load_bytes(const unsigned char *data, size_t size, const char *path, c
         tinygltf::TinyGLTF loader;
         FsContext ctx{base_dir != nullptr, base_dir};
         loader.SetFsCallbacks(tinygltf::FsCallbacks{fs_exists, fs_expand, fs_read, fs_write, &ctx});
-        loader.SetImageLoader(image_noop, nullptr);
+        loader.SetImageLoader(image_keep_embedded, nullptr);
         Model model;
         std::string err, warn;
         bool glb = size >= 4 && memcmp(data, "glTF", 4) == 0;
@@ -212,6 +218,24 @@ gk_scene *load_bytes(const unsigned char *data, size_t size, const char *path, c
                        supported_extensions_list().c_str());
                 return nullptr;
             }
+        auto append = [](char *list, size_t cap, const std::string &x) {
+            size_t n = strlen(list);
+            snprintf(list + n, cap - n, "%s%s", n ? ", " : "", x.c_str());
+        };
+        for (const std::string &x : model.extensionsUsed) {
+            if (x == "KHR_mesh_quantization")
+                L.quantization = true;
+            if (extension_supported(x)) {
+                append(L.use.extensions_read, sizeof L.use.extensions_read, x);
+            } else {
+                gk_log("%s: extension '%s' is not supported and is ignored (the file does not require it)", path,
+                       x.c_str());
+                append(L.use.extensions_ignored, sizeof L.use.extensions_ignored, x);
+            }
+        }
+        for (const std::string &x : model.extensionsRequired)
+            if (x == "KHR_mesh_quantization")
+                L.quantization = true;
         return convert(L, model, base_dir);
     } catch (const std::exception &ex) {
         L.fail("cannot parse the file (%s)", ex.what());

@@ -154,8 +154,19 @@ bool read_textures(Loader &L, const Model &m, gk_scene *s)
         if (src < 0 || (size_t)src >= m.images.size())
             return L.fail("texture %zu: image %d does not exist", i, src);
         const tinygltf::Image &img = m.images[(size_t)src];
-        if (img.uri.empty() || img.uri.compare(0, 5, "data:") == 0)
-            return L.fail("image %d: embedded images are not supported; reference an image file by uri", src);
+        gk_texture *t = &s->textures[i];
+        copy_name(t->mime, sizeof t->mime, img.mimeType);
+        if (img.uri.empty()) { // embedded: its bytes were kept by the image callback (gltf_load.cpp)
+            if (img.image.empty())
+                return L.fail("image %d: embedded image has no bytes (bufferView %d)", src, img.bufferView);
+            t->embedded = (unsigned char *)malloc(img.image.size());
+            if (!t->embedded)
+                return L.fail("image %d: out of memory", src);
+            memcpy(t->embedded, img.image.data(), img.image.size());
+            t->embedded_size = img.image.size();
+            L.use.embedded_images++;
+            continue;
+        }
         if (img.uri.size() >= sizeof s->textures[i].uri)
             return L.fail("image %d: uri is too long", src);
         copy_name(s->textures[i].uri, sizeof s->textures[i].uri, img.uri);

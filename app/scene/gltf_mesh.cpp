@@ -8,24 +8,86 @@
 
 namespace gkgltf {
 
+namespace {
+
+// The vertex sequence of a primitive (its indices, or 0..n-1 without) as triangle-list indices
+// (§3.7.2.1): TRIANGLES as they are, TRIANGLE_STRIP with every odd triangle's first two vertices
+// swapped so all keep the strip's winding, TRIANGLE_FAN around the first vertex. Returns the
+// number of indices written to out (room for 3 * n).
+size_t to_triangle_list(int mode, const uint32_t *seq, size_t n, uint32_t *out)
+{
+    size_t w = 0;
+    if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+        for (size_t i = 0; i + 2 < n; i++) {
+            bool odd = i & 1;
+            out[w++] = seq[odd ? i + 1 : i];
+            out[w++] = seq[odd ? i : i + 1];
+            out[w++] = seq[i + 2];
+        }
+    } else if (mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+        for (size_t i = 1; i + 1 < n; i++) {
+            out[w++] = seq[0];
+            out[w++] = seq[i];
+            out[w++] = seq[i + 1];
+        }
+    } else {
+        memcpy(out, seq, n * sizeof *seq);
+        w = n;
+    }
+    return w;
+}
+
+const char *mode_name(int mode)
+{
+    switch (mode) {
+    case TINYGLTF_MODE_POINTS: return "POINTS";
+    case TINYGLTF_MODE_LINE: return "LINES";
+    case TINYGLTF_MODE_LINE_LOOP: return "LINE_LOOP";
+    case TINYGLTF_MODE_LINE_STRIP: return "LINE_STRIP";
+    default: return "unknown";
+    }
+}
+
+} // namespace
+
 bool read_primitive(Loader &L, const Model &m, int mi, int pi, const tinygltf::Primitive &p, int default_material,
                     gk_mesh *out)
 {
     const std::string &mname = m.meshes[(size_t)mi].name;
-    if (p.mode != TINYGLTF_MODE_TRIANGLES && p.mode != -1)
-        return L.fail("mesh %d ('%s') primitive %d: mode %d is not supported (only triangles, mode 4)", mi,
-                      mname.c_str(), pi, p.mode);
+    int mode = p.mode == -1 ? TINYGLTF_MODE_TRIANGLES : p.mode;
+    if (p.material >= default_material)
+        return L.fail("mesh %d ('%s') primitive %d: material %d does not exist", mi, mname.c_str(), pi, p.material);
+    out->material = p.material < 0 ? default_material : p.material;
+    bool triangles = mode == TINYGLTF_MODE_TRIANGLES || mode == TINYGLTF_MODE_TRIANGLE_STRIP ||
+                     mode == TINYGLTF_MODE_TRIANGLE_FAN;
+    if (!triangles) {
+        if (mode < TINYGLTF_MODE_POINTS || mode > TINYGLTF_MODE_LINE_STRIP)
+            return L.fail("mesh %d ('%s') primitive %d: mode %d is not a glTF primitive mode", mi, mname.c_str(), pi,
+                          p.mode);
+        // Points and lines have no area to light or to shade; the rest of the file still shows.
+        gk_log("%s: mesh %d ('%s') primitive %d: mode %s is not drawn (triangles only)", L.path, mi, mname.c_str(),
+               pi, mode_name(mode));
+        L.use.not_drawn++;
+        out->positions = (float *)calloc(3, sizeof(float));
+        out->indices = (uint32_t *)calloc(3, sizeof(uint32_t));
+        return (out->positions && out->indices) || L.fail("mesh %d: out of memory", mi);
+    }
     auto attr = [&](const char *key) {
         auto it = p.attributes.find(key);
         return it == p.attributes.end() ? -1 : it->second;
     };
+    // KHR_mesh_quantization widens each attribute's component types (its table): positions and
+    // UVs any 8/16-bit integer, normals normalized BYTE/SHORT.
+    Ints pos_ints = L.quantization ? Ints::normalized_or_not : Ints::none;
+    Ints nrm_ints = L.quantization ? Ints::normalized : Ints::none;
+    Ints uv_ints = L.quantization ? Ints::normalized_or_not : Ints::normalized;
     char what[96];
     int pos = attr("POSITION");
     if (pos < 0)
         return L.fail("mesh %d ('%s') primitive %d has no POSITION", mi, mname.c_str(), pi);
     snprintf(what, sizeof what, "mesh %d POSITION", mi);
     size_t nv = 0;
-    out->positions = read_floats(L, m, pos, what, TINYGLTF_TYPE_VEC3, false, &nv);
+    out->positions = read_floats(L, m, pos, what, TINYGLTF_TYPE_VEC3, pos_ints, &nv);
     if (!out->positions)
         return false;
     if (nv > UINT32_MAX / 4)
@@ -35,7 +97,7 @@ bool read_primitive(Loader &L, const Model &m, int mi, int pi, const tinygltf::P
     if (nrm >= 0) {
         size_t nn = 0;
         snprintf(what, sizeof what, "mesh %d NORMAL", mi);
-        out->normals = read_floats(L, m, nrm, what, TINYGLTF_TYPE_VEC3, false, &nn);
+        out->normals = read_floats(L, m, nrm, what, TINYGLTF_TYPE_VEC3, nrm_ints, &nn);
         if (!out->normals)
             return false;
         if (nn != nv)
@@ -45,13 +107,13 @@ bool read_primitive(Loader &L, const Model &m, int mi, int pi, const tinygltf::P
     if (uv >= 0) {
         size_t nu = 0;
         snprintf(what, sizeof what, "mesh %d TEXCOORD_0", mi);
-        out->uvs = read_floats(L, m, uv, what, TINYGLTF_TYPE_VEC2, true, &nu);
+        out->uvs = read_floats(L, m, uv, what, TINYGLTF_TYPE_VEC2, uv_ints, &nu);
         if (!out->uvs)
             return false;
         if (nu != nv)
             return L.fail("mesh %d ('%s'): TEXCOORD_0 has %zu elements, POSITION %zu", mi, mname.c_str(), nu, nv);
     }
-    size_t ni = nv;
+    size_t ns = nv;
     View iv;
     if (p.indices >= 0) {
         snprintf(what, sizeof what, "mesh %d indices", mi);
@@ -60,38 +122,23 @@ bool read_primitive(Loader &L, const Model &m, int mi, int pi, const tinygltf::P
                       TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT},
                      &iv))
             return false;
-        ni = iv.count;
+        ns = iv.count;
     }
-    if (ni % 3 != 0)
+    if (mode == TINYGLTF_MODE_TRIANGLES && ns % 3 != 0)
         return L.fail("mesh %d ('%s') primitive %d: %zu indices is not a whole number of triangles", mi,
-                      mname.c_str(), pi, ni);
-    if (ni / 3 > UINT32_MAX / 4)
+                      mname.c_str(), pi, ns);
+    if (ns > UINT32_MAX / 12)
         return L.fail("mesh %d: too many triangles", mi);
-    out->n_triangles = (uint32_t)(ni / 3);
-    out->indices = (uint32_t *)malloc((ni ? ni : 1) * sizeof(uint32_t));
+    if (mode != TINYGLTF_MODE_TRIANGLES)
+        L.use.strips_fans++;
+    std::vector<uint32_t> seq(ns + 1);
+    for (size_t i = 0; i < ns; i++)
+        seq[i] = p.indices < 0 ? (uint32_t)i : read_index(iv.base + i * iv.stride, iv.ctype);
+    out->indices = (uint32_t *)malloc((3 * ns + 3) * sizeof(uint32_t));
     if (!out->indices)
         return L.fail("mesh %d: out of memory", mi);
-    for (size_t i = 0; i < ni; i++) {
-        if (p.indices < 0) {
-            out->indices[i] = (uint32_t)i;
-            continue;
-        }
-        const unsigned char *q = iv.base + i * iv.stride;
-        if (iv.ctype == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) {
-            out->indices[i] = q[0];
-        } else if (iv.ctype == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) {
-            uint16_t s;
-            memcpy(&s, q, 2);
-            out->indices[i] = s;
-        } else {
-            memcpy(&out->indices[i], q, 4);
-        }
-    }
-    if (p.material >= default_material)
-        return L.fail("mesh %d ('%s') primitive %d: material %d does not exist", mi, mname.c_str(), pi, p.material);
-    out->material = p.material < 0 ? default_material : p.material;
+    out->n_triangles = (uint32_t)(to_triangle_list(mode, seq.data(), ns, out->indices) / 3);
     return true;
 }
 
-// KHR_materials_specular (brdf_spec.md): specularFactor (in [0, 1], default 1), specularColorFactor
 } // namespace gkgltf

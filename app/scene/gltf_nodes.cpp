@@ -62,10 +62,25 @@ bool read_cameras(Loader &L, const Model &m, gk_scene *s)
     if (!s->cameras)
         return L.fail("out of memory");
     for (size_t i = 0; i < m.cameras.size(); i++) {
-        if (m.cameras[i].type != "perspective")
-            return L.fail("camera %zu: type '%s' is not supported (perspective only)", i, m.cameras[i].type.c_str());
-        const auto &p = m.cameras[i].perspective;
-        s->cameras[i] = gk_camera{(float)p.yfov, (float)p.aspectRatio, (float)p.znear, (float)p.zfar};
+        const tinygltf::Camera &c = m.cameras[i];
+        gk_camera *d = &s->cameras[i];
+        if (c.type == "orthographic") {
+            // Kept so the file loads; the renderers draw perspective only, so a node that uses it
+            // is passed over when the view camera is chosen (gk_scene_finish says so).
+            d->orthographic = true;
+            L.use.orthographic_cameras++;
+            d->xmag = (float)c.orthographic.xmag;
+            d->ymag = (float)c.orthographic.ymag;
+            d->znear = (float)c.orthographic.znear;
+            d->zfar = (float)c.orthographic.zfar;
+            continue;
+        }
+        if (c.type != "perspective")
+            return L.fail("camera %zu: type '%s' is not a glTF camera type", i, c.type.c_str());
+        d->yfov = (float)c.perspective.yfov;
+        d->aspect = (float)c.perspective.aspectRatio;
+        d->znear = (float)c.perspective.znear;
+        d->zfar = (float)c.perspective.zfar;
     }
     return true;
 }
@@ -182,8 +197,10 @@ bool read_nodes(Loader &L, const Model &m, gk_scene *s, const std::vector<int> &
                 return L.fail("node %d has two parents (%d and %zu)", child, s->nodes[child].parent, i);
             s->nodes[child].parent = (int)i;
         }
-        if (src.skin >= 0)
-            gk_log("%s: node %zu: skins are ignored", L.path, i);
+        if (src.skin >= 0) {
+            gk_log("%s: node %zu: skin ignored: drawn at its node transform (no skinning)", L.path, i);
+            L.use.skins++;
+        }
     }
     return true;
 }
@@ -234,12 +251,12 @@ bool read_animations(Loader &L, const Model &m, gk_scene *s)
             char what[96];
             size_t nt = 0, nvals = 0;
             snprintf(what, sizeof what, "animation %zu input", ai);
-            d->times = read_floats(L, m, sm.input, what, TINYGLTF_TYPE_SCALAR, false, &nt);
+            d->times = read_floats(L, m, sm.input, what, TINYGLTF_TYPE_SCALAR, Ints::none, &nt);
             if (!d->times)
                 return false;
             snprintf(what, sizeof what, "animation %zu output", ai);
             float *vals = read_floats(L, m, sm.output, what, comps == 4 ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3,
-                                      comps == 4, &nvals);
+                                      comps == 4 ? Ints::normalized : Ints::none, &nvals);
             if (!vals)
                 return false;
             d->values = vals;

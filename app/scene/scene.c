@@ -5,6 +5,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "base/log.h"
 #include "scene_internal.h"
 
 #define GK_SCENE_MAX_DRAWN 4000000ull
@@ -19,8 +20,10 @@ void gk_scene_free(gk_scene *s)
         free(s->meshes[i].uvs);
         free(s->meshes[i].indices);
     }
-    for (int i = 0; i < s->n_textures; i++)
+    for (int i = 0; i < s->n_textures; i++) {
         free(s->textures[i].rgba);
+        free(s->textures[i].embedded);
+    }
     for (int i = 0; i < s->n_channels; i++) {
         free(s->channels[i].times);
         free(s->channels[i].values);
@@ -172,11 +175,25 @@ int gk_scene_finish(gk_scene *s, const char *base_dir, const int *tex_usage, gk_
         return gk_fail(e, GK_EINPUT, "%s: the nodes draw %llu triangles and vertices (instances included); the "
                        "limit is %llu", s->path, (unsigned long long)drawn, (unsigned long long)GK_SCENE_MAX_DRAWN);
     s->camera_node = -1;
-    for (int i = 0; i < s->n_nodes && s->camera_node < 0; i++)
-        if (s->nodes[i].camera >= 0)
+    for (int i = 0; i < s->n_nodes && s->camera_node < 0; i++) {
+        if (s->nodes[i].camera < 0)
+            continue;
+        if (s->cameras[s->nodes[i].camera].orthographic)
+            gk_log("%s: camera node %d ('%s') is orthographic; gikiosk draws perspective only and passes it over",
+                   s->path, i, s->nodes[i].name);
+        else
             s->camera_node = i;
+    }
     gk_scene_evaluate(s, 0.0f);
     scene_bounds(s);
     gk_scene_derive_features(s);
+    /* A file without lights or emitters (most glTF assets) is lit by the default studio, placed
+     * around the view camera chosen above; its lights change what light reaches, so re-derive. */
+    if (gk_scene_add_default_studio(s, e) != 0)
+        return -1;
+    if (s->default_lighting) {
+        gk_scene_evaluate(s, 0.0f);
+        gk_scene_derive_features(s);
+    }
     return 0;
 }

@@ -30,7 +30,10 @@ enum gk_light_type { GK_LIGHT_POINT, GK_LIGHT_SPOT, GK_LIGHT_DIRECTIONAL };
 enum gk_light_shape { GK_SHAPE_POINT, GK_SHAPE_SPHERE, GK_SHAPE_DISC, GK_SHAPE_RECT };
 
 typedef struct gk_texture {
-    char uri[256];
+    char uri[256];    /* the image file, relative to the scene's folder; "" for an embedded image */
+    unsigned char *embedded;   /* encoded bytes of an image inside the file (GLB chunk or data: uri), */
+    size_t embedded_size;      /*   freed once decoded */
+    char mime[32];             /* the image's mimeType, "" when not given */
     int width, height;
     float *rgba;      /* width*height*4 floats, linear (sRGB decoded for colour textures) */
 } gk_texture;
@@ -81,6 +84,8 @@ typedef struct gk_camera {
     float yfov;                /* radians */
     float aspect;              /* 0: use the viewport's */
     float znear, zfar;         /* zfar 0 = infinite */
+    bool orthographic;         /* loaded, never the view camera (perspective only): yfov/aspect unused */
+    float xmag, ymag;          /* orthographic half extents */
 } gk_camera;
 
 typedef struct gk_node {
@@ -122,6 +127,20 @@ typedef struct gk_scene_features {
                                   drawn, non-black, non-metallic surface that is not a light proxy */
 } gk_scene_features;
 
+/* What of glTF a file uses, as `gikiosk scenes --check` reports it: the extensions read and the
+ * ones ignored (comma-separated), and counts of the features that are converted or left out. */
+typedef struct gk_scene_gltf_use {
+    char extensions_read[256];
+    char extensions_ignored[256];
+    int embedded_images;       /* GLB chunks and data: uris */
+    int sparse_accessors;
+    int quantized_accessors;   /* integer attributes read through KHR_mesh_quantization */
+    int strips_fans;           /* primitives converted to triangle lists */
+    int not_drawn;             /* points and lines primitives */
+    int orthographic_cameras;  /* loaded, never the view */
+    int skins;                 /* nodes drawn at their node transform (no skinning) */
+} gk_scene_gltf_use;
+
 typedef struct gk_scene {
     char name[64];             /* file stem: "cornell" */
     char path[512];            /* file it was loaded from */
@@ -146,13 +165,16 @@ typedef struct gk_scene {
      * hands to tests (shadow-planes: light size, occluder size, heights). Read with gk_scene_param. */
     struct { char key[32]; float v[4]; int n; } params[16];
     int n_params;
+    gk_scene_gltf_use gltf;
+    bool default_lighting;     /* the file has no light and no emitter: the default studio was added */
 } gk_scene;
 
 /* Loads .gltf/.glb; validates everything (indices, accessors, NaN/Inf, textures). On error returns
  * NULL with e->code GK_EINPUT and a message naming the file and what is wrong. Degenerate (zero-area)
  * triangles are dropped and counted. CUBICSPLINE animations are converted to LINEAR through their
- * key values (tangents dropped, logged); skins and morph weights are ignored (logged); images must
- * be files next to the scene (embedded images are an error); sparse accessors are an error. */
+ * key values (tangents dropped, logged); skins and morph weights are ignored (logged). Images are
+ * files next to the scene, GLB binary chunks or base64 data: uris (PNG, JPEG); sparse accessors,
+ * KHR_mesh_quantization, triangle strips and fans are read; points and lines are not drawn (logged). */
 gk_scene *gk_scene_load(const char *path, gk_err *e);
 void gk_scene_free(gk_scene *s);
 

@@ -33,6 +33,9 @@ int gk_scene_load_textures(gk_scene *s, const char *base_dir, const int *tex_usa
 
 /* features.c */
 void gk_scene_derive_features(gk_scene *s);
+/* When the file has no light and no emitter, appends the default studio (three directional lights
+ * around the view camera; default_studio.c) and sets s->default_lighting; else does nothing. */
+int gk_scene_add_default_studio(gk_scene *s, gk_err *e);
 
 #ifdef __cplusplus
 }

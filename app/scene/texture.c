@@ -55,6 +55,21 @@ int gk_scene_load_textures(gk_scene *s, const char *base_dir, const int *tex_usa
 {
     for (int i = 0; i < s->n_textures; i++) {
         gk_texture *t = &s->textures[i];
+        bool srgb = tex_usage && (tex_usage[i] & GK_TEX_USED_AS_COLOR);
+        if (t->embedded) {
+            char name[600];
+            snprintf(name, sizeof name, "%s: texture %d (embedded %s)", s->path, i, t->mime[0] ? t->mime : "image");
+            gk_image img = {0};
+            if (gk_image_read_memory(t->embedded, t->embedded_size, name, &img, e) != 0)
+                return -1;
+            int rc = img.channels >= 1 && img.channels <= 4 ? to_rgba(t, &img, srgb) : -1;
+            gk_image_free(&img);
+            free(t->embedded);
+            t->embedded = NULL;
+            if (rc != 0)
+                return gk_fail(e, GK_EINPUT, "%s: unusable layout or out of memory", name);
+            continue;
+        }
         if (!base_dir)
             return gk_fail(e, GK_EINPUT, "%s: texture %d: image '%s' cannot be read (no base directory)", s->path, i,
                            t->uri);
@@ -75,7 +90,6 @@ int gk_scene_load_textures(gk_scene *s, const char *base_dir, const int *tex_usa
         if (gk_image_read(path, &img, &ie) != 0)
             return gk_fail(e, GK_EINPUT, "%s: texture %d: image '%s' is missing or unreadable (%s)", s->path, i, t->uri,
                            ie.msg);
-        bool srgb = tex_usage && (tex_usage[i] & GK_TEX_USED_AS_COLOR);
         int rc = img.channels >= 1 && img.channels <= 4 ? to_rgba(t, &img, srgb) : -1;
         gk_image_free(&img);
         if (rc != 0)

@@ -204,6 +204,13 @@ int gk_scene_validate_cameras(gk_scene *s, gk_err *e)
 {
     for (int i = 0; i < s->n_cameras; i++) {
         const gk_camera *c = &s->cameras[i];
+        if (c->orthographic) {
+            if (!(isfinite(c->xmag) && c->xmag != 0 && isfinite(c->ymag) && c->ymag != 0 && isfinite(c->znear) &&
+                  c->znear >= 0 && isfinite(c->zfar) && c->zfar > c->znear))
+                return gk_fail(e, GK_EINPUT, "%s: camera %d (orthographic): needs xmag, ymag != 0, 0 <= znear < zfar",
+                               s->path, i);
+            continue;
+        }
         if (!(isfinite(c->yfov) && c->yfov > 0 && c->yfov < (float)M_PI) || !(isfinite(c->znear) && c->znear > 0) ||
             !(isfinite(c->zfar) && (c->zfar == 0 || c->zfar > c->znear)) || !(isfinite(c->aspect) && c->aspect >= 0))
             return gk_fail(e, GK_EINPUT, "%s: camera %d: needs 0 < yfov < pi, znear > 0, zfar 0 or > znear", s->path, i);

@@ -1,0 +1,229 @@
+/* The glTF conformance set (tests/gltf/, written by tools/gltf_conformance.py): one small file per
+ * feature the loader reads, converts or refuses, each checked against values known from how the
+ * file was made — the pixels of an embedded checker, the vertex a sparse accessor moves, the
+ * triangles a strip makes — plus the default studio that lights files without lights. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "core/tonemap.h"
+#include "scene/scene.h"
+
+static gk_scene *load(const char *name)
+{
+    char path[256];
+    snprintf(path, sizeof path, "tests/gltf/%s", name);
+    gk_err e = {0};
+    gk_scene *s = gk_scene_load(path, &e);
+    if (!s)
+        print_error("%s\n", e.msg);
+    assert_non_null(s);
+    return s;
+}
+
+static void expect_refused(const char *name, const char *what)
+{
+    char path[256];
+    snprintf(path, sizeof path, "tests/gltf/%s", name);
+    gk_err e = {0};
+    gk_scene *s = gk_scene_load(path, &e);
+    if (s)
+        gk_scene_free(s);
+    assert_null(s);
+    assert_int_equal(e.code, GK_EINPUT);
+    if (strncmp(e.msg, path, strlen(path)) != 0 || !strstr(e.msg, what))
+        print_error("message: %s\nwanted the path and '%s'\n", e.msg, what);
+    assert_int_equal(strncmp(e.msg, path, strlen(path)), 0);
+    assert_non_null(strstr(e.msg, what));
+}
+
+/* The 2 x 2 checker (top row red, green; bottom row blue, white), sRGB 8-bit: decoded to linear,
+ * a channel of 255 is 1 and of 0 is 0 exactly. */
+static void expect_checker(const gk_scene *s)
+{
+    assert_int_equal(s->n_textures, 1);
+    const gk_texture *t = &s->textures[0];
+    assert_int_equal(t->width, 2);
+    assert_int_equal(t->height, 2);
+    assert_null(t->embedded); /* freed once decoded */
+    const float want[4][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}};
+    for (int p = 0; p < 4; p++)
+        for (int c = 0; c < 3; c++)
+            assert_float_equal(t->rgba[4 * p + c], want[p][c], 1e-6f);
+    assert_int_equal(s->gltf.embedded_images, 1);
+}
+
+static void images_inside_the_file_are_decoded(void **state)
+{
+    (void)state;
+    gk_scene *glb = load("texture-glb.glb");
+    expect_checker(glb);
+    assert_string_equal(glb->textures[0].mime, "image/png");
+    gk_scene_free(glb);
+    gk_scene *uri = load("texture-data-uri.gltf");
+    expect_checker(uri);
+    gk_scene_free(uri);
+    expect_refused("texture-ktx2.glb", "KHR_texture_basisu");
+}
+
+static void sparse_accessors_substitute_their_values(void **state)
+{
+    (void)state;
+    gk_scene *s = load("sparse.gltf");
+    const float *p = s->meshes[0].positions; /* vertex 1 moved from (1,0,0) to (2,0,0) */
+    assert_float_equal(p[3], 2.0f, 0.0f);
+    assert_float_equal(p[6], 0.0f, 0.0f);
+    assert_float_equal(p[7], 1.0f, 0.0f);
+    assert_int_equal(s->gltf.sparse_accessors, 1);
+    assert_float_equal(s->bmax.x, 2.0f, 1e-6f);
+    gk_scene_free(s);
+    s = load("sparse-zeros.gltf"); /* no base data: zeros, vertices 1 and 2 set */
+    p = s->meshes[0].positions;
+    const float want[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    for (int i = 0; i < 9; i++)
+        assert_float_equal(p[i], want[i], 0.0f);
+    assert_int_equal(s->n_triangles, 1);
+    gk_scene_free(s);
+}
+
+static void quantized_attributes_are_read_when_declared(void **state)
+{
+    (void)state;
+    gk_scene *s = load("quantized.gltf");
+    const gk_mesh *m = &s->meshes[0];
+    assert_float_equal(m->positions[3], 1000.0f, 0.0f); /* unnormalized: the integer's value */
+    assert_float_equal(m->normals[2], 1.0f, 1e-6f);      /* normalized byte 127 */
+    assert_float_equal(m->uvs[1], 1.0f, 1e-6f);          /* normalized ushort 65535 */
+    assert_float_equal(s->bmax.x, 1.0f, 1e-5f);          /* the node's 0.001 scale: metres */
+    assert_int_equal(s->gltf.quantized_accessors, 3);
+    assert_non_null(strstr(s->gltf.extensions_read, "KHR_mesh_quantization"));
+    gk_scene_free(s);
+    expect_refused("quantized-undeclared.gltf", "KHR_mesh_quantization");
+}
+
+/* Each triangle's normal z (all lie in z = 0, so +1 or -1 tells the winding). */
+static float winding(const gk_mesh *m, uint32_t t)
+{
+    const uint32_t *i = &m->indices[3 * t];
+    const float *a = &m->positions[3 * i[0]], *b = &m->positions[3 * i[1]], *c = &m->positions[3 * i[2]];
+    return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+}
+
+/* Corner k of triangle t is the file's vertex `want` (vertices are told apart by position; the
+ * loader may un-index a mesh to give it flat normals, so indices are not compared). */
+static void expect_corner(const gk_mesh *m, uint32_t t, int k, const float *file_positions, uint32_t want)
+{
+    const float *p = &m->positions[3 * m->indices[3 * t + (uint32_t)k]];
+    for (int c = 0; c < 3; c++)
+        assert_float_equal(p[c], file_positions[3 * want + (uint32_t)c], 0.0f);
+}
+
+static void strips_and_fans_become_triangle_lists(void **state)
+{
+    (void)state;
+    gk_scene *s = load("strip.gltf");
+    const gk_mesh *m = &s->meshes[0];
+    assert_int_equal(m->n_triangles, 2);
+    const float strip_pos[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0};
+    const uint32_t strip[6] = {0, 1, 2, 2, 1, 3};
+    for (int i = 0; i < 6; i++)
+        expect_corner(m, (uint32_t)i / 3, i % 3, strip_pos, strip[i]);
+    for (uint32_t t = 0; t < 2; t++)
+        assert_true(winding(m, t) > 0); /* every triangle keeps the strip's (counter-clockwise) winding */
+    assert_int_equal(s->gltf.strips_fans, 1);
+    gk_scene_free(s);
+    s = load("fan.gltf");
+    m = &s->meshes[0];
+    assert_int_equal(m->n_triangles, 3);
+    const float fan_pos[15] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, -1, 1, 0};
+    const uint32_t fan[9] = {0, 1, 2, 0, 2, 3, 0, 3, 4};
+    for (int i = 0; i < 9; i++)
+        expect_corner(m, (uint32_t)i / 3, i % 3, fan_pos, fan[i]);
+    for (uint32_t t = 0; t < 3; t++)
+        assert_true(winding(m, t) > 0);
+    gk_scene_free(s);
+}
+
+static void lines_are_loaded_and_not_drawn(void **state)
+{
+    (void)state;
+    gk_scene *s = load("lines.gltf");
+    assert_int_equal(s->n_meshes, 2);
+    assert_int_equal(s->meshes[0].n_triangles, 0);
+    assert_int_equal(s->meshes[1].n_triangles, 1);
+    assert_int_equal(s->n_triangles, 1);
+    assert_int_equal(s->gltf.not_drawn, 1);
+    gk_scene_free(s);
+}
+
+static void orthographic_cameras_load_and_are_passed_over(void **state)
+{
+    (void)state;
+    gk_scene *s = load("cameras.gltf");
+    assert_int_equal(s->n_cameras, 2);
+    assert_true(s->cameras[0].orthographic);
+    assert_int_equal(s->camera_node, 2); /* "persp", after "ortho" */
+    assert_string_equal(s->nodes[s->camera_node].name, "persp");
+    assert_int_equal(s->gltf.orthographic_cameras, 1);
+    /* a file that has a light keeps it: no studio */
+    assert_false(s->default_lighting);
+    assert_int_equal(s->n_lights, 1);
+    /* an optional extension that is not read is named, and the file loads */
+    assert_string_equal(s->gltf.extensions_ignored, "KHR_texture_transform");
+    gk_scene_free(s);
+}
+
+static void required_extensions_not_read_are_refused_by_name(void **state)
+{
+    (void)state;
+    expect_refused("requires-draco.gltf", "requires extension 'KHR_draco_mesh_compression'");
+}
+
+/* The studio's lights come from the camera's side: each light's direction (node -Z) must point
+ * into the scene, i.e. away from the camera for key and fill (it lights what the visitor sees). */
+static void a_file_without_lights_gets_the_default_studio(void **state)
+{
+    (void)state;
+    gk_scene *s = load("texture-glb.glb");
+    assert_true(s->default_lighting);
+    assert_int_equal(s->n_lights, 3);
+    mat4 view;
+    vec3 eye;
+    gk_scene_camera(s, 16.0f / 9.0f, &view, NULL, &eye);
+    vec3 centre = v3_scale(v3_add(s->bmin, s->bmax), 0.5f);
+    vec3 to_scene = v3_norm(v3_sub(centre, eye));
+    int lit_from_front = 0;
+    for (int i = 0; i < s->n_nodes; i++) {
+        if (s->nodes[i].light < 0)
+            continue;
+        const gk_light *l = &s->lights[s->nodes[i].light];
+        assert_int_equal(l->type, GK_LIGHT_DIRECTIONAL);
+        vec3 pos, dir, u, v;
+        gk_scene_light_frame(s, i, &pos, &dir, &u, &v);
+        assert_float_equal(v3_len(dir), 1.0f, 1e-4f);
+        if (v3_dot(dir, to_scene) > 0.2f)
+            lit_from_front++;
+    }
+    assert_int_equal(lit_from_front, 2); /* key and fill; the rim comes from behind */
+    /* the quad faces +z, the default camera looks from +z: the key reaches its lit face */
+    gk_scene_free(s);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(images_inside_the_file_are_decoded),
+        cmocka_unit_test(sparse_accessors_substitute_their_values),
+        cmocka_unit_test(quantized_attributes_are_read_when_declared),
+        cmocka_unit_test(strips_and_fans_become_triangle_lists),
+        cmocka_unit_test(lines_are_loaded_and_not_drawn),
+        cmocka_unit_test(orthographic_cameras_load_and_are_passed_over),
+        cmocka_unit_test(required_extensions_not_read_are_refused_by_name),
+        cmocka_unit_test(a_file_without_lights_gets_the_default_studio),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,207 @@
+#!/usr/bin/env python3
+"""Writes the glTF conformance set under tests/gltf/: one small file per glTF feature the loader
+reads, converts or refuses, each with values a test can check exactly (tests/unit/
+test_gltf_conformance.c, tests/e2e/gltf_conformance.sh). Made here, by hand, from the glTF 2.0
+specification; nothing downloaded. The outputs are committed, so CI does not run this script;
+re-run it (`python3 tools/gltf_conformance.py`) after changing it, and commit what changes.
+
+Every file draws in the z = 0 plane facing +z unless it says otherwise, and has no lights (the
+default studio lights it) and no camera (the default camera frames it) unless it says otherwise."""
+import base64
+import json
+import os
+import struct
+import zlib
+
+OUT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests", "gltf")
+
+
+def png_rgb(width, height, pixels):
+    """A minimal 8-bit RGB PNG (no filter), pixels as rows of (r, g, b) tuples."""
+    raw = b"".join(b"\x00" + bytes(c for px in row for c in px) for row in pixels)
+
+    def chunk(kind, data):
+        body = kind + data
+        return struct.pack(">I", len(data)) + body + struct.pack(">I", zlib.crc32(body) & 0xFFFFFFFF)
+
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0)) +
+            chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b""))
+
+
+# The checker every textured file uses: top row red, green; bottom row blue, white.
+CHECKER = png_rgb(2, 2, [[(255, 0, 0), (0, 255, 0)], [(0, 0, 255), (255, 255, 255)]])
+
+
+class Doc:
+    """A glTF document with one binary buffer assembled as views are added."""
+
+    def __init__(self):
+        self.bin = bytearray()
+        self.j = {"asset": {"version": "2.0", "generator": "gikiosk tools/gltf_conformance.py"},
+                  "scene": 0, "scenes": [{"nodes": []}], "nodes": [], "meshes": [], "accessors": [],
+                  "bufferViews": [], "buffers": []}
+
+    def view(self, data, target=None):
+        while len(self.bin) % 4:
+            self.bin.append(0)
+        v = {"buffer": 0, "byteOffset": len(self.bin), "byteLength": len(data)}
+        if target:
+            v["target"] = target
+        self.bin += data
+        self.j["bufferViews"].append(v)
+        return len(self.j["bufferViews"]) - 1
+
+    def accessor(self, fmt, values, ctype, atype, normalized=False, minmax=False, target=None):
+        data = b"".join(struct.pack("<" + fmt, *v) if isinstance(v, tuple) else struct.pack("<" + fmt, v)
+                        for v in values)
+        a = {"bufferView": self.view(data, target), "componentType": ctype, "count": len(values), "type": atype}
+        if normalized:
+            a["normalized"] = True
+        if minmax:
+            a["min"] = [min(v[i] for v in values) for i in range(len(values[0]))]
+            a["max"] = [max(v[i] for v in values) for i in range(len(values[0]))]
+        self.j["accessors"].append(a)
+        return len(self.j["accessors"]) - 1
+
+    def mesh_node(self, primitives, name, **node):
+        self.j["meshes"].append({"name": name, "primitives": primitives})
+        n = dict(node, name=name, mesh=len(self.j["meshes"]) - 1)
+        self.j["nodes"].append(n)
+        self.j["scenes"][0]["nodes"].append(len(self.j["nodes"]) - 1)
+
+    def write_gltf(self, name, data_uri=False):
+        j = dict(self.j)
+        if data_uri:
+            j["buffers"] = [{"byteLength": len(self.bin),
+                             "uri": "data:application/octet-stream;base64," + base64.b64encode(self.bin).decode()}]
+        else:
+            j["buffers"] = [{"byteLength": len(self.bin), "uri": name + ".bin"}]
+            with open(os.path.join(OUT, name + ".bin"), "wb") as f:
+                f.write(self.bin)
+        with open(os.path.join(OUT, name + ".gltf"), "w") as f:
+            json.dump(j, f, indent=1, sort_keys=True)
+            f.write("\n")
+
+    def write_glb(self, name):
+        while len(self.bin) % 4:
+            self.bin.append(0)
+        j = dict(self.j)
+        j["buffers"] = [{"byteLength": len(self.bin)}]
+        js = json.dumps(j, sort_keys=True).encode()
+        js += b" " * ((4 - len(js) % 4) % 4)
+        body = struct.pack("<I", len(js)) + b"JSON" + js + struct.pack("<I", len(self.bin)) + b"BIN\x00" + self.bin
+        with open(os.path.join(OUT, name + ".glb"), "wb") as f:
+            f.write(struct.pack("<4sII", b"glTF", 2, 12 + len(body)) + body)
+
+
+FLOAT, UBYTE, BYTE, USHORT, SHORT, UINT = 5126, 5121, 5120, 5123, 5122, 5125
+QUAD_POS = [(-1.0, -1.0, 0.0), (1.0, -1.0, 0.0), (1.0, 1.0, 0.0), (-1.0, 1.0, 0.0)]
+QUAD_UV = [(0.0, 1.0), (1.0, 1.0), (1.0, 0.0), (0.0, 0.0)]
+QUAD_IDX = [0, 1, 2, 0, 2, 3]
+
+
+def textured_quad(image):
+    """A 2 x 2 m quad with the checker as its base colour; `image` adds the image entry."""
+    d = Doc()
+    pos = d.accessor("fff", QUAD_POS, FLOAT, "VEC3", minmax=True, target=34962)
+    uv = d.accessor("ff", QUAD_UV, FLOAT, "VEC2", target=34962)
+    idx = d.accessor("H", QUAD_IDX, USHORT, "SCALAR", target=34963)
+    d.j["images"] = [image(d)]
+    d.j["textures"] = [{"source": 0}]
+    d.j["materials"] = [{"name": "checker", "pbrMetallicRoughness": {
+        "baseColorTexture": {"index": 0}, "metallicFactor": 0.0, "roughnessFactor": 1.0}}]
+    d.mesh_node([{"attributes": {"POSITION": pos, "TEXCOORD_0": uv}, "indices": idx, "material": 0}], "quad")
+    return d
+
+
+def main():
+    os.makedirs(OUT, exist_ok=True)
+
+    # Images inside the file: a GLB binary chunk, and a base64 data: uri (buffer too).
+    textured_quad(lambda d: {"bufferView": d.view(CHECKER), "mimeType": "image/png"}).write_glb("texture-glb")
+    textured_quad(lambda d: {"uri": "data:image/png;base64," + base64.b64encode(CHECKER).decode()}).write_gltf(
+        "texture-data-uri", data_uri=True)
+    # A KTX2 container (KHR_texture_basisu's format) in a chunk: refused by name.
+    ktx2 = b"\xabKTX 20\xbb\r\n\x1a\n" + bytes(68)
+    textured_quad(lambda d: {"bufferView": d.view(ktx2), "mimeType": "image/ktx2"}).write_glb("texture-ktx2")
+
+    # Sparse accessors (§3.6.2.3): a triangle whose vertex 1 moves from (1,0,0) to (2,0,0); and one
+    # with no base data at all (zeros) whose vertices 1 and 2 are set.
+    d = Doc()
+    pos = d.accessor("fff", [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0)], FLOAT, "VEC3")
+    d.j["accessors"][pos]["sparse"] = {"count": 1,
+                                       "indices": {"bufferView": d.view(struct.pack("<H", 1)), "componentType": USHORT},
+                                       "values": {"bufferView": d.view(struct.pack("<fff", 2.0, 0.0, 0.0))}}
+    d.j["accessors"][pos]["min"], d.j["accessors"][pos]["max"] = [0, 0, 0], [2, 1, 0]
+    d.mesh_node([{"attributes": {"POSITION": pos}}], "moved")
+    d.write_gltf("sparse")
+    d = Doc()
+    d.j["accessors"].append({"componentType": FLOAT, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0],
+                             "sparse": {"count": 2,
+                                        "indices": {"bufferView": d.view(bytes([1, 2])), "componentType": UBYTE},
+                                        "values": {"bufferView": d.view(struct.pack("<6f", 1, 0, 0, 0, 1, 0))}}})
+    d.mesh_node([{"attributes": {"POSITION": 0}}], "from-zeros")
+    d.write_gltf("sparse-zeros")
+
+    # KHR_mesh_quantization: positions as unnormalized unsigned shorts in millimetres (a node scale
+    # of 0.001 makes metres), normals as normalized bytes, UVs as normalized unsigned shorts.
+    d = Doc()
+    pos = d.accessor("HHH", [(0, 0, 0), (1000, 0, 0), (0, 1000, 0)], USHORT, "VEC3", minmax=True)
+    nrm = d.accessor("bbbx", [(0, 0, 127)] * 3, BYTE, "VEC3", normalized=True)
+    d.j["bufferViews"][d.j["accessors"][nrm]["bufferView"]]["byteStride"] = 4
+    uv = d.accessor("HH", [(0, 65535), (65535, 65535), (0, 0)], USHORT, "VEC2", normalized=True)
+    d.mesh_node([{"attributes": {"POSITION": pos, "NORMAL": nrm, "TEXCOORD_0": uv}}], "millimetres",
+                scale=[0.001, 0.001, 0.001])
+    d.j["extensionsUsed"] = d.j["extensionsRequired"] = ["KHR_mesh_quantization"]
+    d.write_gltf("quantized")
+    # The same integer positions without the extension: refused, naming it.
+    d.j.pop("extensionsUsed"), d.j.pop("extensionsRequired")
+    d.write_gltf("quantized-undeclared")
+
+    # Triangle strip (mode 5) of 4 vertices: triangles (0,1,2) and (2,1,3), both facing +z; triangle
+    # fan (mode 6) of 5 vertices around vertex 0: (0,1,2), (0,2,3), (0,3,4).
+    d = Doc()
+    pos = d.accessor("fff", [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (1.0, 1.0, 0.0)], FLOAT, "VEC3",
+                     minmax=True)
+    d.mesh_node([{"attributes": {"POSITION": pos}, "mode": 5}], "strip")
+    d.write_gltf("strip")
+    d = Doc()
+    fan = [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (1.0, 1.0, 0.0), (0.0, 1.0, 0.0), (-1.0, 1.0, 0.0)]
+    pos = d.accessor("fff", fan, FLOAT, "VEC3", minmax=True)
+    idx = d.accessor("I", [0, 1, 2, 3, 4], UINT, "SCALAR")
+    d.mesh_node([{"attributes": {"POSITION": pos}, "indices": idx, "mode": 6}], "fan")
+    d.write_gltf("fan")
+
+    # A mesh with a LINES primitive beside a triangle: the file loads, the lines are not drawn.
+    d = Doc()
+    pos = d.accessor("fff", [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0)], FLOAT, "VEC3", minmax=True)
+    d.mesh_node([{"attributes": {"POSITION": pos}, "mode": 1}, {"attributes": {"POSITION": pos}}], "lines-and-tri")
+    d.write_gltf("lines")
+
+    # Cameras: an orthographic camera node first, a perspective one second: the perspective one is
+    # the view. And a light (KHR_lights_punctual), so this file is not given the studio.
+    d = Doc()
+    pos = d.accessor("fff", QUAD_POS, FLOAT, "VEC3", minmax=True)
+    idx = d.accessor("H", QUAD_IDX, USHORT, "SCALAR")
+    d.mesh_node([{"attributes": {"POSITION": pos}, "indices": idx}], "quad")
+    d.j["cameras"] = [{"type": "orthographic", "orthographic": {"xmag": 2, "ymag": 2, "znear": 0.1, "zfar": 10}},
+                      {"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.1, "zfar": 20}}]
+    d.j["nodes"] += [{"name": "ortho", "camera": 0, "translation": [0, 0, 3]},
+                     {"name": "persp", "camera": 1, "translation": [0, 0, 4]},
+                     {"name": "sun", "rotation": [0, 0, 0, 1],
+                      "extensions": {"KHR_lights_punctual": {"light": 0}}}]
+    d.j["scenes"][0]["nodes"] += [1, 2, 3]
+    d.j["extensionsUsed"] = ["KHR_lights_punctual", "KHR_texture_transform"]
+    d.j["extensions"] = {"KHR_lights_punctual": {"lights": [{"type": "directional", "intensity": 2.0}]}}
+    d.write_gltf("cameras")
+
+    # Extensions: one required that gikiosk does not read (Draco), refused by name.
+    d = Doc()
+    pos = d.accessor("fff", [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0)], FLOAT, "VEC3", minmax=True)
+    d.mesh_node([{"attributes": {"POSITION": pos}}], "tri")
+    d.j["extensionsUsed"] = d.j["extensionsRequired"] = ["KHR_draco_mesh_compression"]
+    d.write_gltf("requires-draco")
+
+
+if __name__ == "__main__":
+    main()
