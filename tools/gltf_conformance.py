@@ -195,6 +195,27 @@ def main():
     d.j["extensions"] = {"KHR_lights_punctual": {"lights": [{"type": "directional", "intensity": 2.0}]}}
     d.write_gltf("cameras")
 
+    # Emissive texture: the checker glows (emissiveFactor 1 x texture x strength 4); no light, but
+    # an emitter, so no studio. Drawn flat white before the texture was read.
+    d = textured_quad(lambda d: {"bufferView": d.view(CHECKER), "mimeType": "image/png"})
+    mat = d.j["materials"][0]
+    mat["pbrMetallicRoughness"] = {"baseColorFactor": [0.5, 0.5, 0.5, 1.0], "metallicFactor": 0.0}
+    mat["emissiveFactor"] = [1.0, 1.0, 1.0]
+    mat["emissiveTexture"] = {"index": 0}
+    mat["extensions"] = {"KHR_materials_emissive_strength": {"emissiveStrength": 4.0}}
+    d.j["extensionsUsed"] = ["KHR_materials_emissive_strength"]
+    d.write_glb("emissive-texture")
+
+    # Vertex colours (COLOR_0, normalized unsigned bytes, RGBA): red, green, blue, white corners.
+    d = Doc()
+    pos = d.accessor("fff", QUAD_POS, FLOAT, "VEC3", minmax=True)
+    col = d.accessor("BBBB", [(255, 0, 0, 255), (0, 255, 0, 255), (0, 0, 255, 255), (255, 255, 255, 255)], UBYTE,
+                     "VEC4", normalized=True)
+    idx = d.accessor("H", QUAD_IDX, USHORT, "SCALAR")
+    d.j["materials"] = [{"name": "vertex-coloured", "pbrMetallicRoughness": {"metallicFactor": 0.0}}]
+    d.mesh_node([{"attributes": {"POSITION": pos, "COLOR_0": col}, "indices": idx, "material": 0}], "quad")
+    d.write_gltf("vertex-colors")
+
     # Extensions: one required that gikiosk does not read (Draco), refused by name.
     d = Doc()
     pos = d.accessor("fff", [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0)], FLOAT, "VEC3", minmax=True)

@@ -4,6 +4,8 @@
 #include <float.h>
 #include <math.h>
 
+#include "materials.h"
+
 static bool is_delta(enum gk_ref_light_kind k) { return k == GK_REF_POINT || k == GK_REF_SPOT || k == GK_REF_DIRECTIONAL; }
 
 static int pick_cdf(const float *cdf, int n, float u, float *prob)
@@ -145,7 +147,7 @@ static bool sample_one(const gk_ref_scene *rs, int li, vec3 p, float u1, float u
         float cos_l = fabsf(v3_dot(s->wi, tr->ng));
         if (cos_l <= 1e-7f)
             return false;
-        s->li = gk_tri_emission(rs, tr, s->wi);
+        s->li = gk_tri_emission(rs, tr, b1, b2, s->wi);
         s->pdf = pt * d2 / (cos_l * tr->area);
         return s->li.x > 0.0f || s->li.y > 0.0f || s->li.z > 0.0f;
     }
@@ -267,12 +269,14 @@ vec3 gk_area_light_emission(const gk_ref_scene *rs, int li, vec3 d)
     return v3_scale(L->radiance, gk_spot_falloff(L, w));
 }
 
-vec3 gk_tri_emission(const gk_ref_scene *rs, const gk_ref_tri *t, vec3 d)
+vec3 gk_tri_emission(const gk_ref_scene *rs, const gk_ref_tri *t, float b1, float b2, vec3 d)
 {
     const gk_material *m = &rs->materials[t->material];
     if (!m->double_sided && v3_dot(d, t->ng) >= 0.0f)
         return v3(0, 0, 0); /* seen from the back */
-    return v3(m->emissive[0], m->emissive[1], m->emissive[2]);
+    /* emissiveFactor x emissiveTexture; the emitter CDF weighs triangles by the factor alone,
+       still unbiased (the texture only makes some picks worth less). */
+    return v3_mul(v3(m->emissive[0], m->emissive[1], m->emissive[2]), gk_tri_texture_rgb(rs, t, m->emissive_tex, b1, b2));
 }
 
 vec3 gk_sky_emission(const gk_ref_scene *rs, vec3 d, int *light)
@@ -379,7 +383,8 @@ bool gk_light_photon_of(const gk_ref_scene *rs, int li, float pl, const float u[
         float u3r = m->double_sided ? fmodf(u3 * 2.0f, 1.0f) : u3;
         *o = v3_add(x, v3_scale(n, eps));
         *d = cosine_about(n, u3r, u4);
-        vec3 le = v3(m->emissive[0], m->emissive[1], m->emissive[2]);
+        vec3 le = v3_mul(v3(m->emissive[0], m->emissive[1], m->emissive[2]),
+                         gk_tri_texture_rgb(rs, tr, m->emissive_tex, b1, b2));
         *flux = v3_scale(le, tr->area * GK_PI * sides / (pt * pl));
         return true;
     }

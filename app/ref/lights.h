@@ -32,7 +32,7 @@ bool gk_area_lights_occlude(const gk_ref_scene *rs, vec3 o, vec3 d, float tmax);
 /* Radiance leaving area light li towards -d at its point o + t d (0 on its back). */
 vec3 gk_area_light_emission(const gk_ref_scene *rs, int li, vec3 d);
 /* Radiance of an emissive triangle seen along d (0 from the back unless double-sided). */
-vec3 gk_tri_emission(const gk_ref_scene *rs, const gk_ref_tri *t, vec3 d);
+vec3 gk_tri_emission(const gk_ref_scene *rs, const gk_ref_tri *t, float b1, float b2, vec3 d);
 /* Radiance of the sky along an escaping direction d (sun discs). */
 vec3 gk_sky_emission(const gk_ref_scene *rs, vec3 d, int *light);
 

@@ -49,6 +49,14 @@ static float tex_alpha(const gk_ref_scene *rs, int tex, float u, float v)
     return p[3];
 }
 
+vec3 gk_tri_texture_rgb(const gk_ref_scene *rs, const gk_ref_tri *t, int tex, float b1, float b2)
+{
+    float b0 = 1.0f - b1 - b2;
+    float u = b0 * t->uv[0][0] + b1 * t->uv[1][0] + b2 * t->uv[2][0];
+    float v = b0 * t->uv[0][1] + b1 * t->uv[1][1] + b2 * t->uv[2][1];
+    return tex_sample(rs, tex, u, v);
+}
+
 void gk_surface_init(gk_surface *sf, const gk_ref_scene *rs, const gk_ref_tri *t, float b1, float b2)
 {
     const gk_material *m = &rs->materials[t->material];
@@ -56,6 +64,9 @@ void gk_surface_init(gk_surface *sf, const gk_ref_scene *rs, const gk_ref_tri *t
     float u = b0 * t->uv[0][0] + b1 * t->uv[1][0] + b2 * t->uv[2][0];
     float v = b0 * t->uv[0][1] + b1 * t->uv[1][1] + b2 * t->uv[2][1];
     sf->base = v3(m->base_color[0], m->base_color[1], m->base_color[2]);
+    /* glTF: base colour = factor x texture x vertex colour (COLOR_0), as the G-buffer does. */
+    for (int c = 0; c < 3; c++)
+        (&sf->base.x)[c] *= b0 * t->color[0][c] + b1 * t->color[1][c] + b2 * t->color[2][c];
     sf->metallic = m->metallic;
     sf->roughness = m->roughness;
     if (m->base_color_tex >= 0)

@@ -45,6 +45,8 @@ static int add_mesh_triangles(gk_ref_scene *rs, const gk_scene *s, const gk_node
                 t->uv[k][0] = m->uvs[2 * vi];
                 t->uv[k][1] = m->uvs[2 * vi + 1];
             }
+            for (int c = 0; c < 4; c++)
+                t->color[k][c] = m->colors ? m->colors[4 * vi + (uint32_t)c] : 1.0f;
         }
         vec3 c = v3_cross(v3_sub(t->p[1], t->p[0]), v3_sub(t->p[2], t->p[0]));
         float len = v3_len(c);

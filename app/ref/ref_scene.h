@@ -39,6 +39,7 @@ typedef struct gk_ref_light {
 typedef struct gk_ref_tri {
     vec3 p[3], n[3];
     float uv[3][2];
+    float color[3][4]; /* COLOR_0 per corner, white without one */
     vec3 ng;           /* unit geometric normal (front face by winding) */
     float area;
     int material;

@@ -97,7 +97,7 @@ vec3 gk_trace_eye(const gk_ref_scene *rs, vec3 o, vec3 d, unsigned mask, int max
         const gk_ref_tri *tri = &rs->tris[h.tri];
         if (tri->emissive >= 0 && within_bounces(n_diffuse, max_diffuse) &&
             (mask & classify(n_diffuse, spec_after_diffuse, spec_before_diffuse))) {
-            vec3 le = gk_tri_emission(rs, tri, d);
+            vec3 le = gk_tri_emission(rs, tri, h.b1, h.b2, d);
             float w = prev_delta ? 1.0f
                                  : gk_power_heuristic(prev_pdf, gk_light_pdf(rs, rs->mesh_light, h.tri, prev_p, x, d));
             radiance = v3_add(radiance, v3_mul(beta, v3_scale(le, w)));

@@ -106,6 +106,7 @@ static const gk_uniform_field gbuffer_fields[] = {
     GK_UNIFORM_AS(gbuffer_uniforms, draw.u_specular, "u_specular"),
     GK_UNIFORM_AS(gbuffer_uniforms, draw.u_spec_tex, "u_spec_tex"),
     GK_UNIFORM_AS(gbuffer_uniforms, draw.u_spec_color_tex, "u_spec_color_tex"),
+    GK_UNIFORM_AS(gbuffer_uniforms, draw.u_emissive_tex, "u_emissive_tex"),
 };
 
 /* direct/emission.frag */

@@ -13,7 +13,7 @@ int gk_scene_gpu_upload(gk_scene_gpu *g, const gk_scene *s, gk_err *e)
     }
     g->n_meshes = s->n_meshes;
     g->vao = calloc((size_t)s->n_meshes + 1, sizeof *g->vao);
-    g->vbo = calloc((size_t)s->n_meshes * 3 + 1, sizeof *g->vbo);
+    g->vbo = calloc((size_t)s->n_meshes * GK_MESH_ATTRIBS + 1, sizeof *g->vbo);
     g->ibo = calloc((size_t)s->n_meshes + 1, sizeof *g->ibo);
     g->index_count = calloc((size_t)s->n_meshes + 1, sizeof *g->index_count);
     g->tex = calloc((size_t)s->n_textures + 1, sizeof *g->tex);
@@ -23,21 +23,24 @@ int gk_scene_gpu_upload(gk_scene_gpu *g, const gk_scene *s, gk_err *e)
     }
     if (s->n_meshes) {
         glGenVertexArrays(s->n_meshes, g->vao);
-        glGenBuffers(s->n_meshes * 3, g->vbo);
+        glGenBuffers(s->n_meshes * GK_MESH_ATTRIBS, g->vbo);
         glGenBuffers(s->n_meshes, g->ibo);
     }
     for (int i = 0; i < s->n_meshes; i++) {
         const gk_mesh *m = &s->meshes[i];
         glBindVertexArray(g->vao[i]);
-        const float *data[3] = {m->positions, m->normals, m->uvs};
-        const int comps[3] = {3, 3, 2};
-        for (int a = 0; a < 3; a++) {
-            if (!data[a]) {
+        const float *data[GK_MESH_ATTRIBS] = {m->positions, m->normals, m->uvs, m->colors};
+        const int comps[GK_MESH_ATTRIBS] = {3, 3, 2, 4};
+        for (int a = 0; a < GK_MESH_ATTRIBS; a++) {
+            if (!data[a]) { /* a constant attribute: no colour is white */
                 glDisableVertexAttribArray((GLuint)a);
-                glVertexAttrib4f((GLuint)a, 0, 0, 1, 0);
+                if (a == 3)
+                    glVertexAttrib4f((GLuint)a, 1, 1, 1, 1);
+                else
+                    glVertexAttrib4f((GLuint)a, 0, 0, 1, 0);
                 continue;
             }
-            glBindBuffer(GL_ARRAY_BUFFER, g->vbo[i * 3 + a]);
+            glBindBuffer(GL_ARRAY_BUFFER, g->vbo[i * GK_MESH_ATTRIBS + a]);
             glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(sizeof(float) * comps[a] * m->n_vertices), data[a], GL_STATIC_DRAW);
             glEnableVertexAttribArray((GLuint)a);
             glVertexAttribPointer((GLuint)a, comps[a], GL_FLOAT, GL_FALSE, 0, NULL);
@@ -82,7 +85,7 @@ void gk_scene_gpu_free(gk_scene_gpu *g)
 {
     if (g->n_meshes && g->vao) {
         glDeleteVertexArrays(g->n_meshes, g->vao);
-        glDeleteBuffers(g->n_meshes * 3, g->vbo);
+        glDeleteBuffers(g->n_meshes * GK_MESH_ATTRIBS, g->vbo);
         glDeleteBuffers(g->n_meshes, g->ibo);
     }
     if (g->n_textures && g->tex)
@@ -101,6 +104,11 @@ static void set_material(const gk_scene_gpu *g, const gk_scene *s, const gk_draw
 {
     int flags = 0;
     GLuint base = g->white_tex, mr = g->white_tex, spec = g->white_tex, spec_color = g->white_tex;
+    GLuint emissive = g->white_tex;
+    if (m->emissive_tex >= 0 && m->emissive_tex < s->n_textures) {
+        emissive = g->tex[m->emissive_tex];
+        flags |= GK_MAT_EMISSIVE_TEX;
+    }
     if (m->base_color_tex >= 0 && m->base_color_tex < s->n_textures) {
         base = g->tex[m->base_color_tex];
         flags |= GK_MAT_BASE_TEX;
@@ -129,6 +137,8 @@ static void set_material(const gk_scene_gpu *g, const gk_scene *s, const gk_draw
     glBindTexture(GL_TEXTURE_2D, spec);
     glActiveTexture(GL_TEXTURE3);
     glBindTexture(GL_TEXTURE_2D, spec_color);
+    glActiveTexture(GL_TEXTURE4);
+    glBindTexture(GL_TEXTURE_2D, emissive);
     glUniform4f(u->u_base_color, m->base_color[0], m->base_color[1], m->base_color[2], m->base_color[3]);
     glUniform2f(u->u_metallic_roughness, m->metallic, m->roughness);
     glUniform3f(u->u_emissive, m->emissive[0], m->emissive[1], m->emissive[2]);
@@ -152,6 +162,7 @@ void gk_draw_uniforms_lookup(GLuint prog, gk_draw_uniforms *u)
     u->u_specular = glGetUniformLocation(prog, "u_specular");
     u->u_spec_tex = glGetUniformLocation(prog, "u_spec_tex");
     u->u_spec_color_tex = glGetUniformLocation(prog, "u_spec_color_tex");
+    u->u_emissive_tex = glGetUniformLocation(prog, "u_emissive_tex");
 }
 
 void gk_scene_gpu_draw(const gk_scene_gpu *g, const gk_scene *s, const gk_draw_uniforms *u, int flags)
@@ -161,6 +172,7 @@ void gk_scene_gpu_draw(const gk_scene_gpu *g, const gk_scene *s, const gk_draw_u
         glUniform1i(u->u_mr_tex, 1);
         glUniform1i(u->u_spec_tex, 2);
         glUniform1i(u->u_spec_color_tex, 3);
+        glUniform1i(u->u_emissive_tex, 4);
     }
     GLint loc_model = u->u_model;
     GLint loc_normal = u->u_normal_matrix;

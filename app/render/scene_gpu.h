@@ -1,6 +1,7 @@
 /* The scene on the GPU: one VAO (positions, normals, uvs) + index buffer per mesh, one texture per
  * scene texture, and draw helpers that set each node's world matrix and the material uniforms.
- * Attribute locations: 0 position, 1 normal, 2 uv (shaders use layout(location = N)). */
+ * Attribute locations: 0 position, 1 normal, 2 uv, 3 vertex colour (COLOR_0 RGBA, constant white
+ * when the mesh has none); shaders use layout(location = N). */
 #ifndef GK_SCENE_GPU_H
 #define GK_SCENE_GPU_H
 
@@ -9,9 +10,11 @@
 #include "gl/gl.h"
 #include "gl/gl_program.h"
 
+#define GK_MESH_ATTRIBS 4      /* vertex attributes per mesh, locations 0..3 */
+
 typedef struct gk_scene_gpu {
     int n_meshes;
-    GLuint *vao, *vbo, *ibo;   /* vbo: 3 per mesh (pos, normal, uv) */
+    GLuint *vao, *vbo, *ibo;   /* vbo: GK_MESH_ATTRIBS per mesh (pos, normal, uv, colour) */
     GLsizei *index_count;
     int n_textures;
     GLuint *tex;
@@ -34,6 +37,7 @@ enum {
     GK_MAT_DOUBLE_SIDED = 8,
     GK_MAT_SPEC_TEX = 16,       /* KHR_materials_specular specularTexture (A) */
     GK_MAT_SPEC_COLOR_TEX = 32, /* KHR_materials_specular specularColorTexture (RGB) */
+    GK_MAT_EMISSIVE_TEX = 64,   /* emissiveTexture (RGB) times u_emissive */
 };
 
 /* The uniforms gk_scene_gpu_draw sets, by location (-1: the program has no such uniform). A pass
@@ -46,6 +50,7 @@ typedef struct gk_draw_uniforms {
     /* KHR_materials_specular (brdf_spec.md): u_specular = (((ior-1)/(ior+1))^2 specularColorFactor,
        specularFactor); the shader multiplies the textures in and clamps c0 to 1. */
     GLint u_specular, u_spec_tex, u_spec_color_tex;
+    GLint u_emissive_tex;                                                 /* unit 4 */
 } gk_draw_uniforms;
 
 /* Draws every node's meshes (after gk_scene_evaluate) with the bound program: sets u_model and

@@ -82,6 +82,7 @@ bool read_materials(Loader &L, const Model &m, gk_scene *s, std::vector<int> &te
     def->specular = 1.0f;
     def->specular_color[0] = def->specular_color[1] = def->specular_color[2] = 1.0f;
     def->specular_tex = def->specular_color_tex = -1;
+    def->emissive_tex = -1;
     auto tex_ref = [&](int ti, int flag, int mi, const char *slot, int *out) {
         if (ti < 0) {
             *out = -1;
@@ -109,7 +110,8 @@ bool read_materials(Loader &L, const Model &m, gk_scene *s, std::vector<int> &te
         d->roughness = (float)pbr.roughnessFactor;
         if (!tex_ref(pbr.baseColorTexture.index, GK_TEX_USED_AS_COLOR, mi, "base colour", &d->base_color_tex) ||
             !tex_ref(pbr.metallicRoughnessTexture.index, GK_TEX_USED_AS_DATA, mi, "metallic-roughness",
-                     &d->metallic_roughness_tex))
+                     &d->metallic_roughness_tex) ||
+            !tex_ref(src.emissiveTexture.index, GK_TEX_USED_AS_COLOR, mi, "emissive", &d->emissive_tex))
             return false;
         double strength = 1.0, transmission = 0.0, ior = 1.5;
         auto ext = [&](const char *name, const char *key, double *v) {

@@ -113,6 +113,31 @@ bool read_primitive(Loader &L, const Model &m, int mi, int pi, const tinygltf::P
         if (nu != nv)
             return L.fail("mesh %d ('%s'): TEXCOORD_0 has %zu elements, POSITION %zu", mi, mname.c_str(), nu, nv);
     }
+    int col = attr("COLOR_0");
+    if (col >= 0) {
+        // Vertex colours (§3.7.2.1): VEC3 or VEC4, float or normalized unsigned byte/short,
+        // linear; multiplied into the base colour. Kept as RGBA, A = 1 for RGB.
+        if ((size_t)col >= m.accessors.size())
+            return L.fail("mesh %d ('%s'): COLOR_0 accessor %d does not exist", mi, mname.c_str(), col);
+        int type = m.accessors[(size_t)col].type == TINYGLTF_TYPE_VEC3 ? TINYGLTF_TYPE_VEC3 : TINYGLTF_TYPE_VEC4;
+        int comps = type == TINYGLTF_TYPE_VEC3 ? 3 : 4;
+        size_t nc = 0;
+        snprintf(what, sizeof what, "mesh %d COLOR_0", mi);
+        float *c = read_floats(L, m, col, what, type, Ints::normalized, &nc);
+        if (!c)
+            return false;
+        out->colors = (float *)malloc((nv ? nv : 1) * 4 * sizeof(float));
+        if (!out->colors) {
+            free(c);
+            return L.fail("mesh %d: out of memory", mi);
+        }
+        for (size_t v = 0; v < nv && nc == nv; v++)
+            for (int k = 0; k < 4; k++)
+                out->colors[4 * v + (size_t)k] = k < comps ? c[(size_t)comps * v + (size_t)k] : 1.0f;
+        free(c);
+        if (nc != nv)
+            return L.fail("mesh %d ('%s'): COLOR_0 has %zu elements, POSITION %zu", mi, mname.c_str(), nc, nv);
+    }
     size_t ns = nv;
     View iv;
     if (p.indices >= 0) {

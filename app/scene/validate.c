@@ -38,8 +38,9 @@ static int flat_normals(gk_mesh *m)
     float *pos = malloc((nv ? nv : 1) * 3 * sizeof(float));
     float *nrm = malloc((nv ? nv : 1) * 3 * sizeof(float));
     float *uv = m->uvs ? malloc((nv ? nv : 1) * 2 * sizeof(float)) : NULL;
-    if (!pos || !nrm || (m->uvs && !uv)) {
-        free(pos), free(nrm), free(uv);
+    float *col = m->colors ? malloc((nv ? nv : 1) * 4 * sizeof(float)) : NULL;
+    if (!pos || !nrm || (m->uvs && !uv) || (m->colors && !col)) {
+        free(pos), free(nrm), free(uv), free(col);
         return -1;
     }
     for (uint32_t t = 0; t < m->n_triangles; t++) {
@@ -52,11 +53,13 @@ static int flat_normals(gk_mesh *m)
             nrm[3 * o] = n.x, nrm[3 * o + 1] = n.y, nrm[3 * o + 2] = n.z;
             if (uv)
                 memcpy(uv + 2 * o, m->uvs + 2 * (size_t)tri[k], 2 * sizeof(float));
+            if (col)
+                memcpy(col + 4 * o, m->colors + 4 * (size_t)tri[k], 4 * sizeof(float));
             tri[k] = (uint32_t)o;
         }
     }
-    free(m->positions), free(m->uvs);
-    m->positions = pos, m->normals = nrm, m->uvs = uv;
+    free(m->positions), free(m->uvs), free(m->colors);
+    m->positions = pos, m->normals = nrm, m->uvs = uv, m->colors = col;
     m->n_vertices = (uint32_t)nv;
     return 0;
 }
@@ -71,6 +74,8 @@ int gk_scene_validate_meshes(gk_scene *s, gk_err *e)
             return gk_fail(e, GK_EINPUT, "%s: mesh %d: NORMAL has NaN or infinite values", s->path, mi);
         if (m->uvs && !all_finite(m->uvs, (size_t)m->n_vertices * 2))
             return gk_fail(e, GK_EINPUT, "%s: mesh %d: TEXCOORD_0 has NaN or infinite values", s->path, mi);
+        if (m->colors && !all_finite(m->colors, (size_t)m->n_vertices * 4))
+            return gk_fail(e, GK_EINPUT, "%s: mesh %d: COLOR_0 has NaN or infinite values", s->path, mi);
         uint32_t kept = 0;
         for (uint32_t t = 0; t < m->n_triangles; t++) {
             uint32_t *tri = m->indices + 3 * (size_t)t;

@@ -6,6 +6,7 @@ precision highp float;
 in vec3 v_world;
 in vec3 v_normal;
 in vec2 v_uv;
+in vec4 v_color;
 uniform vec4 u_base_color;
 uniform vec2 u_metallic_roughness;
 uniform vec3 u_emissive;
@@ -15,6 +16,7 @@ uniform mediump sampler2D u_mr_tex;
 uniform vec4 u_specular;            // rgb ((ior-1)/(ior+1))^2 specularColorFactor, a specularFactor
 uniform mediump sampler2D u_spec_tex;
 uniform mediump sampler2D u_spec_color_tex;
+uniform mediump sampler2D u_emissive_tex;
 uniform vec3 u_eye;
 layout(location = 0) out mediump vec4 o_albedo;
 layout(location = 1) out vec4 o_normal;
@@ -27,12 +29,17 @@ const int MAT_LIGHT_PROXY = 4;
 const int MAT_DOUBLE_SIDED = 8;
 const int MAT_SPEC_TEX = 16;
 const int MAT_SPEC_COLOR_TEX = 32;
+const int MAT_EMISSIVE_TEX = 64;
 
 void main()
 {
-    vec4 base = u_base_color;
+    // glTF: base colour = factor x texture x vertex colour (COLOR_0).
+    vec4 base = u_base_color * v_color;
     if ((u_mat_flags & MAT_BASE_TEX) != 0)
         base *= texture(u_base_tex, v_uv);
+    vec3 emissive = u_emissive;
+    if ((u_mat_flags & MAT_EMISSIVE_TEX) != 0)
+        emissive *= texture(u_emissive_tex, v_uv).rgb;
     vec2 mr = u_metallic_roughness;
     if ((u_mat_flags & MAT_MR_TEX) != 0) {
         vec4 t = texture(u_mr_tex, v_uv);
@@ -53,6 +60,6 @@ void main()
     bool proxy = (u_mat_flags & MAT_LIGHT_PROXY) != 0;
     o_albedo = vec4(proxy ? vec3(0.0) : base.rgb, clamp(mr.x, 0.0, 1.0));
     o_normal = vec4(n, clamp(mr.y, 0.0, 1.0));
-    o_emission = vec4(emits ? u_emissive : vec3(0.0), proxy ? 1.0 : 0.0);
+    o_emission = vec4(emits ? emissive : vec3(0.0), proxy ? 1.0 : 0.0);
     o_specular = vec4(sqrt(clamp(spec.rgb, 0.0, 1.0)), clamp(spec.a, 0.0, 1.0));
 }
