@@ -43,8 +43,11 @@ typedef struct tracer_surface {
 static void tracer_surface_init(tracer_surface *t, const gk_material *m)
 {
     memset(t, 0, sizeof *t);
-    for (int k = 0; k < 3; k++)
+    for (int k = 0; k < 3; k++) {
         t->tri.n[k] = v3(0, 0, 1);
+        for (int c = 0; c < 4; c++)
+            t->tri.color[k][c] = 1.0f; /* no COLOR_0: white */
+    }
     t->tri.ng = v3(0, 0, 1);
     t->tri.p[1] = v3(1, 0, 0), t->tri.p[2] = v3(0, 1, 0);
     t->rs.materials = m;

@@ -42,8 +42,11 @@ static void make_surface(one_surface *o, vec3 base, float metallic, float roughn
     m->ior = 1.5f;
     m->specular = w;
     m->specular_color[0] = spec_color.x, m->specular_color[1] = spec_color.y, m->specular_color[2] = spec_color.z;
-    for (int k = 0; k < 3; k++)
+    for (int k = 0; k < 3; k++) {
         o->tri.n[k] = v3(0, 0, 1);
+        for (int c = 0; c < 4; c++)
+            o->tri.color[k][c] = 1.0f; /* no COLOR_0: white */
+    }
     o->tri.ng = v3(0, 0, 1);
     o->tri.p[1] = v3(1, 0, 0), o->tri.p[2] = v3(0, 1, 0);
     o->rs.materials = m;
