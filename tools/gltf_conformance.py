@@ -216,6 +216,16 @@ def main():
     d.mesh_node([{"attributes": {"POSITION": pos, "COLOR_0": col}, "indices": idx, "material": 0}], "quad")
     d.write_gltf("vertex-colors")
 
+    # A real PBR material: metallicFactor 1 (the default) with the true metalness in the texture's
+    # B channel, here 0 everywhere (roughness G = 1): a dielectric, so the GI methods apply to it.
+    dielectric_mr = png_rgb(2, 2, [[(0, 255, 0), (0, 255, 0)], [(0, 255, 0), (0, 255, 0)]])
+    d = textured_quad(lambda d: {"bufferView": d.view(CHECKER), "mimeType": "image/png"})
+    d.j["images"].append({"bufferView": d.view(dielectric_mr), "mimeType": "image/png"})
+    d.j["textures"].append({"source": 1})
+    d.j["materials"][0]["pbrMetallicRoughness"] = {"baseColorTexture": {"index": 0},
+                                                   "metallicRoughnessTexture": {"index": 1}}
+    d.write_glb("metallic-texture")
+
     # Extensions: one required that gikiosk does not read (Draco), refused by name.
     d = Doc()
     pos = d.accessor("fff", [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0)], FLOAT, "VEC3", minmax=True)

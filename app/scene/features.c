@@ -112,7 +112,7 @@ static bool has_interreflection(const gk_scene *s, bool has_emissive)
         return false;
     for (int m = 0; m < s->n_materials; m++) {
         const gk_material *mat = &s->materials[m];
-        if (!mat->light_proxy && mat->metallic < 0.5f && mat->transmission < 1.0f &&
+        if (!mat->light_proxy && mat->metallic_mean < 0.5f && mat->transmission < 1.0f &&
             v3_maxc(v3(mat->base_color[0], mat->base_color[1], mat->base_color[2])) > 0 && material_drawn(s, m))
             return true;
     }
@@ -133,7 +133,7 @@ void gk_scene_derive_features(gk_scene *s)
         /* A light proxy is the visible face of an area light, not an emitter of its own. */
         if (!mat->light_proxy && v3_maxc(v3(mat->emissive[0], mat->emissive[1], mat->emissive[2])) > 0)
             f.has_emissive = true;
-        if (mat->roughness < 0.2f && mat->metallic > 0.5f)
+        if (mat->roughness_mean < 0.2f && mat->metallic_mean > 0.5f)
             f.has_specular = true;
         if (mat->transmission > 0)
             f.has_transmission = true;

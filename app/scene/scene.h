@@ -44,6 +44,10 @@ typedef struct gk_material {
     int base_color_tex;       /* index into scene.textures, -1 if none */
     float metallic, roughness;
     int metallic_roughness_tex; /* G = roughness, B = metallic (glTF), -1 if none */
+    /* What the material is over its surface: the factors times the metallic-roughness texture's
+       mean B and G (the factors alone without one). Real PBR models put metallic 1 in the factor
+       and the true values in the texture; features and method applicability read these. */
+    float metallic_mean, roughness_mean;
     float emissive[3];        /* emissiveFactor * KHR_materials_emissive_strength, in nits */
     int emissive_tex;         /* RGB (sRGB-encoded) times emissive, -1 if none */
     float transmission;       /* KHR_materials_transmission: 0 opaque .. 1 clear glass/water */

@@ -51,6 +51,28 @@ static int to_rgba(gk_texture *t, const gk_image *img, bool srgb)
     return 0;
 }
 
+/* metallic_mean and roughness_mean of every material (scene.h), once its textures are decoded. */
+static void material_means(gk_scene *s)
+{
+    for (int m = 0; m < s->n_materials; m++) {
+        gk_material *mat = &s->materials[m];
+        mat->metallic_mean = mat->metallic;
+        mat->roughness_mean = mat->roughness;
+        int ti = mat->metallic_roughness_tex;
+        if (ti < 0 || ti >= s->n_textures || !s->textures[ti].rgba)
+            continue;
+        const gk_texture *t = &s->textures[ti];
+        size_t n = (size_t)t->width * (size_t)t->height;
+        double g = 0, b = 0;
+        for (size_t i = 0; i < n; i++)
+            g += t->rgba[4 * i + 1], b += t->rgba[4 * i + 2];
+        if (n) {
+            mat->roughness_mean = mat->roughness * (float)(g / (double)n);
+            mat->metallic_mean = mat->metallic * (float)(b / (double)n);
+        }
+    }
+}
+
 int gk_scene_load_textures(gk_scene *s, const char *base_dir, const int *tex_usage, gk_err *e)
 {
     for (int i = 0; i < s->n_textures; i++) {
@@ -95,5 +117,6 @@ int gk_scene_load_textures(gk_scene *s, const char *base_dir, const int *tex_usa
         if (rc != 0)
             return gk_fail(e, GK_EINPUT, "%s: texture %d: image '%s' has an unusable layout", s->path, i, t->uri);
     }
+    material_means(s);
     return 0;
 }

@@ -213,6 +213,27 @@ static void a_file_without_lights_gets_the_default_studio(void **state)
     gk_scene_free(s);
 }
 
+/* metallicFactor 1 with a metallic-roughness texture whose B is 0: a dielectric over its whole
+ * surface, so light bounces off it and the GI methods apply (they did not when the factor alone
+ * decided). */
+static void metalness_comes_from_the_texture(void **state)
+{
+    (void)state;
+    gk_scene *s = load("metallic-texture.glb");
+    const gk_material *m = &s->materials[0];
+    assert_float_equal(m->metallic, 1.0f, 0.0f);
+    assert_float_equal(m->metallic_mean, 0.0f, 1e-6f);
+    assert_float_equal(m->roughness_mean, 1.0f, 1e-6f);
+    assert_true(s->features.has_interreflection);
+    const char *names[16];
+    int n = gk_scene_methods(s, names, 16);
+    bool vct = false;
+    for (int i = 0; i < n; i++)
+        vct = vct || strcmp(names[i], "vct") == 0;
+    assert_true(vct);
+    gk_scene_free(s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -224,6 +245,7 @@ int main(void)
         cmocka_unit_test(orthographic_cameras_load_and_are_passed_over),
         cmocka_unit_test(required_extensions_not_read_are_refused_by_name),
         cmocka_unit_test(a_file_without_lights_gets_the_default_studio),
+        cmocka_unit_test(metalness_comes_from_the_texture),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
