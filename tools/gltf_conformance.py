@@ -226,6 +226,16 @@ def main():
                                                    "metallicRoughnessTexture": {"index": 1}}
     d.write_glb("metallic-texture")
 
+    # A normal map: every texel tilts the normal 37 degrees toward +u (tangent space (0.6, 0, 0.8),
+    # RGB (204, 128, 230)) on a white quad lit by the studio; no TANGENT, so both renderers use
+    # the generated one (+x here). And the same quad with the map's tilt toward +v (green).
+    for name, rgb in (("normal-map", (204, 128, 230)), ("normal-map-v", (128, 204, 230))):
+        tilt = png_rgb(2, 2, [[rgb, rgb], [rgb, rgb]])
+        d = textured_quad(lambda d: {"bufferView": d.view(tilt), "mimeType": "image/png"})
+        d.j["materials"][0] = {"name": "tilted", "normalTexture": {"index": 0},
+                               "pbrMetallicRoughness": {"metallicFactor": 0.0}}
+        d.write_glb(name)
+
     # Extensions: one required that gikiosk does not read (Draco), refused by name.
     d = Doc()
     pos = d.accessor("fff", [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0)], FLOAT, "VEC3", minmax=True)

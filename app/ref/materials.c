@@ -105,6 +105,24 @@ void gk_surface_init(gk_surface *sf, const gk_ref_scene *rs, const gk_ref_tri *t
     vec3 n = v3_add(v3_add(v3_scale(t->n[0], b0), v3_scale(t->n[1], b1)), v3_scale(t->n[2], b2));
     sf->ng = t->ng;
     sf->n = v3_len(n) > 1e-12f ? v3_norm(n) : t->ng;
+    if (m->normal_tex >= 0) {
+        /* glTF normalTexture, the same frame as the G-buffer (shaders_gles/gbuffer/gbuffer.frag):
+           tangent-space normal, XY scaled, T made orthogonal to N, B = (N x T) w. */
+        vec3 mt = v3_sub(v3_scale(gk_tri_texture_rgb(rs, t, m->normal_tex, b1, b2), 2.0f), v3(1, 1, 1));
+        mt.x *= m->normal_scale, mt.y *= m->normal_scale;
+        vec3 tg = v3(0, 0, 0);
+        float w = b0 * t->tangent[0][3] + b1 * t->tangent[1][3] + b2 * t->tangent[2][3];
+        for (int k = 0; k < 3; k++)
+            tg = v3_add(tg, v3_scale(v3(t->tangent[k][0], t->tangent[k][1], t->tangent[k][2]), k == 0 ? b0 : k == 1 ? b1 : b2));
+        tg = v3_sub(tg, v3_scale(sf->n, v3_dot(sf->n, tg)));
+        if (v3_len(tg) > 1e-6f) {
+            tg = v3_norm(tg);
+            vec3 bt = v3_scale(v3_cross(sf->n, tg), w < 0.0f ? -1.0f : 1.0f);
+            vec3 nm = v3_add(v3_add(v3_scale(tg, mt.x), v3_scale(bt, mt.y)), v3_scale(sf->n, mt.z));
+            if (v3_len(nm) > 1e-6f)
+                sf->n = v3_norm(nm);
+        }
+    }
     /* Keep the shading normal on the geometric normal's side, so flipping by the geometric side
        below stays consistent. */
     if (v3_dot(sf->n, sf->ng) < 0.0f)

@@ -47,6 +47,13 @@ static int add_mesh_triangles(gk_ref_scene *rs, const gk_scene *s, const gk_node
             }
             for (int c = 0; c < 4; c++)
                 t->color[k][c] = m->colors ? m->colors[4 * vi + (uint32_t)c] : 1.0f;
+            if (m->tangents) {
+                const float *tg = &m->tangents[4 * vi];
+                vec3 tw = m4_dir(w, v3(tg[0], tg[1], tg[2]));
+                t->tangent[k][0] = tw.x, t->tangent[k][1] = tw.y, t->tangent[k][2] = tw.z, t->tangent[k][3] = tg[3];
+            } else {
+                memset(t->tangent[k], 0, sizeof t->tangent[k]);
+            }
         }
         vec3 c = v3_cross(v3_sub(t->p[1], t->p[0]), v3_sub(t->p[2], t->p[0]));
         float len = v3_len(c);

@@ -40,6 +40,7 @@ typedef struct gk_ref_tri {
     vec3 p[3], n[3];
     float uv[3][2];
     float color[3][4]; /* COLOR_0 per corner, white without one */
+    float tangent[3][4]; /* world-space tangent xyz + handedness w per corner; zero without one */
     vec3 ng;           /* unit geometric normal (front face by winding) */
     float area;
     int material;

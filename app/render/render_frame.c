@@ -107,6 +107,8 @@ static const gk_uniform_field gbuffer_fields[] = {
     GK_UNIFORM_AS(gbuffer_uniforms, draw.u_spec_tex, "u_spec_tex"),
     GK_UNIFORM_AS(gbuffer_uniforms, draw.u_spec_color_tex, "u_spec_color_tex"),
     GK_UNIFORM_AS(gbuffer_uniforms, draw.u_emissive_tex, "u_emissive_tex"),
+    GK_UNIFORM_AS(gbuffer_uniforms, draw.u_normal_tex, "u_normal_tex"),
+    GK_UNIFORM_AS(gbuffer_uniforms, draw.u_normal_scale, "u_normal_scale"),
 };
 
 /* direct/emission.frag */

@@ -29,13 +29,15 @@ int gk_scene_gpu_upload(gk_scene_gpu *g, const gk_scene *s, gk_err *e)
     for (int i = 0; i < s->n_meshes; i++) {
         const gk_mesh *m = &s->meshes[i];
         glBindVertexArray(g->vao[i]);
-        const float *data[GK_MESH_ATTRIBS] = {m->positions, m->normals, m->uvs, m->colors};
-        const int comps[GK_MESH_ATTRIBS] = {3, 3, 2, 4};
+        const float *data[GK_MESH_ATTRIBS] = {m->positions, m->normals, m->uvs, m->colors, m->tangents};
+        const int comps[GK_MESH_ATTRIBS] = {3, 3, 2, 4, 4};
         for (int a = 0; a < GK_MESH_ATTRIBS; a++) {
             if (!data[a]) { /* a constant attribute: no colour is white */
                 glDisableVertexAttribArray((GLuint)a);
                 if (a == 3)
                     glVertexAttrib4f((GLuint)a, 1, 1, 1, 1);
+                else if (a == 4)
+                    glVertexAttrib4f((GLuint)a, 1, 0, 0, 1);
                 else
                     glVertexAttrib4f((GLuint)a, 0, 0, 1, 0);
                 continue;
@@ -104,7 +106,11 @@ static void set_material(const gk_scene_gpu *g, const gk_scene *s, const gk_draw
 {
     int flags = 0;
     GLuint base = g->white_tex, mr = g->white_tex, spec = g->white_tex, spec_color = g->white_tex;
-    GLuint emissive = g->white_tex;
+    GLuint emissive = g->white_tex, normal = g->white_tex;
+    if (m->normal_tex >= 0 && m->normal_tex < s->n_textures) {
+        normal = g->tex[m->normal_tex];
+        flags |= GK_MAT_NORMAL_TEX;
+    }
     if (m->emissive_tex >= 0 && m->emissive_tex < s->n_textures) {
         emissive = g->tex[m->emissive_tex];
         flags |= GK_MAT_EMISSIVE_TEX;
@@ -139,6 +145,9 @@ static void set_material(const gk_scene_gpu *g, const gk_scene *s, const gk_draw
     glBindTexture(GL_TEXTURE_2D, spec_color);
     glActiveTexture(GL_TEXTURE4);
     glBindTexture(GL_TEXTURE_2D, emissive);
+    glActiveTexture(GL_TEXTURE5);
+    glBindTexture(GL_TEXTURE_2D, normal);
+    glUniform1f(u->u_normal_scale, m->normal_scale);
     glUniform4f(u->u_base_color, m->base_color[0], m->base_color[1], m->base_color[2], m->base_color[3]);
     glUniform2f(u->u_metallic_roughness, m->metallic, m->roughness);
     glUniform3f(u->u_emissive, m->emissive[0], m->emissive[1], m->emissive[2]);
@@ -163,6 +172,8 @@ void gk_draw_uniforms_lookup(GLuint prog, gk_draw_uniforms *u)
     u->u_spec_tex = glGetUniformLocation(prog, "u_spec_tex");
     u->u_spec_color_tex = glGetUniformLocation(prog, "u_spec_color_tex");
     u->u_emissive_tex = glGetUniformLocation(prog, "u_emissive_tex");
+    u->u_normal_tex = glGetUniformLocation(prog, "u_normal_tex");
+    u->u_normal_scale = glGetUniformLocation(prog, "u_normal_scale");
 }
 
 void gk_scene_gpu_draw(const gk_scene_gpu *g, const gk_scene *s, const gk_draw_uniforms *u, int flags)
@@ -173,6 +184,7 @@ void gk_scene_gpu_draw(const gk_scene_gpu *g, const gk_scene *s, const gk_draw_u
         glUniform1i(u->u_spec_tex, 2);
         glUniform1i(u->u_spec_color_tex, 3);
         glUniform1i(u->u_emissive_tex, 4);
+        glUniform1i(u->u_normal_tex, 5);
     }
     GLint loc_model = u->u_model;
     GLint loc_normal = u->u_normal_matrix;

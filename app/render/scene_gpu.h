@@ -1,7 +1,8 @@
 /* The scene on the GPU: one VAO (positions, normals, uvs) + index buffer per mesh, one texture per
  * scene texture, and draw helpers that set each node's world matrix and the material uniforms.
  * Attribute locations: 0 position, 1 normal, 2 uv, 3 vertex colour (COLOR_0 RGBA, constant white
- * when the mesh has none); shaders use layout(location = N). */
+ * when the mesh has none), 4 tangent (xyz, handedness w; only normal-mapped meshes have one);
+ * shaders use layout(location = N). */
 #ifndef GK_SCENE_GPU_H
 #define GK_SCENE_GPU_H
 
@@ -10,11 +11,11 @@
 #include "gl/gl.h"
 #include "gl/gl_program.h"
 
-#define GK_MESH_ATTRIBS 4      /* vertex attributes per mesh, locations 0..3 */
+#define GK_MESH_ATTRIBS 5      /* vertex attributes per mesh, locations 0..4 */
 
 typedef struct gk_scene_gpu {
     int n_meshes;
-    GLuint *vao, *vbo, *ibo;   /* vbo: GK_MESH_ATTRIBS per mesh (pos, normal, uv, colour) */
+    GLuint *vao, *vbo, *ibo;   /* vbo: GK_MESH_ATTRIBS per mesh (pos, normal, uv, colour, tangent) */
     GLsizei *index_count;
     int n_textures;
     GLuint *tex;
@@ -38,6 +39,7 @@ enum {
     GK_MAT_SPEC_TEX = 16,       /* KHR_materials_specular specularTexture (A) */
     GK_MAT_SPEC_COLOR_TEX = 32, /* KHR_materials_specular specularColorTexture (RGB) */
     GK_MAT_EMISSIVE_TEX = 64,   /* emissiveTexture (RGB) times u_emissive */
+    GK_MAT_NORMAL_TEX = 128,    /* normalTexture, tangent space, XY scaled by u_normal_scale */
 };
 
 /* The uniforms gk_scene_gpu_draw sets, by location (-1: the program has no such uniform). A pass
@@ -51,6 +53,7 @@ typedef struct gk_draw_uniforms {
        specularFactor); the shader multiplies the textures in and clamps c0 to 1. */
     GLint u_specular, u_spec_tex, u_spec_color_tex;
     GLint u_emissive_tex;                                                 /* unit 4 */
+    GLint u_normal_tex, u_normal_scale;                                   /* unit 5 */
 } gk_draw_uniforms;
 
 /* Draws every node's meshes (after gk_scene_evaluate) with the bound program: sets u_model and

@@ -82,7 +82,8 @@ bool read_materials(Loader &L, const Model &m, gk_scene *s, std::vector<int> &te
     def->specular = 1.0f;
     def->specular_color[0] = def->specular_color[1] = def->specular_color[2] = 1.0f;
     def->specular_tex = def->specular_color_tex = -1;
-    def->emissive_tex = -1;
+    def->emissive_tex = def->normal_tex = -1;
+    def->normal_scale = 1.0f;
     auto tex_ref = [&](int ti, int flag, int mi, const char *slot, int *out) {
         if (ti < 0) {
             *out = -1;
@@ -111,7 +112,8 @@ bool read_materials(Loader &L, const Model &m, gk_scene *s, std::vector<int> &te
         if (!tex_ref(pbr.baseColorTexture.index, GK_TEX_USED_AS_COLOR, mi, "base colour", &d->base_color_tex) ||
             !tex_ref(pbr.metallicRoughnessTexture.index, GK_TEX_USED_AS_DATA, mi, "metallic-roughness",
                      &d->metallic_roughness_tex) ||
-            !tex_ref(src.emissiveTexture.index, GK_TEX_USED_AS_COLOR, mi, "emissive", &d->emissive_tex))
+            !tex_ref(src.emissiveTexture.index, GK_TEX_USED_AS_COLOR, mi, "emissive", &d->emissive_tex) ||
+            !tex_ref(src.normalTexture.index, GK_TEX_USED_AS_DATA, mi, "normal", &d->normal_tex))
             return false;
         double strength = 1.0, transmission = 0.0, ior = 1.5;
         auto ext = [&](const char *name, const char *key, double *v) {
@@ -134,6 +136,9 @@ bool read_materials(Loader &L, const Model &m, gk_scene *s, std::vector<int> &te
         d->transmission = (float)transmission;
         d->ior = (float)ior;
         d->double_sided = src.doubleSided;
+        d->normal_scale = (float)src.normalTexture.scale;
+        if (!std::isfinite(d->normal_scale))
+            return L.fail("material %d ('%s'): normalTexture.scale must be finite", mi, src.name.c_str());
         if (!read_specular(L, src, mi, d, tex_ref))
             return false;
         const Value *proxy = member(gikiosk_extras(src.extras), "light_proxy");

@@ -138,6 +138,16 @@ bool read_primitive(Loader &L, const Model &m, int mi, int pi, const tinygltf::P
         if (nc != nv)
             return L.fail("mesh %d ('%s'): COLOR_0 has %zu elements, POSITION %zu", mi, mname.c_str(), nc, nv);
     }
+    int tan = attr("TANGENT");
+    if (tan >= 0) {
+        size_t nt = 0;
+        snprintf(what, sizeof what, "mesh %d TANGENT", mi);
+        out->tangents = read_floats(L, m, tan, what, TINYGLTF_TYPE_VEC4, nrm_ints, &nt);
+        if (!out->tangents)
+            return false;
+        if (nt != nv)
+            return L.fail("mesh %d ('%s'): TANGENT has %zu elements, POSITION %zu", mi, mname.c_str(), nt, nv);
+    }
     size_t ns = nv;
     View iv;
     if (p.indices >= 0) {

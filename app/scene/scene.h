@@ -50,6 +50,8 @@ typedef struct gk_material {
     float metallic_mean, roughness_mean;
     float emissive[3];        /* emissiveFactor * KHR_materials_emissive_strength, in nits */
     int emissive_tex;         /* RGB (sRGB-encoded) times emissive, -1 if none */
+    int normal_tex;           /* tangent-space normal map (RGB data), -1 if none */
+    float normal_scale;       /* normalTexture.scale: scales the map's X and Y */
     float transmission;       /* KHR_materials_transmission: 0 opaque .. 1 clear glass/water */
     float ior;                /* KHR_materials_ior, 1.5 by default */
     /* KHR_materials_specular (the dielectric lobe of brdf_spec.md): specularFactor (1 by default;
@@ -68,6 +70,8 @@ typedef struct gk_mesh {       /* one glTF primitive, triangles only, in object 
     float *normals;            /* n_vertices * 3 (generated flat if the file has none) */
     float *uvs;                /* n_vertices * 2, or NULL */
     float *colors;             /* COLOR_0, n_vertices * 4 linear RGBA (RGB files get A = 1), or NULL */
+    float *tangents;           /* TANGENT xyz + handedness w, n_vertices * 4; generated (tangents.c)
+                                  when a normal-mapped mesh has none, else NULL */
     uint32_t *indices;         /* n_triangles * 3 */
     uint32_t n_vertices, n_triangles;
     int material;              /* index into scene.materials (a default material is always there) */

@@ -39,8 +39,9 @@ static int flat_normals(gk_mesh *m)
     float *nrm = malloc((nv ? nv : 1) * 3 * sizeof(float));
     float *uv = m->uvs ? malloc((nv ? nv : 1) * 2 * sizeof(float)) : NULL;
     float *col = m->colors ? malloc((nv ? nv : 1) * 4 * sizeof(float)) : NULL;
-    if (!pos || !nrm || (m->uvs && !uv) || (m->colors && !col)) {
-        free(pos), free(nrm), free(uv), free(col);
+    float *tan = m->tangents ? malloc((nv ? nv : 1) * 4 * sizeof(float)) : NULL;
+    if (!pos || !nrm || (m->uvs && !uv) || (m->colors && !col) || (m->tangents && !tan)) {
+        free(pos), free(nrm), free(uv), free(col), free(tan);
         return -1;
     }
     for (uint32_t t = 0; t < m->n_triangles; t++) {
@@ -55,11 +56,13 @@ static int flat_normals(gk_mesh *m)
                 memcpy(uv + 2 * o, m->uvs + 2 * (size_t)tri[k], 2 * sizeof(float));
             if (col)
                 memcpy(col + 4 * o, m->colors + 4 * (size_t)tri[k], 4 * sizeof(float));
+            if (tan)
+                memcpy(tan + 4 * o, m->tangents + 4 * (size_t)tri[k], 4 * sizeof(float));
             tri[k] = (uint32_t)o;
         }
     }
-    free(m->positions), free(m->uvs), free(m->colors);
-    m->positions = pos, m->normals = nrm, m->uvs = uv, m->colors = col;
+    free(m->positions), free(m->uvs), free(m->colors), free(m->tangents);
+    m->positions = pos, m->normals = nrm, m->uvs = uv, m->colors = col, m->tangents = tan;
     m->n_vertices = (uint32_t)nv;
     return 0;
 }
@@ -76,6 +79,8 @@ int gk_scene_validate_meshes(gk_scene *s, gk_err *e)
             return gk_fail(e, GK_EINPUT, "%s: mesh %d: TEXCOORD_0 has NaN or infinite values", s->path, mi);
         if (m->colors && !all_finite(m->colors, (size_t)m->n_vertices * 4))
             return gk_fail(e, GK_EINPUT, "%s: mesh %d: COLOR_0 has NaN or infinite values", s->path, mi);
+        if (m->tangents && !all_finite(m->tangents, (size_t)m->n_vertices * 4))
+            return gk_fail(e, GK_EINPUT, "%s: mesh %d: TANGENT has NaN or infinite values", s->path, mi);
         uint32_t kept = 0;
         for (uint32_t t = 0; t < m->n_triangles; t++) {
             uint32_t *tri = m->indices + 3 * (size_t)t;
@@ -99,6 +104,18 @@ int gk_scene_validate_meshes(gk_scene *s, gk_err *e)
             if (l > 0.0f)
                 n[0] /= l, n[1] /= l, n[2] /= l;
         }
+        /* A normal map needs a tangent frame: generated when the file gives none. */
+        const gk_material *mat = m->material >= 0 && m->material < s->n_materials ? &s->materials[m->material] : NULL;
+        if (mat && mat->normal_tex >= 0 && !m->tangents && gk_mesh_generate_tangents(m) != 0)
+            return gk_fail(e, GK_ERUNTIME, "%s: mesh %d: out of memory", s->path, mi);
+        if (m->tangents) /* unit xyz, w exactly +-1 (glTF); a file's zero tangent stays zero */
+            for (uint32_t v = 0; v < m->n_vertices; v++) {
+                float *t = m->tangents + 4 * (size_t)v;
+                float l = sqrtf(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+                if (l > 0.0f)
+                    t[0] /= l, t[1] /= l, t[2] /= l;
+                t[3] = t[3] < 0.0f ? -1.0f : 1.0f;
+            }
         m->bmin = m->bmax = m->n_vertices ? vertex(m, 0) : v3(0, 0, 0);
         for (uint32_t v = 1; v < m->n_vertices; v++) {
             m->bmin = v3_min(m->bmin, vertex(m, v));

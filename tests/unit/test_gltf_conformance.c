@@ -234,6 +234,29 @@ static void metalness_comes_from_the_texture(void **state)
     gk_scene_free(s);
 }
 
+/* A normal-mapped mesh without TANGENT gets generated tangents: on the quad (u along +x, v along
+ * -y, the glTF UVs of textured_quad) T = dP/du = +x and B = (N x T) w must follow dP/dv = -y, so
+ * w = -1; a mesh without a normal map gets none. */
+static void normal_maps_get_tangents(void **state)
+{
+    (void)state;
+    gk_scene *s = load("normal-map.glb");
+    const gk_mesh *m = &s->meshes[0];
+    assert_int_equal(s->materials[0].normal_tex, 0);
+    assert_float_equal(s->materials[0].normal_scale, 1.0f, 0.0f);
+    assert_non_null(m->tangents);
+    for (uint32_t v = 0; v < m->n_vertices; v++) {
+        assert_float_equal(m->tangents[4 * v], 1.0f, 1e-5f);
+        assert_float_equal(m->tangents[4 * v + 1], 0.0f, 1e-5f);
+        assert_float_equal(m->tangents[4 * v + 2], 0.0f, 1e-5f);
+        assert_float_equal(m->tangents[4 * v + 3], -1.0f, 0.0f);
+    }
+    gk_scene_free(s);
+    s = load("texture-glb.glb");
+    assert_null(s->meshes[0].tangents);
+    gk_scene_free(s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -246,6 +269,7 @@ int main(void)
         cmocka_unit_test(required_extensions_not_read_are_refused_by_name),
         cmocka_unit_test(a_file_without_lights_gets_the_default_studio),
         cmocka_unit_test(metalness_comes_from_the_texture),
+        cmocka_unit_test(normal_maps_get_tangents),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
