@@ -1,0 +1,62 @@
+/* Links with implicit visibility (seed 001 ch. 4, research dong-001.md §2.1, §2.3): every node of
+ * the hierarchy keeps a world-aligned cube map of 6 x N x N bins, and each bin only its SHORTEST
+ * link -- the nearest element in that direction, which hides everything behind it ("a variant of
+ * omnidirectional shadow mapping per element").
+ *
+ * CreateHierarchicalLinks [doc; pseudo-code research 2.3]: link(Ri, Rj) for every pair of chart
+ * roots, recursively: when B seen from A subtends more than A's bin (A_B |n_B.ω| / r²) and B has
+ * children, link A with each child of B; likewise for A seen from B; else store (B, r) in A's bin of
+ * direction ω and (A, r) in B's bin of -ω, each side only if the bin holds no shorter link and the
+ * other element lies in front of the side's plane [ours: the acceptance is per side, research 14.3;
+ * an element behind a receiver's plane can neither light nor hide anything for it].
+ *
+ * RefineHierarchicalLinks + PushdownLinks [doc], one top-down traversal: a node inherits, per bin,
+ * the link its ancestors resolved; where it has its own link too, the shorter one wins (a shorter
+ * child link removes the ancestor's for this subtree only: the siblings keep it, "pushed to the
+ * siblings"; a shorter ancestor link removes the child's). What reaches a leaf is its receiving link
+ * list, one entry per non-empty bin.
+ *
+ * Gathering weight [ours, from eq. (4.3)/(4.5)]: a leaf x linked in bin b to node y receives
+ *     E += L_y * w,   w = max(0, n_x.ω) * min(A_y max(0, -n_y.ω) / r², Ω_b),
+ * ω and r from x to y. Eq. (4.5) takes the element's solid angle A_y cos_y / r²; eq. (4.3)
+ * integrates over the bin, so one link stands for at most its bin's solid angle Ω_b -- without the
+ * cap a near neighbour (a room's corner) outweighs the whole hemisphere. Links of weight 0 (back
+ * faces: they only hide) are dropped from the list. Ω_b = (2/N)² / (1 + u² + v²)^(3/2) at the
+ * texel's centre (research 2.3). */
+#ifndef GK_RAD_LINKS_H
+#define GK_RAD_LINKS_H
+
+#include <stdint.h>
+
+#include "rad_tree.h"
+
+typedef struct rad_links {
+    int n_face;                /* N: 6 x N x N bins per node */
+    int n_leaves;
+    uint32_t *offset;          /* n_leaves + 1: leaf i's links are [offset[i], offset[i + 1]) */
+    uint32_t *target;          /* node gathered from */
+    float *weight;             /* irradiance per unit radiance of the target (see above) */
+    /* what the passes did (for the tests and the HUD) */
+    long created;              /* bin entries stored by link() (a displaced one counts again) */
+    long displaced;            /* stored, then replaced by a shorter link in the same bin */
+    long inconsistent;         /* (node, bin) where an ancestor's and the node's links met in refinement */
+    long leaf_links;           /* entries in the leaf lists (weight > 0) */
+    long occluder_links;       /* leaf entries dropped for weight 0 (back faces) */
+    long bin_bytes;            /* the bin grid's memory (every node x 6N² x 8 bytes) */
+} rad_links;
+
+/* The gathering weight of a link (see above): ELEMENT is eq. (4.5), the element's solid angle
+ * capped at the bin's; BIN is assumption 4 taken whole (the nearest element fills its bin), w =
+ * max(0, n_x.ω) Ω_b for a front face. */
+typedef enum rad_weight { RAD_WEIGHT_ELEMENT, RAD_WEIGHT_BIN } rad_weight;
+
+/* Builds the links of t at N = n_face. GK_ERUNTIME when memory runs out. */
+int rad_links_build(rad_links *L, const rad_tree *t, int n_face, rad_weight weight, gk_err *e);
+void rad_links_free(rad_links *L);
+
+/* The cube-map bin of a direction (6 N² bins: face +x, -x, +y, -y, +z, -z, then v-major texels),
+ * and a bin's solid angle at its texel centre. */
+int rad_cube_bin(vec3 d, int n_face);
+float rad_bin_solid_angle(int bin, int n_face);
+
+#endif
