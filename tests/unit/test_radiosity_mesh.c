@@ -111,12 +111,13 @@ static void line_mesh(rad_mesh *m, int n)
     m->n_verts = n;
     m->pos = calloc((size_t)n, sizeof *m->pos);
     m->area = calloc((size_t)n, sizeof *m->area);
+    m->centre = calloc((size_t)n, sizeof *m->centre);
     m->chart = calloc((size_t)n, sizeof *m->chart);
     m->n_charts = 1;
     m->charts = calloc(1, sizeof *m->charts);
     m->charts[0] = (rad_chart){.normal = v3(0, 1, 0), .tu = v3(1, 0, 0), .tv = v3(0, 0, 1), .first_vert = 0, .n_verts = n};
     for (int i = 0; i < n; i++)
-        m->pos[i] = v3((float)i, 0, 0), m->area[i] = 1.0f;
+        m->pos[i] = m->centre[i] = v3((float)i, 0, 0), m->area[i] = 1.0f;
 }
 
 static void test_full_tree(void **state)

@@ -55,6 +55,13 @@ static void store(builder *b, int node, int bin, int other, float r)
     b->L->created++;
 }
 
+/* The area whose solid angle decides subdivision (times 1/r²): the whole area (rad_links.h). */
+static float extent(const builder *b, int node, vec3 w)
+{
+    (void)w;
+    return b->t->area[node];
+}
+
 static void link_nodes(builder *b, int a, int c)
 {
     const rad_tree *t = b->t;
@@ -66,12 +73,12 @@ static void link_nodes(builder *b, int a, int c)
     vec3 w = v3_scale(d, 1.0f / r);
     int bin_a = rad_cube_bin(w, b->n), bin_c = rad_cube_bin(v3_scale(w, -1.0f), b->n);
     int first, k;
-    if (t->area[c] * fabsf(v3_dot(t->nrm[c], w)) / r2 > b->omega[bin_a] && (k = rad_tree_children(t, c, &first)) > 0) {
+    if (extent(b, c, w) / r2 > b->omega[bin_a] && (k = rad_tree_children(t, c, &first)) > 0) {
         for (int i = first; i < first + k; i++)
             link_nodes(b, a, i);
         return;
     }
-    if (t->area[a] * fabsf(v3_dot(t->nrm[a], w)) / r2 > b->omega[bin_c] && (k = rad_tree_children(t, a, &first)) > 0) {
+    if (extent(b, a, w) / r2 > b->omega[bin_c] && (k = rad_tree_children(t, a, &first)) > 0) {
         for (int i = first; i < first + k; i++)
             link_nodes(b, i, c);
         return;
@@ -140,8 +147,16 @@ static int descend(builder *b, int node, const int32_t *in_t, const float *in_l,
             if (r2 > 1e-20f) {
                 vec3 u = v3_scale(d, 1.0f / sqrtf(r2));
                 float cx = v3_dot(n, u), cy = -v3_dot(t->nrm[y], u);
-                if (cx > 0.0f && cy > 0.0f)
-                    w = b->weight == RAD_WEIGHT_BIN ? cx * b->omega[k] : cx * fminf(t->area[y] * cy / r2, b->omega[k]);
+                if (cx > 0.0f && cy > 0.0f) {
+                    /* the element's solid angle: a disc of its area, seen at cy (exact on its axis,
+                       bounded by 2π cy however near it is) */
+                    float disc = 2.0f * (float)M_PI * cy * (1.0f - sqrtf(r2 / (r2 + t->area[y] / (float)M_PI)));
+                    switch (b->weight) {
+                    case RAD_WEIGHT_BIN: w = cx * b->omega[k]; break;
+                    case RAD_WEIGHT_ELEMENT: w = cx * t->area[y] * cy / r2; break;
+                    case RAD_WEIGHT_SPILL: w = cx * fmaxf(b->omega[k], disc); break;
+                    }
+                }
             }
             if (w > 0.0f) {
                 if (push(out, (uint32_t)y, w))

@@ -242,12 +242,12 @@ static int refine_chart(rad_mesh *m, const src_tri *t, const int *tris, int n_tr
     }
     /* Morton order of the chart's plane coordinates */
     const rad_chart *c = &m->charts[ci];
-    vec3 *uniq = calloc((size_t)nv, sizeof *uniq);
+    vec3 *uniq = calloc((size_t)nv, sizeof *uniq), *cen = calloc((size_t)nv, sizeof *cen);
     float *area = calloc((size_t)nv, sizeof *area);
     morton_ref *order = malloc(sizeof *order * (size_t)nv);
     int *rank = malloc(sizeof *rank * (size_t)nv);
-    if (!uniq || !area || !order || !rank) {
-        free(pts), free(ids), free(sub), free(uniq), free(area), free(order), free(rank);
+    if (!uniq || !cen || !area || !order || !rank) {
+        free(pts), free(ids), free(sub), free(uniq), free(cen), free(area), free(order), free(rank);
         return -1;
     }
     for (size_t i = 0; i < np; i++)
@@ -255,8 +255,11 @@ static int refine_chart(rad_mesh *m, const src_tri *t, const int *tris, int n_tr
     for (size_t k = 0; k < ns; k++) {
         vec3 a = pts[sub[3 * k]], b = pts[sub[3 * k + 1]], d = pts[sub[3 * k + 2]];
         float third = v3_len(v3_cross(v3_sub(b, a), v3_sub(d, a))) / 6.0f;
-        for (int v = 0; v < 3; v++)
+        vec3 g = v3_scale(v3_add(a, v3_add(b, d)), 1.0f / 3.0f);
+        for (int v = 0; v < 3; v++) {
             area[ids[sub[3 * k + (size_t)v]]] += third;
+            cen[ids[sub[3 * k + (size_t)v]]] = v3_add(cen[ids[sub[3 * k + (size_t)v]]], v3_scale(g, third));
+        }
     }
     float u0 = INFINITY, v0 = INFINITY, u1 = -INFINITY, v1 = -INFINITY;
     for (int i = 0; i < nv; i++) {
@@ -277,6 +280,7 @@ static int refine_chart(rad_mesh *m, const src_tri *t, const int *tris, int n_tr
         rank[i] = r;
         m->pos[first + r] = uniq[i];
         m->area[first + r] = area[i];
+        m->centre[first + r] = area[i] > 0.0f ? v3_scale(cen[i], 1.0f / area[i]) : uniq[i];
         m->chart[first + r] = ci;
     }
     for (size_t k = 0; k < ns; k++)
@@ -286,7 +290,7 @@ static int refine_chart(rad_mesh *m, const src_tri *t, const int *tris, int n_tr
     m->n_verts += nv;
     m->charts[ci].first_vert = first;
     m->charts[ci].n_verts = nv;
-    free(pts), free(ids), free(sub), free(uniq), free(area), free(order), free(rank);
+    free(pts), free(ids), free(sub), free(uniq), free(cen), free(area), free(order), free(rank);
     return 0;
 }
 
@@ -341,9 +345,10 @@ int rad_mesh_build(rad_mesh *m, const gk_scene *s, float edge, int max_verts, gk
         bucket[count[chart_of[i]] + fill[chart_of[i]]++] = i;
     m->pos = malloc(sizeof *m->pos * (size_t)max_verts);
     m->area = malloc(sizeof *m->area * (size_t)max_verts);
+    m->centre = malloc(sizeof *m->centre * (size_t)max_verts);
     m->chart = malloc(sizeof *m->chart * (size_t)max_verts);
     m->tris = malloc(sizeof *m->tris * 3 * (sub_cap + 1));
-    int rc = (!fill || !m->pos || !m->area || !m->chart || !m->tris) ? -1 : 0;
+    int rc = (!fill || !m->pos || !m->area || !m->centre || !m->chart || !m->tris) ? -1 : 0;
     for (int c = 0; c < nc && rc == 0; c++) {
         rad_chart *ch = &m->charts[c];
         vec3 nsum = v3(0, 0, 0);
@@ -370,6 +375,6 @@ int rad_mesh_build(rad_mesh *m, const gk_scene *s, float edge, int max_verts, gk
 
 void rad_mesh_free(rad_mesh *m)
 {
-    free(m->pos), free(m->area), free(m->chart), free(m->tris), free(m->charts);
+    free(m->pos), free(m->area), free(m->centre), free(m->chart), free(m->tris), free(m->charts);
     memset(m, 0, sizeof *m);
 }

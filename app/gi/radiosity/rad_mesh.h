@@ -17,7 +17,12 @@
  * which is what lets the quadtree group them four by four (rad_tree.h).
  *
  * Surfels [doc, after Bunnell 2005]: a vertex's disc has the vertex's position, the chart's normal
- * and 1/3 of the area of the refined triangles that share it (so the areas sum to the surface's). */
+ * and 1/3 of the area of the refined triangles that share it (so the areas sum to the surface's).
+ * The disc sits at the centroid of that area [ours]: inside a chart it is the vertex itself (on a
+ * regular grid exactly), on a chart's border it moves half a triangle inwards. At the vertex, a
+ * border surfel would lie in the plane of the neighbouring chart (a room's corner), which it then
+ * sees exactly edge-on: measured on the furnace (1,014 vertices, 6x8²) the border surfels gathered
+ * from 12% of their hemisphere. */
 #ifndef GK_RAD_MESH_H
 #define GK_RAD_MESH_H
 
@@ -38,6 +43,7 @@ typedef struct rad_mesh {
     int n_verts;
     vec3 *pos;              /* world, at the pose the mesh was built with */
     float *area;            /* surfel area: 1/3 of the adjacent refined triangles' area */
+    vec3 *centre;           /* the surfel's centre: the centroid of that area (see below) */
     int *chart;             /* per vertex */
     int n_tris;
     uint32_t *tris;         /* 3 per refined triangle, into the vertices */

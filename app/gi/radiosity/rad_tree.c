@@ -84,7 +84,7 @@ int rad_tree_build(rad_tree *t, const rad_mesh *m, gk_err *e)
                 t->node_level[t->off[c][l] + j] = (unsigned char)l;
             }
     for (int i = 0; i < m->n_verts; i++) {
-        t->pos[i] = m->pos[i];
+        t->pos[i] = m->centre[i];
         t->nrm[i] = m->charts[m->chart[i]].normal;
         t->area[i] = m->area[i];
     }

@@ -33,7 +33,7 @@ typedef struct rad_tree {
     int (*cnt)[RAD_MAX_LEVELS]; /* cnt[c][l]: its node count at level l */
     int *node_chart;
     unsigned char *node_level;
-    vec3 *pos, *nrm;            /* per node */
+    vec3 *pos, *nrm;            /* per node; a leaf's pos is its surfel's centre (rad_mesh.h) */
     float *area;
     int *roots;                 /* the charts' roots, n_charts of them */
 } rad_tree;
