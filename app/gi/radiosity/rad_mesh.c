@@ -366,7 +366,7 @@ int rad_mesh_build(rad_mesh *m, const gk_scene *s, float edge, int max_verts, gk
         int nv = m->n_verts;
         rad_mesh_free(m);
         if (rc == -2)
-            return gk_fail(e, GK_EINPUT, "radiosity: %s refined to edge %.3g m has more than %d vertices (%d charts so far); use a longer edge",
+            return gk_fail(e, GK_EINPUT, "radiosity: %s refined to edge %.3g m has more than %d vertices (%d in the charts before the one that went over); use a longer edge",
                            s->name, (double)edge, max_verts, nv);
         return gk_fail(e, GK_ERUNTIME, "radiosity: out of memory refining %s", s->name);
     }
