@@ -2,9 +2,9 @@
 # Hierarchical radiosity with implicit visibility (seed 001 ch. 4, issue 18) through the program
 # as a user runs it (`gikiosk run --hdr --capture` at the references' 160x120, then `gikiosk
 # compare`). Every run pins radiosity_sync=lockstep, so the captured frame has its links whatever
-# the worker thread's speed. Measured on llvmpipe (Mesa 22.3), defaults radiosity_tess=24 (cornell:
-# 3.5k vertices), radiosity_bounces=4, radiosity_weight=spill:
-#   cornell vs the full reference, rel. RMSE (none: 0.326; reference noise floor 0.017):
+# the worker thread's speed. Measured on llvmpipe (Mesa 22.3), defaults radiosity_tess=24,
+# radiosity_bounces=4, radiosity_weight=spill (cornell 2,983 vertices, furnace 2,646):
+#   cornell (2,983 surfels) vs the full reference, rel. RMSE (none: 0.326; reference noise floor 0.017):
 #     6x8² 0.0628, 6x12² 0.0403, 6x16² 0.0351 (mean ratio 1.022, 1.006, 0.999)
 #     -- the seed's Table 4.1 shape: 6x16² closest
 #   --gles 3.1 renders the same image (RMSE 0 against the 3.2 path)
@@ -12,7 +12,7 @@
 #     1: 1.491  2: 1.731  4: 1.904  8: 1.955  (mean / series - 1: -0.006 -0.011 -0.017 -0.020)
 #   light-leak, RMSE against the black ruler of the dark room (none: 0): the limitation of
 #     research 2.6 (light leaks through a wall the bins cannot resolve), falling with tessellation:
-#     radiosity_tess=16: 0.626  24: 0.562  32: 0.479
+#     radiosity_tess=16: 0.626  24: 0.562  32: 0.479  (1,716 / 3,444 / 5,882 vertices)
 #   cornell-spot-anim: the indirect light (radiosity - none, same frame) follows the moving spot:
 #     frame 59's against frame 29's, rel. RMSE 8.6 (the spot lights another part of the room).
 . tests/e2e/lib.sh

@@ -7,6 +7,10 @@
 #include "radiosity.h"
 
 #define RAD_KNOBS 5
+#define RAD_MAX_VERTS 60000     /* ~2x the richest tessellation of our scenes: a dropped-in scene
+                                   too large for it shows direct light only, with a log line */
+#define RAD_DIRECT_SAMPLES 64   /* per area light and surfel: the direct light's noise (1/8) only
+                                   seeds the bounce, which averages it over many surfels */
 #define RAD_TEX_WIDTH 1024   /* the irradiance texture's width (the 3.1 floor's size limit is 2048) */
 
 typedef struct rad_gpu {
@@ -38,6 +42,9 @@ typedef struct rad_state {
     bool logged_failure;
     rad_gpu gpu;
 } rad_state;
+
+/* rad_method.c: the worker's settings for a scene at knob values (tess: edge = diagonal / tess) */
+rad_settings rad_settings_for(const gk_scene *sc, float tess, int n_face, rad_weight weight);
 
 /* rad_gpu.c */
 void rad_gpu_take(void *state, const rad_geometry *g, uint64_t geometry_id, const float *b0); /* rad_take_fn */

@@ -16,8 +16,8 @@
  *                      sufficient for a pleasing result"); the bounce pass grows linearly, priors
  *                      assume it is half the frame
  *   radiosity_tess:    the target edge length of the load-time refinement, as a fraction of the
- *                      scene's bounding diagonal (edge = diagonal / value): cornell gets ~1.7k, 3.5k,
- *                      6k vertices (the seed: 792 leak, ~2.5k-5k are fine); the gather grows with
+ *                      scene's bounding diagonal (edge = diagonal / value): cornell gets 1,502, 2,983,
+ *                      5,135 vertices, furnace 1,734, 2,646, 5,046 (the seed: 792 leak, ~2.5k-5k are fine); the gather grows with
  *                      the links, about linearly in the vertices
  *   radiosity_weight:  the gathering weight (rad_links.h): spill (ours, default), or the seed's two
  *                      readings, element (eq. 4.5) and bin (assumption 4); a variant switch
@@ -38,10 +38,14 @@ static const gk_knob_def knobs[K_COUNT] = {
      .cost = {1.0f, 1.0f}, .default_level = 0, .fixed = true},
 };
 
-#define RAD_MAX_VERTS 60000     /* ~2x the richest tessellation of our scenes: a dropped-in scene
-                                   too large for it shows direct light only, with a log line */
-#define RAD_DIRECT_SAMPLES 64   /* per area light and surfel: the direct light's noise (1/8) only
-                                   seeds the bounce, which averages it over many surfels */
+
+rad_settings rad_settings_for(const gk_scene *sc, float tess, int n_face, rad_weight weight)
+{
+    vec3 ext = v3_sub(sc->bmax, sc->bmin);
+    float diag = v3_len(ext) > 0.0f ? v3_len(ext) : 1.0f;
+    return (rad_settings){.edge = diag / tess, .n_face = n_face, .weight = weight, .samples = RAD_DIRECT_SAMPLES,
+                          .max_verts = RAD_MAX_VERTS};
+}
 
 static void declare_knobs(gk_budget *b)
 {
@@ -127,15 +131,9 @@ static int render(void *self, const gk_gi_frame *f, gk_err *e)
     if (!s->worker || f->scene != s->source)
         if (setup_scene(s, f->scene, e))
             return -1;
-    vec3 ext = v3_sub(f->scene->bmax, f->scene->bmin);
-    float diag = v3_len(ext) > 0.0f ? v3_len(ext) : 1.0f;
-    rad_settings set = {
-        .edge = diag / gk_knob_number(b, &s->knob[K_TESS], 24.0f),
-        .n_face = (int)gk_knob_number(b, &s->knob[K_BINS], 12.0f),
-        .weight = (rad_weight)gk_knob_level(b, &s->knob[K_WEIGHT], 0),
-        .samples = RAD_DIRECT_SAMPLES,
-        .max_verts = RAD_MAX_VERTS,
-    };
+    rad_settings set = rad_settings_for(f->scene, gk_knob_number(b, &s->knob[K_TESS], 24.0f),
+                                        (int)gk_knob_number(b, &s->knob[K_BINS], 12.0f),
+                                        (rad_weight)gk_knob_level(b, &s->knob[K_WEIGHT], 0));
     bool lockstep = gk_knob_level(b, &s->knob[K_SYNC], 0) == 1;
     /* the render thread's share of the CPU work: hand over the frame's node matrices, (lockstep:
        wait), upload the newest publication if there is one */
