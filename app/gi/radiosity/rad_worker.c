@@ -5,7 +5,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "rad_direct.h"
 
@@ -35,13 +34,6 @@ struct rad_worker {
     float *pub_b0;
     rad_worker_stats st;
 };
-
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 static void fail(rad_worker *w, const char *msg)
 {
@@ -79,7 +71,6 @@ static void tick(rad_worker *w, const mat4 *worlds, const rad_settings *set)
     if (!w->geo || !same_geometry(&w->geo_set, set)) {
         /* geometry is built once per setting at the pose of its first request: the method treats
            meshes as static (rad_tree.h) */
-        double t0 = now_s();
         rad_geometry *g = calloc(1, sizeof *g);
         gk_err e = {0};
         if (!g || rad_geometry_build(g, &w->view, set->edge, set->max_verts, set->n_face, set->weight, &e)) {
@@ -105,7 +96,6 @@ static void tick(rad_worker *w, const mat4 *worlds, const rad_settings *set)
         w->direct_valid = false;
         pthread_mutex_lock(&w->mu);
         w->st.geometry_builds++;
-        w->st.last_geometry_s = now_s() - t0;
         w->st.vertices = g->mesh.n_verts, w->st.nodes = g->tree.n_nodes, w->st.charts = g->mesh.n_charts;
         w->st.leaf_links = g->links.leaf_links, w->st.links_created = g->links.created;
         w->st.bin_bytes = g->links.bin_bytes;
@@ -113,12 +103,10 @@ static void tick(rad_worker *w, const mat4 *worlds, const rad_settings *set)
     }
     if (!old && !moved && w->direct_valid && w->direct_set.samples == set->samples)
         return; /* nothing new to publish */
-    double t0 = now_s();
     rad_direct_irradiance(&w->rs, &w->geo->tree, set->samples, 0, w->geo->tree.n_leaves, w->e_direct);
     rad_initial_radiance(w->geo, w->e_direct, w->work_b0);
     w->direct_valid = true;
     w->direct_set = *set;
-    double dt = now_s() - t0;
     size_t bytes = sizeof(float) * 3 * (size_t)w->geo->tree.n_nodes;
     pthread_mutex_lock(&w->mu);
     float *nb = realloc(w->pub_b0, bytes);
@@ -134,7 +122,6 @@ static void tick(rad_worker *w, const mat4 *worlds, const rad_settings *set)
         snprintf(w->st.error, sizeof w->st.error, "radiosity: out of memory publishing");
     }
     w->st.direct_updates++;
-    w->st.last_direct_s = dt;
     pthread_mutex_unlock(&w->mu);
     /* the previous geometry is no longer published (pub_geo was replaced under the lock): free it */
     if (old)

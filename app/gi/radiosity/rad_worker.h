@@ -23,8 +23,6 @@ typedef struct rad_settings {
 typedef struct rad_worker_stats {
     uint64_t ticks, submitted, publications;
     uint64_t geometry_builds, direct_updates;
-    double last_geometry_s;    /* wall time of the last geometry build (mesh + tree + links) */
-    double last_direct_s;      /* of the last direct-light update */
     int vertices, nodes, charts;
     long leaf_links, links_created, bin_bytes;
     bool failed;
