@@ -31,6 +31,13 @@ fi
 if "$BIN" scenes | grep -q 'ispm'; then
     run ispm --scenes caustic-ring --methods none,vct,vpl,ispm --sweep 'ispm_photons=1024,4096,16384,65536;ispm_trace=64,128,256'
 fi
+# Hierarchical radiosity with implicit visibility: bin resolution (the seed's Table 4.1: 6x16²
+# closest to the reference, cost rising) and bounces, each against the full reference (multi-bounce);
+# lockstep so every measured frame has its links (the worker builds them during the warm-up).
+if "$BIN" scenes | grep -q 'radiosity'; then
+    run radiosity --scenes cornell,furnace --methods radiosity --budget radiosity_sync=lockstep \
+        --sweep 'radiosity_bins=8,12,16;radiosity_bounces=1,2,4,8'
+fi
 # Choosing a method: per scene ONE chart with every method's default sweep against one ruler
 # (SCENE-1bounce.exr where it exists, else SCENE.exr), the Pareto front over all of them, each
 # point's spread (median to p95 of its frames) and the kiosk's automatic choice at 400 ms, 640x360

@@ -156,11 +156,12 @@ static int measure(bench_run *b, const char *method, const char *pins, gk_err *e
         /* Each method is judged on what it computes: none (direct light only) against the
            reference's direct component; the one-bounce GI methods (vct, vpl, ispm) against the
            one-bounce reference where the scene has one (summary C.1), else the full image;
-           lightmap, whose photons bounce until Russian roulette ends them, against the full
+           lightmap, whose photons bounce until Russian roulette ends them, and radiosity (4
+           bounces by default; its bounce sweep converges on the full image) against the full
            image. The reference column says which. */
         bool none = strcmp(method, "none") == 0 && !b->o->one_ruler;
         bool direct = none && b->reference_direct.pixels;
-        bool every_bounce = strcmp(method, "lightmap") == 0 && !b->o->one_ruler;
+        bool every_bounce = (strcmp(method, "lightmap") == 0 || strcmp(method, "radiosity") == 0) && !b->o->one_ruler;
         bool one_bounce = !none && !every_bounce && b->reference_1bounce.pixels;
         const gk_image *ref = direct ? &b->reference_direct : one_bounce ? &b->reference_1bounce : &b->reference;
         snprintf(row->reference, sizeof row->reference, "%s%s", ref->pixels ? b->scene->name : "",

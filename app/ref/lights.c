@@ -166,6 +166,13 @@ bool gk_light_sample_from(const gk_ref_scene *rs, vec3 p, gk_rng *rng, gk_light_
     return out->pdf > 0.0f;
 }
 
+bool gk_light_sample_one(const gk_ref_scene *rs, int li, vec3 p, float u1, float u2, float u3, gk_light_sample *out)
+{
+    if (li < 0 || li >= rs->n_lights)
+        return false;
+    return sample_one(rs, li, p, u1, u2, u3, out) && out->pdf > 0.0f;
+}
+
 float gk_light_pdf(const gk_ref_scene *rs, int li, int tri, vec3 p, vec3 x, vec3 d)
 {
     if (li < 0 || li >= rs->n_lights)

@@ -1,0 +1,49 @@
+/* The radiosity method's CPU side on a worker thread (seed 001 ch. 4 builds links on the CPU;
+ * research dong-001.md §2.3 steps 0-4): the render thread submits each frame's node matrices and
+ * settings and never waits; the worker runs the newest request -- (re)builds the geometry (mesh,
+ * hierarchy, links: rad_solve.h) when a setting that shapes it changed, recomputes the direct light
+ * at the surfels when a light moved (rad_direct.h) -- and publishes the initial radiance B0 of every
+ * node with the geometry it belongs to. The frame uses the last complete publication. */
+#ifndef GK_RAD_WORKER_H
+#define GK_RAD_WORKER_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "rad_solve.h"
+
+typedef struct rad_settings {
+    float edge;            /* target edge length (world units) */
+    int n_face;            /* bins: 6 x n_face² */
+    rad_weight weight;
+    int samples;           /* direct-light samples per area light and surfel */
+    int max_verts;
+} rad_settings;
+
+typedef struct rad_worker_stats {
+    uint64_t ticks, submitted, publications;
+    uint64_t geometry_builds, direct_updates;
+    int vertices, nodes, charts;
+    long leaf_links, links_created, bin_bytes;
+    bool failed;
+    char error[1024];
+} rad_worker_stats;
+
+typedef struct rad_worker rad_worker;
+
+/* scene: as loaded; read by the worker for its life (meshes, materials, lights); node matrices come
+ * with each submit. */
+rad_worker *rad_worker_create(const gk_scene *scene, gk_err *e);
+void rad_worker_destroy(rad_worker *w);
+/* Non-blocking: the frame's evaluated scene (its node matrices are copied) and settings. */
+void rad_worker_submit(rad_worker *w, const gk_scene *evaluated, const rad_settings *set);
+/* Blocks until no request is pending or running (lockstep mode, tests). */
+void rad_worker_wait(rad_worker *w);
+/* Calls fn with the newest publication when it is newer than *seen (then updates *seen): the
+ * geometry (valid during the call), whether it differs from the one of the publication last taken,
+ * and B0 (3 floats per node). Holds the worker's lock during the call. */
+typedef void (*rad_take_fn)(void *ctx, const rad_geometry *g, uint64_t geometry_id, const float *b0);
+bool rad_worker_take(rad_worker *w, uint64_t *seen, rad_take_fn fn, void *ctx);
+void rad_worker_get_stats(rad_worker *w, rad_worker_stats *out);
+
+#endif
