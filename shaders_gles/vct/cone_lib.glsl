@@ -15,7 +15,7 @@
 uniform highp sampler3D u_vox0;
 #if !ISO_MIPS
 // The six directional chains packed per axis (app/gi/vct/vct_internal.h voxp): u_voxp0 holds +X in
-// z < 1/2 and -X in z >= 1/2 of every level, u_voxp1 the Y pair, u_voxp2 the Z pair. A sample picks
+// z < 1/2 and -X, mirrored in z, in z >= 1/2 of every level, u_voxp1 the Y pair, u_voxp2 the Z pair. A sample picks
 // its half by a coordinate offset, not by choosing a sampler: one fetch per axis, also where the
 // pixels sharing a SIMD vector (or a GPU wave) trace cones whose directions differ in sign, which
 // with six samplers meant both of an axis's textures were read (llvmpipe executes both sides of a
@@ -41,9 +41,10 @@ uniform float u_footprint_clamp;
 
 #if !ISO_MIPS
 // What a cone needs of its direction for the directional samples, computed once per cone: the
-// axis weights (thesis |d|, or d^2) and the z offset of the half that holds the view its
-// direction sees (d_a < 0: the +axis view in the lower half; d_a >= 0: the -axis view above).
-struct cone_axes { vec3 w; vec3 zoff; };
+// axis weights (thesis |d|, or d^2) and where the view its direction sees lies in the packed
+// texture: texture z = zoff + zmul z, (0, 1/2) for the +axis view (cones with d_a < 0), (1, -1/2)
+// for the -axis view, stored mirrored.
+struct cone_axes { vec3 w; vec3 zoff; vec3 zmul; };
 
 cone_axes cone_axes_for(vec3 d)
 {
@@ -53,21 +54,24 @@ cone_axes cone_axes_for(vec3 d)
 #else
     a.w = abs(d);
 #endif
-    a.zoff = 0.5 * step(0.0, d);
+    a.zoff = step(0.0, d);
+    a.zmul = 0.5 - a.zoff;
     return a;
 }
 
-// sum_a w_a T_view(a)(p, lodd), lodd = level in the directional chains (map lod - 1). In z each view
-// is clamped to the half-texel border of its half at the coarser of the two levels trilinear
-// filtering reads: exactly the clamp-to-edge of a separate texture there, and at the finer level
-// a shift of less than half a coarse texel, inside the grid's empty margin.
+// sum_a w_a T_view(a)(p, lodd), lodd = level in the directional chains (map lod - 1). At z = 0 each
+// view lies at the texture's own edge (clamp-to-edge, as with separate textures). At z = 1 the two
+// views of one axis meet, mirrored, so what filtering reads across the seam is the other view of
+// the same edge voxels; z is clamped to the half-texel border of the finer of the two levels
+// trilinear filtering reads (exact there), and the coarser level then reads at most a quarter of
+// its other view's edge texel, only in the outermost half texel of the grid.
 vec4 dir_sample(vec3 p, cone_axes a, float lodd)
 {
-    float texels = u_res_f * 0.5 * exp2(-min(ceil(lodd), u_dir_levels - 1.0));  // per half, in z
-    float z = clamp(p.z, 0.5 / texels, 1.0 - 0.5 / texels) * 0.5;
-    return a.w.x * textureLod(u_voxp0, vec3(p.xy, z + a.zoff.x), lodd)
-         + a.w.y * textureLod(u_voxp1, vec3(p.xy, z + a.zoff.y), lodd)
-         + a.w.z * textureLod(u_voxp2, vec3(p.xy, z + a.zoff.z), lodd);
+    float texels = u_res_f * 0.5 * exp2(-min(floor(lodd), u_dir_levels - 1.0));  // per half, in z, finer level
+    float z = min(p.z, 1.0 - 0.5 / texels);
+    return a.w.x * textureLod(u_voxp0, vec3(p.xy, a.zoff.x + a.zmul.x * z), lodd)
+         + a.w.y * textureLod(u_voxp1, vec3(p.xy, a.zoff.y + a.zmul.y * z), lodd)
+         + a.w.z * textureLod(u_voxp2, vec3(p.xy, a.zoff.z + a.zmul.z * z), lodd);
 }
 #endif
 

@@ -68,12 +68,12 @@ _Static_assert(VCT_MAX_LIGHTS == 4, "inject_fields lists u_shadow0..3 (shaders_g
 
 /* vct/mip_aniso.comp */
 typedef struct mip_uniforms {
-    GLint u_src_zoff, u_dst_zoff;
+    GLint u_half;
     GLint u_res, u_dst_res, u_from_level0, u_dir;
 } mip_uniforms;
 static const gk_uniform_field mip_fields[] = {GK_UNIFORM(mip_uniforms, u_res), GK_UNIFORM(mip_uniforms, u_dst_res),
                                               GK_UNIFORM(mip_uniforms, u_from_level0), GK_UNIFORM(mip_uniforms, u_dir),
-                                              GK_UNIFORM(mip_uniforms, u_src_zoff), GK_UNIFORM(mip_uniforms, u_dst_zoff)};
+                                              GK_UNIFORM(mip_uniforms, u_half)};
 
 /* vct/trace.comp */
 typedef struct trace_uniforms {
@@ -260,14 +260,12 @@ int vct_pass_mips(gk_vct *v, gk_err *e)
         for (int d = 0; d < 6; d++) {
             /* view d in axis texture d / 2, in the lower (even d) or upper half of each level's depth */
             GLuint packed = v->voxp[d / 2];
-            int half = d % 2;
             if (l == 1)
                 glBindImageTexture(0, v->vox0, 0, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA16F);
             else
                 glBindImageTexture(0, packed, l - 2, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA16F);
             glBindImageTexture(1, packed, l - 1, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-            glUniform1i(u->u_src_zoff, l == 1 ? 0 : half * 2 * dst_res);
-            glUniform1i(u->u_dst_zoff, half * dst_res);
+            glUniform1i(u->u_half, d % 2);
             glUniform1i(u->u_dir, d);
             glDispatchCompute((GLuint)groups(dst_res, 4), (GLuint)groups(dst_res, 4), (GLuint)groups(dst_res, 4));
         }
