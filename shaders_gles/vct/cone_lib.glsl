@@ -23,6 +23,11 @@ uniform highp sampler3D u_vox0;
 uniform highp sampler3D u_voxp0;
 uniform highp sampler3D u_voxp1;
 uniform highp sampler3D u_voxp2;
+// The same textures through a sampler without mip filtering (vct.c level0_sampler): the samples
+// below lod 1 read only the chains' first level, and llvmpipe then filters one level, not two.
+uniform highp sampler3D u_voxp0_l0;
+uniform highp sampler3D u_voxp1_l0;
+uniform highp sampler3D u_voxp2_l0;
 uniform float u_dir_levels; // levels in each directional chain (lod 1 .. u_dir_levels of the map)
 #endif
 uniform float u_res_f;      // level-0 resolution
@@ -73,6 +78,15 @@ vec4 dir_sample(vec3 p, cone_axes a, float lodd)
          + a.w.y * textureLod(u_voxp1, vec3(p.xy, a.zoff.y + a.zmul.y * z), lodd)
          + a.w.z * textureLod(u_voxp2, vec3(p.xy, a.zoff.z + a.zmul.z * z), lodd);
 }
+
+// dir_sample at lodd = 0 (the chains' first level only).
+vec4 dir_sample_level0(vec3 p, cone_axes a)
+{
+    float z = min(p.z, 1.0 - 1.0 / u_res_f);
+    return a.w.x * textureLod(u_voxp0_l0, vec3(p.xy, a.zoff.x + a.zmul.x * z), 0.0)
+         + a.w.y * textureLod(u_voxp1_l0, vec3(p.xy, a.zoff.y + a.zmul.y * z), 0.0)
+         + a.w.z * textureLod(u_voxp2_l0, vec3(p.xy, a.zoff.z + a.zmul.z * z), 0.0);
+}
 #endif
 
 // Early termination (not in the thesis): a cone whose accumulated opacity reaches this stops; what
@@ -119,7 +133,7 @@ vec4 trace_cone(vec3 apex, vec3 d, float aperture, float max_dist, vec4 plane, o
 #if !ISO_MIPS
         if (c.lod >= 1.0) break;
         // mix(level 0, directional level 1, lod), as the thesis's quadrilinear step into the chains
-        vec4 s = (1.0 - c.lod) * textureLod(u_vox0, c.p, 0.0) + c.lod * dir_sample(c.p, ax, 0.0);
+        vec4 s = (1.0 - c.lod) * textureLod(u_vox0, c.p, 0.0) + c.lod * dir_sample_level0(c.p, ax);
 #else
         vec4 s = textureLod(u_vox0, c.p, c.lod);
 #endif

@@ -54,7 +54,7 @@ typedef struct gk_vct {
     GLuint voxp[3];
     GLuint trace_diffuse, trace_spec;
     int trace_w, trace_h, full_w, full_h;
-    GLuint nearest_sampler, vao;
+    GLuint nearest_sampler, level0_sampler, vao;
     vct_tris tris;
     unsigned long light_hash;
     gk_vct_stats stats;

@@ -78,7 +78,7 @@ static const gk_uniform_field mip_fields[] = {GK_UNIFORM(mip_uniforms, u_res), G
 /* vct/trace.comp */
 typedef struct trace_uniforms {
     gk_gbuffer_uniforms g;
-    GLint u_vox0, u_voxp[3], u_dir_levels;
+    GLint u_vox0, u_voxp[3], u_voxp_l0[3], u_dir_levels;
     GLint u_low_size, u_block, u_res, u_res_f, u_grid_origin, u_grid_size, u_step_mul, u_ao_lambda, u_max_dist,
         u_apex_offset, u_footprint_clamp, u_spec_aperture, u_n_cones, u_cone_dir, u_cone_aperture, u_cone_weight;
 } trace_uniforms;
@@ -88,6 +88,9 @@ static const gk_uniform_field trace_fields[] = {
     GK_UNIFORM_AS(trace_uniforms, u_voxp[0], "u_voxp0"),
     GK_UNIFORM_AS(trace_uniforms, u_voxp[1], "u_voxp1"),
     GK_UNIFORM_AS(trace_uniforms, u_voxp[2], "u_voxp2"),
+    GK_UNIFORM_AS(trace_uniforms, u_voxp_l0[0], "u_voxp0_l0"),
+    GK_UNIFORM_AS(trace_uniforms, u_voxp_l0[1], "u_voxp1_l0"),
+    GK_UNIFORM_AS(trace_uniforms, u_voxp_l0[2], "u_voxp2_l0"),
     GK_UNIFORM(trace_uniforms, u_dir_levels),
     GK_UNIFORM(trace_uniforms, u_low_size),
     GK_UNIFORM(trace_uniforms, u_block),
@@ -360,10 +363,12 @@ int vct_pass_trace(gk_vct *v, const gk_gi_frame *f, const vct_budget *b, gk_err 
     glUseProgram(p);
     bind_tex(u->u_vox0, 0, GL_TEXTURE_3D, v->vox0, 0);
     if (v->cur.aniso)
-        for (int a = 0; a < 3; a++)
+        for (int a = 0; a < 3; a++) {
             bind_tex(u->u_voxp[a], 1 + a, GL_TEXTURE_3D, v->voxp[a], 0);
+            bind_tex(u->u_voxp_l0[a], 4 + a, GL_TEXTURE_3D, v->voxp[a], v->level0_sampler);
+        }
     glUniform1f(u->u_dir_levels, (float)(v->levels - 1));
-    bind_gbuffer(&u->g, f, 4, v->nearest_sampler);
+    bind_gbuffer(&u->g, f, 7, v->nearest_sampler);
     glUniform2i(u->u_low_size, v->trace_w, v->trace_h);
     int block = (int)lroundf(1.0f / b->trace_scale);
     glUniform1i(u->u_block, block < 1 ? 1 : block);
@@ -391,7 +396,7 @@ int vct_pass_trace(gk_vct *v, const gk_gi_frame *f, const vct_budget *b, gk_err 
     glBindImageTexture(1, v->trace_spec, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glDispatchCompute((GLuint)groups(v->trace_w, 8), (GLuint)groups(v->trace_h, 8), 1);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-    unbind_units(4 + GK_GBUFFER_UNITS);
+    unbind_units(7 + GK_GBUFFER_UNITS);
     v->stats.trace_runs++;
     return 0;
 }
