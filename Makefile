@@ -62,7 +62,7 @@ TEST_SHADERS := $(shell find tests/shaders -type f 2>/dev/null | LC_ALL=C sort)
 TEST_SHADER_STAMP := $(BUILD)/tests/shaders/.stamp
 $(TESTLIB_OBJS): CFLAGS_ALL += -DGK_TEST_SHADERS=\"$(abspath $(BUILD))/tests/shaders\"
 
-.PHONY: all run test test-only bench calibrate references scenes ltc deps install asan fuzz clean shaders-check
+.PHONY: all run test test-only bench bench-compare calibrate references scenes ltc deps install asan fuzz clean shaders-check
 all: $(BIN)
 
 $(BUILD)/obj/%.o: %.c
@@ -167,6 +167,11 @@ asan: deps
 
 bench: deps $(BIN)
 	sh tools/bench.sh $(BIN)
+
+# This tree against an earlier commit, runs interleaved (tools/bench_compare.sh): per-pass ratios.
+# make bench-compare REV=<commit> [COMPARE_ARGS="--scene cornell --size 640x360 --runs 5"]
+bench-compare: deps $(BIN)
+	sh tools/bench_compare.sh $(BIN) "$(REV)" $(COMPARE_ARGS)
 
 # The measured model the kiosk chooses methods from: config/calibration/CLASS.csv (tools/calibrate.sh).
 calibrate: deps $(BIN)

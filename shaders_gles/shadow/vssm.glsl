@@ -103,24 +103,55 @@ highp vec2 vssm_blocker(highp vec2 tc, highp vec2 w, int layer, highp float d)
     gk_soft_box(tc, w, lo, hi);
     highp float a_all = 0.0, a_vsm = 0.0, ex = 0.0, ex2 = 0.0, a_pcf = 0.0, z_pcf = 0.0;
     int m_sub = clamp(int(u_vssm_sub.x + 0.5), 1, VSSM_M_MAX);
-    for (int j = 0; j < m_sub; j++)
-        for (int i = 0; i < m_sub; i++) {
-            ivec2 sx = vssm_split(lo.x, hi.x, i, m_sub), sy = vssm_split(lo.y, hi.y, j, m_sub);
-            if (sx.y < sx.x || sy.y < sy.x)
-                continue;
-            ivec2 slo = ivec2(sx.x, sy.x), shi = ivec2(sx.y, sy.y);
-            highp vec3 mc = vssm_moments(slo, shi, layer);
-            a_all += mc.z;
-            if (mc.x < d) {
-                a_vsm += mc.z;
-                ex += mc.x * mc.z;
-                ex2 += mc.y * mc.z;
-            } else {
-                highp vec2 pc = vssm_pcf4(slo, shi, layer, d);
-                a_pcf += 0.25 * mc.z * pc.x;
-                z_pcf += 0.25 * mc.z * pc.y;
+    // The m x m sub-boxes tile [lo, hi] (vssm_split) and share their corners: each table is read
+    // once per corner of the grid, (m + 1)^2 fetches, not 4 m^2, one row of corners at a time.
+    // Corners are clamped to the map as gk_sat_moments clamps a box (a corner left of the map reads
+    // 0, past it the last texel); a sub-box wholly outside the map has area 0 and is left out
+    // (gk_sat_moments would count the map's edge texel for it).
+    ivec2 top = ivec2(int(u_shadow_light.w) - 1);
+    highp uint pz[VSSM_M_MAX + 1], pz2[VSSM_M_MAX + 1];   // the previous row's corner sums
+    int py = 0;                                            // and its clamped y
+    for (int j = 0; j <= VSSM_M_MAX; j++) {
+        if (j > m_sub)
+            break;
+        int y = j == 0 ? lo.y - 1 : vssm_split(lo.y, hi.y, j - 1, m_sub).y;
+        int yc = clamp(y, -1, top.y);
+        int y0 = j == 0 ? 0 : vssm_split(lo.y, hi.y, j - 1, m_sub).x;   // the sub-box row's first texel
+        highp uint cz[VSSM_M_MAX + 1], cz2[VSSM_M_MAX + 1];
+        int px = 0;
+        for (int i = 0; i <= VSSM_M_MAX; i++) {
+            if (i > m_sub)
+                break;
+            int x = i == 0 ? lo.x - 1 : vssm_split(lo.x, hi.x, i - 1, m_sub).y;
+            int xc = clamp(x, -1, top.x);
+            bool inside = xc >= 0 && yc >= 0;
+            cz[i] = inside ? texelFetch(u_vssm_sat_z, ivec3(xc, yc, layer), 0).r : 0u;
+            cz2[i] = inside ? texelFetch(u_vssm_sat_z2, ivec3(xc, yc, layer), 0).r : 0u;
+            if (i > 0 && j > 0) {
+                highp float area = float((xc - px) * (yc - py));
+                if (area > 0.0) {
+                    highp uint s1 = cz[i] - cz[i - 1] - pz[i] + pz[i - 1];
+                    highp uint s2 = cz2[i] - cz2[i - 1] - pz2[i] + pz2[i - 1];
+                    highp vec2 mc = vec2(float(s1), float(s2)) * (u_vssm.x / area);
+                    a_all += area;
+                    if (mc.x < d) {
+                        a_vsm += area;
+                        ex += mc.x * area;
+                        ex2 += mc.y * area;
+                    } else {
+                        ivec2 slo = ivec2(vssm_split(lo.x, hi.x, i - 1, m_sub).x, y0);
+                        highp vec2 pc = vssm_pcf4(slo, ivec2(x, y), layer, d);
+                        a_pcf += 0.25 * area * pc.x;
+                        z_pcf += 0.25 * area * pc.y;
+                    }
+                }
             }
+            px = xc;
         }
+        pz = cz;
+        pz2 = cz2;
+        py = yc;
+    }
     highp float a1 = 0.0, d1 = 0.0;
     if (a_vsm > 0.0) {
         highp vec2 mv = vec2(ex, ex2) / a_vsm;

@@ -2,7 +2,8 @@
 // summary A.2.7 fixed; the loop is summary A.3). Voxel space [0,1]^3, premultiplied RGBA.
 //   ISO_MIPS=1:  one texture with an isotropic mip chain (glGenerateMipmap), the cheapest level.
 //   ISO_MIPS=0:  level 0 isotropic (u_vox0, thesis §4: anisotropic level 0 ripples) plus six
-//                directional textures +X,-X,+Y,-Y,+Z,-Z holding levels 1.. (u_voxd0..5 level k = lod k+1).
+//                directional views +X,-X,+Y,-Y,+Z,-Z holding levels 1.., packed two per axis texture
+//                (u_voxp0..2 level k = lod k+1; 3 fetches a sample above lod 1, 4 below).
 //   AXIS_WEIGHT_SQ=0: thesis sample = sum |d_axis| T_face(axis)  (over-weights diagonals up to 1.73x)
 //   AXIS_WEIGHT_SQ=1: weights d_axis^2 (sum 1)  -- not in the thesis, calibrated option.
 //   OPACITY_CORRECTION=1: alpha' = 1 - (1 - alpha)^(step / voxel(lod)) -- not in the thesis.
@@ -13,12 +14,21 @@
 #endif
 uniform highp sampler3D u_vox0;
 #if !ISO_MIPS
-uniform highp sampler3D u_voxd0;
-uniform highp sampler3D u_voxd1;
-uniform highp sampler3D u_voxd2;
-uniform highp sampler3D u_voxd3;
-uniform highp sampler3D u_voxd4;
-uniform highp sampler3D u_voxd5;
+// The six directional chains packed per axis (app/gi/vct/vct_internal.h voxp): u_voxp0 holds +X in
+// z < 1/2 and -X, mirrored in z, in z >= 1/2 of every level, u_voxp1 the Y pair, u_voxp2 the Z pair. A sample picks
+// its half by a coordinate offset, not by choosing a sampler: one fetch per axis, also where the
+// pixels sharing a SIMD vector (or a GPU wave) trace cones whose directions differ in sign, which
+// with six samplers meant both of an axis's textures were read (llvmpipe executes both sides of a
+// branch under a mask, fetches included).
+uniform highp sampler3D u_voxp0;
+uniform highp sampler3D u_voxp1;
+uniform highp sampler3D u_voxp2;
+// The same textures through a sampler without mip filtering (vct.c level0_sampler): the samples
+// below lod 1 read only the chains' first level, and llvmpipe then filters one level, not two.
+uniform highp sampler3D u_voxp0_l0;
+uniform highp sampler3D u_voxp1_l0;
+uniform highp sampler3D u_voxp2_l0;
+uniform float u_dir_levels; // levels in each directional chain (lod 1 .. u_dir_levels of the map)
 #endif
 uniform float u_res_f;      // level-0 resolution
 uniform float u_step_mul;   // step = max(diameter * u_step_mul, 1 voxel): 1 = text/Alg. 1, 0.5 = code
@@ -35,29 +45,69 @@ uniform float u_ao_lambda;  // AO distance falloff (thesis code: 725, d in voxel
 uniform float u_footprint_clamp;
 
 #if !ISO_MIPS
-vec4 dir_sample(vec3 p, vec3 d, float lod)   // constant sampler indices only (GLSL ES rule)
+// What a cone needs of its direction for the directional samples, computed once per cone: the
+// axis weights (thesis |d|, or d^2) and where the view its direction sees lies in the packed
+// texture: texture z = zoff + zmul z, (0, 1/2) for the +axis view (cones with d_a < 0), (1, -1/2)
+// for the -axis view, stored mirrored.
+struct cone_axes { vec3 w; vec3 zoff; vec3 zmul; };
+
+cone_axes cone_axes_for(vec3 d)
 {
+    cone_axes a;
 #if AXIS_WEIGHT_SQ
-    vec3 w = d * d;
+    a.w = d * d;
 #else
-    vec3 w = abs(d);
+    a.w = abs(d);
 #endif
-    vec4 sx = d.x < 0.0 ? textureLod(u_voxd0, p, lod) : textureLod(u_voxd1, p, lod);
-    vec4 sy = d.y < 0.0 ? textureLod(u_voxd2, p, lod) : textureLod(u_voxd3, p, lod);
-    vec4 sz = d.z < 0.0 ? textureLod(u_voxd4, p, lod) : textureLod(u_voxd5, p, lod);
-    return w.x * sx + w.y * sy + w.z * sz;
+    a.zoff = step(0.0, d);
+    a.zmul = 0.5 - a.zoff;
+    return a;
+}
+
+// sum_a w_a T_view(a)(p, lodd), lodd = level in the directional chains (map lod - 1). At z = 0 each
+// view lies at the texture's own edge (clamp-to-edge, as with separate textures). At z = 1 the two
+// views of one axis meet, mirrored, so what filtering reads across the seam is the other view of
+// the same edge voxels; z is clamped to the half-texel border of the finer of the two levels
+// trilinear filtering reads (exact there), and the coarser level then reads at most a quarter of
+// its other view's edge texel, only in the outermost half texel of the grid.
+vec4 dir_sample(vec3 p, cone_axes a, float lodd)
+{
+    float texels = u_res_f * 0.5 * exp2(-min(floor(lodd), u_dir_levels - 1.0));  // per half, in z, finer level
+    float z = min(p.z, 1.0 - 0.5 / texels);
+    return a.w.x * textureLod(u_voxp0, vec3(p.xy, a.zoff.x + a.zmul.x * z), lodd)
+         + a.w.y * textureLod(u_voxp1, vec3(p.xy, a.zoff.y + a.zmul.y * z), lodd)
+         + a.w.z * textureLod(u_voxp2, vec3(p.xy, a.zoff.z + a.zmul.z * z), lodd);
+}
+
+// dir_sample at lodd = 0 (the chains' first level only).
+vec4 dir_sample_level0(vec3 p, cone_axes a)
+{
+    float z = min(p.z, 1.0 - 1.0 / u_res_f);
+    return a.w.x * textureLod(u_voxp0_l0, vec3(p.xy, a.zoff.x + a.zmul.x * z), 0.0)
+         + a.w.y * textureLod(u_voxp1_l0, vec3(p.xy, a.zoff.y + a.zmul.y * z), 0.0)
+         + a.w.z * textureLod(u_voxp2_l0, vec3(p.xy, a.zoff.z + a.zmul.z * z), 0.0);
 }
 #endif
 
-vec4 vox_sample(vec3 p, vec3 d, float lod)
+// Early termination (not in the thesis): a cone whose accumulated opacity reaches this stops; what
+// it no longer adds is at most (1 - CONE_OPAQUE) of the radiance behind, below the 16-bit targets'
+// and the references' noise on the Cornell box.
+#define CONE_OPAQUE 0.99
+
+// One cone sample's place: position, and the sample diameter (footprint clamp) -> lod.
+struct cone_pos { vec3 p; float ds; float lod; bool ended; };
+
+cone_pos cone_at(vec3 apex, vec3 d, float dst, float diam, float aperture, float max_dist, vec4 plane, float acc_a)
 {
-#if ISO_MIPS
-    return textureLod(u_vox0, p, lod);
-#else
-    if (lod <= 0.0) return textureLod(u_vox0, p, 0.0);
-    if (lod < 1.0) return mix(textureLod(u_vox0, p, 0.0), dir_sample(p, d, 0.0), lod);
-    return dir_sample(p, d, lod - 1.0);
-#endif
+    cone_pos c;
+    c.p = apex + d * dst;
+    // thesis code: only cones narrower than 0.3 stop at the volume border
+    c.ended = acc_a >= CONE_OPAQUE || dst > max_dist ||
+              ((CLIP_CONES != 0 || aperture < 0.3) && (any(lessThan(c.p, vec3(0.0))) || any(greaterThan(c.p, vec3(1.0)))));
+    c.ds = diam;
+    if (u_footprint_clamp > 0.0) c.ds = min(c.ds, u_footprint_clamp * max(dot(plane.xyz, c.p) + plane.w, 0.0));
+    c.lod = max(log2(c.ds * u_res_f), 0.0);
+    return c;
 }
 
 // plane: the receiver's tangent plane (xyz normal, w offset) in voxel space, for the footprint clamp.
@@ -68,18 +118,28 @@ vec4 trace_cone(vec3 apex, vec3 d, float aperture, float max_dist, vec4 plane, o
     float vs = 1.0 / u_res_f, dst = 0.0, diam = 0.0, ao_acc = 0.0;
     vec4 acc = vec4(0.0);
     steps = 0;
+#if !ISO_MIPS
+    cone_axes ax = cone_axes_for(d);
+#endif
+    // The sample diameter never shrinks along a cone (the cone widens, and its height above the
+    // receiver's plane grows: every cone leaves the hemisphere's base), so the samples below lod 1,
+    // which blend the isotropic level 0 with the directional level 1 (4 fetches), all come first:
+    // phase 0 takes them, phase 1 the rest with 3 fetches and no blend. Two loops, not a branch in
+    // one, since a SIMD machine pays for both sides of a branch its lanes disagree on.
+    bool ended = false;
     for (int it = 0; it < 4096; it++) {
-        if (acc.a >= 1.0 || dst > max_dist) break;
-        vec3 p = apex + d * dst;
-        // thesis code: only cones narrower than 0.3 stop at the volume border
-        if ((CLIP_CONES != 0 || aperture < 0.3) && (any(lessThan(p, vec3(0.0))) || any(greaterThan(p, vec3(1.0))))) break;
-        float ds = diam;
-        if (u_footprint_clamp > 0.0) ds = min(ds, u_footprint_clamp * max(dot(plane.xyz, p) + plane.w, 0.0));
-        float lod = max(log2(ds * u_res_f), 0.0);
-        vec4 s = vox_sample(p, d, lod);
-        float step_len = max(ds * u_step_mul, vs);
+        cone_pos c = cone_at(apex, d, dst, diam, aperture, max_dist, plane, acc.a);
+        if (c.ended) { ended = true; break; }
+#if !ISO_MIPS
+        if (c.lod >= 1.0) break;
+        // mix(level 0, directional level 1, lod), as the thesis's quadrilinear step into the chains
+        vec4 s = (1.0 - c.lod) * textureLod(u_vox0, c.p, 0.0) + c.lod * dir_sample_level0(c.p, ax);
+#else
+        vec4 s = textureLod(u_vox0, c.p, c.lod);
+#endif
+        float step_len = max(c.ds * u_step_mul, vs);
 #if OPACITY_CORRECTION
-        float a_c = 1.0 - pow(max(1.0 - s.a, 0.0), step_len / (exp2(lod) * vs));
+        float a_c = 1.0 - pow(max(1.0 - s.a, 0.0), step_len / (exp2(c.lod) * vs));
         s = s.a > 1e-6 ? s * (a_c / s.a) : vec4(0.0);
 #endif
         acc += (1.0 - acc.a) * s;
@@ -88,6 +148,24 @@ vec4 trace_cone(vec3 apex, vec3 d, float aperture, float max_dist, vec4 plane, o
         diam = dst * aperture;
         steps++;
     }
+#if !ISO_MIPS
+    for (int it = 0; it < 4096; it++) {
+        if (ended) break;
+        cone_pos c = cone_at(apex, d, dst, diam, aperture, max_dist, plane, acc.a);
+        if (c.ended) break;
+        vec4 s = dir_sample(c.p, ax, c.lod - 1.0);
+        float step_len = max(c.ds * u_step_mul, vs);
+#if OPACITY_CORRECTION
+        float a_c = 1.0 - pow(max(1.0 - s.a, 0.0), step_len / (exp2(c.lod) * vs));
+        s = s.a > 1e-6 ? s * (a_c / s.a) : vec4(0.0);
+#endif
+        acc += (1.0 - acc.a) * s;
+        ao_acc += (1.0 - ao_acc) * s.a / (1.0 + dst * u_ao_lambda);
+        dst += step_len;
+        diam = dst * aperture;
+        steps++;
+    }
+#endif
     ao = ao_acc;
     return acc;
 }

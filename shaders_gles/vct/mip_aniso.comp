@@ -21,6 +21,14 @@ layout(binding = 1, rgba16f) writeonly uniform highp image3D u_dst;
 layout(std430, binding = 1) readonly buffer Scratch { uint s[]; };
 uniform int u_dir;
 uniform int u_dst_res;
+// The directional chains are packed two views per axis texture (vct_internal.h voxp): views +X, +Y,
+// +Z in the lower half of each level's depth, views -X, -Y, -Z in the upper half mirrored in z, so
+// the two halves meet at the grid's z = 1 edge in both (see dir_sample in vct/cone_lib.glsl).
+uniform int u_half;
+ivec3 packed_at(ivec3 c, int n)   // voxel c of a level with n voxels a side -> its texel
+{
+    return u_half == 0 ? c : ivec3(c.xy, 2 * n - 1 - c.z);
+}
 uniform bool u_from_level0;
 vec4 over(vec4 f, vec4 b) { return f + (1.0 - f.a) * b; }
 
@@ -32,7 +40,7 @@ vec3 view_dir(int dir)   // where the viewer of this view stands
 
 vec4 fetch(ivec3 c)
 {
-    vec4 v = imageLoad(u_src, c);
+    vec4 v = imageLoad(u_src, u_from_level0 ? c : packed_at(c, 2 * u_dst_res));
 #if DIRECTIONAL_INJECTION
     if (u_from_level0 && v.a > 0.0) {
         int i = vox_index(c), N = vox_count();
@@ -66,5 +74,5 @@ void main()
             vec4 lo = fetch(a), hi = fetch(a + step_ax);
             acc += pos ? over(hi, lo) : over(lo, hi);
         }
-    imageStore(u_dst, d, acc * 0.25);
+    imageStore(u_dst, packed_at(d, u_dst_res), acc * 0.25);
 }

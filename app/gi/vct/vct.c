@@ -104,6 +104,14 @@ static void *vct_create(const gk_gi_context *ctx, gk_err *e)
     glSamplerParameteri(v->nearest_sampler, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glSamplerParameteri(v->nearest_sampler, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     glSamplerParameteri(v->nearest_sampler, GL_TEXTURE_COMPARE_MODE, GL_NONE);
+    /* the packed directional chains' level 0 alone, for the trace's samples below lod 1: a sampler
+       without mip filtering lets llvmpipe read one level (8 texels) instead of two at weight 0 */
+    glGenSamplers(1, &v->level0_sampler);
+    glSamplerParameteri(v->level0_sampler, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glSamplerParameteri(v->level0_sampler, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glSamplerParameteri(v->level0_sampler, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glSamplerParameteri(v->level0_sampler, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glSamplerParameteri(v->level0_sampler, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
     glGenVertexArrays(1, &v->vao);
     if (glGetError() != GL_NO_ERROR) {
         gk_fail(e, GK_ERUNTIME, "vct: creating GL objects failed (is a GLES 3.1 context current?)");
@@ -326,6 +334,7 @@ static void vct_destroy(void *self)
     if (v->trace_spec)
         glDeleteTextures(1, &v->trace_spec);
     glDeleteSamplers(1, &v->nearest_sampler);
+    glDeleteSamplers(1, &v->level0_sampler);
     glDeleteVertexArrays(1, &v->vao);
     vct_tris_free(&v->tris);
     free(v);

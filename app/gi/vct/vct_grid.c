@@ -78,12 +78,13 @@ void vct_grid_fit(gk_vct *v, const gk_scene *s, int res)
     v->stats.voxel_size = v->voxel;
 }
 
-static GLuint tex3d(int res, int levels)
+/* depth_mul 2: the packed directional chains (two views of one axis stacked along z) */
+static GLuint tex3d(int res, int levels, int depth_mul)
 {
     GLuint t;
     glGenTextures(1, &t);
     glBindTexture(GL_TEXTURE_3D, t);
-    glTexStorage3D(GL_TEXTURE_3D, levels, GL_RGBA16F, res, res, res);
+    glTexStorage3D(GL_TEXTURE_3D, levels, GL_RGBA16F, res, res, res * depth_mul);
     glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, levels > 1 ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR);
     glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -99,11 +100,11 @@ void vct_free_gpu(gk_vct *v)
         glDeleteBuffers(1, &v->scratch_ssbo);
     if (v->vox0)
         glDeleteTextures(1, &v->vox0);
-    for (int i = 0; i < 6; i++)
-        if (v->voxd[i])
-            glDeleteTextures(1, &v->voxd[i]);
+    for (int i = 0; i < 3; i++)
+        if (v->voxp[i])
+            glDeleteTextures(1, &v->voxp[i]);
     v->scratch_ssbo = v->vox0 = 0;
-    memset(v->voxd, 0, sizeof v->voxd);
+    memset(v->voxp, 0, sizeof v->voxp);
     v->allocated = false;
 }
 
@@ -118,10 +119,10 @@ int vct_alloc(gk_vct *v, const vct_budget *b, gk_err *e)
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, v->scratch_ssbo);
     glBufferData(GL_SHADER_STORAGE_BUFFER, (GLsizeiptr)(r3 * channels * 4), NULL, GL_DYNAMIC_COPY);
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
-    v->vox0 = tex3d(b->res, b->aniso ? 1 : chain_levels(b->res));
+    v->vox0 = tex3d(b->res, b->aniso ? 1 : chain_levels(b->res), 1);
     if (b->aniso)
-        for (int i = 0; i < 6; i++)
-            v->voxd[i] = tex3d(b->res / 2, chain_levels(b->res) - 1);
+        for (int a = 0; a < 3; a++)
+            v->voxp[a] = tex3d(b->res / 2, chain_levels(b->res) - 1, 2);
     GLenum err = glGetError();
     if (err != GL_NO_ERROR) {
         vct_free_gpu(v);

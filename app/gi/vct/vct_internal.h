@@ -47,10 +47,14 @@ typedef struct gk_vct {
     /* GL objects */
     GLuint tri_ssbo, scratch_ssbo, counter_ssbo;
     GLuint vox0;                 /* level-0 radiance (iso: with its mip chain) */
-    GLuint voxd[6];              /* directional chains from level 1 (aniso) */
+    /* The six directional chains from level 1 (aniso), packed per axis: voxp[a] is (res/2, res/2, res)
+       at its level 0, view 2a (+axis, sampled by cones with d_a < 0) in z < 1/2 of every level, view
+       2a+1 (-axis) in z >= 1/2, so a cone sample reads one texture per axis whatever the signs of its
+       direction (vct/cone_lib.glsl); each view's levels stay within its half (vct/mip_aniso.comp). */
+    GLuint voxp[3];
     GLuint trace_diffuse, trace_spec;
     int trace_w, trace_h, full_w, full_h;
-    GLuint nearest_sampler, vao;
+    GLuint nearest_sampler, level0_sampler, vao;
     vct_tris tris;
     unsigned long light_hash;
     gk_vct_stats stats;

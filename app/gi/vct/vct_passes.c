@@ -68,27 +68,30 @@ _Static_assert(VCT_MAX_LIGHTS == 4, "inject_fields lists u_shadow0..3 (shaders_g
 
 /* vct/mip_aniso.comp */
 typedef struct mip_uniforms {
+    GLint u_half;
     GLint u_res, u_dst_res, u_from_level0, u_dir;
 } mip_uniforms;
 static const gk_uniform_field mip_fields[] = {GK_UNIFORM(mip_uniforms, u_res), GK_UNIFORM(mip_uniforms, u_dst_res),
-                                              GK_UNIFORM(mip_uniforms, u_from_level0), GK_UNIFORM(mip_uniforms, u_dir)};
+                                              GK_UNIFORM(mip_uniforms, u_from_level0), GK_UNIFORM(mip_uniforms, u_dir),
+                                              GK_UNIFORM(mip_uniforms, u_half)};
 
 /* vct/trace.comp */
 typedef struct trace_uniforms {
     gk_gbuffer_uniforms g;
-    GLint u_vox0, u_voxd[6];
+    GLint u_vox0, u_voxp[3], u_voxp_l0[3], u_dir_levels;
     GLint u_low_size, u_block, u_res, u_res_f, u_grid_origin, u_grid_size, u_step_mul, u_ao_lambda, u_max_dist,
         u_apex_offset, u_footprint_clamp, u_spec_aperture, u_n_cones, u_cone_dir, u_cone_aperture, u_cone_weight;
 } trace_uniforms;
 static const gk_uniform_field trace_fields[] = {
     GK_GBUFFER_FIELDS(trace_uniforms, g),
     GK_UNIFORM(trace_uniforms, u_vox0),
-    GK_UNIFORM_AS(trace_uniforms, u_voxd[0], "u_voxd0"),
-    GK_UNIFORM_AS(trace_uniforms, u_voxd[1], "u_voxd1"),
-    GK_UNIFORM_AS(trace_uniforms, u_voxd[2], "u_voxd2"),
-    GK_UNIFORM_AS(trace_uniforms, u_voxd[3], "u_voxd3"),
-    GK_UNIFORM_AS(trace_uniforms, u_voxd[4], "u_voxd4"),
-    GK_UNIFORM_AS(trace_uniforms, u_voxd[5], "u_voxd5"),
+    GK_UNIFORM_AS(trace_uniforms, u_voxp[0], "u_voxp0"),
+    GK_UNIFORM_AS(trace_uniforms, u_voxp[1], "u_voxp1"),
+    GK_UNIFORM_AS(trace_uniforms, u_voxp[2], "u_voxp2"),
+    GK_UNIFORM_AS(trace_uniforms, u_voxp_l0[0], "u_voxp0_l0"),
+    GK_UNIFORM_AS(trace_uniforms, u_voxp_l0[1], "u_voxp1_l0"),
+    GK_UNIFORM_AS(trace_uniforms, u_voxp_l0[2], "u_voxp2_l0"),
+    GK_UNIFORM(trace_uniforms, u_dir_levels),
     GK_UNIFORM(trace_uniforms, u_low_size),
     GK_UNIFORM(trace_uniforms, u_block),
     GK_UNIFORM(trace_uniforms, u_res),
@@ -258,11 +261,14 @@ int vct_pass_mips(gk_vct *v, gk_err *e)
         glUniform1i(u->u_dst_res, dst_res);
         glUniform1i(u->u_from_level0, l == 1);
         for (int d = 0; d < 6; d++) {
+            /* view d in axis texture d / 2, in the lower (even d) or upper half of each level's depth */
+            GLuint packed = v->voxp[d / 2];
             if (l == 1)
                 glBindImageTexture(0, v->vox0, 0, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA16F);
             else
-                glBindImageTexture(0, v->voxd[d], l - 2, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA16F);
-            glBindImageTexture(1, v->voxd[d], l - 1, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+                glBindImageTexture(0, packed, l - 2, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA16F);
+            glBindImageTexture(1, packed, l - 1, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+            glUniform1i(u->u_half, d % 2);
             glUniform1i(u->u_dir, d);
             glDispatchCompute((GLuint)groups(dst_res, 4), (GLuint)groups(dst_res, 4), (GLuint)groups(dst_res, 4));
         }
@@ -357,8 +363,11 @@ int vct_pass_trace(gk_vct *v, const gk_gi_frame *f, const vct_budget *b, gk_err 
     glUseProgram(p);
     bind_tex(u->u_vox0, 0, GL_TEXTURE_3D, v->vox0, 0);
     if (v->cur.aniso)
-        for (int d = 0; d < 6; d++)
-            bind_tex(u->u_voxd[d], 1 + d, GL_TEXTURE_3D, v->voxd[d], 0);
+        for (int a = 0; a < 3; a++) {
+            bind_tex(u->u_voxp[a], 1 + a, GL_TEXTURE_3D, v->voxp[a], 0);
+            bind_tex(u->u_voxp_l0[a], 4 + a, GL_TEXTURE_3D, v->voxp[a], v->level0_sampler);
+        }
+    glUniform1f(u->u_dir_levels, (float)(v->levels - 1));
     bind_gbuffer(&u->g, f, 7, v->nearest_sampler);
     glUniform2i(u->u_low_size, v->trace_w, v->trace_h);
     int block = (int)lroundf(1.0f / b->trace_scale);
