@@ -110,7 +110,7 @@ highp float trace_inside(highp vec3 x, highp vec3 r, out int map)
 {
     map = lgv_nearest_map(x, u_n_maps, u_n_refractors);
     highp vec3 x0 = x - centre[map].xyz;
-    highp float reach = 2.0 * centre[map].w, step = reach / 16.0;
+    highp float reach = 2.0 * centre[map].w, step = reach / 16.0; // the object's diameter in 16 steps
     highp float dl = 1e-4, el = lgv_err(map, x0, r, dl);
     for (int k = 1; k <= 16; k++) {
         highp float dp = step * float(k), ep = lgv_err(map, x0, r, dp);

@@ -12,7 +12,8 @@ uniform int u_q;              // angle partition intervals (Q = 8)
 uniform int u_loops;          // angle partition loops (<= 3)
 uniform float u_itp_eps;      // stop when the ITP moves less than this (m)
 uniform int u_secant_steps;
-uniform float u_max_dist;     // a ray longer than this left the scene (m)
+uniform vec3 u_bmin;          // the scene's bounds (a little padded): a ray leaving them met nothing
+uniform vec3 u_bmax;
 uniform int u_itp_mode;       // 0 angle partition (the seed), 1 planar ITP (Fig. 4's comparison)
 layout(std430, binding = 0) readonly buffer Maps { highp vec4 centre[]; };
 
@@ -134,21 +135,21 @@ highp float lgv_err(int m, highp vec3 x0, highp vec3 r, highp float d)
 }
 
 // Secant refinement on map m from the initial distance d0 along the ray; returns the hit
-// distance, or -1 when the ray leaves the scene.
-highp float lgv_secant(int m, highp vec3 x, highp vec3 r, highp float d0, highp float d_start)
+// distance, or -1 when the ray leaves the scene (at d_max) in front of every surface.
+highp float lgv_secant(int m, highp vec3 x, highp vec3 r, highp float d0, highp float d_start, highp float d_max)
 {
     highp vec3 x0 = x - centre[m].xyz;
     highp float dl = d_start, el = lgv_err(m, x0, r, dl);
-    highp float dp = max(d0, 2.0 * d_start), ep = lgv_err(m, x0, r, dp);
+    highp float dp = clamp(d0, 2.0 * d_start, max(d_max, 2.0 * d_start)), ep = lgv_err(m, x0, r, dp);
     if (ep < 0.0) {
         // undershoot: step on (x1.5) until behind a surface
         bool hit = false;
         for (int k = 0; k < 16 && !hit; k++) {
             dl = dp;
             el = ep;
-            dp = dp * 1.5 + d_start;
-            if (dp > u_max_dist)
+            if (dp >= d_max)
                 return -1.0;
+            dp = min(dp * 1.5 + d_start, d_max);
             ep = lgv_err(m, x0, r, dp);
             hit = ep >= 0.0;
         }
@@ -183,8 +184,18 @@ highp float lgv_secant(int m, highp vec3 x, highp vec3 r, highp float d0, highp 
     return d;
 }
 
+// Distance along x + d r to where the ray leaves the scene's bounds.
+highp float lgv_exit(highp vec3 x, highp vec3 r)
+{
+    highp vec3 inv = 1.0 / (abs(r) + vec3(1e-12)) * sign(r + vec3(1e-24));
+    highp vec3 t1 = (u_bmin - x) * inv, t2 = (u_bmax - x) * inv;
+    highp vec3 tf = max(t1, t2);
+    return max(min(tf.x, min(tf.y, tf.z)), 0.0);
+}
+
 // Where ray x + d r first meets the scene by the maps: hit distance (or -1) and the map it was
-// refined on (its texel holds the surface).
+// refined on (its texel holds the surface). An ITP with nothing behind it (every impostor of the
+// fan behind the photon, or the map empty that way) falls back to where the ray leaves the bounds.
 highp float lgv_trace(highp vec3 x, highp vec3 r, out int map)
 {
     int m1 = lgv_nearest_map(x, 0, u_n_maps);
@@ -194,9 +205,12 @@ highp float lgv_trace(highp vec3 x, highp vec3 r, out int map)
         itp = lgv_itp_planar(m1, x, r);
     else
         ok = lgv_itp_angle(m1, x, r, itp);
-    if (!ok)
-        itp = x + r * u_max_dist * 0.5;
-    map = lgv_nearest_map(itp, 0, u_n_maps);
+    highp float exit_d = lgv_exit(x, r);
+    highp float d0 = ok ? dot(itp - x, r) : exit_d;
+    if (!(d0 < exit_d)) // beyond the bounds (or an empty direction at LGV_FAR)
+        d0 = exit_d;
+    map = lgv_nearest_map(x + d0 * r, 0, u_n_maps);
     highp float start = 2.0 * length(x - centre[map].xyz) * 2.0 / float(u_res) + 1e-4;
-    return lgv_secant(map, x, r, dot(itp - x, r), start);
+    highp float d = lgv_secant(map, x, r, d0, start, exit_d);
+    return d;
 }

@@ -2,9 +2,9 @@
  *
  * Placement (unspecified in the seed): a lattice of n^3 centres over the scene's bounds (n = 2, 3, 4
  * for K = 8, 27, 64; the seed's Fig. 4 uses 27), cell centres (i + 1/2) / n of each axis. A centre
- * inside a closed mesh (odd crossings of a +x ray) or closer than LGV_CENTRE_CLEARANCE_REL of the
- * spacing to a triangle is pushed out: the first free point of the six axis directions at steps of
- * 1/8 of the spacing (nearest first). Glass needs one more map per transmissive mesh (up to
+ * inside a solid (most of the six axis rays from it meet a back face first) or closer than
+ * LGV_CENTRE_CLEARANCE_REL of the spacing to a triangle is pushed out: the first free point of the
+ * six axis directions at steps of 1/8 of the spacing (nearest first), else it stays. Glass needs one more map per transmissive mesh (up to
  * LGV_MAX_REFRACTORS): a refractor map centred in its bounds, where photons inside the glass find
  * their exit (Szirmay-Kalos et al. [32]).
  *
@@ -86,52 +86,58 @@ static float tri_dist(vec3 p, vec3 a, vec3 b, vec3 c)
     return v3_len(v3_sub(p, q));
 }
 
-/* Whether the +x ray from p crosses triangle abc (Moller-Trumbore). */
-static bool crosses_x(vec3 p, vec3 a, vec3 b, vec3 c)
+/* Distance along p + t d to triangle abc (Moller-Trumbore), or -1. */
+static float ray_tri(vec3 p, vec3 d, vec3 a, vec3 b, vec3 c)
 {
-    vec3 d = v3(1, 0, 0), e1 = v3_sub(b, a), e2 = v3_sub(c, a);
+    vec3 e1 = v3_sub(b, a), e2 = v3_sub(c, a);
     vec3 h = v3_cross(d, e2);
     float det = v3_dot(e1, h);
     if (fabsf(det) < 1e-12f)
-        return false;
+        return -1;
     float inv = 1.0f / det;
     vec3 s = v3_sub(p, a);
     float u = v3_dot(s, h) * inv;
     if (u < 0 || u > 1)
-        return false;
+        return -1;
     vec3 q = v3_cross(s, e1);
     float v = v3_dot(d, q) * inv;
     if (v < 0 || u + v > 1)
-        return false;
-    return v3_dot(e2, q) * inv > 0;
+        return -1;
+    float t = v3_dot(e2, q) * inv;
+    return t > 0 ? t : -1;
 }
 
-/* Free: outside every closed mesh and at least `clear` from every triangle. */
-static bool free_point(const world_tris *w, int n_inst, vec3 p, float clear, int *parity)
+/* Free: at least `clear` from every triangle and not inside a solid: of the six axis rays from p,
+   those that meet a surface mostly meet its back face first (faces wound outwards, as the builders'
+   are: a room's walls face into it, a sphere's face out of it). */
+static bool free_point(const world_tris *w, vec3 p, float clear)
 {
-    memset(parity, 0, sizeof(int) * (size_t)n_inst);
+    static const vec3 dirs[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    float best[6] = {1e30f, 1e30f, 1e30f, 1e30f, 1e30f, 1e30f};
+    bool back[6] = {false};
     for (long t = 0; t < w->n; t++) {
         const vec3 *q = &w->p[3 * t];
         if (tri_dist(p, q[0], q[1], q[2]) < clear)
             return false;
-        if (crosses_x(p, q[0], q[1], q[2]))
-            parity[w->mesh[t]] ^= 1;
+        vec3 ng = v3_cross(v3_sub(q[1], q[0]), v3_sub(q[2], q[0]));
+        for (int k = 0; k < 6; k++) {
+            float d = ray_tri(p, dirs[k], q[0], q[1], q[2]);
+            if (d > 0 && d < best[k])
+                best[k] = d, back[k] = v3_dot(ng, dirs[k]) > 0;
+        }
     }
-    for (int i = 0; i < n_inst; i++)
-        if (parity[i])
-            return false;
-    return true;
+    int hits = 0, backs = 0;
+    for (int k = 0; k < 6; k++)
+        if (best[k] < 1e30f)
+            hits++, backs += back[k];
+    return !(hits > 0 && 2 * backs > hits);
 }
 
 int lgv_place_maps(lgv_state *s, const gk_scene *sc, int per_axis, gk_err *e)
 {
     world_tris w = {0};
-    int n_inst = 0;
-    for (int i = 0; i < sc->n_nodes; i++)
-        n_inst += sc->nodes[i].mesh_count > 0 ? sc->nodes[i].mesh_count : 0;
-    int *parity = calloc((size_t)(n_inst ? n_inst : 1), sizeof(int));
-    if (!parity || collect(sc, &w) != 0) {
-        free(parity), free(w.p), free(w.mesh);
+    if (collect(sc, &w) != 0) {
+        free(w.p), free(w.mesh);
         return gk_fail(e, GK_ERUNTIME, "lgv: out of memory placing the cube-maps");
     }
     vec3 ext = v3_sub(s->bmax, s->bmin);
@@ -146,11 +152,11 @@ int lgv_place_maps(lgv_state *s, const gk_scene *sc, int per_axis, gk_err *e)
                             s->bmin.y + ext.y * ((float)y + 0.5f) / (float)per_axis,
                             s->bmin.z + ext.z * ((float)z + 0.5f) / (float)per_axis);
                 vec3 best = c;
-                bool ok = free_point(&w, n_inst, c, clear, parity);
+                bool ok = free_point(&w, c, clear);
                 for (int k = 1; k <= 8 && !ok; k++)
                     for (int d = 0; d < 6 && !ok; d++) {
                         vec3 p = v3_add(c, v3_scale(dirs[d], spacing * (float)k / 8.0f));
-                        if (free_point(&w, n_inst, p, clear, parity))
+                        if (free_point(&w, p, clear))
                             best = p, ok = true;
                     }
                 float *o = &s->centres[4 * s->n_maps++];
@@ -180,7 +186,7 @@ int lgv_place_maps(lgv_state *s, const gk_scene *sc, int per_axis, gk_err *e)
             o[0] = c.x, o[1] = c.y, o[2] = c.z, o[3] = 0.5f * v3_len(v3_sub(hi, lo));
         }
     }
-    free(parity), free(w.p), free(w.mesh);
+    free(w.p), free(w.mesh);
     return 0;
 }
 

@@ -38,7 +38,7 @@ static void zero_buffer(GLuint b, long bytes)
 /* lgv/tracer.glsl (in trace.comp) */
 typedef struct tracer_uniforms {
     GLint u_dist, u_nrm, u_alb, u_res, u_levels, u_n_maps, u_n_refractors, u_q, u_loops, u_itp_eps, u_secant_steps,
-        u_max_dist, u_itp_mode;
+        u_itp_mode, u_bmin, u_bmax;
 } tracer_uniforms;
 static const gk_uniform_field tracer_fields[] = {
     GK_UNIFORM(tracer_uniforms, u_dist),      GK_UNIFORM(tracer_uniforms, u_nrm),
@@ -46,8 +46,9 @@ static const gk_uniform_field tracer_fields[] = {
     GK_UNIFORM(tracer_uniforms, u_levels),    GK_UNIFORM(tracer_uniforms, u_n_maps),
     GK_UNIFORM(tracer_uniforms, u_n_refractors), GK_UNIFORM(tracer_uniforms, u_q),
     GK_UNIFORM(tracer_uniforms, u_loops),     GK_UNIFORM(tracer_uniforms, u_itp_eps),
-    GK_UNIFORM(tracer_uniforms, u_secant_steps), GK_UNIFORM(tracer_uniforms, u_max_dist),
-    GK_UNIFORM(tracer_uniforms, u_itp_mode),
+    GK_UNIFORM(tracer_uniforms, u_secant_steps),
+    GK_UNIFORM(tracer_uniforms, u_itp_mode),  GK_UNIFORM(tracer_uniforms, u_bmin),
+    GK_UNIFORM(tracer_uniforms, u_bmax),
 };
 
 /* lgv/trace.comp's own */
@@ -89,8 +90,9 @@ int lgv_bind_tracer(lgv_state *s, GLuint prog, gk_err *e)
     glUniform1i(u->u_loops, LGV_LOOPS);
     glUniform1f(u->u_itp_eps, LGV_ITP_EPS_REL * s->diag);
     glUniform1i(u->u_secant_steps, LGV_SECANT_STEPS);
-    glUniform1f(u->u_max_dist, 2.0f * s->diag);
     glUniform1i(u->u_itp_mode, s->dbg.itp_mode);
+    glUniform3f(u->u_bmin, s->bmin.x, s->bmin.y, s->bmin.z);
+    glUniform3f(u->u_bmax, s->bmax.x, s->bmax.y, s->bmax.z);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, s->centres_ssbo);
     return 0;
 }
