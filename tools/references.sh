@@ -61,11 +61,12 @@ spp_for() {
         caustic-ring) echo 2048 ;;   # caustics: guided light tracing, floor ~0.012 inside the caustic mask
         furnace) echo 128 ;;
         atrium) echo 512 ;;
+        glass) echo 2048 ;;  # caustics: floor 0.0045 inside the caustic mask at 128 spp (15 s); 2048 for the indirect (0.20 at 512)
         *) echo 128 ;;
     esac
 }
 
-scenes=${*:-"cornell cornell-spot shadow-planes light-leak caustic-ring furnace atrium"}
+scenes=${*:-"cornell cornell-spot shadow-planes light-leak caustic-ring furnace atrium glass"}
 mkdir -p "$OUT_DIR"
 csv=$OUT_DIR/noise.csv
 [ -f "$csv" ] || echo "file,spp,seed,rel_rmse_floor" >"$csv"

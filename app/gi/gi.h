@@ -81,7 +81,8 @@ typedef struct gk_gi_frame {
        the uniform `u_model` (mat4) per node and `u_base_color` (vec4), `u_emissive` (vec3),
        `u_metallic_roughness` (vec2), `u_mat_flags` (int), `u_specular` (vec4, scene_gpu.h) per
        material: the program's source must declare all six (the compiler may drop the ones it does not use). Returns -1 with e filled
-       when it does not. Attribute locations: 0 position, 1 normal, 2 uv. */
+       when it does not. A program that also declares `u_glass` (vec2) gets (KHR_materials_ior's ior,
+       KHR_materials_transmission's factor) per material. Attribute locations: 0 position, 1 normal, 2 uv. */
     int (*draw_scene)(void *draw_ctx, unsigned program, gk_err *e);
     void *draw_ctx;
 } gk_gi_frame;

@@ -10,7 +10,7 @@ static const gk_gi_entry catalogue[] = {
     {"vct", true, GK_GI_NEEDS_INTERREFLECTION, "voxel cone tracing"},
     {"vpl", true, GK_GI_NEEDS_INTERREFLECTION, "virtual point lights clustered into virtual area lights"},
     {"ispm", true, GK_GI_NEEDS_CAUSTICS, "image-space photon mapping (caustics)"},
-    {"lgv", false, GK_GI_NEEDS_CAUSTICS, "photon tracing against cube maps, grid gathering"},
+    {"lgv", true, GK_GI_NEEDS_CAUSTICS, "photon tracing against cube maps, grid gathering"},
     {"lightmap", true, GK_GI_NEEDS_INTERREFLECTION, "CPU photon maps with selective updates, GPU final gather into light maps"},
     /* line-based volume caustics: a medium, and a specular caster lit by a local light */
     {"volcaustics", false, GK_GI_NEEDS_MEDIA | GK_GI_NEEDS_CAUSTICS, "volume caustics in single-scattering media"},

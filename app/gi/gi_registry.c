@@ -10,6 +10,7 @@ extern const gk_gi_method gk_gi_vpl;
 extern const gk_gi_method gk_gi_ispm;
 extern const gk_gi_method gk_gi_lightmap;
 extern const gk_gi_method gk_gi_radiosity;
+extern const gk_gi_method gk_gi_lgv;
 
 static const gk_gi_method *const registry[] = {
     &gk_gi_vct,
@@ -17,6 +18,7 @@ static const gk_gi_method *const registry[] = {
     &gk_gi_ispm,
     &gk_gi_lightmap,
     &gk_gi_radiosity,
+    &gk_gi_lgv,
     NULL, /* sentinel: keeps the array valid C even with no method registered */
 };
 

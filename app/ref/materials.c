@@ -81,7 +81,8 @@ void gk_surface_init(gk_surface *sf, const gk_ref_scene *rs, const gk_ref_tri *t
     float r = fmaxf(sf->roughness, 0.05f);
     sf->alpha = r * r; /* >= 0.0025 as the spec clamps */
     sf->transmission = clamp01(m->transmission);
-    sf->ior = m->ior > 1.0f ? m->ior : 1.5f;
+    /* ior 1 is index-matched glass (no bending, no reflection); only the extension's 0 falls back. */
+    sf->ior = m->ior >= 1.0f ? m->ior : 1.5f;
     /* KHR_materials_specular with KHR_materials_ior: the dielectric lobe's weight and F0 colour. */
     sf->spec_weight = fmaxf(m->specular, 0.0f) * tex_alpha(rs, m->specular_tex, u, v);
     vec3 spec_color = v3_mul(v3(m->specular_color[0], m->specular_color[1], m->specular_color[2]),
@@ -232,7 +233,7 @@ static vec3 sample_vndf(vec3 wo, float alpha, float u1, float u2)
     return v3_norm(v3(alpha * nh.x, alpha * nh.y, fmaxf(1e-6f, nh.z)));
 }
 
-static float fresnel_dielectric(float cos_i, float eta) /* eta = eta_t / eta_i, cos_i > 0 */
+float gk_fresnel_dielectric(float cos_i, float eta)
 {
     float sin2_t = (1.0f - cos_i * cos_i) / (eta * eta);
     if (sin2_t >= 1.0f)
@@ -256,7 +257,7 @@ bool gk_bsdf_sample_dir(const gk_surface *sf, vec3 wo, bool radiance_mode, gk_rn
         bool entering = v3_dot(wo, sf->ng) > 0.0f;
         float eta = entering ? sf->ior : 1.0f / sf->ior; /* eta_t / eta_i */
         float cos_i = fabsf(v3_dot(wo, n));
-        float fr = fresnel_dielectric(cos_i, eta);
+        float fr = gk_fresnel_dielectric(cos_i, eta);
         out->delta = true;
         out->pdf = 0.0f;
         if (u1 < fr) {

@@ -49,6 +49,11 @@ bool gk_surface_has_smooth_part(const gk_surface *sf);
  * gk_bsdf_sample would pick wi through its non-delta lobes. Reflection only. */
 vec3 gk_bsdf_eval(const gk_surface *sf, vec3 wo, vec3 wi, float *pdf);
 
+/* Unpolarised Fresnel reflectance of a smooth dielectric interface (the mean of the s and p
+ * reflectances), for cos_i > 0 on the incident side and eta = eta_t / eta_i; 1 under total internal
+ * reflection (sin_t >= 1). At normal incidence it is ((eta - 1) / (eta + 1))^2. */
+float gk_fresnel_dielectric(float cos_i, float eta);
+
 /* Samples the full BSDF. radiance_mode: eye paths (radiance is scaled by (eta_t/eta_i)^2 across
  * refraction); false for light paths (flux is not). Returns false when the path ends. */
 bool gk_bsdf_sample_dir(const gk_surface *sf, vec3 wo, bool radiance_mode, gk_rng *rng, gk_bsdf_sample *out);

@@ -11,6 +11,7 @@
 #include "../core/tonemap.h"
 #include "gl/gbuffer_bind.h"
 #include "render_gi.h"
+#include "render_glass.h"
 #include "renderer_internal.h"
 
 static int ensure_targets(gk_renderer *r, int w, int h, gk_err *e)
@@ -19,6 +20,7 @@ static int ensure_targets(gk_renderer *r, int w, int h, gk_err *e)
         return 0;
     gk_target_destroy(&r->gbuf);
     gk_target_destroy(&r->hdr);
+    gk_target_destroy(&r->glass);
     const GLenum gfmt[4] = {GL_RGBA8, GL_RGBA16F, GL_RGBA16F, GL_RGBA8};
     if (gk_target_create(&r->gbuf, "gbuffer", w, h, 4, gfmt, GL_NEAREST, true, e) != 0)
         return -1;
@@ -170,7 +172,7 @@ static int pass_gbuffer(gk_renderer *r, const mat4 *viewproj, vec3 eye, gk_err *
     glUseProgram(prog);
     glUniformMatrix4fv(u->u_viewproj, 1, GL_FALSE, viewproj->m);
     glUniform3f(u->u_eye, eye.x, eye.y, eye.z);
-    gk_scene_gpu_draw(&r->gpu, r->scene, &u->draw, GK_DRAW_MATERIALS);
+    gk_scene_gpu_draw(&r->gpu, r->scene, &u->draw, GK_DRAW_MATERIALS | GK_DRAW_SKIP_GLASS);
     return 0;
 }
 
@@ -402,6 +404,11 @@ int gk_renderer_draw(gk_renderer *r, const gk_frame_params *fp, unsigned target_
     }
     if (rc == 0 && !abandoned && gi_runs(r, fp) && !(abandoned = stop_before(fp, "gi", &last)))
         pass_gi(r, fp, &fk, &ctx);
+    if (rc == 0 && !abandoned && gk_render_glass_needed(r) && !(abandoned = stop_before(fp, "glass", &last))) {
+        gk_pass_begin(&ctx, "glass");
+        rc = gk_render_glass(r, &gb, e);
+        gk_pass_end(&ctx);
+    }
     if (rc == 0 && !abandoned && !(abandoned = stop_before(fp, "compose", &last))) {
         if (!r->exposure_known)
             measure_exposure(r); /* once per scene, outside every pass: a one-off read-back */

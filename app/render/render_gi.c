@@ -189,7 +189,11 @@ static int draw_scene_cb(void *ctx, unsigned program, gk_err *e)
     const gk_draw_uniforms *u = gk_program_uniforms(r->progs, program, GK_FIELDS(draw_scene_fields), sizeof *u, e);
     if (!u)
         return -1;
-    gk_scene_gpu_draw(&r->gpu, r->scene, u, GK_DRAW_MATERIALS | GK_DRAW_SKIP_PROXIES);
+    /* u_glass (vec2 ior, transmission) is optional (gi.h): looked up here, once per draw_scene call
+       (a method calls it once per map face when its scene changes, not per pixel or per mesh). */
+    gk_draw_uniforms du = *u;
+    du.u_glass = glGetUniformLocation(program, "u_glass");
+    gk_scene_gpu_draw(&r->gpu, r->scene, &du, GK_DRAW_MATERIALS | GK_DRAW_SKIP_PROXIES);
     return 0;
 }
 

@@ -87,6 +87,7 @@ void gk_renderer_destroy(gk_renderer *r)
         gk_scene_gpu_free(&r->gpu);
     gk_target_destroy(&r->gbuf);
     gk_target_destroy(&r->hdr);
+    gk_target_destroy(&r->glass);
     gk_gi_blend_destroy(r);
     for (int i = 0; i < GK_MAX_SHADOW_METHODS && gk_shadow_methods[i]; i++)
         if (r->shadow_state[i])

@@ -75,6 +75,7 @@ struct gk_renderer {
     gk_target gbuf;             /* RT0 albedo+metallic RGBA8, RT1 normal+roughness RGBA16F, RT2 emission RGBA16F,
                                    RT3 specular (sqrt c0, weight) RGBA8, depth 32F */
     gk_target hdr;              /* RGBA16F scene radiance at render scale */
+    gk_target glass;            /* RGBA16F: hdr (or the GI blend) with the glass drawn over it (render_glass.c) */
     int render_w, render_h;     /* render size (output * render_scale) */
 
     struct gk_render_gi *gi;    /* GI methods (render_gi.c) */

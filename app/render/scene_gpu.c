@@ -156,6 +156,7 @@ static void set_material(const gk_scene_gpu *g, const gk_scene *s, const gk_draw
     float k = r_ior * r_ior;
     glUniform4f(u->u_specular, k * m->specular_color[0], k * m->specular_color[1], k * m->specular_color[2],
                 m->specular);
+    glUniform2f(u->u_glass, m->ior, m->transmission);
 }
 
 void gk_draw_uniforms_lookup(GLuint prog, gk_draw_uniforms *u)
@@ -174,6 +175,7 @@ void gk_draw_uniforms_lookup(GLuint prog, gk_draw_uniforms *u)
     u->u_emissive_tex = glGetUniformLocation(prog, "u_emissive_tex");
     u->u_normal_tex = glGetUniformLocation(prog, "u_normal_tex");
     u->u_normal_scale = glGetUniformLocation(prog, "u_normal_scale");
+    u->u_glass = glGetUniformLocation(prog, "u_glass");
 }
 
 void gk_scene_gpu_draw(const gk_scene_gpu *g, const gk_scene *s, const gk_draw_uniforms *u, int flags)
@@ -201,6 +203,9 @@ void gk_scene_gpu_draw(const gk_scene_gpu *g, const gk_scene *s, const gk_draw_u
             const gk_mesh *mesh = &s->meshes[k];
             const gk_material *mat = &s->materials[mesh->material >= 0 && mesh->material < s->n_materials ? mesh->material : 0];
             if ((flags & GK_DRAW_SKIP_PROXIES) && mat->light_proxy)
+                continue;
+            bool glass = mat->transmission > 0.0f;
+            if (((flags & GK_DRAW_SKIP_GLASS) && glass) || ((flags & GK_DRAW_ONLY_GLASS) && !glass))
                 continue;
             if (flags & GK_DRAW_MATERIALS)
                 set_material(g, s, u, mat);

@@ -28,6 +28,8 @@ void gk_scene_gpu_free(gk_scene_gpu *g);
 enum {
     GK_DRAW_MATERIALS = 1,     /* set u_base_color, u_metallic_roughness, u_emissive, u_mat_flags, u_specular, textures */
     GK_DRAW_SKIP_PROXIES = 2,  /* leave out light_proxy meshes (shadow maps: the light stands in their place) */
+    GK_DRAW_SKIP_GLASS = 4,    /* leave out transmissive materials (the G-buffer: render_glass.c draws them) */
+    GK_DRAW_ONLY_GLASS = 8,    /* only transmissive materials (render_glass.c) */
 };
 
 /* Material flags in u_mat_flags (mirrored in shaders_gles/gbuffer/gbuffer.frag). */
@@ -54,6 +56,7 @@ typedef struct gk_draw_uniforms {
     GLint u_specular, u_spec_tex, u_spec_color_tex;
     GLint u_emissive_tex;                                                 /* unit 4 */
     GLint u_normal_tex, u_normal_scale;                                   /* unit 5 */
+    GLint u_glass;             /* (ior, transmission): KHR_materials_ior / _transmission (render_glass.c) */
 } gk_draw_uniforms;
 
 /* Draws every node's meshes (after gk_scene_evaluate) with the bound program: sets u_model and

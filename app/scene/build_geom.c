@@ -214,3 +214,45 @@ int gkb_camera_node(gkw_doc *d, vec3 eye, vec3 target, double yfov, double znear
     }
     return node;
 }
+
+/* One triangle of a sphere, wound counter-clockwise seen from outside (its geometric normal points
+   away from the centre, which the tracer's dielectric takes as the glass's outside). */
+static void sphere_tri(gkw_geom *g, vec3 c, uint32_t a, uint32_t b, uint32_t d)
+{
+    vec3 pa = v3(g->pos[3 * a], g->pos[3 * a + 1], g->pos[3 * a + 2]);
+    vec3 pb = v3(g->pos[3 * b], g->pos[3 * b + 1], g->pos[3 * b + 2]);
+    vec3 pd = v3(g->pos[3 * d], g->pos[3 * d + 1], g->pos[3 * d + 2]);
+    vec3 n = v3_cross(v3_sub(pb, pa), v3_sub(pd, pa));
+    vec3 out = v3_sub(v3_scale(v3_add(v3_add(pa, pb), pd), 1.0f / 3.0f), c);
+    if (v3_dot(n, out) >= 0.0f)
+        gkb_tri(g, a, b, d);
+    else
+        gkb_tri(g, a, d, b);
+}
+
+void gkb_sphere(gkw_geom *g, vec3 c, float radius, int seg, int rings)
+{
+    uint32_t top = gkb_vertex(g, v3(c.x, c.y + radius, c.z), v3(0, 1, 0), 0.5f, 0.0f);
+    uint32_t first = g->nv;
+    for (int j = 1; j < rings; j++) {
+        float th = (float)M_PI * (float)j / (float)rings;
+        for (int i = 0; i <= seg; i++) {
+            float ph = 2.0f * (float)M_PI * (float)(i % seg) / (float)seg;
+            vec3 n = v3(sinf(th) * cosf(ph), cosf(th), sinf(th) * sinf(ph));
+            gkb_vertex(g, v3_add(c, v3_scale(n, radius)), n, (float)i / (float)seg, (float)j / (float)rings);
+        }
+    }
+    uint32_t bottom = gkb_vertex(g, v3(c.x, c.y - radius, c.z), v3(0, -1, 0), 0.5f, 1.0f);
+    uint32_t row = (uint32_t)seg + 1;
+    for (int i = 0; i < seg; i++) {
+        sphere_tri(g, c, top, first + (uint32_t)i, first + (uint32_t)i + 1);
+        uint32_t last = first + (uint32_t)(rings - 2) * row;
+        sphere_tri(g, c, bottom, last + (uint32_t)i, last + (uint32_t)i + 1);
+    }
+    for (int j = 0; j < rings - 2; j++)
+        for (int i = 0; i < seg; i++) {
+            uint32_t v00 = first + (uint32_t)j * row + (uint32_t)i, v10 = v00 + 1, v01 = v00 + row, v11 = v01 + 1;
+            sphere_tri(g, c, v00, v10, v11);
+            sphere_tri(g, c, v00, v11, v01);
+        }
+}

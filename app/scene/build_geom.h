@@ -21,6 +21,9 @@ void gkb_box(gkw_geom *g, vec3 lo, vec3 hi, bool inward);
 /* Open cylinder around +Y from y0 to y1, smooth normals (outward, or inward), `seg` sides. */
 void gkb_cylinder(gkw_geom *g, vec3 base, float radius, float y0, float y1, int seg, int stacks, bool inward);
 /* Flat annulus facing up at height y between radii r0 < r1. */
+/* A closed UV sphere with smooth normals: seg segments around y, rings bands from pole to pole
+   (poles are single vertices, so no triangle is degenerate), wound outwards. */
+void gkb_sphere(gkw_geom *g, vec3 centre, float radius, int seg, int rings);
 void gkb_annulus(gkw_geom *g, vec3 centre, float y, float r0, float r1, int seg);
 
 /* The rotation that turns the node's -Z to `forward` and its +Y as close as possible to `up`. */
@@ -52,5 +55,6 @@ int gk_build_light_leak(const char *dir, gk_err *e);
 int gk_build_caustic_ring(const char *dir, gk_err *e);
 int gk_build_atrium(const char *dir, gk_err *e);
 int gk_build_furnace(const char *dir, gk_err *e);
+int gk_build_glass(const char *dir, gk_err *e);
 
 #endif

@@ -63,6 +63,45 @@ bool read_specular(Loader &L, const tinygltf::Material &src, int mi, gk_material
 }
 
 
+// One number of a material extension (`name`.`key`), when present: a non-number or a value outside
+// [lo, hi] is refused naming the material, the extension and the key.
+bool read_number_ext(Loader &L, const tinygltf::Material &src, int mi, const char *name, const char *key, double lo,
+                     double hi, const char *wanted, double *v)
+{
+    auto it = src.extensions.find(name);
+    if (it == src.extensions.end())
+        return true;
+    if (!it->second.IsObject())
+        return L.fail("material %d ('%s'): %s must be an object", mi, src.name.c_str(), name);
+    const Value *x = member(&it->second, key);
+    if (!x)
+        return true;
+    double d = x->IsNumber() ? x->GetNumberAsDouble() : NAN;
+    if (!std::isfinite(d) || d < lo || d > hi)
+        return L.fail("material %d ('%s'): %s %s must be %s", mi, src.name.c_str(), name, key, wanted);
+    *v = d;
+    return true;
+}
+
+// Glass (DESIGN §4): KHR_materials_transmission's transmissionFactor in [0, 1] (default 0) and
+// KHR_materials_ior's ior, >= 1 or exactly 0 (the extension's "no refraction, pure reflection"
+// value; default 1.5). transmissionTexture is not read (logged): glass here is uniform.
+bool read_glass(Loader &L, const tinygltf::Material &src, int mi, double *transmission, double *ior)
+{
+    if (!read_number_ext(L, src, mi, "KHR_materials_transmission", "transmissionFactor", 0.0, 1.0, "a number in [0, 1]",
+                         transmission) ||
+        !read_number_ext(L, src, mi, "KHR_materials_ior", "ior", 0.0, HUGE_VAL, "0 or a finite number >= 1", ior))
+        return false;
+    if (*ior > 0 && *ior < 1)
+        return L.fail("material %d ('%s'): KHR_materials_ior ior must be 0 or a finite number >= 1", mi,
+                      src.name.c_str());
+    auto it = src.extensions.find("KHR_materials_transmission");
+    if (it != src.extensions.end() && member(&it->second, "transmissionTexture"))
+        gk_log("%s: material %d ('%s'): transmissionTexture is ignored (transmissionFactor only)", L.path, mi,
+               src.name.c_str());
+    return true;
+}
+
 } // namespace
 
 bool read_materials(Loader &L, const Model &m, gk_scene *s, std::vector<int> &tex_usage)
@@ -116,21 +155,10 @@ bool read_materials(Loader &L, const Model &m, gk_scene *s, std::vector<int> &te
             !tex_ref(src.normalTexture.index, GK_TEX_USED_AS_DATA, mi, "normal", &d->normal_tex))
             return false;
         double strength = 1.0, transmission = 0.0, ior = 1.5;
-        auto ext = [&](const char *name, const char *key, double *v) {
-            auto it = src.extensions.find(name);
-            if (it == src.extensions.end())
-                return;
-            const Value *x = member(&it->second, key);
-            if (x && x->IsNumber())
-                *v = x->GetNumberAsDouble();
-        };
-        ext("KHR_materials_emissive_strength", "emissiveStrength", &strength);
-        ext("KHR_materials_transmission", "transmissionFactor", &transmission);
-        ext("KHR_materials_ior", "ior", &ior);
-        if (!std::isfinite(strength) || strength < 0 || !std::isfinite(transmission) || transmission < 0 ||
-            transmission > 1 || !std::isfinite(ior) || (ior != 0 && ior < 1))
-            return L.fail("material %d ('%s'): emissive strength, transmission or ior out of range", mi,
-                          src.name.c_str());
+        if (!read_number_ext(L, src, mi, "KHR_materials_emissive_strength", "emissiveStrength", 0.0, HUGE_VAL,
+                             "a finite number >= 0", &strength) ||
+            !read_glass(L, src, mi, &transmission, &ior))
+            return false;
         for (int c = 0; c < 3; c++)
             d->emissive[c] = (float)(src.emissiveFactor[(size_t)c] * strength);
         d->transmission = (float)transmission;

@@ -5,12 +5,13 @@
 
 "$GIKIOSK" scenes --dir config/scenes >"$TMP/list" 2>"$TMP/list.err"
 check "scenes lists the committed scenes (exit 0)" test $? -eq 0
-for s in cornell cornell-spot cornell-spot-anim shadow-planes light-leak caustic-ring atrium furnace; do
+for s in cornell cornell-spot cornell-spot-anim shadow-planes light-leak caustic-ring atrium furnace glass; do
     check "scenes lists $s" grep -q "^$s " "$TMP/list"
 done
 n=$(grep -c '^[a-z]' "$TMP/list")
 check "scenes lists 7 or more scenes ($n)" test "$n" -ge 7
 check "caustic-ring offers ispm" sh -c "grep '^caustic-ring ' '$TMP/list' | grep -q ispm"
+check "glass has glass and caustics" sh -c "grep '^glass ' '$TMP/list' | grep -q 'glass,caustics'"
 check "shadow-planes offers only none" sh -c "grep '^shadow-planes ' '$TMP/list' | grep -q ' none  *Dong'"
 
 expect_exit 0 "scenes --check on cornell" "$GIKIOSK" scenes --check config/scenes/cornell.gltf

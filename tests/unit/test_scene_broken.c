@@ -193,6 +193,24 @@ static void broken_files_name_the_file_and_the_defect(void **state)
         write_gltf("badspec.gltf", "t.bin", 4, 3, 36, ",\"material\":0", materials);
         expect_input_error("badspec.gltf", bad_specular[i][1]);
     }
+
+    /* Glass: KHR_materials_transmission / KHR_materials_ior out of range or malformed, refused
+       naming the material, the extension's key and the range */
+    const char *bad_glass[][2] = {
+        {"\"KHR_materials_transmission\":{\"transmissionFactor\":1.2}", "'lens'): KHR_materials_transmission transmissionFactor must be a number in [0, 1]"},
+        {"\"KHR_materials_transmission\":{\"transmissionFactor\":-0.1}", "transmissionFactor"},
+        {"\"KHR_materials_transmission\":{\"transmissionFactor\":\"clear\"}", "transmissionFactor"},
+        {"\"KHR_materials_ior\":{\"ior\":0.5}", "'lens'): KHR_materials_ior ior must be 0 or a finite number >= 1"},
+        {"\"KHR_materials_ior\":{\"ior\":-2}", "KHR_materials_ior ior"},
+        {"\"KHR_materials_ior\":{\"ior\":[1.5]}", "KHR_materials_ior ior"},
+        {"\"KHR_materials_emissive_strength\":{\"emissiveStrength\":-1}", "emissiveStrength"},
+    };
+    for (size_t i = 0; i < sizeof bad_glass / sizeof bad_glass[0]; i++) {
+        char materials[256];
+        snprintf(materials, sizeof materials, ",\"materials\":[{\"name\":\"lens\",\"extensions\":{%s}}]", bad_glass[i][0]);
+        write_gltf("badglass.gltf", "t.bin", 4, 3, 36, ",\"material\":0", materials);
+        expect_input_error("badglass.gltf", bad_glass[i][1]);
+    }
 }
 
 static void degenerate_triangles_are_dropped_and_counted(void **state)
@@ -285,6 +303,27 @@ static void specular_extension_is_read(void **state)
     gk_scene_free(s);
 }
 
+static void glass_extensions_are_read(void **state)
+{
+    (void)state;
+    write_gltf("glass.gltf", "t.bin", 4, 3, 36, ",\"material\":0",
+               ",\"materials\":[{\"extensions\":{\"KHR_materials_transmission\":{\"transmissionFactor\":0.75},"
+               "\"KHR_materials_ior\":{\"ior\":1.33}}},{\"extensions\":{\"KHR_materials_ior\":{\"ior\":0}}},"
+               "{\"name\":\"plain\"}]");
+    gk_err e = {0};
+    gk_scene *s = gk_scene_load(path_of("glass.gltf"), &e);
+    if (!s)
+        print_error("%s\n", e.msg);
+    assert_non_null(s);
+    assert_float_equal(s->materials[0].transmission, 0.75f, 1e-7f);
+    assert_float_equal(s->materials[0].ior, 1.33f, 1e-7f);
+    assert_float_equal(s->materials[1].ior, 0.0f, 0); /* the extension's special value is allowed */
+    assert_float_equal(s->materials[2].transmission, 0.0f, 0); /* defaults */
+    assert_float_equal(s->materials[2].ior, 1.5f, 0);
+    assert_true(s->features.has_transmission);
+    gk_scene_free(s);
+}
+
 static void memory_loads_read_no_files(void **state)
 {
     (void)state;
@@ -315,6 +354,7 @@ int main(void)
         cmocka_unit_test(degenerate_triangles_are_dropped_and_counted),
         cmocka_unit_test(base_colour_texture_is_decoded_to_linear),
         cmocka_unit_test(specular_extension_is_read),
+        cmocka_unit_test(glass_extensions_are_read),
         cmocka_unit_test(memory_loads_read_no_files),
     };
     return cmocka_run_group_tests(tests, setup, teardown);

@@ -41,6 +41,7 @@ static void every_scene_loads_with_its_counts(void **state)
         {"cornell", 32, 1},        {"cornell-spot", 30, 1},       {"cornell-spot-anim", 30, 1},
         {"shadow-planes", 4, 1},   {"shadow-planes-stacked", 6, 1}, {"light-leak", 24, 1},
         {"caustic-ring", 202, 1},  {"atrium", 79808, 3},          {"furnace", 192, 0},
+        {"glass", 3978, 1},
     };
     for (size_t i = 0; i < sizeof expect / sizeof expect[0]; i++) {
         gk_scene *s = load(expect[i].name);
@@ -225,7 +226,7 @@ static void triangles_face_the_way_their_normals_say(void **state)
 {
     (void)state;
     static const char *const names[] = {"cornell", "cornell-spot", "shadow-planes", "light-leak",
-                                        "caustic-ring", "atrium", "furnace"};
+                                        "caustic-ring", "atrium", "furnace", "glass"};
     for (size_t k = 0; k < sizeof names / sizeof names[0]; k++) {
         gk_scene *s = load(names[k]);
         for (int m = 0; m < s->n_meshes; m++) {

@@ -1,0 +1,39 @@
+/* The `lgv` GI method (seed 002, Fei & Wang; research vct-003-grid-photon-002.md Part B): photons
+ * traced against K distance cube-maps (angle-partition initial point + secant refinement, at most
+ * two maps per ray), gathered into a 3D light-gathering volume of 2-band SH vectors (smooth
+ * indirect light, eq. 4-7) and a screen-space grid (SSLGV) for caustic photons. The vtable is
+ * gk_gi_lgv (gi_registry.c); this header is the test and tool interface. */
+#ifndef GK_LGV_H
+#define GK_LGV_H
+
+#include <stdbool.h>
+
+#include "gi/gi.h"
+
+enum { GK_LGV_PART_LGV = 1, GK_LGV_PART_SSLGV = 2, GK_LGV_PART_ALL = 3 };
+enum { GK_LGV_ITP_ANGLE = 0, GK_LGV_ITP_PLANAR = 1 };
+
+typedef struct gk_lgv_debug {
+    int parts;         /* GK_LGV_PART_*: what the lookup adds (tests measure them apart) */
+    int itp_mode;      /* GK_LGV_ITP_ANGLE (the seed) or GK_LGV_ITP_PLANAR (Fig. 4's comparison) */
+    unsigned seed;     /* added to the frame index in the photons' hash keys */
+} gk_lgv_debug;
+
+typedef struct gk_lgv_stats {
+    unsigned rays, injected, caustic, escaped, sslgv_accepted;
+    int n_maps, n_refractors, dims[3];
+    float cell;
+} gk_lgv_stats;
+
+void gk_lgv_default_debug(gk_lgv_debug *d);
+void gk_lgv_set_debug(void *self, const gk_lgv_debug *d);
+/* Counters of the last frame (read synchronously after it). */
+const gk_lgv_stats *gk_lgv_get_stats(void *self);
+/* Traces n rays (origin, direction: 6 floats each) once against the maps of the last frame and
+ * writes where each first met the scene (hit xyz and 1, or 0 0 0 0 when it left): 4 floats each.
+ * Returns n or -1. */
+int gk_lgv_probe(void *self, const float *rays, int n, float *hits, gk_err *e);
+/* Map centres of the current scene (xyz, w) and their count (lattice first, then refractors). */
+int gk_lgv_centres(const void *self, float *out, int cap);
+
+#endif

@@ -1,0 +1,33 @@
+// One texel of a distance cube-map (lgv/common.glsl): distance from the centre, normal, base colour
+// and material code. u_glass = (ior, transmission) per material (render_gi.c's draw_scene sets it
+// when the program declares it), u_refractor = the refractor map of the mesh being drawn (-1: none).
+precision highp float;
+precision highp int;
+in vec3 v_world;
+in vec3 v_normal;
+uniform vec3 u_centre;
+uniform vec4 u_base_color;
+uniform vec2 u_metallic_roughness;
+uniform vec3 u_emissive;
+uniform int u_mat_flags;
+uniform vec4 u_specular;
+uniform vec2 u_glass;
+uniform int u_refractor;
+layout(location = 0) out highp uint o_dist;
+layout(location = 1) out mediump vec4 o_normal;
+layout(location = 2) out mediump vec4 o_albedo;
+void main()
+{
+    o_dist = floatBitsToUint(length(v_world - u_centre));
+    vec3 n = normalize(v_normal);
+    o_normal = vec4(n * 0.5 + 0.5, 1.0);
+    float code = 0.0;
+    if (u_glass.y > 0.0 && u_refractor >= 0) {
+        float q = clamp(floor((u_glass.x - 1.0) / 0.05 + 0.5), 0.0, 31.0);
+        code = 128.0 + 32.0 * float(u_refractor) + q;
+    } else if (u_metallic_roughness.x > 0.5 && u_metallic_roughness.y < 0.2) {
+        code = 1.0;
+    }
+    // u_emissive, u_mat_flags, u_specular: declared for draw_scene (gi.h), not used here
+    o_albedo = vec4(u_base_color.rgb, code / 255.0);
+}

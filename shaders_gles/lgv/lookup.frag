@@ -1,0 +1,51 @@
+// Final shading of the lgv method (seed 002 §4.2-4.3), added to the HDR image: the LGV by eq. (7),
+// L = 4 (c_p . y(-n))+ / l^2, c_p trilinear at the pixel's position moved half a cell along its
+// normal (so a surface does not read back the cell its own photons landed in first; research B.5
+// item 8), plus the SSLGV's caustics, L = 4 (c . y(-n))+ / A(p), A(p) the world area of the SSLGV
+// pixel on the surface (research B.2.7's footprint, exact for a square pixel).
+// @variant -
+precision highp float;
+#include "common/gbuffer.glsl"
+#include "lgv/common.glsl"
+in vec2 v_uv;
+uniform highp sampler3D u_vol_r;
+uniform highp sampler3D u_vol_g;
+uniform highp sampler3D u_vol_b;
+uniform highp sampler2D u_ss_r;
+uniform highp sampler2D u_ss_g;
+uniform highp sampler2D u_ss_b;
+uniform vec3 u_grid_min;
+uniform vec3 u_grid_size;     // dims * cell (m)
+uniform float u_cell;
+uniform vec2 u_ss_size;       // SSLGV pixels
+uniform vec2 u_tan_half;      // tan of the camera's half field of view, x and y
+uniform vec3 u_forward;       // camera forward (unit)
+uniform int u_parts;          // 1 LGV, 2 SSLGV, 3 both
+out vec4 o_color;
+void main()
+{
+    ivec2 px = ivec2(gl_FragCoord.xy);
+    float depth = gb_depth(px);
+    if (gb_background(depth))
+        discard;
+    vec3 x = gb_world_at(v_uv, depth);
+    vec3 n = normalize(texelFetch(u_gb_normal, px, 0).xyz);
+    vec4 yn = lgv_sh(-n);
+    vec3 c = vec3(0.0);
+    if ((u_parts & 1) != 0) {
+        vec3 uvw = (x + 0.5 * u_cell * n - u_grid_min) / u_grid_size;
+        vec3 e = vec3(max(dot(texture(u_vol_r, uvw), yn), 0.0), max(dot(texture(u_vol_g, uvw), yn), 0.0),
+                      max(dot(texture(u_vol_b, uvw), yn), 0.0));
+        c += 4.0 * e / (u_cell * u_cell);
+    }
+    if ((u_parts & 2) != 0) {
+        vec3 v = u_eye - x;
+        float z = dot(-v, u_forward);
+        float area = abs((2.0 * u_tan_half.x / u_ss_size.x) * (2.0 * u_tan_half.y / u_ss_size.y) * z * z * z /
+                         max(dot(v, n), 1e-6));
+        vec3 e = vec3(max(dot(texture(u_ss_r, v_uv), yn), 0.0), max(dot(texture(u_ss_g, v_uv), yn), 0.0),
+                      max(dot(texture(u_ss_b, v_uv), yn), 0.0));
+        c += 4.0 * e / max(area, 1e-12);
+    }
+    o_color = vec4(c, 1.0);
+}

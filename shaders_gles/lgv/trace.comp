@@ -1,0 +1,215 @@
+// Photon emission and tracing against the distance cube-maps (seed 002 passes 3-6; research B.1.2),
+// one invocation per photon of one light (lgv_trace.c dispatches each light's share of the photons).
+// Random numbers: PCG hashes of (photon index, bounce, frame), so a frame is reproducible.
+// A photon's path: light -> [glass/mirror]* -> diffuse -> ... Its hits on diffuse surfaces:
+//   the first hit after the light is direct light (the renderer's shadow-mapped direct pass has
+//     it): not stored;
+//   a hit after one or more specular events only (L S+ D) is a caustic photon: appended to the
+//     caustic list for the SSLGV (sslgv.comp);
+//   every other diffuse hit is injected into the LGV (eq. 4-5) by fixed-point atomics.
+// Then Russian roulette on the albedo, cosine scattering. Mirrors reflect (times their colour);
+// glass (code >= 128) reflects or refracts by Fresnel with its ior; inside glass the exit is found
+// on the refractor map nearest the photon (a map centred in the object, Szirmay-Kalos et al. [32]),
+// with total internal reflection keeping the photon inside.
+// u_probe = 1 (tests): no emission; each invocation traces one ray of the Probe buffer once and
+// writes where it hit (w = 1) or that it left the scene (w = 0).
+precision highp float;
+precision highp int;
+layout(local_size_x = 64) in;
+#include "lgv/common.glsl"
+#include "lgv/tracer.glsl"
+struct Caustic { highp vec4 pos; highp vec4 dir; highp vec4 power; };
+layout(std430, binding = 1) buffer Lgv { highp int lgv[]; };             // 12 ints per cell: R, G, B x 4 SH
+layout(std430, binding = 2) buffer Caustics { highp uint n_caustic; highp uint overflow; highp uint pad0;
+                                              highp uint pad1; Caustic caustic[]; };
+layout(std430, binding = 3) buffer Stats { highp uint st[]; };           // lgv_internal.h LGV_ST_*
+layout(std430, binding = 4) buffer Probe { highp vec4 probe[]; };        // (origin, dir) in, (hit, w) out
+uniform int u_probe;
+uniform int u_photons;        // this light's photons
+uniform uint u_first;         // index of its first photon among all lights' (the hash key)
+uniform uint u_frame;
+uniform int u_light_kind;     // 0 point, 1 spot, 2 rectangle
+uniform vec3 u_light_pos;
+uniform vec3 u_light_dir;
+uniform vec3 u_light_u;       // rectangle half axes (m)
+uniform vec3 u_light_v;
+uniform vec2 u_cone;          // spot: cos(outer), cos(inner)
+uniform vec3 u_power;         // photon power: the light's flux / its photons (rgb)
+uniform int u_bounces;        // longest path (surface events)
+uniform vec3 u_grid_min;      // LGV
+uniform float u_cell;
+uniform ivec3 u_dims;
+uniform float u_inject_scale; // eq. (4)'s constant with the errata fixed (lgv_internal.h)
+uniform float u_fixed;        // fixed-point units per unit of SH coefficient
+uniform int u_caustic_cap;
+
+highp uint g_rng;
+highp float rnd()
+{
+    g_rng = lgv_pcg(g_rng);
+    return float(g_rng >> 8) * (1.0 / 16777216.0);
+}
+
+highp vec3 any_perp(highp vec3 n) { return abs(n.x) < 0.9 ? normalize(cross(n, vec3(1, 0, 0))) : normalize(cross(n, vec3(0, 1, 0))); }
+
+highp vec3 cosine_dir(highp vec3 n)
+{
+    highp float u1 = rnd(), u2 = rnd();
+    highp float r = sqrt(u1), phi = 6.28318531 * u2;
+    highp vec3 t = any_perp(n), b = cross(n, t);
+    return normalize(r * cos(phi) * t + r * sin(phi) * b + sqrt(max(0.0, 1.0 - u1)) * n);
+}
+
+highp float fresnel(highp float cos_i, highp float eta) // eta = eta_t / eta_i (ref/materials.c)
+{
+    highp float s2 = (1.0 - cos_i * cos_i) / (eta * eta);
+    if (s2 >= 1.0)
+        return 1.0;
+    highp float ct = sqrt(1.0 - s2);
+    highp float rs = (cos_i - eta * ct) / (cos_i + eta * ct), rp = (eta * cos_i - ct) / (eta * cos_i + ct);
+    return 0.5 * (rs * rs + rp * rp);
+}
+
+void inject(highp vec3 x, highp vec3 theta, highp vec3 n, highp vec3 flux_fr)
+{
+    ivec3 c = ivec3(floor((x - u_grid_min) / u_cell));
+    if (any(lessThan(c, ivec3(0))) || any(greaterThanEqual(c, u_dims)))
+        return;
+    // eq. (4) I_j = k (Theta_j, n)+ Phi_p f_r; eq. (5) c += I_j y(-Theta_j)
+    highp vec3 i = u_inject_scale * max(dot(theta, n), 0.0) * flux_fr;
+    highp vec4 y = lgv_sh(-theta);
+    int base = 12 * ((c.z * u_dims.y + c.y) * u_dims.x + c.x);
+    for (int ch = 0; ch < 3; ch++)
+        for (int k = 0; k < 4; k++)
+            atomicAdd(lgv[base + 4 * ch + k], int(round(i[ch] * y[k] * u_fixed)));
+    atomicAdd(st[1], 1u);
+}
+
+void emit(out highp vec3 x, out highp vec3 d, out highp vec3 power)
+{
+    power = u_power;
+    if (u_light_kind == 2) {
+        x = u_light_pos + (2.0 * rnd() - 1.0) * u_light_u + (2.0 * rnd() - 1.0) * u_light_v;
+        d = cosine_dir(u_light_dir);
+        return;
+    }
+    x = u_light_pos;
+    highp float cmin = u_light_kind == 1 ? u_cone.x : -1.0;
+    highp float z = 1.0 - rnd() * (1.0 - cmin), phi = 6.28318531 * rnd();
+    highp float s = sqrt(max(0.0, 1.0 - z * z));
+    highp vec3 axis = u_light_kind == 1 ? u_light_dir : vec3(0, 0, 1);
+    highp vec3 t = any_perp(axis), b = cross(axis, t);
+    d = normalize(s * cos(phi) * t + s * sin(phi) * b + z * axis);
+    if (u_light_kind == 1) // the spot's smooth edge, as lights.glsl
+        power *= clamp((z - u_cone.x) / max(u_cone.y - u_cone.x, 1e-4), 0.0, 1.0);
+}
+
+// The exit of a photon inside glass at x going r: the refractor map nearest x, marched from x until
+// behind the object's surface, then secant. Returns the distance or -1.
+highp float trace_inside(highp vec3 x, highp vec3 r, out int map)
+{
+    map = lgv_nearest_map(x, u_n_maps, u_n_refractors);
+    highp vec3 x0 = x - centre[map].xyz;
+    highp float reach = 2.0 * centre[map].w, step = reach / 16.0; // the object's diameter in 16 steps
+    highp float dl = 1e-4, el = lgv_err(map, x0, r, dl);
+    for (int k = 1; k <= 16; k++) {
+        highp float dp = step * float(k), ep = lgv_err(map, x0, r, dp);
+        if (ep >= 0.0) {
+            highp float d = dp;
+            for (int s = 0; s < u_secant_steps; s++) {
+                highp float den = ep - el;
+                d = clamp(abs(den) > 1e-12 ? dl - el * (dp - dl) / den : 0.5 * (dl + dp), dl, dp);
+                highp float e = lgv_err(map, x0, r, d);
+                if (e < 0.0)
+                    dl = d, el = e;
+                else
+                    dp = d, ep = e;
+            }
+            return d;
+        }
+        dl = dp, el = ep;
+    }
+    return -1.0;
+}
+
+void main()
+{
+    uint id = gl_GlobalInvocationID.x;
+    if (u_probe == 1) {
+        if (int(id) >= u_photons)
+            return;
+        int map;
+        highp vec3 o = probe[2u * id].xyz, r = normalize(probe[2u * id + 1u].xyz);
+        highp float d = lgv_trace(o, r, map);
+        probe[2u * id] = d >= 0.0 ? vec4(o + d * r, 1.0) : vec4(0.0);
+        return;
+    }
+    if (int(id) >= u_photons)
+        return;
+    g_rng = lgv_pcg((u_first + id) * 9781u + u_frame * 6271u + 1u);
+    highp vec3 x, r, flux;
+    emit(x, r, flux);
+    bool specular_only = true, inside = false;
+    int events = 0;
+    for (int bounce = 0; bounce < u_bounces; bounce++) {
+        int map;
+        highp float d = inside ? trace_inside(x, r, map) : lgv_trace(x, r, map);
+        atomicAdd(st[0], 1u);
+        if (d < 0.0) {
+            atomicAdd(st[3], 1u);
+            return; // left the scene
+        }
+        highp vec3 hit = x + d * r;
+        ivec3 tx = lgv_texel(map, hit - centre[map].xyz);
+        highp vec3 n = normalize(texelFetch(u_nrm, tx, 0).xyz * 2.0 - 1.0);
+        highp vec4 alb = texelFetch(u_alb, tx, 0);
+        int code = int(alb.a * 255.0 + 0.5);
+        bool front = dot(n, r) < 0.0;
+        highp vec3 ns = front ? n : -n; // facing the incoming photon
+        if (code >= 128) {
+            // glass: entering when the photon meets the outside of the surface
+            highp float ior = 1.0 + 0.05 * float(code - 128);
+            bool entering = !inside;
+            highp float eta = entering ? ior : 1.0 / ior;
+            highp float ci = abs(dot(r, ns));
+            if (rnd() < fresnel(ci, eta)) {
+                r = reflect(r, ns);
+            } else {
+                r = refract(r, ns, 1.0 / eta);
+                flux *= alb.rgb;
+                inside = entering;
+            }
+            x = hit + r * 1e-4;
+            events++;
+            continue;
+        }
+        if (code == 1) {
+            r = reflect(r, ns);
+            flux *= alb.rgb;
+            x = hit + ns * 1e-4;
+            events++;
+            continue;
+        }
+        // diffuse hit: f_r = albedo / pi
+        highp vec3 fr = alb.rgb * 0.31830989;
+        if (events > 0 && specular_only) {
+            uint slot = atomicAdd(n_caustic, 1u);
+            if (int(slot) < u_caustic_cap)
+                caustic[slot] = Caustic(vec4(hit, 1.0), vec4(-r, 0.0), vec4(flux * fr, 0.0));
+            else
+                atomicAdd(overflow, 1u);
+            atomicAdd(st[2], 1u);
+        } else if (events > 0) {
+            inject(hit, -r, ns, flux * fr);
+        }
+        // Russian roulette on the albedo, then a cosine-distributed bounce
+        highp float p = min(max(alb.r, max(alb.g, alb.b)), 0.95);
+        if (rnd() >= p)
+            return;
+        flux *= alb.rgb / p;
+        r = cosine_dir(ns);
+        x = hit + ns * 1e-4;
+        specular_only = false;
+        events++;
+    }
+}

@@ -1,0 +1,216 @@
+// Photon rays traced against the distance cube-maps (seed 002 §3; research B.2.1-B.2.3): the initial
+// testing point (ITP) by angle partition on the map nearest the photon, then secant refinement on
+// the map nearest the ITP (at most two maps per ray). Included by trace.comp.
+uniform highp usampler2DArray u_dist;   // R32UI float bits, min-reduced mips
+uniform mediump sampler2DArray u_nrm;
+uniform mediump sampler2DArray u_alb;
+uniform int u_res;            // face resolution (level 0)
+uniform int u_levels;         // distance mip levels
+uniform int u_n_maps;         // lattice maps: layers 0 .. 6 n - 1
+uniform int u_n_refractors;   // refractor maps after them
+uniform int u_q;              // angle partition intervals (Q = 8)
+uniform int u_loops;          // angle partition loops (<= 3)
+uniform float u_itp_eps;      // stop when the ITP moves less than this (m)
+uniform int u_secant_steps;
+uniform vec3 u_bmin;          // the scene's bounds (a little padded): a ray leaving them met nothing
+uniform vec3 u_bmax;
+uniform int u_itp_mode;       // 0 angle partition (the seed), 1 planar ITP (Fig. 4's comparison)
+layout(std430, binding = 0) readonly buffer Maps { highp vec4 centre[]; };
+
+highp float lgv_dist(int map, highp vec3 d, int level)
+{
+    highp vec2 uv;
+    int f = lgv_face_of(d, uv);
+    int res = max(u_res >> level, 1);
+    ivec2 t = clamp(ivec2((uv * 0.5 + 0.5) * float(res)), ivec2(0), ivec2(res - 1));
+    return uintBitsToFloat(texelFetch(u_dist, ivec3(t, map * 6 + f), level).r);
+}
+
+ivec3 lgv_texel(int map, highp vec3 d)
+{
+    highp vec2 uv;
+    int f = lgv_face_of(d, uv);
+    ivec2 t = clamp(ivec2((uv * 0.5 + 0.5) * float(u_res)), ivec2(0), ivec2(u_res - 1));
+    return ivec3(t, map * 6 + f);
+}
+
+int lgv_nearest_map(highp vec3 x, int first, int count)
+{
+    int best = first;
+    highp float bd = 1e30;
+    for (int m = first; m < first + count; m++) {
+        highp vec3 c = centre[m].xyz - x;
+        highp float d = dot(c, c);
+        if (d < bd) {
+            bd = d;
+            best = m;
+        }
+    }
+    return best;
+}
+
+// Eq. (2)-(3): f = d^2 a for impostor p (relative to the centre), photon t (relative to the
+// centre), ray direction r; infinite when the impostor lies behind the photon.
+highp float lgv_energy(highp vec3 p, highp vec3 t, highp vec3 r)
+{
+    highp vec3 pt = p - t;
+    highp float len = length(pt), along = dot(pt, r);
+    if (along <= 0.0)
+        return 1e30;
+    highp float d = abs(len - along), a = len + along;
+    return d * d * a;
+}
+
+// Direction at angle phi of the fan from t^ (phi 0) towards r^ (phi theta) in the plane (t^, b).
+highp vec3 lgv_fan(highp vec3 th, highp vec3 b, highp float phi) { return cos(phi) * th + sin(phi) * b; }
+
+// The ITP of ray x + d r on map m (angle partition, B.2.1); false when every impostor of the fan
+// lies behind the photon.
+bool lgv_itp_angle(int m, highp vec3 x, highp vec3 r, out highp vec3 itp)
+{
+    highp vec3 v = centre[m].xyz;
+    highp vec3 t = x - v;
+    highp float tl = length(t);
+    if (tl < 1e-6) {
+        itp = v + lgv_dist(m, r, 0) * r;
+        return true;
+    }
+    highp vec3 th = t / tl;
+    highp float c = clamp(dot(th, r), -1.0, 1.0);
+    highp float theta = acos(c);
+    highp vec3 b = r - c * th;
+    if (length(b) < 1e-5)
+        b = abs(th.x) < 0.9 ? cross(th, vec3(1.0, 0.0, 0.0)) : cross(th, vec3(0.0, 1.0, 0.0));
+    b = normalize(b);
+    highp float lo = 0.0, hi = theta;
+    highp vec3 prev = vec3(1e30);
+    bool found = false;
+    for (int loop = 0; loop < u_loops; loop++) {
+        // coarse min-reduced mips first (research B.1.2), level 0 in the last loop
+        int level = clamp(u_loops - 1 - loop, 0, u_levels - 1);
+        highp float step = (hi - lo) / float(u_q);
+        highp vec3 w0 = lgv_fan(th, b, lo);
+        highp float f0 = lgv_energy(lgv_dist(m, w0, level) * w0, t, r);
+        highp float best = 1e30;
+        int bi = -1;
+        for (int i = 0; i < u_q; i++) {
+            highp vec3 w1 = lgv_fan(th, b, lo + step * float(i + 1));
+            highp float f1 = lgv_energy(lgv_dist(m, w1, level) * w1, t, r);
+            highp float g = f0 + f1;
+            if (g < best) {
+                best = g;
+                bi = i;
+            }
+            f0 = f1;
+        }
+        if (bi < 0 || best >= 1e29)
+            break;
+        lo = lo + step * float(bi);
+        hi = lo + step;
+        highp vec3 q = lgv_fan(th, b, 0.5 * (lo + hi));
+        itp = v + lgv_dist(m, q, 0) * q;
+        found = true;
+        if (distance(itp, prev) < u_itp_eps)
+            break;
+        prev = itp;
+    }
+    return found;
+}
+
+// Yao et al.'s planar ITP as this project reads it (research B.5 item 2): the point of the ray
+// nearest the map's centre (the foot of the perpendicular from V), or the photon when that lies
+// behind it.
+highp vec3 lgv_itp_planar(int m, highp vec3 x, highp vec3 r)
+{
+    highp float d = max(dot(centre[m].xyz - x, r), 0.0);
+    return x + d * r;
+}
+
+// Secant error e(d) = |x(d)| - D(x(d)/|x(d)|) on map m (B.2.3): < 0 in front of the surface.
+highp float lgv_err(int m, highp vec3 x0, highp vec3 r, highp float d)
+{
+    highp vec3 p = x0 + d * r;
+    highp float l = length(p);
+    return l - lgv_dist(m, p / max(l, 1e-12), 0);
+}
+
+// Secant refinement on map m from the initial distance d0 along the ray; returns the hit
+// distance, or -1 when the ray leaves the scene (at d_max) in front of every surface.
+highp float lgv_secant(int m, highp vec3 x, highp vec3 r, highp float d0, highp float d_start, highp float d_max)
+{
+    highp vec3 x0 = x - centre[m].xyz;
+    highp float dl = d_start, el = lgv_err(m, x0, r, dl);
+    highp float dp = clamp(d0, 2.0 * d_start, max(d_max, 2.0 * d_start)), ep = lgv_err(m, x0, r, dp);
+    if (ep < 0.0) {
+        // undershoot: step on (x1.5) until behind a surface
+        bool hit = false;
+        for (int k = 0; k < 16 && !hit; k++) {
+            dl = dp;
+            el = ep;
+            if (dp >= d_max)
+                return -1.0;
+            dp = min(dp * 1.5 + d_start, d_max);
+            ep = lgv_err(m, x0, r, dp);
+            hit = ep >= 0.0;
+        }
+        if (!hit)
+            return -1.0;
+    } else if (el >= 0.0) {
+        // the start is hidden from this map: the first in-front sample of [d_start, dp] brackets
+        bool ok = false;
+        highp float pe = el, pd = dl;
+        for (int k = 1; k <= 8 && !ok; k++) {
+            highp float dk = d_start + (dp - d_start) * float(k) / 8.0, ek = lgv_err(m, x0, r, dk);
+            if (pe < 0.0 && ek >= 0.0) {
+                dl = pd, el = pe, dp = dk, ep = ek;
+                ok = true;
+            }
+            pd = dk, pe = ek;
+        }
+        if (!ok)
+            return dp; // no bracket: trust the initial point
+    }
+    highp float d = dp;
+    for (int k = 0; k < u_secant_steps; k++) {
+        highp float den = ep - el;
+        d = abs(den) > 1e-12 ? dl - el * (dp - dl) / den : 0.5 * (dl + dp);
+        d = clamp(d, dl, dp);
+        highp float e = lgv_err(m, x0, r, d);
+        if (e < 0.0)
+            dl = d, el = e;
+        else
+            dp = d, ep = e;
+    }
+    return d;
+}
+
+// Distance along x + d r to where the ray leaves the scene's bounds.
+highp float lgv_exit(highp vec3 x, highp vec3 r)
+{
+    highp vec3 inv = 1.0 / (abs(r) + vec3(1e-12)) * sign(r + vec3(1e-24));
+    highp vec3 t1 = (u_bmin - x) * inv, t2 = (u_bmax - x) * inv;
+    highp vec3 tf = max(t1, t2);
+    return max(min(tf.x, min(tf.y, tf.z)), 0.0);
+}
+
+// Where ray x + d r first meets the scene by the maps: hit distance (or -1) and the map it was
+// refined on (its texel holds the surface). An ITP with nothing behind it (every impostor of the
+// fan behind the photon, or the map empty that way) falls back to where the ray leaves the bounds.
+highp float lgv_trace(highp vec3 x, highp vec3 r, out int map)
+{
+    int m1 = lgv_nearest_map(x, 0, u_n_maps);
+    highp vec3 itp;
+    bool ok = true;
+    if (u_itp_mode == 1)
+        itp = lgv_itp_planar(m1, x, r);
+    else
+        ok = lgv_itp_angle(m1, x, r, itp);
+    highp float exit_d = lgv_exit(x, r);
+    highp float d0 = ok ? dot(itp - x, r) : exit_d;
+    if (!(d0 < exit_d)) // beyond the bounds (or an empty direction at LGV_FAR)
+        d0 = exit_d;
+    map = lgv_nearest_map(x + d0 * r, 0, u_n_maps);
+    highp float start = 2.0 * length(x - centre[map].xyz) * 2.0 / float(u_res) + 1e-4;
+    highp float d = lgv_secant(map, x, r, d0, start, exit_d);
+    return d;
+}
