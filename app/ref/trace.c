@@ -6,6 +6,7 @@
 
 #include "lights.h"
 #include "materials.h"
+#include "medium.h"
 
 /* Offsets for spawning rays off surfaces, relative to the scene size: large enough to escape the
    float error of the hit point, small enough not to skip thin geometry. */
@@ -62,23 +63,99 @@ static bool within_bounces(int n_diffuse, int max_diffuse)
     return max_diffuse == GK_BOUNCES_UNLIMITED || n_diffuse <= max_diffuse;
 }
 
-vec3 gk_trace_eye(const gk_ref_scene *rs, vec3 o, vec3 d, unsigned mask, int max_diffuse, int max_depth,
-                  int rr_depth, gk_rng *rng, gk_trace_stats *st)
+/* The image term (trace.h) of a path ending at a light now; 0 for volume caustics (light pass). */
+static unsigned term_of(int n_medium, int n_diffuse, bool spec_after_medium)
 {
+    if (n_medium == 0)
+        return GK_TERM_SURFACES;
+    if (n_medium == 1 && n_diffuse == 0)
+        return spec_after_medium ? 0u : (unsigned)GK_TERM_AIRLIGHT;
+    return GK_TERM_MULTIPLE;
+}
+
+/* Is a contribution of this term (and, for surfaces, path class) wanted? */
+static bool wanted(unsigned term, unsigned cls, unsigned mask, unsigned terms)
+{
+    return (terms & term) && (term != GK_TERM_SURFACES || (mask & cls));
+}
+
+/* Can the path still reach a wanted term? (Only then is it worth continuing.) */
+static bool can_still_count(const gk_ref_scene *rs, int n_medium, int n_diffuse, unsigned mask, unsigned terms)
+{
+    bool surfaces = (terms & GK_TERM_SURFACES) && n_medium == 0 && !(n_diffuse >= 2 && !(mask & GK_PATH_INDIRECT));
+    bool airlight = rs->medium.present && (terms & GK_TERM_AIRLIGHT) && n_diffuse == 0 && n_medium <= 1;
+    bool multiple = rs->medium.present && (terms & GK_TERM_MULTIPLE);
+    return surfaces || airlight || multiple;
+}
+
+vec3 gk_trace_eye(const gk_ref_scene *rs, vec3 o, vec3 d, unsigned mask, unsigned terms, int max_diffuse,
+                  int max_depth, int rr_depth, gk_rng *rng, gk_trace_stats *st)
+{
+    const gk_ref_medium *med = &rs->medium;
     vec3 radiance = v3(0, 0, 0), beta = v3(1, 1, 1);
-    int n_diffuse = 0;
-    bool spec_after_diffuse = false, spec_before_diffuse = false;
+    int n_diffuse = 0, n_medium = 0;
+    bool spec_after_diffuse = false, spec_before_diffuse = false, spec_after_medium = false;
     bool prev_delta = true; /* the camera ray counts as a delta step: no MIS for what it sees */
     float prev_pdf = 0.0f;
     vec3 prev_p = o;
     for (int depth = 0; depth <= max_depth; depth++) {
         gk_scene_hit h;
         st->rays++;
-        if (!gk_scene_intersect(rs, o, d, INFINITY, &h)) {
+        bool hit = gk_scene_intersect(rs, o, d, INFINITY, &h);
+        if (med->present) {
+            /* Free flight through the medium: a scattering event before the hit, or the hit reached
+               with the transmittance's weight. */
+            float ts;
+            vec3 wt;
+            bool scatter = gk_medium_sample_distance(med, o, d, hit ? h.t : INFINITY, rng, &ts, &wt);
+            beta = v3_mul(beta, wt);
+            if (scatter) {
+                vec3 x = v3_add(o, v3_scale(d, ts));
+                n_medium++;
+                spec_after_medium = false;
+                if (depth == max_depth)
+                    break;
+                /* Next-event estimation through the medium (drawn whatever the terms, for the
+                   stream's alignment). */
+                gk_light_sample ls;
+                bool got = gk_light_sample_from(rs, x, rng, &ls);
+                unsigned term = term_of(n_medium, n_diffuse, false);
+                if (got && wanted(term, 0, mask, terms) && within_bounces(n_diffuse, max_diffuse)) {
+                    float ph = gk_phase_hg(med->g, v3_dot(ls.wi, d));
+                    float tmax = isinf(ls.dist) ? INFINITY : ls.dist * (1.0f - 1e-4f);
+                    vec3 tr = gk_medium_transmittance(med, x, ls.wi, tmax);
+                    st->rays++;
+                    if ((tr.x > 0.0f || tr.y > 0.0f || tr.z > 0.0f) && !gk_scene_occluded(rs, x, ls.wi, tmax)) {
+                        float w = ls.delta ? 1.0f : gk_power_heuristic(ls.pdf, ph);
+                        radiance = v3_add(radiance, v3_mul(beta, v3_scale(v3_mul(ls.li, tr), ph * w / ls.pdf)));
+                    }
+                }
+                float u1 = gk_rng_float(rng), u2 = gk_rng_float(rng);
+                vec3 wi = gk_phase_hg_sample(med->g, d, u1, u2);
+                prev_delta = false;
+                prev_pdf = gk_phase_hg(med->g, v3_dot(d, wi)); /* the phase function is its own pdf */
+                prev_p = x;
+                o = x;
+                d = wi;
+                if (!can_still_count(rs, n_medium, n_diffuse, mask, terms) || !within_bounces(n_diffuse, max_diffuse))
+                    break;
+                if (depth + 1 >= rr_depth) {
+                    float q = fminf(0.95f, v3_maxc(beta));
+                    if (gk_rng_float(rng) >= q)
+                        break;
+                    beta = v3_scale(beta, 1.0f / q);
+                }
+                continue;
+            }
+            if (beta.x <= 0.0f && beta.y <= 0.0f && beta.z <= 0.0f)
+                break; /* escaped through an unbounded medium: fully extinguished */
+        }
+        unsigned term_here = term_of(n_medium, n_diffuse, spec_after_medium);
+        unsigned cls_here = classify(n_diffuse, spec_after_diffuse, spec_before_diffuse);
+        if (!hit) {
             int sun;
             vec3 le = gk_sky_emission(rs, d, &sun);
-            if (sun >= 0 && within_bounces(n_diffuse, max_diffuse) &&
-                (mask & classify(n_diffuse, spec_after_diffuse, spec_before_diffuse))) {
+            if (sun >= 0 && within_bounces(n_diffuse, max_diffuse) && wanted(term_here, cls_here, mask, terms)) {
                 float w = prev_delta ? 1.0f : gk_power_heuristic(prev_pdf, gk_light_pdf(rs, sun, -1, prev_p, prev_p, d));
                 radiance = v3_add(radiance, v3_mul(beta, v3_scale(le, w)));
             }
@@ -87,16 +164,14 @@ vec3 gk_trace_eye(const gk_ref_scene *rs, vec3 o, vec3 d, unsigned mask, int max
         vec3 x = v3_add(o, v3_scale(d, h.t));
         if (h.light >= 0) {
             vec3 le = gk_area_light_emission(rs, h.light, d);
-            if (within_bounces(n_diffuse, max_diffuse) &&
-                (mask & classify(n_diffuse, spec_after_diffuse, spec_before_diffuse))) {
+            if (within_bounces(n_diffuse, max_diffuse) && wanted(term_here, cls_here, mask, terms)) {
                 float w = prev_delta ? 1.0f : gk_power_heuristic(prev_pdf, gk_light_pdf(rs, h.light, -1, prev_p, x, d));
                 radiance = v3_add(radiance, v3_mul(beta, v3_scale(le, w)));
             }
             break; /* light geometry is black apart from its emission */
         }
         const gk_ref_tri *tri = &rs->tris[h.tri];
-        if (tri->emissive >= 0 && within_bounces(n_diffuse, max_diffuse) &&
-            (mask & classify(n_diffuse, spec_after_diffuse, spec_before_diffuse))) {
+        if (tri->emissive >= 0 && within_bounces(n_diffuse, max_diffuse) && wanted(term_here, cls_here, mask, terms)) {
             vec3 le = gk_tri_emission(rs, tri, d);
             float w = prev_delta ? 1.0f
                                  : gk_power_heuristic(prev_pdf, gk_light_pdf(rs, rs->mesh_light, h.tri, prev_p, x, d));
@@ -110,7 +185,7 @@ vec3 gk_trace_eye(const gk_ref_scene *rs, vec3 o, vec3 d, unsigned mask, int max
 
         /* Next-event estimation: this vertex becomes a D vertex next to the light. */
         if (gk_surface_has_smooth_part(&sf) && within_bounces(n_diffuse + 1, max_diffuse) &&
-            (mask & classify(n_diffuse + 1, false, false))) {
+            wanted(term_of(n_medium, n_diffuse + 1, false), classify(n_diffuse + 1, false, false), mask, terms)) {
             gk_light_sample ls;
             if (gk_light_sample_from(rs, x, rng, &ls)) {
                 float pdf_b;
@@ -119,10 +194,11 @@ vec3 gk_trace_eye(const gk_ref_scene *rs, vec3 o, vec3 d, unsigned mask, int max
                 if (f.x > 0.0f || f.y > 0.0f || f.z > 0.0f) {
                     vec3 so = offset_point(rs, x, sf.ng, ls.wi);
                     float tmax = isinf(ls.dist) ? INFINITY : ls.dist * (1.0f - 1e-4f);
+                    vec3 tr = gk_medium_transmittance(med, so, ls.wi, tmax);
                     st->rays++;
-                    if (!gk_scene_occluded(rs, so, ls.wi, tmax)) {
+                    if ((tr.x > 0.0f || tr.y > 0.0f || tr.z > 0.0f) && !gk_scene_occluded(rs, so, ls.wi, tmax)) {
                         float w = ls.delta ? 1.0f : gk_power_heuristic(ls.pdf, pdf_b);
-                        vec3 c = v3_scale(v3_mul(f, ls.li), cos_s * w / ls.pdf);
+                        vec3 c = v3_scale(v3_mul(v3_mul(f, ls.li), tr), cos_s * w / ls.pdf);
                         radiance = v3_add(radiance, v3_mul(beta, c));
                     }
                 }
@@ -142,9 +218,12 @@ vec3 gk_trace_eye(const gk_ref_scene *rs, vec3 o, vec3 d, unsigned mask, int max
                 spec_after_diffuse = true;
             else
                 spec_before_diffuse = true;
+            if (n_medium >= 1)
+                spec_after_medium = true;
         } else {
             n_diffuse++;
             spec_after_diffuse = false;
+            spec_after_medium = false;
         }
         beta = v3_mul(beta, bs.weight);
         prev_delta = bs.delta;
@@ -152,10 +231,10 @@ vec3 gk_trace_eye(const gk_ref_scene *rs, vec3 o, vec3 d, unsigned mask, int max
         prev_p = x;
         o = offset_point(rs, x, sf.ng, bs.wi);
         d = bs.wi;
-        /* Paths that can no longer reach a wanted class, or are past the bounce limit, end early
-           (same stream use either way is not needed past this point: nothing further is
+        /* Paths that can no longer reach a wanted term or class, or are past the bounce limit, end
+           early (same stream use either way is not needed past this point: nothing further is
            accumulated). */
-        if ((n_diffuse >= 2 && !(mask & GK_PATH_INDIRECT)) || !within_bounces(n_diffuse, max_diffuse))
+        if (!can_still_count(rs, n_medium, n_diffuse, mask, terms) || !within_bounces(n_diffuse, max_diffuse))
             break;
         if (depth + 1 >= rr_depth) {
             float q = fminf(0.95f, v3_maxc(beta));
