@@ -153,6 +153,11 @@ static bool sample_one(const gk_ref_scene *rs, int li, vec3 p, float u1, float u
     return false;
 }
 
+bool gk_light_sample_one(const gk_ref_scene *rs, int li, vec3 p, float u1, float u2, float u3, gk_light_sample *out)
+{
+    return sample_one(rs, li, p, u1, u2, u3, out);
+}
+
 bool gk_light_sample_from(const gk_ref_scene *rs, vec3 p, gk_rng *rng, gk_light_sample *out)
 {
     float u0 = gk_rng_float(rng), u1 = gk_rng_float(rng), u2 = gk_rng_float(rng), u3 = gk_rng_float(rng);

@@ -25,6 +25,9 @@ typedef struct gk_light_sample {
 /* Picks a light in proportion to power and samples it from p. Returns false if nothing to sample. */
 bool gk_light_sample_from(const gk_ref_scene *rs, vec3 p, gk_rng *rng, gk_light_sample *out);
 
+/* Samples light li from p with three uniforms, without the pick: pdf excludes the choice. */
+bool gk_light_sample_one(const gk_ref_scene *rs, int li, vec3 p, float u1, float u2, float u3, gk_light_sample *out);
+
 /* Closest area-light surface (sphere, disc, rectangle) along the ray before tmax: index or -1. */
 int gk_area_lights_intersect(const gk_ref_scene *rs, vec3 o, vec3 d, float tmax, float *t);
 bool gk_area_lights_occlude(const gk_ref_scene *rs, vec3 o, vec3 d, float tmax);

@@ -88,6 +88,56 @@ static bool can_still_count(const gk_ref_scene *rs, int n_medium, int n_diffuse,
     return surfaces || airlight || multiple;
 }
 
+static bool is_point_light(const gk_ref_scene *rs, int li)
+{
+    return li >= 0 && (rs->lights[li].kind == GK_REF_POINT || rs->lights[li].kind == GK_REF_SPOT);
+}
+
+/* Single scattering of point and spot lights along one eye segment o + t d, t < tmax, in the
+   medium: the light picked by power (as next-event estimation picks), the scattering point by
+   equi-angular sampling around it (Kulla and Fajardo 2012: pdf(t) = D / ((theta_b - theta_a)
+   (D^2 + (t - t_c)^2)), which cancels the light's 1/d^2), i.e. the airlight integral of the
+   segment. (Free-flight points alone leave most samples outside a narrow spot beam: measured noise
+   floor 1.16 at 16 spp on caustic-ring-fog's airlight.) The free-flight vertices then skip these
+   lights in their own next-event estimation, so nothing is counted twice. Draws two random numbers
+   whenever the segment overlaps the medium. Returns the radiance before the path's throughput. */
+static vec3 segment_point_light_scatter(const gk_ref_scene *rs, vec3 o, vec3 d, float tmax, bool want, gk_rng *rng,
+                                        gk_trace_stats *st)
+{
+    const gk_ref_medium *med = &rs->medium;
+    float t0, t1;
+    if (!gk_medium_clip(med, o, d, tmax, &t0, &t1))
+        return v3(0, 0, 0);
+    float u_pick = gk_rng_float(rng), u_t = gk_rng_float(rng);
+    float pl;
+    int li = gk_light_pick(rs, u_pick, &pl);
+    if (!want || !is_point_light(rs, li) || !(pl > 0.0f))
+        return v3(0, 0, 0);
+    vec3 P = rs->lights[li].pos;
+    float tc = v3_dot(v3_sub(P, o), d);
+    float D = v3_len(v3_sub(P, v3_add(o, v3_scale(d, tc))));
+    if (D < 1e-6f * (rs->radius + 1.0f))
+        return v3(0, 0, 0); /* the ray runs through the light: measure zero */
+    float ta = atanf((t0 - tc) / D), tb = isinf(t1) ? 0.5f * GK_PI : atanf((t1 - tc) / D);
+    if (!(tb > ta))
+        return v3(0, 0, 0);
+    float t = tc + D * tanf(ta + u_t * (tb - ta));
+    float pdf = D / ((tb - ta) * (D * D + (t - tc) * (t - tc)));
+    if (!(t >= t0 && t <= t1) || !(pdf > 0.0f))
+        return v3(0, 0, 0);
+    vec3 x = v3_add(o, v3_scale(d, t));
+    gk_light_sample ls;
+    if (!gk_light_sample_one(rs, li, x, 0.5f, 0.5f, 0.5f, &ls))
+        return v3(0, 0, 0);
+    float tl = ls.dist * (1.0f - 1e-4f);
+    st->rays++;
+    if (gk_scene_occluded(rs, x, ls.wi, tl))
+        return v3(0, 0, 0);
+    vec3 tr = v3_mul(gk_medium_transmittance(med, o, d, t), gk_medium_transmittance(med, x, ls.wi, tl));
+    float ph = gk_phase_hg(med->g, v3_dot(ls.wi, d));
+    return v3_scale(v3_mul(v3_mul(ls.li, tr), med->sigma_s), ph / (pl * pdf));
+}
+
 vec3 gk_trace_eye(const gk_ref_scene *rs, vec3 o, vec3 d, unsigned mask, unsigned terms, int max_diffuse,
                   int max_depth, int rr_depth, gk_rng *rng, gk_trace_stats *st)
 {
@@ -102,6 +152,13 @@ vec3 gk_trace_eye(const gk_ref_scene *rs, vec3 o, vec3 d, unsigned mask, unsigne
         gk_scene_hit h;
         st->rays++;
         bool hit = gk_scene_intersect(rs, o, d, INFINITY, &h);
+        if (med->present && rs->has_delta_lights) {
+            /* this segment's single scattering of point and spot lights: a new V vertex */
+            bool want = wanted(term_of(n_medium + 1, n_diffuse, false), 0, mask, terms) &&
+                        within_bounces(n_diffuse, max_diffuse) && depth < max_depth;
+            vec3 l = segment_point_light_scatter(rs, o, d, hit ? h.t : INFINITY, want, rng, st);
+            radiance = v3_add(radiance, v3_mul(beta, l));
+        }
         if (med->present) {
             /* Free flight through the medium: a scattering event before the hit, or the hit reached
                with the transmittance's weight. */
@@ -118,7 +175,13 @@ vec3 gk_trace_eye(const gk_ref_scene *rs, vec3 o, vec3 d, unsigned mask, unsigne
                 /* Next-event estimation through the medium (drawn whatever the terms, for the
                    stream's alignment). */
                 gk_light_sample ls;
-                bool got = gk_light_sample_from(rs, x, rng, &ls);
+                float u0 = gk_rng_float(rng), u1 = gk_rng_float(rng), u2 = gk_rng_float(rng), u3 = gk_rng_float(rng);
+                float pl;
+                int li = gk_light_pick(rs, u0, &pl);
+                /* point and spot lights: done by segment_point_light_scatter above */
+                bool got = li >= 0 && !is_point_light(rs, li) && gk_light_sample_one(rs, li, x, u1, u2, u3, &ls);
+                ls.pdf *= pl;
+                got = got && ls.pdf > 0.0f;
                 unsigned term = term_of(n_medium, n_diffuse, false);
                 if (got && wanted(term, 0, mask, terms) && within_bounces(n_diffuse, max_diffuse)) {
                     float ph = gk_phase_hg(med->g, v3_dot(ls.wi, d));
@@ -130,8 +193,8 @@ vec3 gk_trace_eye(const gk_ref_scene *rs, vec3 o, vec3 d, unsigned mask, unsigne
                         radiance = v3_add(radiance, v3_mul(beta, v3_scale(v3_mul(ls.li, tr), ph * w / ls.pdf)));
                     }
                 }
-                float u1 = gk_rng_float(rng), u2 = gk_rng_float(rng);
-                vec3 wi = gk_phase_hg_sample(med->g, d, u1, u2);
+                float v1 = gk_rng_float(rng), v2 = gk_rng_float(rng);
+                vec3 wi = gk_phase_hg_sample(med->g, d, v1, v2);
                 prev_delta = false;
                 prev_pdf = gk_phase_hg(med->g, v3_dot(d, wi)); /* the phase function is its own pdf */
                 prev_p = x;

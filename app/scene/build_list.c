@@ -11,5 +11,6 @@ const gk_scene_builder gk_scene_builders[] = {
     {"caustic-ring", gk_build_caustic_ring},
     {"atrium", gk_build_atrium},
     {"furnace", gk_build_furnace},
+    {.name = "caustic-ring-fog", .build = gk_build_caustic_ring_fog},
 };
 const int gk_n_scene_builders = (int)(sizeof gk_scene_builders / sizeof gk_scene_builders[0]);

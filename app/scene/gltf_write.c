@@ -89,6 +89,7 @@ struct gkw_doc {
     bool has_exposure; double exposure;
     param params[16]; int n_params;
     bool has_medium; double sigma_s[3], sigma_a[3], g;
+    bool medium_bounded; double medium_lo[3], medium_hi[3];
     bool oom;
 };
 
@@ -290,6 +291,13 @@ void gkw_medium(gkw_doc *d, const double sigma_s[3], const double sigma_a[3], do
     d->g = g;
 }
 
+void gkw_medium_bounds(gkw_doc *d, const double lo[3], const double hi[3])
+{
+    d->medium_bounded = true;
+    memcpy(d->medium_lo, lo, sizeof d->medium_lo);
+    memcpy(d->medium_hi, hi, sizeof d->medium_hi);
+}
+
 void gkw_param(gkw_doc *d, const char *key, int n, const double *v)
 {
     if (d->n_params >= 16 || n < 1 || n > 4)
@@ -440,6 +448,13 @@ static void write_nodes_and_scene(gkw_doc *d, sbuf *b)
         sb_nums(b, d->sigma_a, 3);
         sb_printf(b, ",\"g\":");
         sb_num(b, d->g);
+        if (d->medium_bounded) {
+            sb_printf(b, ",\"bounds\":[");
+            sb_nums(b, d->medium_lo, 3);
+            sb_printf(b, ",");
+            sb_nums(b, d->medium_hi, 3);
+            sb_printf(b, "]");
+        }
         sb_printf(b, "}");
     }
     sb_printf(b, "}}}]");

@@ -216,6 +216,54 @@ static void collimated_beam_airlight(void **state)
     gk_ref_scene_free(&rs);
 }
 
+/* The airlight integral of a point light (Sun et al. 2005's single-scattering integral), which has
+ * no elementary closed form: evaluated per pixel by the midpoint rule with 20000 steps (converged
+ * to < 1e-5 relative: the integrand is smooth, the light 0.5 m off every ray) and compared with the
+ * tracer's airlight term as the image mean. An unbounded medium, g = -0.4, a black wall ending the
+ * rays at z = -4. Measured noise of the mean ~0.1%; 1% bound. */
+static void point_light_airlight_integral(void **state)
+{
+    (void)state;
+    static test_scene t;
+    gk_ref_scene rs;
+    ts_init(&t);
+    int black = ts_material(&t, 0.0f, 0.0f, 0.0f, 0.0f, 1.0f);
+    ts_quad(&t, v3(-10, -10, -4), v3(20, 0, 0), v3(0, 20, 0), black); /* faces +z */
+    const vec3 P = v3(0.5f, 0.3f, -2.0f);
+    const float I = 5.0f, g = -0.4f, ss = 0.3f, sa = 0.1f, st = ss + sa;
+    ts_light(&t, GK_LIGHT_POINT, P, v3(0, -1, 0), v3(1, 0, 0), I);
+    set_medium(&t, v3(ss, ss, ss), v3(sa, sa, sa), g);
+    t.eye = v3(0, 0, 0);
+    t.target = v3(0, 0, -1);
+    t.yfov = 0.5f;
+    assert_int_equal(ts_build(&t, &rs, 16, 16), 0);
+    gk_ref_result r;
+    render(&rs, 512, GK_TERM_AIRLIGHT, 17, &r);
+    double got = 0.0, want = 0.0;
+    for (int y = 0; y < 16; y++)
+        for (int x = 0; x < 16; x++) {
+            vec3 d = gk_ref_camera_dir(&rs, x + 0.5f, y + 0.5f);
+            double tend = 4.0 / -d.z, sum = 0.0;
+            const int n = 20000;
+            for (int i = 0; i < n; i++) {
+                double tt = (i + 0.5) * tend / n;
+                double px = d.x * tt - P.x, py = d.y * tt - P.y, pz = d.z * tt - P.z;
+                double r2 = px * px + py * py + pz * pz, rr = sqrt(r2);
+                /* light travels from P to the point (direction p/rr), then towards the eye (-d) */
+                double c = -(px * d.x + py * d.y + pz * d.z) / rr;
+                double ph = (1.0 - g * g) / (4.0 * M_PI * pow(1.0 + g * g - 2.0 * g * c, 1.5));
+                sum += exp(-st * tt) * ss * ph * I * exp(-st * rr) / r2 * (tend / n);
+            }
+            want += sum;
+            got += r.rgb[3 * (y * 16 + x)];
+        }
+    printf("# point-light airlight: mean %.6f, quadrature %.6f (%.2f%%), noise floor %.4f\n", got / 256, want / 256,
+           100.0 * (got / want - 1.0), r.noise_floor);
+    assert_true(fabs(got / want - 1.0) < 0.01);
+    gk_ref_result_free(&r);
+    gk_ref_scene_free(&rs);
+}
+
 /* A point light 1.5 m above a perfect mirror (metallic 1, base 1: reflectance exactly 1) in a box
  * of medium 2 m in front of the camera (so no photon line passes near the pinhole, where a line's
  * pixel value grows as 1/distance and the light tracer's variance with it); the camera looks level at
@@ -321,6 +369,7 @@ int main(void)
         cmocka_unit_test(phase_is_normalised_and_sampled),
         cmocka_unit_test(slab_transmittance),
         cmocka_unit_test(collimated_beam_airlight),
+        cmocka_unit_test(point_light_airlight_integral),
         cmocka_unit_test(mirror_volume_caustic_equals_image_light),
         cmocka_unit_test(terms_partition_all_paths),
     };
