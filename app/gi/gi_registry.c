@@ -9,12 +9,14 @@ extern const gk_gi_method gk_gi_vct;
 extern const gk_gi_method gk_gi_vpl;
 extern const gk_gi_method gk_gi_ispm;
 extern const gk_gi_method gk_gi_lightmap;
+extern const gk_gi_method gk_gi_volcaustics;
 
 static const gk_gi_method *const registry[] = {
     &gk_gi_vct,
     &gk_gi_vpl,
     &gk_gi_ispm,
     &gk_gi_lightmap,
+    &gk_gi_volcaustics,
     NULL, /* sentinel: keeps the array valid C even with no method registered */
 };
 
