@@ -44,6 +44,7 @@ typedef struct vc_state {
     int cb_res;
     /* (A) and (B) images */
     gk_target air, caustic;
+    GLenum caustic_fmt;      /* RGBA32F where it can be blended, else RGBA16F (vc_method.c) */
     GLuint empty_vao;
 } vc_state;
 
