@@ -33,7 +33,9 @@ int gk_build_caustic_ring_fog(const char *dir, gk_err *e)
                     "of ground fog (sigma_s 0.25/m, sigma_a 0.02/m, g 0.3). The far inner wall reflects the "
                     "beam down through the fog: a volume caustic above the cardioid on the floor. Tests "
                     "volcaustics and the media of the path tracer.",
-                    NULL);
+                    /* the other methods ignore the medium (README, Participating media): offering them
+                       here would show clear air */
+                    "volcaustics");
     gkw_material room = {.name = "room", .base = {0.75, 0.75, 0.75, 1}, .metallic = 0, .roughness = 1};
     gkw_material gold = {.name = "mirror-gold", .base = {0.95, 0.9, 0.6, 1}, .metallic = 1, .roughness = 0};
     int mroom = gkw_add_material(d, &room), mgold = gkw_add_material(d, &gold);
