@@ -15,12 +15,17 @@
 # outside that mask, with the render time, in tests/references/noise-regions.csv
 # (file,spp,seed,mask,mask_pixels,floor_in_mask,floor_outside_mask,render_seconds).
 # Caustic photons are aimed at the mirrors (--caustic-emit guided, the default; app/ref/caustic_emit.h).
+# Scenes with a participating medium (extras.gikiosk.medium) get, instead of the path-class variants,
+# the seed 001 ch. 8 image terms (`--terms`, app/ref/trace.h): SCENE-airlight.exr, SCENE-vcaustics.exr
+# (with its mask SCENE-vcaustics-mask.png and in/out-of-mask floors), SCENE-surfaces.exr and
+# SCENE-multiple.exr, beside SCENE.exr (all terms).
 #
 # usage: tools/references.sh BIN [SCENE...]      (default: every scene of the list below)
 #        tools/references.sh --bench BIN          (cornell, 1 vs 2 threads: samples/s, rays/s)
 # env:   SCENES_DIR (default config/scenes; built into a temp dir if it has no scenes),
 #        OUT_DIR (default tests/references), SIZE (default 160x120), SPP_SCALE (default 1),
-#        VARIANTS (default "all direct indirect caustics caustics1 1bounce": which images to render)
+#        VARIANTS (default "all direct indirect caustics caustics1 1bounce": which images to render),
+#        TERMS (default "airlight vcaustics surfaces multiple": the images of scenes with a medium)
 set -eu
 
 bench=0
@@ -32,6 +37,7 @@ OUT_DIR=${OUT_DIR:-tests/references}
 SIZE=${SIZE:-160x120}
 SPP_SCALE=${SPP_SCALE:-1}
 VARIANTS=${VARIANTS:-all direct indirect caustics caustics1 1bounce}
+TERMS=${TERMS:-airlight vcaustics surfaces multiple}
 SEED=1
 
 if [ ! -f "$SCENES_DIR/cornell.gltf" ] && [ ! -f "$SCENES_DIR/cornell.glb" ]; then
@@ -60,13 +66,14 @@ spp_for() {
         light-leak) echo 32 ;;   # the right room is black by design: the image is exactly 0
         caustic-ring) echo 2048 ;;   # caustics: guided light tracing, floor ~0.012 inside the caustic mask
         furnace) echo 128 ;;
+        caustic-ring-fog) echo 1024 ;;   # floors at 1024 spp: all 0.09, airlight 0.08, vcaustics 0.05, surfaces 0.05, multiple 0.14
         atrium) echo 512 ;;
         glass) echo 2048 ;;  # caustics: floor 0.0045 inside the caustic mask at 128 spp (15 s); 2048 for the indirect (0.20 at 512)
         *) echo 128 ;;
     esac
 }
 
-scenes=${*:-"cornell cornell-spot shadow-planes light-leak caustic-ring furnace atrium glass"}
+scenes=${*:-"cornell cornell-spot shadow-planes light-leak caustic-ring furnace atrium glass caustic-ring-fog"}
 mkdir -p "$OUT_DIR"
 csv=$OUT_DIR/noise.csv
 [ -f "$csv" ] || echo "file,spp,seed,rel_rmse_floor" >"$csv"
@@ -91,8 +98,16 @@ for scene in $scenes; do
         continue
     fi
     spp=$(( $(spp_for "$scene") * SPP_SCALE ))
-    for variant in $VARIANTS; do
-        paths=$variant bounces=unlimited specular=unlimited
+    medium=0
+    if grep -q '"medium"' "$SCENES_DIR/$scene.gltf" 2>/dev/null; then medium=1; fi
+    variants=$VARIANTS
+    if [ "$medium" -eq 1 ]; then variants="$VARIANTS $TERMS"; fi
+    for variant in $variants; do
+        paths=$variant bounces=unlimited specular=unlimited terms=all
+        case $variant in
+            airlight | vcaustics | surfaces | multiple) paths=all terms=$variant ;;
+            direct | indirect | caustics | caustics1 | 1bounce) [ "$medium" -eq 0 ] || continue ;;
+        esac
         if [ "$variant" = caustics1 ]; then
             paths=caustics specular=1   # one specular vertex: the seed's single bounce
         fi
@@ -104,9 +119,10 @@ for scene in $scenes; do
         out=$OUT_DIR/$file
         start=$(date +%s)
         mask=
-        if [ "$paths" = caustics ]; then mask=$scene-$variant-mask.png; fi
+        if [ "$paths" = caustics ] || [ "$terms" = vcaustics ]; then mask=$scene-$variant-mask.png; fi
         "$BIN" reference --scene "$scene" --scenes-dir "$SCENES_DIR" --size "$SIZE" --spp "$spp" \
-            --paths "$paths" --bounces "$bounces" --caustic-specular "$specular" --seed "$SEED" --out "$out" \
+            --paths "$paths" --bounces "$bounces" --caustic-specular "$specular" --terms "$terms" --seed "$SEED" \
+            --out "$out" \
             ${mask:+--caustic-mask "$OUT_DIR/$mask"}
         if [ "$paths" = caustics ] && [ "$(max_of "$out")" = "0.000000 0.000000 0.000000" ]; then
             rm -f "$out" "$OUT_DIR/$mask"   # no caustic paths in this scene

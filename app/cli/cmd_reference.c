@@ -30,6 +30,11 @@ static void usage(FILE *f)
           "  --paths CLASS       all | direct | indirect | caustics (default all):\n"
           "                      direct = L D S* E + L S* E, caustics = L S+ D S* E,\n"
           "                      indirect = paths with two or more diffuse/glossy vertices\n"
+          "  --terms LIST        with a scene medium, the image terms of seed 001 ch. 8, joined by\n"
+          "                      '+': airlight (L V E: single scattering lit directly, volumetric\n"
+          "                      shadows), vcaustics (L S+ V E: volume caustics), surfaces (paths\n"
+          "                      without scattering, attenuated; --paths restricts these),\n"
+          "                      multiple (the rest: multiple scattering); default all\n"
           "  --bounces N         keep paths with at most N diffuse/glossy vertices, the first\n"
           "                      surface seen included: 1 = direct light, 2 = direct + one\n"
           "                      bounce; combines with --paths (default unlimited)\n"
@@ -179,6 +184,14 @@ static int parse_args(int argc, char **argv, args *a)
                 return -1;
             }
             a->o.paths = (unsigned)m;
+        } else if (!strcmp(k, "--terms")) {
+            int m = gk_ref_terms_parse(v);
+            if (m < 0) {
+                fprintf(stderr, "gikiosk reference: --terms: '%s' is not all or a '+'-joined list of airlight, "
+                                "vcaustics, surfaces, multiple\n", v);
+                return -1;
+            }
+            a->o.terms = (unsigned)m;
         } else if (!strcmp(k, "--bounces")) {
             int b = gk_ref_bounces_parse(v);
             if (b == -2) {
@@ -313,7 +326,7 @@ int gk_cmd_reference(int argc, char **argv)
                         "inside, %s outside\n", a.mask_out, mask_px_s, peak, in_s, out_s);
     }
     char cmd[2048], spp_s[32], seed_s[32], floor_s[32], secs_s[32], size_s[32], tris_s[32], bounces_s[32];
-    char grid_s[32], spec_s[32];
+    char grid_s[32], spec_s[32], terms_s[64];
     snprintf(grid_s, sizeof grid_s, "%d", a.o.caustic_grid);
     gk_ref_bounces_name(a.o.caustic_specular, spec_s, sizeof spec_s);
     join_command(argc, argv, cmd, sizeof cmd);
@@ -331,6 +344,7 @@ int gk_cmd_reference(int argc, char **argv)
         {"gikiosk:render_seconds", secs_s}, {"gikiosk:size", size_s}, {"gikiosk:triangles", tris_s},
         {"gikiosk:caustic_emit", a.o.caustic_emit == GK_CAUSTIC_EMIT_GUIDED ? "guided" : "light"},
         {"gikiosk:caustic_grid", grid_s}, {"gikiosk:caustic_specular", spec_s},
+        {"gikiosk:terms", gk_ref_terms_name(a.o.terms, terms_s, sizeof terms_s)},
         {"gikiosk:noise_floor", floor_s},
     };
     int nkv = (int)(sizeof kv / sizeof kv[0]) - (isfinite(r.noise_floor) ? 0 : 1);

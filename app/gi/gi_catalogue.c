@@ -13,7 +13,7 @@ static const gk_gi_entry catalogue[] = {
     {"lgv", true, GK_GI_NEEDS_CAUSTICS, "photon tracing against cube maps, grid gathering"},
     {"lightmap", true, GK_GI_NEEDS_INTERREFLECTION, "CPU photon maps with selective updates, GPU final gather into light maps"},
     /* line-based volume caustics: a medium, and a specular caster lit by a local light */
-    {"volcaustics", false, GK_GI_NEEDS_MEDIA | GK_GI_NEEDS_CAUSTICS, "volume caustics in single-scattering media"},
+    {"volcaustics", true, GK_GI_NEEDS_MEDIA | GK_GI_NEEDS_CAUSTICS, "volume caustics in single-scattering media"},
     {"radiosity", true, GK_GI_NEEDS_INTERREFLECTION, "hierarchical radiosity with implicit visibility"},
 };
 

@@ -11,6 +11,7 @@ extern const gk_gi_method gk_gi_ispm;
 extern const gk_gi_method gk_gi_lightmap;
 extern const gk_gi_method gk_gi_radiosity;
 extern const gk_gi_method gk_gi_lgv;
+extern const gk_gi_method gk_gi_volcaustics;
 
 static const gk_gi_method *const registry[] = {
     &gk_gi_vct,
@@ -19,6 +20,7 @@ static const gk_gi_method *const registry[] = {
     &gk_gi_lightmap,
     &gk_gi_radiosity,
     &gk_gi_lgv,
+    &gk_gi_volcaustics,
     NULL, /* sentinel: keeps the array valid C even with no method registered */
 };
 

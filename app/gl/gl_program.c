@@ -183,7 +183,12 @@ GLuint gk_program_get_compute(gk_program_cache *c, const char *comp, const char 
 static bool names_in_source(const char *source, const char *name)
 {
     size_t len = strcspn(name, "[");
-    for (const char *p = source; (p = strstr(p, name)) != NULL; p++) {
+    char ident[128];   /* the identifier alone: "u_x[0]" is declared as "u_x[N]" */
+    if (len >= sizeof ident)
+        return false;
+    memcpy(ident, name, len);
+    ident[len] = '\0';
+    for (const char *p = source; (p = strstr(p, ident)) != NULL; p++) {
         bool start = p == source || !(isalnum((unsigned char)p[-1]) || p[-1] == '_');
         char after = p[len];
         bool end = !(isalnum((unsigned char)after) || after == '_');

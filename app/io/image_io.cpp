@@ -79,7 +79,7 @@ int write_image(const char *path, const gk_image *img, const gk_image_meta *meta
                                                           : OIIO::TypeDesc::FLOAT;
         OIIO::ImageSpec spec(img->width, img->height, img->channels, type);
         if (meta)
-            for (int i = 0; i < meta->count && i < 16; i++)
+            for (int i = 0; i < meta->count && i < (int)(sizeof meta->keys / sizeof meta->keys[0]); i++)
                 if (meta->keys[i] && meta->values[i])
                     spec.attribute(meta->keys[i], meta->values[i]);
         if (ext == "exr")

@@ -13,8 +13,8 @@ typedef struct gk_image {
 
 typedef struct gk_image_meta {   /* string attributes stored in (EXR) headers */
     int count;
-    const char *keys[16];
-    const char *values[16];
+    const char *keys[24];
+    const char *values[24];
 } gk_image_meta;
 
 /* Allocates zeroed pixels; returns 0, or -1 for a bad size or out of memory (img left empty). */

@@ -235,6 +235,18 @@ int gk_ref_scene_build(gk_ref_scene *rs, const gk_scene *s, mat4 view, mat4 proj
         lo = hi = v3(0, 0, 0);
     rs->centre = v3_scale(v3_add(lo, hi), 0.5f);
     rs->radius = fmaxf(0.5f * v3_len(v3_sub(hi, lo)), 1e-3f);
+    if (s->medium.present) {
+        gk_ref_medium *m = &rs->medium;
+        m->present = true;
+        m->sigma_s = v3(s->medium.sigma_s[0], s->medium.sigma_s[1], s->medium.sigma_s[2]);
+        m->sigma_a = v3(s->medium.sigma_a[0], s->medium.sigma_a[1], s->medium.sigma_a[2]);
+        m->sigma_t = v3_add(m->sigma_s, m->sigma_a);
+        m->sigma_mean = (m->sigma_t.x + m->sigma_t.y + m->sigma_t.z) / 3.0f;
+        m->g = s->medium.g;
+        m->bounded = s->medium.bounded;
+        m->box_min = s->medium.box_min;
+        m->box_max = s->medium.box_max;
+    }
     for (int i = 0; i < rs->n_lights; i++) {
         gk_ref_light *L = &rs->lights[i];
         if (L->kind == GK_REF_DIRECTIONAL || L->kind == GK_REF_SUN)

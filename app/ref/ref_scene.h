@@ -14,6 +14,7 @@
 #include <stdint.h>
 
 #include "bvh.h"
+#include "medium.h"
 #include "scene/scene.h"
 
 enum gk_ref_light_kind {
@@ -65,6 +66,7 @@ typedef struct gk_ref_scene {
     bool diffuse_only;
     vec3 centre;
     float radius;          /* bounding sphere of the geometry */
+    gk_ref_medium medium;  /* the scene's participating medium (medium.h); present = false: vacuum */
     /* camera */
     int width, height;
     vec3 eye, right, up, fwd;

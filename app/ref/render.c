@@ -26,6 +26,8 @@ typedef struct job {
     int last_percent;
     bool light_pass;
     const gk_caustic_emitter *emitter; /* NULL: the lights' own emission */
+    unsigned light_terms;    /* what the light pass connects: GK_TERM_SURFACES (L S+ D E) and/or
+                                GK_TERM_VCAUSTICS (L S+ V E) */
     int failed;
 } job;
 
@@ -42,6 +44,52 @@ void gk_ref_options_default(gk_ref_options *o)
     o->caustic_emit = GK_CAUSTIC_EMIT_GUIDED;
     o->caustic_grid = GK_CAUSTIC_GRID_DEFAULT;
     o->caustic_specular = GK_BOUNCES_UNLIMITED;
+    o->terms = GK_TERM_ALL;
+}
+
+static const struct { const char *name; unsigned bit; } term_names[] = {
+    {"airlight", GK_TERM_AIRLIGHT}, {"vcaustics", GK_TERM_VCAUSTICS},
+    {"surfaces", GK_TERM_SURFACES}, {"multiple", GK_TERM_MULTIPLE},
+};
+
+int gk_ref_terms_parse(const char *s)
+{
+    if (!strcmp(s, "all"))
+        return GK_TERM_ALL;
+    unsigned mask = 0;
+    const char *p = s;
+    while (*p) {
+        size_t n = strcspn(p, "+");
+        unsigned bit = 0;
+        for (size_t i = 0; i < sizeof term_names / sizeof term_names[0]; i++)
+            if (strlen(term_names[i].name) == n && !strncmp(p, term_names[i].name, n))
+                bit = term_names[i].bit;
+        if (!bit)
+            return -1;
+        mask |= bit;
+        p += n;
+        if (*p == '+' && *++p == '\0')
+            return -1;
+    }
+    return mask ? (int)mask : -1;
+}
+
+const char *gk_ref_terms_name(unsigned terms, char *buf, size_t len)
+{
+    if (terms == GK_TERM_ALL) {
+        snprintf(buf, len, "all");
+        return buf;
+    }
+    size_t at = 0;
+    buf[0] = '\0';
+    for (size_t i = 0; i < sizeof term_names / sizeof term_names[0]; i++)
+        if (terms & term_names[i].bit) {
+            int w = snprintf(buf + at, at < len ? len - at : 0, "%s%s", at ? "+" : "", term_names[i].name);
+            at += (size_t)w;
+            if (at >= len)
+                break;
+        }
+    return buf;
 }
 
 int gk_ref_bounces_parse(const char *s)
@@ -103,8 +151,8 @@ static void render_tile(job *j, int tile, gk_trace_stats *st)
                         j->sum_h1[3 * pix + c] = acc[c];
                 gk_rng rng;
                 gk_rng_seed(&rng, j->o->seed, pix, (uint64_t)s, 0);
-                vec3 l = gk_trace_eye(rs, rs->eye, d, j->o->paths, j->o->max_diffuse, j->o->max_depth,
-                                      j->o->rr_depth, &rng, st);
+                vec3 l = gk_trace_eye(rs, rs->eye, d, j->o->paths, j->o->terms, j->o->max_diffuse,
+                                      j->o->max_depth, j->o->rr_depth, &rng, st);
                 /* A NaN or Inf sample would poison the pixel: drop it (counted as black). */
                 if (isfinite(l.x) && isfinite(l.y) && isfinite(l.z)) {
                     acc[0] += l.x;
@@ -149,7 +197,8 @@ static void render_chunk(job *j, int chunk, gk_trace_stats *st)
         for (size_t p = 0; p < npix; p++) {
             gk_rng rng;
             gk_rng_seed(&rng, j->o->seed, p, (uint64_t)s, 1);
-            gk_trace_light(rs, j->emitter, j->o->max_depth, j->o->caustic_specular, &rng, splat_into, &c, st);
+            gk_trace_light(rs, j->emitter, j->light_terms, j->o->max_depth, j->o->caustic_specular, &rng,
+                           splat_into, &c, st);
         }
     j->chunk[chunk] = img;
 }
@@ -219,8 +268,12 @@ int gk_ref_render(const gk_ref_scene *rs, const gk_ref_options *o, gk_ref_result
     j.tiles_x = (rs->width + TILE - 1) / TILE;
     j.n_tiles = j.tiles_x * ((rs->height + TILE - 1) / TILE);
     /* Light-traced caustics L S+ D E have one D vertex: dropped only by a limit of 0 bounces. */
-    j.light_pass = (o->paths & GK_PATH_CAUSTICS) && rs->n_lights > 0 && rs->has_delta_surfaces &&
-                   o->max_diffuse != 0;
+    if ((o->paths & GK_PATH_CAUSTICS) && (o->terms & GK_TERM_SURFACES) && o->max_diffuse != 0)
+        j.light_terms |= GK_TERM_SURFACES;
+    /* Volume caustics L S+ V E have no D vertex: no bounce limit drops them. */
+    if (rs->medium.present && (o->terms & GK_TERM_VCAUSTICS))
+        j.light_terms |= GK_TERM_VCAUSTICS;
+    j.light_pass = j.light_terms && rs->n_lights > 0 && rs->has_delta_surfaces;
     j.n_items = j.n_tiles + (j.light_pass ? LIGHT_CHUNKS : 0);
     gk_caustic_emitter emitter = {0};
     if (j.light_pass && o->caustic_emit == GK_CAUSTIC_EMIT_GUIDED) {

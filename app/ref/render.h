@@ -36,6 +36,8 @@ typedef struct gk_ref_options {
     int caustic_specular; /* the light tracer's caustic paths with at most this many mirror/glass
                             vertices, L S{1..N} D E (GK_BOUNCES_UNLIMITED by default): the ruler of
                             a caustic method with N specular bounces (ispm's ispm_bounces) */
+    unsigned terms;      /* GK_TERM_* mask (trace.h): with a medium, the seed's image terms rendered
+                            (default all); --paths then restricts the surfaces term */
 } gk_ref_options;
 
 typedef struct gk_ref_result {
@@ -65,6 +67,11 @@ double gk_ref_rel_rmse(const float *t, const float *r, size_t n);
 /* "all", "direct", "indirect", "caustics" <-> mask; -1 if unknown. */
 int gk_ref_paths_parse(const char *s);
 const char *gk_ref_paths_name(unsigned mask);
+
+/* "all", "airlight", "vcaustics", "surfaces", "multiple" or a '+'-joined list ("airlight+vcaustics")
+   <-> GK_TERM_* mask; -1 if unknown. The name is written into buf (at least 64 bytes). */
+int gk_ref_terms_parse(const char *s);
+const char *gk_ref_terms_name(unsigned terms, char *buf, size_t len);
 
 /* "unlimited" or an integer in [0, 1000] <-> max_diffuse; -2 if invalid. The name is written into
    buf (at least 16 bytes) and returned. */

@@ -36,6 +36,21 @@
 #include "sample.h"
 
 enum { GK_PATH_DIRECT = 1, GK_PATH_INDIRECT = 2, GK_PATH_CAUSTICS = 4, GK_PATH_ALL = 7 };
+
+/* With a participating medium (medium.h), paths are also split into the seed's image terms
+ * (001 ch. 8, research dong-001.md §6.1), by their medium vertices V (scattering events):
+ *   airlight  (A) = L V S* E        one scattering event lit directly by the light: airlight and
+ *                                   volumetric shadows (single scattering);
+ *   vcaustics (B) = L S+ V E        one scattering event lit via mirrors or glass: volume caustics;
+ *   surfaces  (C) = paths without V surface light (the --paths classes above), every segment
+ *                                   attenuated by the medium;
+ *   multiple  (M) = the rest        two or more scattering events, or scattering plus a diffuse or
+ *                                   glossy vertex: what the single-scattering model leaves out.
+ * A + B + C + M = all. B comes from light tracing (a point on each specular segment of a photon,
+ * connected to the camera), as surface caustics do, so the eye pass drops E S* V S+ L; E S+ V S+ L
+ * (volume caustics seen through a mirror) is found by neither pass: a known bias like the one above.
+ * --paths restricts C only. */
+enum { GK_TERM_AIRLIGHT = 1, GK_TERM_VCAUSTICS = 2, GK_TERM_SURFACES = 4, GK_TERM_MULTIPLE = 8, GK_TERM_ALL = 15 };
 enum { GK_BOUNCES_UNLIMITED = -1 };
 
 typedef struct gk_trace_stats {
@@ -55,10 +70,11 @@ bool gk_scene_occluded(const gk_ref_scene *rs, vec3 o, vec3 d, float tmax);
 /* Radiance along one camera ray, restricted to the path classes in mask and to paths with at most
  * max_diffuse D vertices (GK_BOUNCES_UNLIMITED: no limit). Russian roulette (survival
  * min(0.95, max throughput)) applies from path vertex rr_depth on. */
-vec3 gk_trace_eye(const gk_ref_scene *rs, vec3 o, vec3 d, unsigned mask, int max_diffuse, int max_depth,
-                  int rr_depth, gk_rng *rng, gk_trace_stats *st);
+vec3 gk_trace_eye(const gk_ref_scene *rs, vec3 o, vec3 d, unsigned mask, unsigned terms, int max_diffuse,
+                  int max_depth, int rr_depth, gk_rng *rng, gk_trace_stats *st);
 
-/* One light path; its camera connections are passed to splat(ctx, px, py, rgb)
+/* One light path (terms: GK_TERM_SURFACES connects surface caustics L S+ D E, GK_TERM_VCAUSTICS the
+ * volume caustics L S+ V E); its camera connections are passed to splat(ctx, px, py, rgb)
  * as image-plane measurement contributions (to be divided by the number of light paths).
  * max_specular: connect only paths with at most that many specular vertices (GK_BOUNCES_UNLIMITED:
  * all); like max_diffuse it restricts the integrand, not the sampling.
@@ -66,7 +82,7 @@ vec3 gk_trace_eye(const gk_ref_scene *rs, vec3 o, vec3 d, unsigned mask, int max
  * emission (gk_light_photon). Both are unbiased; em wastes no photon where no caustic can start. */
 typedef void (*gk_splat_fn)(void *ctx, int px, int py, vec3 value);
 struct gk_caustic_emitter;
-void gk_trace_light(const gk_ref_scene *rs, const struct gk_caustic_emitter *em, int max_depth, int max_specular, gk_rng *rng,
-                    gk_splat_fn splat, void *ctx, gk_trace_stats *st);
+void gk_trace_light(const gk_ref_scene *rs, const struct gk_caustic_emitter *em, unsigned terms, int max_depth,
+                    int max_specular, gk_rng *rng, gk_splat_fn splat, void *ctx, gk_trace_stats *st);
 
 #endif

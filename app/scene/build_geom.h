@@ -53,6 +53,7 @@ int gk_build_shadow_planes(const char *dir, gk_err *e);
 int gk_build_shadow_planes_stacked(const char *dir, gk_err *e);
 int gk_build_light_leak(const char *dir, gk_err *e);
 int gk_build_caustic_ring(const char *dir, gk_err *e);
+int gk_build_caustic_ring_fog(const char *dir, gk_err *e);
 int gk_build_atrium(const char *dir, gk_err *e);
 int gk_build_furnace(const char *dir, gk_err *e);
 int gk_build_glass(const char *dir, gk_err *e);

@@ -11,6 +11,7 @@ const gk_scene_builder gk_scene_builders[] = {
     {"caustic-ring", gk_build_caustic_ring},
     {"atrium", gk_build_atrium},
     {"furnace", gk_build_furnace},
-    {"glass", gk_build_glass},
+    {.name = "glass", .build = gk_build_glass},
+    {.name = "caustic-ring-fog", .build = gk_build_caustic_ring_fog},
 };
 const int gk_n_scene_builders = (int)(sizeof gk_scene_builders / sizeof gk_scene_builders[0]);

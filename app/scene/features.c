@@ -143,6 +143,7 @@ void gk_scene_derive_features(gk_scene *s)
     f.has_animation = s->n_channels > 0;
     f.is_closed = scene_is_closed(s);
     f.has_interreflection = has_interreflection(s, f.has_emissive);
+    f.has_medium = s->medium.present;
     s->features = f;
 }
 
@@ -165,7 +166,8 @@ unsigned gk_scene_gi_needs(const gk_scene_features *f)
         needs |= GK_GI_NEEDS_CAUSTICS;
     if (!f->has_animation)
         needs |= GK_GI_NEEDS_STATIC;
-    /* GK_GI_NEEDS_MEDIA: the scene model has no participating medium yet, so never. */
+    if (f->has_medium)
+        needs |= GK_GI_NEEDS_MEDIA;
     return needs;
 }
 

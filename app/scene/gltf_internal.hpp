@@ -112,6 +112,10 @@ bool read_nodes(Loader &L, const Model &m, gk_scene *s, const std::vector<int> &
                 const std::vector<int> &mesh_count);
 bool read_animations(Loader &L, const Model &m, gk_scene *s);
 void read_scene_extras(const Model &m, gk_scene *s);
+// The scene's "gikiosk" extras (the default scene's, else the document's), or nullptr.
+const Value *scene_gikiosk_extras(const Model &m);
+// The scene medium, extras "gikiosk": {"medium": {...}} (scene.h, gk_medium).
+bool read_medium(Loader &L, const Value *g, gk_scene *s);
 
 } // namespace gkgltf
 

@@ -271,6 +271,90 @@ bool read_animations(Loader &L, const Model &m, gk_scene *s)
     return true;
 }
 
+// One medium coefficient: a number or [r, g, b], finite and >= 0 (scene.h, gk_medium).
+bool read_medium_rgb(Loader &L, const Value *v, const char *key, float out[3])
+{
+    if (!v)
+        return true;
+    double c[3];
+    if (v->IsNumber()) {
+        c[0] = c[1] = c[2] = v->GetNumberAsDouble();
+    } else if (v->IsArray() && v->ArrayLen() == 3 && v->Get(0).IsNumber() && v->Get(1).IsNumber() &&
+               v->Get(2).IsNumber()) {
+        for (int k = 0; k < 3; k++)
+            c[k] = v->Get(k).GetNumberAsDouble();
+    } else {
+        return L.fail("scene extras gikiosk.medium.%s must be a number or [r, g, b]", key);
+    }
+    for (int k = 0; k < 3; k++) {
+        if (!std::isfinite(c[k]) || c[k] < 0.0)
+            return L.fail("scene extras gikiosk.medium.%s: %g is not a finite number >= 0 (1/m)", key, c[k]);
+        out[k] = (float)c[k];
+    }
+    return true;
+}
+
+bool read_medium_point(Loader &L, const Value &v, const char *which, vec3 *out)
+{
+    if (!v.IsArray() || v.ArrayLen() != 3)
+        return L.fail("scene extras gikiosk.medium.bounds: %s corner must be [x, y, z]", which);
+    float c[3];
+    for (int k = 0; k < 3; k++) {
+        if (!v.Get(k).IsNumber() || !std::isfinite(v.Get(k).GetNumberAsDouble()))
+            return L.fail("scene extras gikiosk.medium.bounds: %s corner must be 3 finite numbers", which);
+        c[k] = (float)v.Get(k).GetNumberAsDouble();
+    }
+    *out = v3(c[0], c[1], c[2]);
+    return true;
+}
+
+// The scene medium, "extras": {"gikiosk": {"medium": {...}}} (scene.h, gk_medium).
+bool read_medium(Loader &L, const Value *g, gk_scene *s)
+{
+    const Value *med = member(g, "medium");
+    if (!med)
+        return true;
+    if (!med->IsObject())
+        return L.fail("scene extras gikiosk.medium must be an object {sigma_s, sigma_a, g, bounds}");
+    for (const std::string &key : med->Keys())
+        if (key != "sigma_s" && key != "sigma_a" && key != "g" && key != "bounds")
+            return L.fail("scene extras gikiosk.medium: unknown key '%s' (sigma_s, sigma_a, g, bounds)", key.c_str());
+    gk_medium *md = &s->medium;
+    if (!read_medium_rgb(L, member(med, "sigma_s"), "sigma_s", md->sigma_s) ||
+        !read_medium_rgb(L, member(med, "sigma_a"), "sigma_a", md->sigma_a))
+        return false;
+    const Value *gv = member(med, "g");
+    if (gv) {
+        double g_hg = gv->IsNumber() ? gv->GetNumberAsDouble() : NAN;
+        if (!(g_hg > -1.0 && g_hg < 1.0))
+            return L.fail("scene extras gikiosk.medium.g must be a number in (-1, 1) (Henyey-Greenstein)");
+        md->g = (float)g_hg;
+    }
+    const Value *b = member(med, "bounds");
+    if (b) {
+        if (!b->IsArray() || b->ArrayLen() != 2)
+            return L.fail("scene extras gikiosk.medium.bounds must be [[x0, y0, z0], [x1, y1, z1]]");
+        if (!read_medium_point(L, b->Get(0), "min", &md->box_min) ||
+            !read_medium_point(L, b->Get(1), "max", &md->box_max))
+            return false;
+        if (!(md->box_min.x < md->box_max.x && md->box_min.y < md->box_max.y && md->box_min.z < md->box_max.z))
+            return L.fail("scene extras gikiosk.medium.bounds: min must be below max on every axis");
+        md->bounded = true;
+    }
+    md->present = true;
+    return true;
+}
+
+const Value *scene_gikiosk_extras(const Model &m)
+{
+    const Value *g = nullptr;
+    if (!m.scenes.empty()) {
+        size_t si = m.defaultScene >= 0 && (size_t)m.defaultScene < m.scenes.size() ? (size_t)m.defaultScene : 0;
+        g = gikiosk_extras(m.scenes[si].extras);
+    }
+    return g ? g : gikiosk_extras(m.extras);
+}
+
 void read_scene_extras(const Model &m, gk_scene *s)
 {
     const Value *g = nullptr;

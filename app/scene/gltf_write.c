@@ -88,6 +88,8 @@ struct gkw_doc {
     char description[512], methods[128];
     bool has_exposure; double exposure;
     param params[16]; int n_params;
+    bool has_medium; double sigma_s[3], sigma_a[3], g;
+    bool medium_bounded; double medium_lo[3], medium_hi[3];
     bool oom;
 };
 
@@ -281,6 +283,21 @@ void gkw_exposure(gkw_doc *d, double ev)
     d->exposure = ev;
 }
 
+void gkw_medium(gkw_doc *d, const double sigma_s[3], const double sigma_a[3], double g)
+{
+    d->has_medium = true;
+    memcpy(d->sigma_s, sigma_s, sizeof d->sigma_s);
+    memcpy(d->sigma_a, sigma_a, sizeof d->sigma_a);
+    d->g = g;
+}
+
+void gkw_medium_bounds(gkw_doc *d, const double lo[3], const double hi[3])
+{
+    d->medium_bounded = true;
+    memcpy(d->medium_lo, lo, sizeof d->medium_lo);
+    memcpy(d->medium_hi, hi, sizeof d->medium_hi);
+}
+
 void gkw_param(gkw_doc *d, const char *key, int n, const double *v)
 {
     if (d->n_params >= 16 || n < 1 || n > 4)
@@ -421,6 +438,22 @@ static void write_nodes_and_scene(gkw_doc *d, sbuf *b)
                 sb_num(b, d->params[i].v[0]);
             else
                 sb_nums(b, d->params[i].v, d->params[i].n);
+        }
+        sb_printf(b, "}");
+    }
+    if (d->has_medium) {
+        sb_printf(b, ",\"medium\":{\"sigma_s\":");
+        sb_nums(b, d->sigma_s, 3);
+        sb_printf(b, ",\"sigma_a\":");
+        sb_nums(b, d->sigma_a, 3);
+        sb_printf(b, ",\"g\":");
+        sb_num(b, d->g);
+        if (d->medium_bounded) {
+            sb_printf(b, ",\"bounds\":[");
+            sb_nums(b, d->medium_lo, 3);
+            sb_printf(b, ",");
+            sb_nums(b, d->medium_hi, 3);
+            sb_printf(b, "]");
         }
         sb_printf(b, "}");
     }

@@ -67,6 +67,10 @@ int gkw_add_channel(gkw_doc *d, int node, const char *path, const char *interp, 
                 const float *values);
 void gkw_description(gkw_doc *d, const char *description, const char *methods);
 void gkw_exposure(gkw_doc *d, double ev);
+/* The scene medium in extras.gikiosk.medium (scene.h, gk_medium), filling all space. */
+void gkw_medium(gkw_doc *d, const double sigma_s[3], const double sigma_a[3], double g);
+/* ... limited to the box [lo, hi] (extras.gikiosk.medium.bounds). */
+void gkw_medium_bounds(gkw_doc *d, const double lo[3], const double hi[3]);
 /* A named number list in extras.gikiosk.params (up to 4 values). */
 void gkw_param(gkw_doc *d, const char *key, int n, const double *v);
 /* Writes DIR/NAME.gltf and DIR/NAME.bin. */

@@ -133,6 +133,7 @@ typedef struct gk_scene_features {
     bool has_caustics;         /* specular/transmissive surfaces lit by point/spot lights */
     bool has_animation;
     bool is_closed;            /* every edge shared by two triangles (furnace-type scenes) */
+    bool has_medium;           /* a participating medium (gk_scene.medium) */
     bool has_interreflection;  /* light can bounce between diffuse surfaces: a light or emitter and a
                                   drawn, non-black, non-metallic surface that is not a light proxy */
 } gk_scene_features;
@@ -150,6 +151,21 @@ typedef struct gk_scene_gltf_use {
     int orthographic_cameras;  /* loaded, never the view */
     int skins;                 /* nodes drawn at their node transform (no skinning) */
 } gk_scene_gltf_use;
+/* A homogeneous participating medium filling the scene (or an axis-aligned box of it), given in the
+ * scene's extras (DESIGN §4):
+ *   "extras": {"gikiosk": {"medium": {"sigma_s": S, "sigma_a": A, "g": G,
+ *                                     "bounds": [[x0, y0, z0], [x1, y1, z1]]}}}
+ * sigma_s (scattering) and sigma_a (absorption) in 1/m, each a number or [r, g, b], >= 0 and finite;
+ * g the Henyey-Greenstein asymmetry in (-1, 1) (default 0, isotropic); bounds optional (default: all
+ * of space). The loader refuses negative, NaN or infinite values, naming the key. Extinction
+ * sigma_t = sigma_s + sigma_a; transmittance exp(-sigma_t * length inside the bounds). */
+typedef struct gk_medium {
+    bool present;
+    float sigma_s[3], sigma_a[3];
+    float g;
+    bool bounded;
+    vec3 box_min, box_max;
+} gk_medium;
 
 typedef struct gk_scene {
     char name[64];             /* file stem: "cornell" */
@@ -177,6 +193,7 @@ typedef struct gk_scene {
     int n_params;
     gk_scene_gltf_use gltf;
     bool default_lighting;     /* the file has no light and no emitter: the default studio was added */
+    gk_medium medium;          /* scene extras "gikiosk": {"medium": {...}} (above) */
 } gk_scene;
 
 /* Loads .gltf/.glb; validates everything (indices, accessors, NaN/Inf, textures). On error returns
@@ -210,7 +227,7 @@ gk_scene *gk_scene_load_memory(const void *data, size_t size, const char *path, 
  * method of the catalogue (app/gi/gi_catalogue.h) whose needs the scene all has
  * (gk_scene_gi_needs): vct, vpl and radiosity when light bounces between diffuse surfaces
  * (features.has_interreflection) and lightmap (its photons follow animated nodes), ispm and lgv with
- * caustics, volcaustics with a participating medium (none in the scene model yet, so never).
+ * caustics, volcaustics with a participating medium (gk_scene.medium) and caustics.
  * The scene's extras "methods" list, when given, replaces the derived list ("none" stays first). */
 int gk_scene_methods(const gk_scene *s, const char **names, int max);
 /* The GK_GI_NEEDS_* bits (app/gi/gi_catalogue.h) a scene with these features has. */

@@ -324,6 +324,53 @@ static void glass_extensions_are_read(void **state)
     gk_scene_free(s);
 }
 
+/* The scene medium (scene.h, gk_medium): read with its defaults, and every malformed value refused
+ * with the key named. */
+static void scene_medium_is_read_and_validated(void **state)
+{
+    (void)state;
+    char extra[512];
+    snprintf(extra, sizeof extra, ",\"extras\":{\"gikiosk\":{\"medium\":{\"sigma_s\":[0.1,0.2,0.3],"
+                                  "\"sigma_a\":0.05,\"g\":0.7,\"bounds\":[[-1,0,-1],[1,2,1]]}}}");
+    write_gltf("fog.gltf", "t.bin", 4, 3, 36, "", extra);
+    gk_err e = {0};
+    gk_scene *s = gk_scene_load(path_of("fog.gltf"), &e);
+    if (!s)
+        print_error("%s\n", e.msg);
+    assert_non_null(s);
+    assert_true(s->medium.present && s->features.has_medium && s->medium.bounded);
+    assert_float_equal(s->medium.sigma_s[2], 0.3f, 1e-7f);
+    assert_float_equal(s->medium.sigma_a[1], 0.05f, 1e-7f);
+    assert_float_equal(s->medium.g, 0.7f, 1e-7f);
+    assert_float_equal(s->medium.box_max.y, 2.0f, 1e-7f);
+    gk_scene_free(s);
+    /* without the key: no medium */
+    write_gltf("clear.gltf", "t.bin", 4, 3, 36, "", "");
+    s = gk_scene_load(path_of("clear.gltf"), &e);
+    assert_non_null(s);
+    assert_false(s->medium.present || s->features.has_medium);
+    gk_scene_free(s);
+
+    const char *bad[][2] = {
+        {"{\"sigma_s\":-0.1}", "medium.sigma_s"},
+        {"{\"sigma_a\":[0.1,-1,0.1]}", "medium.sigma_a"},
+        {"{\"sigma_s\":[0.1,0.1]}", "medium.sigma_s"},
+        {"{\"sigma_s\":\"thick\"}", "medium.sigma_s"},
+        {"{\"sigma_s\":1e999}", "number overflow"}, /* JSON has no NaN/Inf: the parser refuses it */
+        {"{\"g\":1.0}", "medium.g"},
+        {"{\"g\":-1.5}", "medium.g"},
+        {"{\"sigma\":0.1}", "unknown key 'sigma'"},
+        {"{\"bounds\":[[0,0,0],[1,-1,1]]}", "medium.bounds"},
+        {"{\"bounds\":[[0,0,0]]}", "medium.bounds"},
+        {"0.3", "gikiosk.medium must be an object"},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        snprintf(extra, sizeof extra, ",\"extras\":{\"gikiosk\":{\"medium\":%s}}", bad[i][0]);
+        write_gltf("badfog.gltf", "t.bin", 4, 3, 36, "", extra);
+        expect_input_error("badfog.gltf", bad[i][1]);
+    }
+}
+
 static void memory_loads_read_no_files(void **state)
 {
     (void)state;
@@ -356,6 +403,7 @@ int main(void)
         cmocka_unit_test(specular_extension_is_read),
         cmocka_unit_test(glass_extensions_are_read),
         cmocka_unit_test(memory_loads_read_no_files),
+        cmocka_unit_test(scene_medium_is_read_and_validated),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

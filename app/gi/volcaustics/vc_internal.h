@@ -1,0 +1,65 @@
+/* State shared by the files of the volcaustics method (not for other modules). */
+#ifndef GK_VC_INTERNAL_H
+#define GK_VC_INTERNAL_H
+
+#include "gl/gl.h"
+#include "gl/gl_program.h"
+#include "gl/gl_target.h"
+#include "volcaustics.h"
+
+#define VC_KNOBS 5
+#define VC_MAX_LIGHTS 4     /* shaders_gles/volcaustics/airlight.frag */
+#define VC_P2_STEPS 64      /* march steps of a reflected ray through the light-view depth (raygen.comp) */
+
+/* The light whose reflections make the volume caustic this frame (vc_light.c). */
+typedef struct vc_light {
+    bool ok;                 /* a point/spot light with specular geometry in front of it */
+    vec3 pos, axis;          /* position, spot axis */
+    vec3 radiant;            /* colour * intensity (cd) */
+    bool spot;
+    float cos_outer, cos_inner;
+    vec3 fwd;                /* the light view's axis */
+    mat4 vp, inv_vp;
+    float texel_omega0;      /* solid angle of a light-view texel on the axis */
+} vc_light;
+
+typedef struct vc_state {
+    gk_gi_context ctx;
+    gk_program_cache *own_cache;
+    gk_knob knob[VC_KNOBS];
+    gk_volcaustics_stats st;
+    /* budget this frame */
+    int buffer_res;          /* caustic buffer = light view resolution */
+    float dx, rf;            /* the regular step and the filter support (m) */
+    float march_scale;       /* (A)'s resolution relative to the screen */
+    unsigned terms;          /* GK_VC_TERM_* shown */
+    /* scene */
+    bool have_specular;
+    vec3 spec_min, spec_max; /* bounds of the specular objects (world, at the scene's time) */
+    vec3 scene_min, scene_max;
+    vc_light light;
+    /* light view (passes 1a, 1b) and the caustic buffer (pass 2) */
+    gk_target lv, lv_nospec;
+    GLuint cb_p1, cb_p2, cb_flux;
+    int cb_res;
+    /* (A) and (B) images */
+    gk_target air, caustic;
+    GLenum caustic_fmt;      /* RGBA32F where it can be blended, else RGBA16F (vc_method.c) */
+    GLuint empty_vao;
+} vc_state;
+
+/* vc_light.c: frames the light onto the specular objects and renders passes 1a, 1b and 2 (light rays
+   into the caustic buffer). *any = false when no light ray can reach the medium this frame. */
+int vc_light_rays(vc_state *s, const gk_gi_frame *f, bool *any, gk_err *e);
+/* The specular objects' bounds at the frame's time (vc_light.c). */
+void vc_specular_bounds(vc_state *s, const gk_scene *sc);
+/* vc_lines.c: passes 3-5, the lines into the (B) image at screen resolution. */
+int vc_lines(vc_state *s, const gk_gi_frame *f, gk_err *e);
+/* vc_terms.c: (A) by the shadowed ray march, and the composite D = A + B + C into the HDR image. */
+int vc_airlight(vc_state *s, const gk_gi_frame *f, gk_err *e);
+int vc_composite(vc_state *s, const gk_gi_frame *f, bool have_lines, gk_err *e);
+/* 1 / integral over [-r_f, r_f] of the seed's Gaussian filter (lines.frag), for r_f = 1. */
+double vc_filter_integral_unit(void);
+void vc_free_gpu(vc_state *s);
+
+#endif

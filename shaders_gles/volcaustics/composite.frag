@@ -1,0 +1,45 @@
+// volcaustics composite (research §6.3 pass 8), two full-screen draws over the HDR image:
+// VC_ATTENUATE (blend ZERO, SRC_COLOR: multiplies) gives term (C), the renderer's surfaces seen
+// through the medium, C x T(v, p) T(s, p), with s the first local light (exact for one light; with
+// several, their light paths are attenuated as the first one's); without it (blend ONE, ONE: adds)
+// the airlight term (A, bilinear from its reduced resolution) and the volume caustics (B).
+// u_terms selects what is shown (vc_output: all, airlight, vcaustics, surfaces), so each term can be
+// measured against its reference term.
+// @variant VC_ATTENUATE
+// @variant VC_ADD
+precision highp float;
+precision highp int;
+#include "volcaustics/medium.glsl"
+in vec2 v_uv;
+uniform highp sampler2D u_depth;
+uniform highp sampler2D u_airlight;
+uniform highp sampler2D u_caustics;
+uniform mat4 u_inv_view_proj;
+uniform vec3 u_eye;
+uniform vec3 u_light_pos;
+uniform int u_has_light;
+uniform int u_terms;          // bits: 1 airlight, 2 volume caustics, 4 surfaces
+layout(location = 0) out vec4 o_col;
+void main()
+{
+#ifdef VC_ATTENUATE
+    if ((u_terms & 4) == 0) {
+        o_col = vec4(0.0);    // surfaces not shown: the HDR image is cleared to the other terms
+        return;
+    }
+    float depth = texelFetch(u_depth, ivec2(gl_FragCoord.xy), 0).r;
+    vec4 c = u_inv_view_proj * vec4(vec3(v_uv, depth < 1.0 ? depth : 1.0) * 2.0 - 1.0, 1.0);
+    vec3 p = c.xyz / c.w;
+    vec3 t = vc_transmittance(u_eye, p);
+    if (u_has_light == 1 && depth < 1.0)
+        t *= vc_transmittance(u_light_pos, p);
+    o_col = vec4(t, 1.0);
+#else
+    vec3 sum = vec3(0.0);
+    if ((u_terms & 1) != 0)
+        sum += texture(u_airlight, v_uv).rgb;
+    if ((u_terms & 2) != 0)
+        sum += texelFetch(u_caustics, ivec2(gl_FragCoord.xy), 0).rgb;
+    o_col = vec4(sum, 0.0);
+#endif
+}

@@ -1,0 +1,119 @@
+// volcaustics pass 2, light-ray generation into the volume caustic buffer (research §6.3): one
+// invocation per light-view texel. Where the light's nearest surface is specular, the light ray
+// reflects there (p1, one bounce: the seed's ring) and its end p2 is found by marching the reflected
+// ray through the light-view depth of the scene WITHOUT the specular objects (pass 1a, the seed's
+// image-space search); a ray that leaves the light's view without a hit ends where it leaves the
+// scene's box (the seed: "a large bounding sphere"; the box is tighter for rooms).
+// Each texel's line carries the flux of its beam, Phi = I(w) dOmega_texel F(cos) T(s, p1): the
+// spot's intensity in its direction, the texel's solid angle, the Schlick Fresnel of the F0 colour
+// and the medium's transmittance from the light to p1. Outputs (rgba32f images, core in 3.1 for
+// compute): p1 (w = 1 valid), p2, flux.
+precision highp float;
+precision highp int;
+layout(local_size_x = 8, local_size_y = 8) in;
+#include "volcaustics/medium.glsl"
+uniform highp sampler2D u_depth_all;     // pass 1b depth
+uniform highp sampler2D u_depth_nospec;  // pass 1a depth
+uniform highp sampler2D u_nrm;           // pass 1b normal + specular flag
+uniform highp sampler2D u_f0;            // pass 1b F0 colour
+layout(rgba32f, binding = 0) writeonly uniform highp image2D u_p1;
+layout(rgba32f, binding = 1) writeonly uniform highp image2D u_p2;
+layout(rgba32f, binding = 2) writeonly uniform highp image2D u_flux;
+uniform int u_res;
+uniform mat4 u_light_vp;
+uniform mat4 u_light_inv_vp;
+uniform vec3 u_light_pos;
+uniform vec3 u_light_fwd;       // the light view's axis (world)
+uniform vec3 u_light_axis;      // the spot's axis (world)
+uniform vec3 u_radiant;         // colour * intensity (cd)
+uniform vec2 u_cone;            // cos(outer), cos(inner); spot only
+uniform int u_spot;
+uniform float u_texel_omega0;   // solid angle of a texel on the view axis, (2 tan(fov/2) / res)^2
+uniform vec3 u_scene_min;
+uniform vec3 u_scene_max;
+uniform int u_steps;            // march steps for p2
+
+vec3 world_of(vec2 uv, float depth)
+{
+    vec4 c = u_light_inv_vp * vec4(vec3(uv, depth) * 2.0 - 1.0, 1.0);
+    return c.xyz / c.w;
+}
+
+// Exit distance of o + t d from the scene's box (o inside or on it).
+float box_exit(vec3 o, vec3 d)
+{
+    vec3 inv = 1.0 / d;
+    vec3 ta = (u_scene_min - o) * inv, tb = (u_scene_max - o) * inv;
+    vec3 hi = max(ta, tb);
+    return max(min(min(hi.x, hi.y), hi.z), 0.0);
+}
+
+// Is world point x behind the pass-1a depth (inside the light's view)? -1 outside the view.
+float behind(vec3 x)
+{
+    vec4 c = u_light_vp * vec4(x, 1.0);
+    if (c.w <= 0.0)
+        return -1.0;
+    vec3 ndc = c.xyz / c.w;
+    if (any(greaterThan(abs(ndc), vec3(1.0))))
+        return -1.0;
+    float d = texture(u_depth_nospec, ndc.xy * 0.5 + 0.5).r;
+    return (ndc.z * 0.5 + 0.5) > d + 1e-5 ? 1.0 : 0.0;
+}
+
+void main()
+{
+    ivec2 q = ivec2(gl_GlobalInvocationID.xy);
+    if (q.x >= u_res || q.y >= u_res)
+        return;
+    vec4 nf = texelFetch(u_nrm, q, 0);
+    float depth = texelFetch(u_depth_all, q, 0).r;
+    if (nf.a < 0.5 || depth >= 1.0) {
+        imageStore(u_p1, q, vec4(0.0));
+        return;
+    }
+    vec2 uv = (vec2(q) + 0.5) / float(u_res);
+    vec3 p1 = world_of(uv, depth);
+    vec3 n = normalize(nf.xyz * 2.0 - 1.0);
+    vec3 wi = normalize(p1 - u_light_pos);          // the light's direction of travel
+    float cos_i = dot(-wi, n);
+    if (cos_i <= 0.0) {
+        imageStore(u_p1, q, vec4(0.0));
+        return;
+    }
+    vec3 r = reflect(wi, n);
+    // p2: march the reflected ray to the box exit through pass 1a's depth, then bisect the step
+    float t_end = box_exit(p1, r), t_prev = 0.0, t_hit = t_end;
+    float dt = t_end / float(u_steps);
+    for (int i = 1; i <= u_steps; i++) {
+        float t = dt * float(i);
+        if (behind(p1 + r * t) > 0.5) {
+            float a = t_prev, b = t;
+            for (int k = 0; k < 8; k++) {
+                float m = 0.5 * (a + b);
+                if (behind(p1 + r * m) > 0.5)
+                    b = m;
+                else
+                    a = m;
+            }
+            t_hit = b;
+            break;
+        }
+        t_prev = t;
+    }
+    vec3 p2 = p1 + r * t_hit;
+    // the beam's flux
+    float c_view = max(dot(wi, u_light_fwd), 1e-4);
+    float omega = u_texel_omega0 * c_view * c_view * c_view;
+    float spot = 1.0;
+    if (u_spot == 1) {
+        float t = clamp((dot(wi, u_light_axis) - u_cone.x) / max(u_cone.y - u_cone.x, 1e-4), 0.0, 1.0);
+        spot = t * t;
+    }
+    vec3 f0 = texelFetch(u_f0, q, 0).rgb;
+    vec3 fresnel = f0 + (1.0 - f0) * pow(1.0 - cos_i, 5.0);
+    vec3 flux = u_radiant * spot * omega * fresnel * vc_transmittance(u_light_pos, p1);
+    imageStore(u_p1, q, vec4(p1, spot > 0.0 ? 1.0 : 0.0));
+    imageStore(u_p2, q, vec4(p2, 0.0));
+    imageStore(u_flux, q, vec4(flux, 0.0));
+}
