@@ -8,7 +8,7 @@
 
 #include "base/err.h"
 
-#define GK_MAX_KNOBS 48   /* every method's knobs together: 33 with lightmap; a full budget refuses more (tests/unit/test_calibration.c checks the room) */
+#define GK_MAX_KNOBS 64   /* every method's knobs together: 48 filled up once radiosity, lgv and volcaustics joined; a full budget refuses more (tests/unit/test_calibration.c checks the room) */
 #define GK_MAX_KNOB_VALUES 8
 
 typedef struct gk_knob_def {
