@@ -91,10 +91,12 @@ for ref in tests/references/*.exr; do
     [ -n "$emit" ] || emit=light
     spec=$(get caustic_specular) # absent before --caustic-specular existed: unlimited
     [ -n "$spec" ] || spec=unlimited
+    terms=$(get terms)   # a medium scene's term (caustic-ring-fog-airlight.exr ...); absent: all
+    [ -n "$terms" ] || terms=all
     name=$(basename "$ref")
     out=$TMP/low-$name
     json=$("$GIKIOSK" reference --scene "$scene" --scenes-dir "$SCENES" --size "$size" --spp $SPP_LOW \
-        --paths "$paths" --bounces "$bounces" --caustic-emit "$emit" --caustic-specular "$spec" --seed 777 --out "$out" --compare-to "$ref" 2>"$TMP/err")
+        --paths "$paths" --bounces "$bounces" --caustic-emit "$emit" --caustic-specular "$spec" --terms "$terms" --seed 777 --out "$out" --compare-to "$ref" 2>"$TMP/err")
     if [ -z "$json" ]; then
         not_ok "$name: re-render failed ($(head -c 200 "$TMP/err"))"
         continue
