@@ -29,13 +29,18 @@ rm -rf "$OUT"
 mkdir -p "$(dirname "$OUT")"
 TIME_SIZE=${TIME_SIZE:-640x360}
 METHODS=${METHODS:-}
+# SWEEP=each (default): every knob level; SWEEP=render_scale=1: the default rows only (one configuration
+# per scene x method, minutes instead of the better part of an hour; the scheduler then moves those
+# methods' knobs by its priors and step responses)
+SWEEP=${SWEEP:-each}
 only=${METHODS:+--methods $METHODS}
 # The error run: lightmap in lockstep (each frame waits for its photon tick, so the image after the
 # warm-up is what the kiosk converges to, not how far the worker threads got), after ERROR_WARMUP frames
-# (default 40: lightmap's photons and final gather settle by then; static methods are the same at 2).
-"$BIN" bench --scenes "$scenes" $only --sweep each --size "$size" --budget lightmap_sync=lockstep \
+# (default 40: lightmap's photons and final gather settle by then; static methods are the same at 2);
+# radiosity in lockstep too (its links and direct light come from a worker thread).
+"$BIN" bench --scenes "$scenes" $only --sweep "$SWEEP" --size "$size" --budget lightmap_sync=lockstep,radiosity_sync=lockstep \
     --frames 1 --warmup "${ERROR_WARMUP:-40}" --references "$REFS" --out "$OUT" 2>"$OUT.log" || { cat "$OUT.log" >&2; exit 1; }
-"$BIN" bench --scenes "$scenes" $only --sweep each --size "$TIME_SIZE" \
+"$BIN" bench --scenes "$scenes" $only --sweep "$SWEEP" --size "$TIME_SIZE" \
     --frames "$FRAMES" --warmup 2 --references "$REFS" --out "$OUT/time" 2>"$OUT.time.log" ||
     { cat "$OUT.time.log" >&2; exit 1; }
 renderer=$(sed -n 's/^gikiosk: OpenGL ES .* on \(.*\)$/\1/p' "$OUT.log" | head -1)
