@@ -29,6 +29,7 @@ static void glass_init(glass_fixture *g, float ior, float tint, bool up)
     m->base_color[0] = m->base_color[1] = m->base_color[2] = tint;
     m->base_color[3] = 1;
     m->base_color_tex = m->metallic_roughness_tex = m->specular_tex = m->specular_color_tex = -1;
+    m->emissive_tex = m->normal_tex = -1;
     m->metallic = 0;
     m->roughness = 0;
     m->transmission = 1;
@@ -39,8 +40,11 @@ static void glass_init(glass_fixture *g, float ior, float tint, bool up)
     g->rs.n_materials = 1;
     vec3 n = v3(0, 0, up ? 1.0f : -1.0f);
     g->tri.ng = n;
-    for (int k = 0; k < 3; k++)
+    for (int k = 0; k < 3; k++) {
         g->tri.n[k] = n;
+        for (int c = 0; c < 4; c++)
+            g->tri.color[k][c] = 1.0f; /* no COLOR_0: white */
+    }
     g->tri.material = 0;
 }
 
