@@ -1,6 +1,8 @@
 #include "budget.h"
 
 #include <math.h>
+
+#include "base/log.h"
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -20,8 +22,12 @@ int gk_budget_add(gk_budget *b, const gk_knob_def *def)
     int i = gk_budget_find(b, def->name);
     if (i >= 0)
         return i;
-    if (b->n >= GK_MAX_KNOBS)
+    if (b->n >= GK_MAX_KNOBS) {
+        /* Never silent: a refused knob is one the scheduler cannot move nor a user pin (the budget
+           filled up unnoticed once three methods joined in one go). */
+        gk_log("budget: knob '%s' refused: all %d places are taken (raise GK_MAX_KNOBS)", def->name, GK_MAX_KNOBS);
         return -1;
+    }
     i = b->n++;
     b->def[i] = def;
     for (int k = 0; k < GK_MAX_KNOB_VALUES; k++) {
@@ -216,4 +222,10 @@ void gk_budget_format(const gk_budget *b, char *out, int out_len) { format_knobs
 void gk_budget_format_active(const gk_budget *b, const char *method, char *out, int out_len)
 {
     format_knobs(b, method, false, out, out_len);
+}
+
+void gk_budget_add_all(gk_budget *b, const gk_knob_def *defs, int n)
+{
+    for (int i = 0; i < n; i++)
+        gk_budget_add(b, &defs[i]);
 }

@@ -53,6 +53,8 @@ typedef struct gk_knob {
 void gk_budget_init(gk_budget *b);
 /* Adds a knob at its default level (no-op if already there). Returns its index or -1 if full. */
 int gk_budget_add(gk_budget *b, const gk_knob_def *def);
+/* Adds each of defs[0..n) (a method's knob table); a full budget logs each knob it refuses. */
+void gk_budget_add_all(gk_budget *b, const gk_knob_def *defs, int n);
 int gk_budget_find(const gk_budget *b, const char *name);
 /* Current value string of a knob ("1024"), or NULL if the knob is unknown. */
 const char *gk_budget_value(const gk_budget *b, const char *name);

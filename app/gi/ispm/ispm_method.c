@@ -37,20 +37,15 @@ static const gk_knob_def knobs[K_COUNT] = {
 
 static void declare_knobs(gk_budget *b)
 {
-    for (int i = 0; i < K_COUNT; i++)
-        gk_budget_add(b, &knobs[i]);
+    gk_budget_add_all(b, knobs, K_COUNT);
 }
 
 /* Caustics need a specular surface lit by a point or spot light (gi_catalogue.c's
  * GK_GI_NEEDS_CAUSTICS; glass is not a reflector of the seed's). */
 static bool applies(const gk_scene *s)
 {
-    bool light = false, specular = false;
-    for (int i = 0; i < s->n_lights; i++)
-        light |= s->lights[i].type != GK_LIGHT_DIRECTIONAL;
-    for (int i = 0; i < s->n_materials; i++)
-        specular |= !s->materials[i].light_proxy && s->materials[i].roughness < 0.2f && s->materials[i].metallic > 0.5f;
-    return light && specular;
+    /* as the scene derived it at load (features.c): a drawn mirror, and caustics lit by a lamp */
+    return s->features.has_specular && s->features.has_caustics;
 }
 
 void gk_ispm_default_debug(gk_ispm_debug *d)

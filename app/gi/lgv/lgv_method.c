@@ -41,22 +41,12 @@ static const gk_knob_def knobs[K_COUNT] = {
 
 static void declare_knobs(gk_budget *b)
 {
-    for (int i = 0; i < K_COUNT; i++)
-        gk_budget_add(b, &knobs[i]);
+    gk_budget_add_all(b, knobs, K_COUNT);
 }
 
-/* The catalogue's GK_GI_NEEDS_CAUSTICS: a mirror or glass lit by a point, spot or area lamp. */
-static bool applies(const gk_scene *s)
-{
-    bool lamp = false, specular = false;
-    for (int i = 0; i < s->n_lights; i++)
-        lamp |= s->lights[i].type != GK_LIGHT_DIRECTIONAL;
-    for (int i = 0; i < s->n_materials; i++) {
-        const gk_material *m = &s->materials[i];
-        specular |= !m->light_proxy && ((m->roughness < 0.2f && m->metallic > 0.5f) || m->transmission > 0.0f);
-    }
-    return lamp && specular;
-}
+/* The catalogue's GK_GI_NEEDS_CAUSTICS: a drawn mirror or glass lit by a point or spot lamp (area
+   lamps are point/spot lights with a size), as the scene derived it at load (features.c). */
+static bool applies(const gk_scene *s) { return s->features.has_caustics; }
 
 void gk_lgv_default_debug(gk_lgv_debug *d)
 {

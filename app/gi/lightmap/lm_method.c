@@ -36,8 +36,7 @@ static const gk_knob_def knobs[K_COUNT] = {
 
 static void declare_knobs(gk_budget *b)
 {
-    for (int i = 0; i < K_COUNT; i++)
-        gk_budget_add(b, &knobs[i]);
+    gk_budget_add_all(b, knobs, K_COUNT);
 }
 
 /* Light bouncing between diffuse surfaces (gi_catalogue.c's GK_GI_NEEDS_INTERREFLECTION): photons

@@ -49,8 +49,7 @@ rad_settings rad_settings_for(const gk_scene *sc, float tess, int n_face, rad_we
 
 static void declare_knobs(gk_budget *b)
 {
-    for (int i = 0; i < K_COUNT; i++)
-        gk_budget_add(b, &knobs[i]);
+    gk_budget_add_all(b, knobs, K_COUNT);
 }
 
 /* Light bouncing between diffuse surfaces, no mesh that moves (the hierarchy and the links are

@@ -38,8 +38,7 @@ static const gk_knob_def knobs[K_COUNT] = {
 
 static void declare_knobs(gk_budget *b)
 {
-    for (int i = 0; i < K_COUNT; i++)
-        gk_budget_add(b, &knobs[i]);
+    gk_budget_add_all(b, knobs, K_COUNT);
 }
 
 /* A scene with a participating medium (gi_catalogue.c: with caustics too, GK_GI_NEEDS_MEDIA |

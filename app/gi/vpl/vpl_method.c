@@ -40,8 +40,7 @@ static const gk_knob_def knobs[K_COUNT] = {
 
 static void declare_knobs(gk_budget *b)
 {
-    for (size_t i = 0; i < sizeof knobs / sizeof knobs[0]; i++)
-        gk_budget_add(b, &knobs[i]);
+    gk_budget_add_all(b, knobs, (int)(sizeof knobs / sizeof knobs[0]));
 }
 
 static bool applies(const gk_scene *s)
