@@ -51,6 +51,13 @@ typedef struct gk_bench_row {
     double rel_rmse, ssim, psnr, mean_ratio;  /* NaN without a reference */
     double test_mean;                         /* mean linear radiance (light-leak: the leak itself, as
                                                  its reference is black) */
+    double caustic_rel_rmse, caustic_mean_ratio; /* the same two inside the scene's caustic mask
+                                                 (REFS/SCENE-caustics-mask.png: where the reference
+                                                 caustic exceeds 1/4 of its peak), against SCENE.exr
+                                                 whatever the row's ruler (the direct and one-bounce
+                                                 ones have no caustic): how right the caustic is, which a
+                                                 small bright region barely moves in the whole-image
+                                                 error. NaN where the scene has no mask */
     double pass_ms[GK_MAX_PASSES];            /* medians, in the order of pass_names */
     bool pareto;
     bool chosen;               /* the kiosk's automatic choice for this scene (method at its default
@@ -61,6 +68,8 @@ typedef struct gk_bench_row {
    relative error is infinite, the mean radiance of the image (all of it is error); NaN without a
    reference. */
 double gk_bench_row_error(const gk_bench_row *row);
+/* The caustic error a row is charted by (speed-caustic-SCENE.png): caustic_rel_rmse. */
+double gk_bench_row_caustic_error(const gk_bench_row *row);
 /* True when the rows of this scene are measured against a black reference. */
 bool gk_bench_black_reference(const gk_bench_row *rows, int n, const char *scene);
 
@@ -92,6 +101,10 @@ void gk_bench_sweep_pins(const gk_bench_sweep *s, int index, char *out, int out_
 /* Marks rows[i].pareto for the rows of one scene: on the front when no other row of that scene is
  * both at least as fast and strictly more accurate (rel_rmse), or strictly faster and as accurate. */
 void gk_bench_mark_pareto(gk_bench_row *rows, int n);
+/* The same front by another error (gk_bench_row_caustic_error), for the rows of `scene` only:
+ * on_front[i] for each of the n rows (false for other scenes' rows and rows without that error). */
+void gk_bench_pareto_by(const gk_bench_row *rows, int n, const char *scene, double (*error)(const gk_bench_row *),
+                        bool *on_front);
 
 /* Marks the row the kiosk would show in attract mode: the method gk_calibration_choose picks for
  * each scene (calibration c, target_ms at target_pixels), in its row at every knob's default level.
@@ -102,7 +115,8 @@ void gk_bench_mark_choice(gk_bench_result *r, const struct gk_calibration *c, do
 /* Runs everything and writes the outputs. Allocates the result (free()). */
 int gk_bench_run(const gk_bench_opts *o, gk_bench_result **out, gk_err *e);
 int gk_bench_write_csv(const gk_bench_result *r, const char *path, gk_err *e);
-/* Writes DIR/speed-accuracy-SCENE.{dat,gp,png,svg}; without gnuplot logs and skips the images. */
+/* Writes DIR/speed-accuracy-SCENE.{dat,gp,png,svg}, and for a scene with a caustic mask also
+ * DIR/speed-caustic-SCENE.{...} (the error inside the mask); without gnuplot logs and skips the images. */
 int gk_bench_write_charts(const gk_bench_result *r, const char *dir, gk_err *e);
 
 #endif

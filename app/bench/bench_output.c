@@ -30,7 +30,8 @@ int gk_bench_write_csv(const gk_bench_result *r, const char *path, gk_err *e)
     fputs("scene,method", f);
     for (int k = 0; k < r->budget.n; k++)
         fprintf(f, ",%s", r->budget.def[k]->name);
-    fputs(",frame_ms_median,frame_ms_p95,reference,rel_rmse,ssim,psnr,mean_ratio,test_mean,pareto,chosen", f);
+    fputs(",frame_ms_median,frame_ms_p95,reference,rel_rmse,ssim,psnr,mean_ratio,test_mean,caustic_rel_rmse,"
+          "caustic_mean_ratio,pareto,chosen", f);
     for (int p = 0; p < r->n_passes; p++)
         fprintf(f, ",%s_ms", r->pass_names[p]);
     fputc('\n', f);
@@ -50,6 +51,8 @@ int gk_bench_write_csv(const gk_bench_result *r, const char *path, gk_err *e)
         put_num(f, row->psnr);
         put_num(f, row->mean_ratio);
         put_num(f, row->test_mean);
+        put_num(f, row->caustic_rel_rmse);
+        put_num(f, row->caustic_mean_ratio);
         fprintf(f, ",%d,%d", row->pareto ? 1 : 0, row->chosen ? 1 : 0);
         for (int p = 0; p < r->n_passes; p++)
             put_num(f, row->pass_ms[p]);
@@ -99,21 +102,36 @@ static void row_label(const gk_bench_result *r, int i, int series_knob, char *ou
     }
 }
 
-/* The gnuplot script of one scene's chart, writing png and svg. */
+/* One kind of chart: its file prefix, the error on its y axis and what the axis calls it. */
+typedef struct chart_kind {
+    const char *prefix;                      /* "speed-accuracy" */
+    double (*error)(const gk_bench_row *);   /* NaN: the row is not on this chart */
+    const char *what;                        /* the title's words for the error */
+    const char *axis;                        /* y label before the references' names */
+} chart_kind;
+
+static const chart_kind k_accuracy = {.prefix = "speed-accuracy", .error = gk_bench_row_error,
+                                      .what = "error", .axis = "relative RMSE vs "};
+static const chart_kind k_caustic = {.prefix = "speed-caustic", .error = gk_bench_row_caustic_error,
+                                     .what = "caustic error (inside SCENE-caustics-mask.png)",
+                                     .axis = "relative RMSE inside the caustic mask vs "};
+
 /* The row marked as the kiosk's automatic choice for scene (with a measured error), or NULL. */
-static const gk_bench_row *chosen_row(const gk_bench_result *r, const char *scene)
+static const gk_bench_row *chosen_row(const gk_bench_result *r, const chart_kind *k, const char *scene)
 {
     for (int i = 0; i < r->n_rows; i++)
-        if (!strcmp(r->rows[i].scene, scene) && r->rows[i].chosen && !isnan(gk_bench_row_error(&r->rows[i])))
+        if (!strcmp(r->rows[i].scene, scene) && r->rows[i].chosen && !isnan(k->error(&r->rows[i])))
             return &r->rows[i];
     return NULL;
 }
 
-static void put_chart_script(FILE *f, const gk_bench_result *r, const char *scene, const char *dat, const char *gp,
-                             char series[][64], int n_series, const char *png, const char *svg)
+/* The gnuplot script of one scene's chart, writing png and svg. */
+static void put_chart_script(FILE *f, const gk_bench_result *r, const chart_kind *k, const char *scene,
+                             const char *dat, const char *gp, char series[][64], int n_series, const char *png,
+                             const char *svg)
 {
     fprintf(f, "# Speed against accuracy for %s: regenerate with `gnuplot %s`.\n", scene, gp);
-    fprintf(f, "set title \"%s: error against frame time (llvmpipe CPU times: compare as ratios)\"\n", scene);
+    fprintf(f, "set title \"%s: %s against frame time (llvmpipe CPU times: compare as ratios)\"\n", scene, k->what);
     /* the references this scene's rows were measured against, named on the axis */
     char refs[256] = "";
     for (int i = 0; i < r->n_rows; i++) {
@@ -124,12 +142,12 @@ static void put_chart_script(FILE *f, const gk_bench_result *r, const char *scen
     }
     fprintf(f, "set xlabel \"frame time (ms, log scale): median of %d frames, bar to their p95\"\nset ylabel \"%s%s\"\n",
             r->frames,
-            gk_bench_black_reference(r->rows, r->n_rows, scene)
+            k == &k_accuracy && gk_bench_black_reference(r->rows, r->n_rows, scene)
                 ? "mean radiance, nits (the reference is black: all of it is leaked light) "
-                : "relative RMSE vs ", refs);
+                : k->axis, refs);
     fputs("set logscale xy\nset grid\nset key outside right top\nset offsets graph 0.05, graph 0.05, graph 0.05, graph 0.05\n",
           f);
-    const gk_bench_row *chosen = chosen_row(r, scene);
+    const gk_bench_row *chosen = chosen_row(r, k, scene);
     for (int pass = 0; pass < 2; pass++) {
         if (pass == 0)
             fprintf(f, "set terminal pngcairo size 1000,640 font \"DejaVu Sans,10\" noenhanced\nset output \"%s\"\n", png);
@@ -149,14 +167,15 @@ static void put_chart_script(FILE *f, const gk_bench_result *r, const char *scen
     }
 }
 
-static int write_scene_chart(const gk_bench_result *r, const char *dir, const char *scene, gk_err *e)
+static int write_scene_chart(const gk_bench_result *r, const chart_kind *k, const char *dir, const char *scene,
+                             gk_err *e)
 {
     char dat[1024], gp[1024], png[1024], svg[1024];
-    snprintf(dat, sizeof dat, "%s/speed-accuracy-%s.dat", dir, scene);
-    snprintf(gp, sizeof gp, "%s/speed-accuracy-%s.gp", dir, scene);
-    snprintf(png, sizeof png, "%s/speed-accuracy-%s.png", dir, scene);
-    if (snprintf(svg, sizeof svg, "%s/speed-accuracy-%s.svg", dir, scene) >= (int)sizeof svg)
-        return gk_fail(e, GK_EINPUT, "bench: the path '%s/speed-accuracy-%s...' is too long", dir, scene);
+    snprintf(dat, sizeof dat, "%s/%s-%s.dat", dir, k->prefix, scene);
+    snprintf(gp, sizeof gp, "%s/%s-%s.gp", dir, k->prefix, scene);
+    snprintf(png, sizeof png, "%s/%s-%s.png", dir, k->prefix, scene);
+    if (snprintf(svg, sizeof svg, "%s/%s-%s.svg", dir, k->prefix, scene) >= (int)sizeof svg)
+        return gk_fail(e, GK_EINPUT, "bench: the path '%s/%s-%s...' is too long", dir, k->prefix, scene);
     gk_outfile dat_out;
     if (gk_outfile_open(&dat_out, dat, e))
         return -1;
@@ -171,7 +190,7 @@ static int write_scene_chart(const gk_bench_result *r, const char *dir, const ch
     char series[32][64];
     int n_series = 0;
     for (int i = 0; i < r->n_rows; i++) {
-        if (strcmp(r->rows[i].scene, scene) || isnan(gk_bench_row_error(&r->rows[i])))
+        if (strcmp(r->rows[i].scene, scene) || isnan(k->error(&r->rows[i])))
             continue;
         char key[64];
         int sk;
@@ -188,21 +207,22 @@ static int write_scene_chart(const gk_bench_result *r, const char *dir, const ch
             const gk_bench_row *row = &r->rows[i];
             char key[64], label[128];
             int sk;
-            if (strcmp(row->scene, scene) || isnan(gk_bench_row_error(row)))
+            if (strcmp(row->scene, scene) || isnan(k->error(row)))
                 continue;
             row_series(r, i, several_methods, key, sizeof key, &sk);
             if (strcmp(key, series[m]))
                 continue;
             row_label(r, i, sk, label, sizeof label);
-            fprintf(f, "%.6g %.6g %.6g \"%s\"\n", row->frame_ms_median, gk_bench_row_error(row), row->frame_ms_p95,
-                    label);
+            fprintf(f, "%.6g %.6g %.6g \"%s\"\n", row->frame_ms_median, k->error(row), row->frame_ms_p95, label);
         }
         fputs("\n\n", f);
     }
     fputs("# pareto front\n", f);
+    static bool front[GK_BENCH_MAX_ROWS]; /* the bench runs on one thread */
+    gk_bench_pareto_by(r->rows, r->n_rows, scene, k->error, front);
     int idx[GK_BENCH_MAX_ROWS], n = 0;
     for (int i = 0; i < r->n_rows; i++)
-        if (!strcmp(r->rows[i].scene, scene) && r->rows[i].pareto)
+        if (front[i])
             idx[n++] = i;
     for (int a = 1; a < n; a++) /* insertion sort by time: a handful of points */
         for (int b = a; b > 0 && r->rows[idx[b]].frame_ms_median < r->rows[idx[b - 1]].frame_ms_median; b--) {
@@ -211,16 +231,19 @@ static int write_scene_chart(const gk_bench_result *r, const char *dir, const ch
             idx[b - 1] = t;
         }
     for (int a = 0; a < n; a++)
-        fprintf(f, "%.6g %.6g\n", r->rows[idx[a]].frame_ms_median, gk_bench_row_error(&r->rows[idx[a]]));
+        fprintf(f, "%.6g %.6g\n", r->rows[idx[a]].frame_ms_median, k->error(&r->rows[idx[a]]));
     /* the kiosk's automatic choice (one point, or an empty block) */
     fputs("\n\n# kiosk's choice\n", f);
-    const gk_bench_row *chosen = chosen_row(r, scene);
+    const gk_bench_row *chosen = chosen_row(r, k, scene);
     if (chosen)
-        fprintf(f, "%.6g %.6g\n", chosen->frame_ms_median, gk_bench_row_error(chosen));
+        fprintf(f, "%.6g %.6g\n", chosen->frame_ms_median, k->error(chosen));
     if (gk_outfile_commit(&dat_out, e))
         return -1;
     if (n_series == 0) {
-        gk_log("bench: %s has no measured error (no reference): no chart", scene);
+        if (k == &k_accuracy)
+            gk_log("bench: %s has no measured error (no reference): no chart", scene);
+        else
+            remove(dat); /* a scene without a caustic mask has no caustic chart, nor its data */
         return 0;
     }
 
@@ -229,7 +252,7 @@ static int write_scene_chart(const gk_bench_result *r, const char *dir, const ch
     gk_outfile gp_out, run_gp, png_out, svg_out;
     if (gk_outfile_open(&gp_out, gp, e))
         return -1;
-    put_chart_script(gp_out.f, r, scene, dat, gp, series, n_series, png, svg);
+    put_chart_script(gp_out.f, r, k, scene, dat, gp, series, n_series, png, svg);
     if (gk_outfile_commit(&gp_out, e))
         return -1;
     if (gk_outfile_reserve(&png_out, png, e))
@@ -243,7 +266,7 @@ static int write_scene_chart(const gk_bench_result *r, const char *dir, const ch
         gk_outfile_discard(&svg_out);
         return -1;
     }
-    put_chart_script(run_gp.f, r, scene, dat, gp, series, n_series, png_out.tmp, svg_out.tmp);
+    put_chart_script(run_gp.f, r, k, scene, dat, gp, series, n_series, png_out.tmp, svg_out.tmp);
     fflush(run_gp.f);
     char cmd[2200];
     snprintf(cmd, sizeof cmd, "gnuplot '%s' 2>&1", run_gp.tmp);
@@ -278,7 +301,8 @@ int gk_bench_write_charts(const gk_bench_result *r, const char *dir, gk_err *e)
         bool first = true;
         for (int j = 0; j < i && first; j++)
             first = strcmp(r->rows[j].scene, r->rows[i].scene) != 0;
-        if (first && write_scene_chart(r, dir, r->rows[i].scene, e) < 0)
+        if (first && (write_scene_chart(r, &k_accuracy, dir, r->rows[i].scene, e) < 0 ||
+                      write_scene_chart(r, &k_caustic, dir, r->rows[i].scene, e) < 0))
             return -1;
     }
     return 0;

@@ -62,6 +62,7 @@ typedef struct bench_run {
     gk_image reference;        /* SCENE.exr (all light paths); empty when the scene has none */
     gk_image reference_direct; /* SCENE-direct.exr: what method none computes */
     gk_image reference_1bounce; /* SCENE-1bounce.exr: direct + one diffuse bounce, what vct and vpl compute */
+    unsigned char *caustic_mask; /* SCENE-caustics-mask.png at the bench's size, NULL where there is none */
     int width, height;
 } bench_run;
 
@@ -149,6 +150,7 @@ static int measure(bench_run *b, const char *method, const char *pins, gk_err *e
             row->pass_ms[p] = percentile(col_vals, frames < 64 ? frames : 64, 0.5);
         }
         row->rel_rmse = row->ssim = row->psnr = row->mean_ratio = row->test_mean = NAN;
+        row->caustic_rel_rmse = row->caustic_mean_ratio = NAN;
         /* The image that is compared: the linear HDR capture, written where the user can look. */
         char exr[1024];
         snprintf(exr, sizeof exr, "%s/captures/%s-%s-%03d.exr", b->o->out_dir, b->scene->name, method, r->n_rows);
@@ -178,6 +180,17 @@ static int measure(bench_run *b, const char *method, const char *pins, gk_err *e
                 row->psnr = m.psnr;
                 row->mean_ratio = m.mean_ratio;
                 row->test_mean = m.test_mean;
+            }
+            if (rc == 0 && b->caustic_mask && b->reference.pixels) {
+                /* only where the caustic is, against the full reference (SCENE.exr, where the caustic
+                   is: the direct or one-bounce rulers have none), whatever the row's ruler, so every
+                   method of the scene is on one axis: its shape and energy */
+                gk_metrics mm;
+                rc = gk_metrics_compute_masked(&b->reference, &test, 0.0, b->caustic_mask, &mm, e);
+                if (rc == 0) {
+                    row->caustic_rel_rmse = mm.rel_rmse;
+                    row->caustic_mean_ratio = mm.mean_ratio;
+                }
             }
             gk_image_free(&test);
         }
@@ -212,6 +225,32 @@ static int load_reference(bench_run *b, const char *name, const char *suffix, bo
     return 0;
 }
 
+/* REFS/NAME-caustics-mask.png (written by `gikiosk reference --caustic-mask`) as a mask at the
+   bench's size; none, another size or an empty mask leave b->caustic_mask NULL (said in the log). */
+static int load_caustic_mask(bench_run *b, const char *name, gk_err *e)
+{
+    char path[1024];
+    snprintf(path, sizeof path, "%s/%s-caustics-mask.png", b->o->refs_dir, name);
+    b->caustic_mask = NULL;
+    if (access(path, R_OK) != 0)
+        return 0;
+    gk_image img = {0};
+    if (gk_image_read(path, &img, e) < 0)
+        return -1;
+    if (img.width != b->width || img.height != b->height)
+        gk_log("bench: %s is %dx%d, the bench renders %dx%d: no caustic error", path, img.width, img.height,
+               b->width, b->height);
+    else
+        b->caustic_mask = gk_mask_from_image(&img);
+    if (b->caustic_mask && gk_mask_count(b->caustic_mask, img.width, img.height) == 0) {
+        gk_log("bench: %s selects no pixel: no caustic error", path);
+        free(b->caustic_mask);
+        b->caustic_mask = NULL;
+    }
+    gk_image_free(&img);
+    return 0;
+}
+
 static int bench_scene(bench_run *b, const char *name, gk_err *e)
 {
     char path[1024];
@@ -224,6 +263,8 @@ static int bench_scene(bench_run *b, const char *name, gk_err *e)
     if (load_reference(b, name, "", false, &b->reference, e) < 0 ||
         load_reference(b, name, "-direct", false, &b->reference_direct, e) < 0 ||
         load_reference(b, name, "-1bounce", true, &b->reference_1bounce, e) < 0)
+        return -1;
+    if (load_caustic_mask(b, name, e) < 0)
         return -1;
     int rc = gk_renderer_set_scene(b->renderer, b->scene, e);
     const char *applies[16];
@@ -282,6 +323,8 @@ static int bench_scene(bench_run *b, const char *name, gk_err *e)
     gk_image_free(&b->reference);
     gk_image_free(&b->reference_direct);
     gk_image_free(&b->reference_1bounce);
+    free(b->caustic_mask);
+    b->caustic_mask = NULL;
     gk_scene_free(b->scene);
     b->scene = NULL;
     return rc;

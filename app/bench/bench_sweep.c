@@ -135,6 +135,8 @@ double gk_bench_row_error(const gk_bench_row *row)
     return against_black(row) ? row->test_mean : row->rel_rmse;
 }
 
+double gk_bench_row_caustic_error(const gk_bench_row *row) { return row->caustic_rel_rmse; }
+
 bool gk_bench_black_reference(const gk_bench_row *rows, int n, const char *scene)
 {
     for (int i = 0; i < n; i++)
@@ -143,20 +145,34 @@ bool gk_bench_black_reference(const gk_bench_row *rows, int n, const char *scene
     return false;
 }
 
+/* Is row i dominated by another row of its scene (at least as fast and as accurate, strictly one)? */
+static bool on_front(const gk_bench_row *rows, int n, int i, double (*error)(const gk_bench_row *))
+{
+    double err_i = error(&rows[i]);
+    if (isnan(err_i))
+        return false;
+    for (int j = 0; j < n; j++) {
+        double err_j = error(&rows[j]);
+        if (j == i || isnan(err_j) || strcmp(rows[i].scene, rows[j].scene) != 0)
+            continue;
+        bool faster_eq = rows[j].frame_ms_median <= rows[i].frame_ms_median;
+        bool better_eq = err_j <= err_i;
+        bool strictly = rows[j].frame_ms_median < rows[i].frame_ms_median || err_j < err_i;
+        if (faster_eq && better_eq && strictly)
+            return false;
+    }
+    return true;
+}
+
 void gk_bench_mark_pareto(gk_bench_row *rows, int n)
 {
-    for (int i = 0; i < n; i++) {
-        double err_i = gk_bench_row_error(&rows[i]);
-        rows[i].pareto = !isnan(err_i);
-        for (int j = 0; j < n && rows[i].pareto; j++) {
-            double err_j = gk_bench_row_error(&rows[j]);
-            if (j == i || isnan(err_j) || strcmp(rows[i].scene, rows[j].scene) != 0)
-                continue;
-            bool faster_eq = rows[j].frame_ms_median <= rows[i].frame_ms_median;
-            bool better_eq = err_j <= err_i;
-            bool strictly = rows[j].frame_ms_median < rows[i].frame_ms_median || err_j < err_i;
-            if (faster_eq && better_eq && strictly)
-                rows[i].pareto = false;
-        }
-    }
+    for (int i = 0; i < n; i++)
+        rows[i].pareto = on_front(rows, n, i, gk_bench_row_error);
+}
+
+void gk_bench_pareto_by(const gk_bench_row *rows, int n, const char *scene, double (*error)(const gk_bench_row *),
+                        bool *front)
+{
+    for (int i = 0; i < n; i++)
+        front[i] = !strcmp(rows[i].scene, scene) && on_front(rows, n, i, error);
 }

@@ -9,7 +9,7 @@ expect_exit 0 "bench: two shadow methods on shadow-planes" "$GIKIOSK" bench --sc
 CSV=$TMP/b/bench.csv
 check "bench.csv exists" [ -f "$CSV" ]
 check "bench.csv header: scene,method,knobs...,frame_ms_median,frame_ms_p95,rel_rmse,ssim" \
-    sh -c "head -1 '$CSV' | grep -q '^scene,method,.*shadow_map.*,frame_ms_median,frame_ms_p95,reference,rel_rmse,ssim,psnr,mean_ratio,test_mean,pareto'"
+    sh -c "head -1 '$CSV' | grep -q '^scene,method,.*shadow_map.*,frame_ms_median,frame_ms_p95,reference,rel_rmse,ssim,psnr,mean_ratio,test_mean,caustic_rel_rmse,caustic_mean_ratio,pareto'"
 check "bench.csv: one row per configuration" [ "$(wc -l <"$CSV")" -eq 3 ]
 check "bench.csv: method none is measured against the direct reference" \
     sh -c "awk -F, 'NR > 1 && \$0 !~ /,shadow-planes-direct,/ { bad = 1 } END { exit bad }' '$CSV'"
@@ -98,6 +98,33 @@ check "the marked choice ($chosen) is the kiosk's own at 400 ms, 640x360 (${kios
 check "the marked choice is not worse than none against the same ruler" \
     sh -c "awk -F, -v c=$c_ch -v m=$c_m -v e=$c_err 'NR > 1 { err[\$m] = \$e; if (\$c == 1) pick = \$m } END { exit !(pick != \"\" && err[pick] <= err[\"none\"]) }' '$CSV'"
 check "chart: the choice is drawn" grep -q "kiosk's choice at 400 ms, 640x360" "$TMP/choice/speed-accuracy-cornell-spot.gp"
+
+# The caustic error: where the scene has a caustic mask (caustic-ring-caustics-mask.png), each row's
+# error inside it, against the full reference whatever the row's ruler (the direct one has no
+# caustic) -- the same number `gikiosk compare --mask` gives for
+# the captured image (another code path: the CLI's JSON); a chart of it beside the whole-image one.
+expect_exit 0 "bench: none and ispm on caustic-ring" "$GIKIOSK" bench --scenes caustic-ring --methods none,ispm \
+    --sweep "render_scale=1" --frames 1 --warmup 1 --out "$TMP/caustic"
+CSV=$TMP/caustic/bench.csv
+c_cr=$(col caustic_rel_rmse); c_cm=$(col caustic_mean_ratio); c_ref=$(col reference); c_m=$(col method)
+check "bench.csv (caustic-ring): a caustic error in every row" \
+    sh -c "awk -F, -v c=$c_cr -v m=$c_cm 'NR > 1 && !(\$c > 0 && \$m > 0) { bad = 1 } END { exit bad || NR != 3 }' '$CSV'"
+for row in 2 3; do
+    method=$(awk -F, -v c="$c_m" -v r=$row 'NR == r { print $c }' "$CSV")
+    capture=$(ls "$TMP"/caustic/captures/caustic-ring-"$method"-*.exr | head -1)
+    "$GIKIOSK" compare tests/references/caustic-ring.exr "$capture" --mask tests/references/caustic-ring-caustics-mask.png \
+        --json >"$TMP/caustic-$method.json"
+    inside=$(sed 's/.*"inside": {\([^}]*\)}.*/\1/' "$TMP/caustic-$method.json")
+    want_e=$(echo "$inside" | sed 's/^"rel_rmse": \([^,]*\),.*/\1/')
+    want_m=$(echo "$inside" | sed 's/.*"mean_ratio": \([^,]*\),.*/\1/')
+    check "bench.csv (caustic-ring, $method): caustic_rel_rmse and caustic_mean_ratio are compare --mask's ($want_e, $want_m)" \
+        awk -F, -v r=$row -v c=$c_cr -v m=$c_cm -v we="$want_e" -v wm="$want_m" \
+        'NR == r { exit !(we > 0 && ($c - we) ^ 2 < (1e-5 * we) ^ 2 && ($m - wm) ^ 2 < (1e-5 * wm) ^ 2) }' "$CSV"
+done
+check "bench.csv (caustic-ring): ispm's caustic is better than none's (none draws no caustic)" \
+    sh -c "awk -F, -v c=$c_cr -v m=$c_m 'NR > 1 { e[\$m] = \$c } END { exit !(e[\"ispm\"] < e[\"none\"]) }' '$CSV'"
+check "chart: speed-caustic-caustic-ring.png" [ -s "$TMP/caustic/speed-caustic-caustic-ring.png" ]
+check "no caustic chart where there is no mask (shadow-planes)" [ ! -e "$TMP/b/speed-caustic-shadow-planes.dat" ]
 
 expect_exit 2 "bench: unknown knob in --sweep exits 2" "$GIKIOSK" bench --scenes shadow-planes --sweep "shadows=hard" --out "$TMP/c"
 stderr_has "unknown knob 'shadows'" "bench: the message names the knob"
