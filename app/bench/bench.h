@@ -53,9 +53,10 @@ typedef struct gk_bench_row {
                                                  its reference is black) */
     double caustic_rel_rmse, caustic_mean_ratio; /* the same two inside the scene's caustic mask
                                                  (REFS/SCENE-caustics-mask.png: where the reference
-                                                 caustic exceeds 1/4 of its peak), against SCENE.exr
-                                                 whatever the row's ruler (the direct and one-bounce
-                                                 ones have no caustic): how right the caustic is, which a
+                                                 caustic exceeds 1/4 of its peak), against the row's
+                                                 ruler (none's, the direct one, has no caustic: none is
+                                                 measured against SCENE-1bounce.exr, else SCENE.exr):
+                                                 how right the caustic is, which a
                                                  small bright region barely moves in the whole-image
                                                  error. NaN where the scene has no mask */
     double pass_ms[GK_MAX_PASSES];            /* medians, in the order of pass_names */

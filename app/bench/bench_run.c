@@ -181,12 +181,15 @@ static int measure(bench_run *b, const char *method, const char *pins, gk_err *e
                 row->mean_ratio = m.mean_ratio;
                 row->test_mean = m.test_mean;
             }
-            if (rc == 0 && b->caustic_mask && b->reference.pixels) {
-                /* only where the caustic is, against the full reference (SCENE.exr, where the caustic
-                   is: the direct or one-bounce rulers have none), whatever the row's ruler, so every
-                   method of the scene is on one axis: its shape and energy */
+            /* Only where the caustic is: its shape and energy, against the row's ruler; `none`'s
+               (the direct reference) has no caustic, so none is measured there against the scene's
+               one ruler (SCENE-1bounce.exr where it exists, else SCENE.exr), what a caustic method
+               adds to it. */
+            const gk_image *caustic_ruler =
+                !direct ? ref : b->reference_1bounce.pixels ? &b->reference_1bounce : &b->reference;
+            if (rc == 0 && b->caustic_mask && caustic_ruler->pixels) {
                 gk_metrics mm;
-                rc = gk_metrics_compute_masked(&b->reference, &test, 0.0, b->caustic_mask, &mm, e);
+                rc = gk_metrics_compute_masked(caustic_ruler, &test, 0.0, b->caustic_mask, &mm, e);
                 if (rc == 0) {
                     row->caustic_rel_rmse = mm.rel_rmse;
                     row->caustic_mean_ratio = mm.mean_ratio;
