@@ -11,9 +11,10 @@
 # is recorded there instead (column `metric`). Writes config/calibration/CLASS.csv, CLASS from the
 # GL renderer string (llvmpipe here); other platforms: run this on the board.
 # Usage: tools/calibrate.sh BIN   (environment: OUT=work dir, DEST=config/calibration, FRAMES,
-# SCENES=comma list: only those, for trying it out -- the table then covers only them; METHODS=comma
-# list: measure only those methods and keep the existing table's rows of the others, e.g. after adding
-# a method: METHODS=lightmap make calibrate)
+# SCENES=comma list and/or METHODS=comma list: measure only those scenes x methods and keep the
+# existing table's rows of the others, e.g. after adding a method: METHODS=lightmap make calibrate;
+# after adding a scene: SCENES=glass-fog make calibrate; without an existing table the new one covers
+# only what was measured)
 set -eu
 BIN=${1:-build/gikiosk}
 OUT=${OUT:-out/calibration}
@@ -70,9 +71,10 @@ tmp=$(mktemp "$DEST/.calibration.XXXXXX")
     echo "# at each automatic level; frame time and pass times at ${TIME_SIZE} (median of $FRAMES frames after 2 warm-up); error at"
     echo "# ${size} against the scene's ruler (SCENE-1bounce.exr where it exists, else SCENE.exr): rel_rmse, or rmse where the ruler is black"
     echo "scene,method,width,height,frame_ms,error,metric,ruler,knob,value,passes"
-    if [ -n "$METHODS" ] && [ -f "$DEST/$class.csv" ]; then
-        # the other methods' rows as they were (measured in an earlier run)
-        awk -F, -v m=",$METHODS," 'NR > 1 && !/^#/ && $1 != "scene" && index(m, "," $2 ",") == 0' "$DEST/$class.csv"
+    if { [ -n "$METHODS" ] || [ -n "${SCENES:-}" ]; } && [ -f "$DEST/$class.csv" ]; then
+        # the rows of the scene x method pairs not measured now, as they were (an earlier run)
+        awk -F, -v m=",$METHODS," -v s=",${SCENES:-}," 'NR > 1 && !/^#/ && $1 != "scene" &&
+            !((s == ",," || index(s, "," $1 ",")) && (m == ",," || index(m, "," $2 ",")))' "$DEST/$class.csv"
     fi
     while read -r row scene method knob value ms passes; do
         [ "$knob" = "-" ] && knob= && value=
