@@ -6,9 +6,10 @@
 #include "gl/gl_program.h"
 #include "lightmap.h"
 #include "lm_atlas.h"
+#include "lm_caustic_gpu.h"
 #include "lm_gather.h"
 
-#define LM_KNOBS 6
+#define LM_KNOBS 8
 #define LM_IIM_TAU_S 0.25 /* the IIM blend (research B.2's recommendation; the seed: "fairly fast") */
 
 typedef struct lm_state {
@@ -45,6 +46,11 @@ typedef struct lm_state {
     int *order;
     GLuint uv_fbo, uv_tex, uv_depth;
     int uv_w, uv_h;
+    /* caustics: the points of the worker's newest list on the GPU and their mean flux */
+    lm_caustic_gpu caustic;
+    uint64_t caustic_seen;
+    vec3 caustic_flux;
+    bool caustic_cull;           /* filter only the tiles with photons (false: the whole screen) */
 } lm_state;
 
 /* lm_display.c */
@@ -54,5 +60,8 @@ void lm_display_upload(void *state, const float *indirect, const float *full, co
 int lm_display_gather(lm_state *s, const gk_gi_frame *f, int texels, int res, gk_err *e);
 int lm_display_draw(lm_state *s, const gk_gi_frame *f, gk_err *e);
 void lm_display_free(lm_state *s);
+/* Takes the worker's newest caustic photons (lm_worker_take_caustics) and adds the filtered
+   caustics to the frame. */
+int lm_display_caustics(lm_state *s, const gk_gi_frame *f, gk_err *e);
 
 #endif
