@@ -29,11 +29,9 @@ static bool is_generator(const gk_ref_scene *rs, uint32_t t)
     return !gk_surface_has_smooth_part(&sf);
 }
 
-int lm_caustics_init(lm_caustics *c, const gk_ref_scene *rs, int n, int window, gk_err *e)
+/* The generators' bounding sphere: centre of their box, radius to the farthest vertex. */
+static uint32_t generator_sphere(const gk_ref_scene *rs, vec3 *centre, float *radius)
 {
-    memset(c, 0, sizeof *c);
-    c->window = window < 1 ? 1 : window;
-    /* the generators' bounding sphere: centre of their box, radius to the farthest vertex */
     vec3 lo = v3(INFINITY, INFINITY, INFINITY), hi = v3(-INFINITY, -INFINITY, -INFINITY);
     uint32_t generators = 0;
     for (uint32_t t = 0; t < rs->n_tris; t++) {
@@ -43,17 +41,52 @@ int lm_caustics_init(lm_caustics *c, const gk_ref_scene *rs, int n, int window, 
         for (int k = 0; k < 3; k++)
             lo = v3_min(lo, rs->tris[t].p[k]), hi = v3_max(hi, rs->tris[t].p[k]);
     }
-    int usable = 0;
-    for (int l = 0; l < rs->n_lights; l++)
-        usable += rs->lights[l].kind == GK_REF_POINT || rs->lights[l].kind == GK_REF_SPOT;
-    if (generators == 0 || usable == 0 || n <= 0)
-        return 0; /* no caustics in this scene: n stays 0 */
-    vec3 centre = v3_scale(v3_add(lo, hi), 0.5f);
-    float radius = 0.0f;
-    for (uint32_t t = 0; t < rs->n_tris; t++)
+    *centre = v3_scale(v3_add(lo, hi), 0.5f);
+    *radius = 0.0f;
+    for (uint32_t t = 0; generators > 0 && t < rs->n_tris; t++)
         if (is_generator(rs, t))
             for (int k = 0; k < 3; k++)
-                radius = fmaxf(radius, v3_len(v3_sub(rs->tris[t].p[k], centre)));
+                *radius = fmaxf(*radius, v3_len(v3_sub(rs->tris[t].p[k], *centre)));
+    return generators;
+}
+
+static bool caustic_light(const gk_ref_light *L)
+{
+    return L->kind == GK_REF_POINT || L->kind == GK_REF_SPOT;
+}
+
+void lm_caustics_aim(lm_caustics *c, const gk_ref_scene *rs)
+{
+    vec3 centre;
+    float radius;
+    generator_sphere(rs, &centre, &radius);
+    for (int i = 0; i < c->n_lights; i++) {
+        lm_caustic_light *cl = &c->lights[i];
+        const gk_ref_light *L = &rs->lights[cl->light];
+        vec3 to = v3_sub(centre, L->pos);
+        float d = v3_len(to);
+        if (d <= radius * 1.0001f) { /* inside the sphere: every direction may meet a generator */
+            cl->axis = v3(0, 0, 1);
+            cl->cos_max = -1.0f;
+        } else {
+            cl->axis = v3_scale(to, 1.0f / d);
+            cl->cos_max = sqrtf(fmaxf(0.0f, 1.0f - (radius / d) * (radius / d)));
+        }
+    }
+}
+
+int lm_caustics_init(lm_caustics *c, const gk_ref_scene *rs, int n, int window, gk_err *e)
+{
+    memset(c, 0, sizeof *c);
+    c->window = window < 1 ? 1 : window;
+    vec3 centre;
+    float radius;
+    uint32_t generators = generator_sphere(rs, &centre, &radius);
+    int usable = 0;
+    for (int l = 0; l < rs->n_lights; l++)
+        usable += caustic_light(&rs->lights[l]);
+    if (generators == 0 || usable == 0 || n <= 0)
+        return 0; /* no caustics in this scene: n stays 0 */
     c->lights = calloc((size_t)usable, sizeof *c->lights);
     c->pos = calloc((size_t)n, sizeof *c->pos);
     c->power = calloc((size_t)n, sizeof *c->power);
@@ -64,25 +97,16 @@ int lm_caustics_init(lm_caustics *c, const gk_ref_scene *rs, int n, int window, 
     }
     c->n = n;
     for (int l = 0; l < rs->n_lights; l++) {
-        const gk_ref_light *L = &rs->lights[l];
-        if (L->kind != GK_REF_POINT && L->kind != GK_REF_SPOT)
+        if (!caustic_light(&rs->lights[l]))
             continue;
         lm_caustic_light *cl = &c->lights[c->n_lights];
-        vec3 to = v3_sub(centre, L->pos);
-        float d = v3_len(to);
         cl->light = l;
-        if (d <= radius * 1.0001f) { /* inside the sphere: every direction may meet a generator */
-            cl->axis = v3(0, 0, 1);
-            cl->cos_max = -1.0f;
-        } else {
-            cl->axis = v3_scale(to, 1.0f / d);
-            cl->cos_max = sqrtf(fmaxf(0.0f, 1.0f - (radius / d) * (radius / d)));
-        }
         /* an even split: light i gets photons [n i / L, n (i + 1) / L) */
         cl->first = (int)((long)n * c->n_lights / usable);
         cl->count = (int)((long)n * (c->n_lights + 1) / usable) - cl->first;
         c->n_lights++;
     }
+    lm_caustics_aim(c, rs);
     return 0;
 }
 
@@ -92,9 +116,22 @@ void lm_caustics_free(lm_caustics *c)
     memset(c, 0, sizeof *c);
 }
 
+/* Photon k's slice: its rank within its light's photons cut into W runs of consecutive Halton
+   indices. A run of consecutive Halton points covers the cone evenly; k mod W would not (its low
+   base-2 digits are the first Halton coordinate's: each slice would be one ring of the cone). */
+int lm_caustics_slice(const lm_caustics *c, int k)
+{
+    for (int i = 0; i < c->n_lights; i++) {
+        const lm_caustic_light *cl = &c->lights[i];
+        if (k >= cl->first && k < cl->first + cl->count)
+            return (int)((long)(k - cl->first) * c->window / cl->count);
+    }
+    return 0;
+}
+
 bool lm_caustics_due(const lm_caustics *c, int k)
 {
-    return c->ticks == 0 || (uint64_t)k % (uint64_t)c->window == c->ticks % (uint64_t)c->window;
+    return c->ticks == 0 || (uint64_t)lm_caustics_slice(c, k) == c->ticks % (uint64_t)c->window;
 }
 
 static vec3 offset_point(const gk_ref_scene *rs, vec3 p, vec3 ng, vec3 dir)

@@ -5,14 +5,16 @@
  * is purely specular (no non-delta lobe: mirrors, clear glass). For each point or spot light the
  * generators' world bounding sphere subtends a cone; photon k of the light takes its direction in
  * that cone from the Halton pair (bases 2, 3) of its index ("QMC Halton to lower the noise and avoid
- * flickering") and carries I x (cone solid angle) / (the light's photons) (spot: x its falloff).
+ * flickering") and carries I x (cone solid angle) / (the light's photons) (spot: x its falloff);
+ * the cones follow the generators when they move (lm_caustics_aim).
  * A photon follows delta bounces only (its own PCG stream chooses between a dielectric's
  * reflection and refraction, so a retrace in an unchanged scene repeats it bit for bit) and is
  * kept where it first meets a surface with a non-delta lobe after at least one specular bounce: a
  * L S+ D path, the reference's `caustics` term. Anything else is no caustic photon (a kept
  * photon's slot stays empty). The hits are a plain list, no groups ("caustics are localised").
  *
- * Progressive retracing: photon k is retraced in the ticks t with k mod W = t mod W (W the window,
+ * Progressive retracing: a light's photons are cut into W runs of consecutive Halton indices (each
+ * covers the cone evenly); run s is retraced in the ticks t with s = t mod W (W the window,
  * the seed's 10,000 photons over 8 frames), every photon in the first tick after a change of the
  * photon count or the window. A moving generator therefore leaves a trail that is gone after W
  * ticks, each tick replacing 1/W of it (tests/unit/test_lightmap_caustics.c).
@@ -50,8 +52,13 @@ typedef struct lm_caustics {
  * lights), window W >= 1. No generator or no such light: n becomes 0 (nothing to trace). */
 int lm_caustics_init(lm_caustics *c, const gk_ref_scene *rs, int n, int window, gk_err *e);
 void lm_caustics_free(lm_caustics *c);
+/* Re-aims the cones at the generators where rs has them now (after a node moved): photons keep
+ * their Halton numbers, so each one's new path is found when its slice is retraced. */
+void lm_caustics_aim(lm_caustics *c, const gk_ref_scene *rs);
 
-/* Which photons the next update retraces: k with k mod W == tick mod W, or all in the first. */
+/* Photon k's run (0 .. W-1), and whether the next update retraces it (its run is the tick's, or
+ * it is the first update). */
+int lm_caustics_slice(const lm_caustics *c, int k);
 bool lm_caustics_due(const lm_caustics *c, int k);
 /* Traces photon k through rs (thread-safe: reads only rs and c's cones); writes its hit. */
 void lm_caustics_trace(const lm_caustics *c, const gk_ref_scene *rs, int k, vec3 *pos, vec3 *power, bool *has);

@@ -24,6 +24,7 @@ struct lm_worker {
     gk_node *nodes;
     mat4 *built_worlds;          /* the node matrices rs was built with */
     bool have_rs;
+    bool rs_rebuilt;             /* refresh_scene rebuilt rs this tick (nodes moved) */
     gk_ref_scene rs;
     lm_photons ph;
     bool have_ph;
@@ -148,6 +149,7 @@ static int refresh_scene(lm_worker *w, const mat4 *worlds)
         return -1;
     }
     w->have_rs = true;
+    w->rs_rebuilt = true;
     memcpy(w->built_worlds, worlds, sizeof *worlds * (size_t)n);
     if (w->rs.n_tris != w->atlas->n_ref) {
         char msg[160];
@@ -249,6 +251,8 @@ static void tick_caustics(lm_worker *w)
     lm_caustics *c = &w->caus;
     if (c->n == 0)
         return;
+    if (w->rs_rebuilt)
+        lm_caustics_aim(c, &w->rs); /* a generator or light may have moved */
     parallel_for(w, trace_caustic_chunk, (c->n + LM_CAUSTIC_CHUNK - 1) / LM_CAUSTIC_CHUNK);
     bool first = c->ticks == 0;
     bool changed = lm_caustics_apply(c, w->caus_new_pos, w->caus_new_pow, w->caus_new_has);
@@ -272,6 +276,7 @@ static void tick_caustics(lm_worker *w)
 
 static void tick(lm_worker *w, const mat4 *worlds)
 {
+    w->rs_rebuilt = false;
     if (refresh_scene(w, worlds))
         return;
     const lm_atlas *a = w->atlas;
