@@ -9,7 +9,7 @@
 #include "lm_caustic_gpu.h"
 #include "lm_gather.h"
 
-#define LM_KNOBS 8
+#define LM_KNOBS 9
 #define LM_IIM_TAU_S 0.25 /* the IIM blend (research B.2's recommendation; the seed: "fairly fast") */
 
 typedef struct lm_state {
@@ -18,6 +18,7 @@ typedef struct lm_state {
     gk_knob knob[LM_KNOBS];
     gk_lightmap_stats st;
     int threads_override;
+    bool one_worker;             /* lightmap_workers=1 this frame */
     /* the scene: the method's own copy loaded from the scene's file (the worker threads read it
        while the renderer's may be freed), or borrowed when the scene has no file (tests) */
     gk_scene *own_scene;

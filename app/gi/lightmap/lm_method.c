@@ -34,8 +34,12 @@
  *   lightmap_window: W, frames over which every caustic photon is retraced once (the seed: 8);
  *                    the workers' share shrinks as 1/W, the render thread's not at all; a steady
  *                    image does not depend on it (identical at W = 1 and 8), only a moving
- *                    generator's trail, which a static calibration cannot see: a switch too */
-enum { K_GROUPS, K_AIM, K_IIM, K_GATHER, K_TEXELS, K_SYNC, K_CAUSTICS, K_WINDOW, K_COUNT };
+ *                    generator's trail, which a static calibration cannot see: a switch too
+ *   lightmap_workers: the photon pool's threads: `config` ([cpu] workers, default cores - 1) or 1;
+ *                    a switch for the bench's side-by-side measurement of what the photon work
+ *                    costs the render thread (make bench-lightmap-workers); a change restarts the
+ *                    pool and re-emits the photons */
+enum { K_GROUPS, K_AIM, K_IIM, K_GATHER, K_TEXELS, K_SYNC, K_CAUSTICS, K_WINDOW, K_WORKERS, K_COUNT };
 _Static_assert(K_COUNT == LM_KNOBS, "lm_internal.h's LM_KNOBS counts the knobs");
 static const gk_knob_def knobs[K_COUNT] = {
     {"lightmap_groups", "lightmap", 4, {"77", "154", "308", "616"}, {1.0f, 1.02f, 1.05f, 1.1f}, 0, 0, false, NULL},
@@ -48,6 +52,8 @@ static const gk_knob_def knobs[K_COUNT] = {
                     .values = {"0", "2500", "10000", "40000"}, .cost = {1.0f, 1.01f, 1.02f, 1.04f}, .default_level = 2, .fixed = true},
     [K_WINDOW] = {.name = "lightmap_window", .owner = "lightmap", .n_values = 4, .values = {"16", "8", "4", "1"},
                   .cost = {1.0f, 1.0f, 1.01f, 1.02f}, .default_level = 1, .fixed = true},
+    [K_WORKERS] = {.name = "lightmap_workers", .owner = "lightmap", .n_values = 2, .values = {"1", "config"},
+                   .cost = {1.0f, 1.0f}, .default_level = 1, .fixed = true},
 };
 
 static void declare_knobs(gk_budget *b)
@@ -72,6 +78,8 @@ static void *create(const gk_gi_context *ctx, gk_err *e)
     s->own_cache = gk_gi_context_own_programs(&s->ctx);
     return s;
 }
+
+static int lm_threads_wanted(const lm_state *s);
 
 static void teardown_scene(lm_state *s)
 {
@@ -111,9 +119,7 @@ static int setup_scene(lm_state *s, const gk_scene *sc, int texels_across, gk_er
     if (lm_atlas_build(&s->atlas, s->scene, texels_across, e))
         return -1;
     s->have_atlas = true;
-    int threads = s->threads_override > 0 ? s->threads_override
-                  : s->ctx.cpu_workers > 0 ? s->ctx.cpu_workers
-                                           : lm_default_threads();
+    int threads = lm_threads_wanted(s);
     if (!(s->worker = lm_worker_create(s->scene, &s->atlas, threads, e)))
         return -1;
     if (lm_display_setup(s, e))
@@ -122,6 +128,17 @@ static int setup_scene(lm_state *s, const gk_scene *sc, int texels_across, gk_er
     s->st.texel_size = s->atlas.texel_size;
     s->st.threads = threads;
     return 0;
+}
+
+/* The pool's size: a test's override, else 1 when lightmap_workers=1, else [cpu] workers, else
+   cores - 1. */
+static int lm_threads_wanted(const lm_state *s)
+{
+    if (s->threads_override > 0)
+        return s->threads_override;
+    if (s->one_worker)
+        return 1;
+    return s->ctx.cpu_workers > 0 ? s->ctx.cpu_workers : lm_default_threads();
 }
 
 static int set_scene(void *self, const gk_scene *sc, gk_err *e)
@@ -135,7 +152,9 @@ static int render(void *self, const gk_gi_frame *f, gk_err *e)
     lm_state *s = self;
     const gk_budget *b = f->budget;
     int across = (int)gk_knob_number(b, &s->knob[K_TEXELS], 5.0f);
-    if (!s->have_atlas || f->scene != s->source || across != s->atlas.texels_across)
+    s->one_worker = gk_knob_level(b, &s->knob[K_WORKERS], 1) == 0;
+    if (!s->have_atlas || f->scene != s->source || across != s->atlas.texels_across ||
+        lm_threads_wanted(s) != s->st.threads)
         if (setup_scene(s, f->scene, across, e))
             return -1;
     lm_tick_settings set = {.groups = (int)gk_knob_number(b, &s->knob[K_GROUPS], 77.0f),
