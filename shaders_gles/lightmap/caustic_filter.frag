@@ -8,6 +8,7 @@ precision highp float;
 precision highp int;
 uniform highp sampler2D u_count;
 uniform vec3 u_photon_flux;  // the mean flux of a caustic photon (one colour: the seed's assumption)
+uniform float u_count_scale; // the count target holds n photons as n / u_count_scale (R8: 255, R16F: 1)
 #include "common/gbuffer.glsl"
 in vec2 v_uv;
 layout(location = 0) out vec4 o_color;
@@ -36,7 +37,7 @@ void main()
             ivec2 q = px + ivec2(i, j);
             if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size)))
                 continue;
-            sum += w * floor(texelFetch(u_count, q, 0).r * 255.0 + 0.5);
+            sum += w * floor(texelFetch(u_count, q, 0).r * u_count_scale + 0.5);
         }
     if (sum == 0.0)
         discard;  // no photon within reach: add nothing (bit-identical to adding 0)

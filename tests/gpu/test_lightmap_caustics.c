@@ -8,7 +8,8 @@
  *    filtering the whole screen, with photons 1 pixel from a tile border and at the screen's edge
  *    (M16), and filters fewer tiles than there are;
  *  - a photon behind the visible surface is not counted; photons on it are (M19);
- *  - 300 photons in one pixel count 255 (the seed's 8-bit count, M14). */
+ *  - 300 photons in one pixel count 255 (the seed's 8-bit count, M14), and 300 in the R16F count
+ *    target of lightmap_count=float. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -175,6 +176,12 @@ static void test_hidden_photons_and_saturation(void **state)
     print_message("300 photons in one pixel: centre %.4f = %.2f photons (8-bit count)\n", centre,
                   centre / lm_caustic_weight(0, 0));
     assert_true(fabsf(centre / lm_caustic_weight(0, 0) - 255.0f) < 0.01f);
+    free(out);
+    g.count_format = GL_R16F; /* llvmpipe: GLES 3.2, R16F colour-renderable */
+    out = filter(many, 300, v3(phi, phi, phi), true, &g);
+    centre = out[4 * (10 * W + 20)];
+    print_message("300 photons in one pixel, R16F count: %.2f photons\n", centre / lm_caustic_weight(0, 0));
+    assert_true(fabsf(centre / lm_caustic_weight(0, 0) - 300.0f) < 0.01f);
     free(out), free(many);
     lm_caustic_gpu_free(&g);
 }

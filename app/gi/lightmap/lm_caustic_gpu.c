@@ -9,18 +9,24 @@
 /* lightmap/caustic_count.vert + caustic_count.frag */
 typedef struct count_uniforms {
     gk_gbuffer_uniforms gb;
-    GLint u_viewproj;
+    GLint u_viewproj, u_count_scale;
 } count_uniforms;
 static const gk_uniform_field count_fields[] = {GK_GBUFFER_FIELDS(count_uniforms, gb),
-                                                GK_UNIFORM(count_uniforms, u_viewproj)};
+                                                GK_UNIFORM(count_uniforms, u_viewproj),
+                                                GK_UNIFORM(count_uniforms, u_count_scale)};
 /* common/fullscreen.vert + lightmap/caustic_filter.frag */
 typedef struct filter_uniforms {
     gk_gbuffer_uniforms gb;
-    GLint u_count, u_photon_flux;
+    GLint u_count, u_photon_flux, u_count_scale;
 } filter_uniforms;
 static const gk_uniform_field filter_fields[] = {GK_GBUFFER_FIELDS(filter_uniforms, gb),
                                                  GK_UNIFORM(filter_uniforms, u_count),
-                                                 GK_UNIFORM(filter_uniforms, u_photon_flux)};
+                                                 GK_UNIFORM(filter_uniforms, u_photon_flux),
+                                                 GK_UNIFORM(filter_uniforms, u_count_scale)};
+
+static GLenum wanted_format(const lm_caustic_gpu *g) { return g->count_format == GL_R16F ? GL_R16F : GL_R8; }
+/* What the target stores a photon as: 1/255 in R8 (a normalized byte), 1 in R16F. */
+static float count_scale(GLenum fmt) { return fmt == GL_R16F ? 1.0f : 255.0f; }
 
 int lm_caustic_gpu_upload(lm_caustic_gpu *g, const float *points, int n, int stride, gk_err *e)
 {
@@ -63,13 +69,14 @@ static void free_target(lm_caustic_gpu *g)
         glDeleteQueries(g->tiles_x * g->tiles_y, g->queries);
     free(g->queries);
     g->fbo = g->count_tex = g->stencil_rb = 0;
+    g->made_format = 0;
     g->queries = NULL;
     g->w = g->h = 0;
 }
 
 static int ensure_target(lm_caustic_gpu *g, int w, int h, gk_err *e)
 {
-    if (g->fbo && g->w == w && g->h == h)
+    if (g->fbo && g->w == w && g->h == h && g->made_format == wanted_format(g))
         return 0;
     free_target(g);
     g->w = w, g->h = h;
@@ -83,7 +90,8 @@ static int ensure_target(lm_caustic_gpu *g, int w, int h, gk_err *e)
     glGenQueries(g->tiles_x * g->tiles_y, g->queries);
     glGenTextures(1, &g->count_tex);
     glBindTexture(GL_TEXTURE_2D, g->count_tex);
-    glTexStorage2D(GL_TEXTURE_2D, 1, GL_R8, w, h);
+    g->made_format = wanted_format(g);
+    glTexStorage2D(GL_TEXTURE_2D, 1, g->made_format, w, h);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glGenRenderbuffers(1, &g->stencil_rb);
@@ -144,6 +152,7 @@ int lm_caustic_gpu_draw(lm_caustic_gpu *g, gk_program_cache *programs, const gk_
     glStencilOp(GL_KEEP, GL_KEEP, GL_INCR); /* "increment on z-pass" */
     glUseProgram(cp);
     glUniformMatrix4fv(cu->u_viewproj, 1, GL_FALSE, gb->view_proj.m);
+    glUniform1f(cu->u_count_scale, count_scale(g->made_format));
     gk_gbuffer_bind(gb, &cu->gb, 0, 0);
     glBindVertexArray(g->vao);
     glDrawArrays(GL_POINTS, 0, g->n_points);
@@ -199,6 +208,7 @@ int lm_caustic_gpu_draw(lm_caustic_gpu *g, gk_program_cache *programs, const gk_
     glBindTexture(GL_TEXTURE_2D, g->count_tex);
     glUniform1i(fu->u_count, 0);
     glUniform3f(fu->u_photon_flux, flux.x, flux.y, flux.z);
+    glUniform1f(fu->u_count_scale, count_scale(g->made_format));
     gk_gbuffer_bind(gb, &fu->gb, 1, 0);
     glBindVertexArray(g->empty_vao);
     if (!cull) {
@@ -230,6 +240,7 @@ int lm_caustic_gpu_draw(lm_caustic_gpu *g, gk_program_cache *programs, const gk_
 
 void lm_caustic_gpu_free(lm_caustic_gpu *g)
 {
+    GLenum keep = g->count_format; /* the caller's choice outlives the GL objects */
     free_target(g);
     if (g->vao)
         glDeleteVertexArrays(1, &g->vao);
@@ -238,4 +249,5 @@ void lm_caustic_gpu_free(lm_caustic_gpu *g)
     if (g->vbo)
         glDeleteBuffers(1, &g->vbo);
     memset(g, 0, sizeof *g);
+    g->count_format = keep;
 }

@@ -2,7 +2,8 @@
  * B.6 #6, M12–M19), independent of the rest of the method (tests drive it with their own
  * G-buffer):
  *   count  the caustic photons drawn as points, additively, into an R8 target (1/255 a photon:
- *          the seed's 8-bit count, at most 255 a pixel), hidden ones dropped against the G-buffer,
+ *          the seed's 8-bit count, at most 255 a pixel) or R16F (count_format), hidden ones
+ *          dropped against the G-buffer,
  *          each counted one incrementing the stencil (shaders_gles/lightmap/caustic_count.*);
  *   cull   the screen cut into tiles (about 10 across, the seed's 100 queries over 512²); per tile
  *          one GL_ANY_SAMPLES_PASSED query over the tile dilated by the kernel's k = 3 pixels with
@@ -23,9 +24,14 @@
 #include "gl/pass.h"
 
 typedef struct lm_caustic_gpu {
+    /* The count target: GL_R8 (the seed's 8-bit count, 1/255 a photon, at most 255 a pixel: M14)
+       or GL_R16F (1 a photon, exact to 2,048; colour-renderable on GLES 3.2 or with
+       EXT_color_buffer_half_float: the caller checks). Set before a draw; 0 means GL_R8. */
+    GLenum count_format;
     GLuint vao, vbo, empty_vao;
     int n_points, cap_points;
     GLuint fbo, count_tex, stencil_rb;
+    GLenum made_format;      /* the count texture's */
     int w, h;
     int tile, tiles_x, tiles_y;
     GLuint *queries;

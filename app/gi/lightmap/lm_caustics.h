@@ -18,7 +18,7 @@
  * the seed's 10,000 photons over 8 frames), every photon in the first tick after a change of the
  * photon count or the window. A moving generator therefore leaves a trail that is gone after W
  * ticks, each tick replacing 1/W of it (tests/unit/test_lightmap_caustics.c).
- * Area, directional and mesh lights shoot no caustic photons (logged once by the method). */
+ * Area, directional and mesh lights shoot no caustic photons. */
 #ifndef GK_LM_CAUSTICS_H
 #define GK_LM_CAUSTICS_H
 

@@ -9,7 +9,7 @@
 #include "lm_caustic_gpu.h"
 #include "lm_gather.h"
 
-#define LM_KNOBS 9
+#define LM_KNOBS 10
 #define LM_IIM_TAU_S 0.25 /* the IIM blend (research B.2's recommendation; the seed: "fairly fast") */
 
 typedef struct lm_state {
@@ -52,6 +52,8 @@ typedef struct lm_state {
     uint64_t caustic_seen;
     vec3 caustic_flux;
     bool caustic_cull;           /* filter only the tiles with photons (false: the whole screen) */
+    gk_gl_caps caps;             /* R16F counts need color_buffer_half */
+    bool warned_count;           /* lightmap_count=float without R16F targets, logged once */
 } lm_state;
 
 /* lm_display.c */

@@ -38,8 +38,10 @@
  *   lightmap_workers: the photon pool's threads: `config` ([cpu] workers, default cores - 1) or 1;
  *                    a switch for the bench's side-by-side measurement of what the photon work
  *                    costs the render thread (make bench-lightmap-workers); a change restarts the
- *                    pool and re-emits the photons */
-enum { K_GROUPS, K_AIM, K_IIM, K_GATHER, K_TEXELS, K_SYNC, K_CAUSTICS, K_WINDOW, K_WORKERS, K_COUNT };
+ *                    pool and re-emits the photons
+ *   lightmap_count:  the caustic count target: 8bit (the seed's, at most 255 photons a pixel: M14)
+ *                    or float (R16F where it is colour-renderable, else 8bit, logged): a switch */
+enum { K_GROUPS, K_AIM, K_IIM, K_GATHER, K_TEXELS, K_SYNC, K_CAUSTICS, K_WINDOW, K_WORKERS, K_CCOUNT, K_COUNT };
 _Static_assert(K_COUNT == LM_KNOBS, "lm_internal.h's LM_KNOBS counts the knobs");
 static const gk_knob_def knobs[K_COUNT] = {
     {"lightmap_groups", "lightmap", 4, {"77", "154", "308", "616"}, {1.0f, 1.02f, 1.05f, 1.1f}, 0, 0, false, NULL},
@@ -54,6 +56,8 @@ static const gk_knob_def knobs[K_COUNT] = {
                   .cost = {1.0f, 1.0f, 1.01f, 1.02f}, .default_level = 1, .fixed = true},
     [K_WORKERS] = {.name = "lightmap_workers", .owner = "lightmap", .n_values = 2, .values = {"1", "config"},
                    .cost = {1.0f, 1.0f}, .default_level = 1, .fixed = true},
+    [K_CCOUNT] = {.name = "lightmap_count", .owner = "lightmap", .n_values = 2, .values = {"8bit", "float"},
+                  .cost = {1.0f, 1.0f}, .default_level = 0, .fixed = true},
 };
 
 static void declare_knobs(gk_budget *b)
@@ -74,6 +78,7 @@ static void *create(const gk_gi_context *ctx, gk_err *e)
     }
     s->ctx = *ctx;
     s->caustic_cull = true;
+    gk_gl_caps_query(&s->caps, ctx->gles_version ? ctx->gles_version : 31);
     gk_knob_handles(s->knob, knobs, K_COUNT);
     s->own_cache = gk_gi_context_own_programs(&s->ctx);
     return s;
@@ -194,6 +199,13 @@ static int render(void *self, const gk_gi_frame *f, gk_err *e)
         return -1;
     if (lm_display_draw(s, f, e))
         return -1;
+    bool float_count = gk_knob_level(b, &s->knob[K_CCOUNT], 0) == 1;
+    if (float_count && !s->caps.color_buffer_half && !s->warned_count) {
+        gk_log("lightmap: lightmap_count=float needs R16F render targets (GLES 3.2 or "
+               "EXT_color_buffer_half_float); counting in 8 bits");
+        s->warned_count = true;
+    }
+    s->caustic.count_format = float_count && s->caps.color_buffer_half ? GL_R16F : GL_R8;
     if (lm_display_caustics(s, f, e))
         return -1;
     GLenum err = glGetError();
