@@ -37,8 +37,8 @@
  *                    generator's trail, which a static calibration cannot see: a switch too
  *   lightmap_workers: the photon pool's threads: `config` ([cpu] workers, default cores - 1) or 1;
  *                    a switch for the bench's side-by-side measurement of what the photon work
- *                    costs the render thread (make bench-lightmap-workers); a change restarts the
- *                    pool and re-emits the photons
+ *                    costs the render thread (`make bench`, tools/bench.sh's lightmap-workers);
+ *                    a change restarts the pool and re-emits the photons
  *   lightmap_count:  the caustic count target: 8bit (the seed's, at most 255 photons a pixel: M14)
  *                    or float (R16F where it is colour-renderable, else 8bit, logged): a switch */
 enum { K_GROUPS, K_AIM, K_IIM, K_GATHER, K_TEXELS, K_SYNC, K_CAUSTICS, K_WINDOW, K_WORKERS, K_CCOUNT, K_COUNT };
@@ -124,6 +124,7 @@ static int setup_scene(lm_state *s, const gk_scene *sc, int texels_across, gk_er
     /* walls split the surfaces they cross (lm_split.h): only in the method's own copy, which the
        tracer and the atlas both read */
     lm_regions regions = {0};
+    s->st.wall_cuts = 0;
     if (s->own_scene) {
         int cuts = lm_split_walls(s->own_scene, &regions, e);
         if (cuts < 0)
