@@ -192,14 +192,15 @@ static int render(void *self, const gk_gi_frame *f, gk_err *e)
         return gk_fail(e, GK_ERUNTIME, "%s", s->st.worker.error);
     s->st.shown = s->seen > 0;
     s->st.gathered = 0;
-    if (!s->st.shown)
-        return 0; /* no complete result yet: direct light only */
-    int iim = (int)gk_knob_number(b, &s->knob[K_IIM], 20.0f);
-    s->iim_on = iim > 0;
-    if (s->iim_on && lm_display_gather(s, f, iim, (int)gk_knob_number(b, &s->knob[K_GATHER], 16.0f), e))
-        return -1;
-    if (lm_display_draw(s, f, e))
-        return -1;
+    /* no complete result yet: no indirect light (the caustics do not wait for it) */
+    if (s->st.shown) {
+        int iim = (int)gk_knob_number(b, &s->knob[K_IIM], 20.0f);
+        s->iim_on = iim > 0;
+        if (s->iim_on && lm_display_gather(s, f, iim, (int)gk_knob_number(b, &s->knob[K_GATHER], 16.0f), e))
+            return -1;
+        if (lm_display_draw(s, f, e))
+            return -1;
+    }
     bool float_count = gk_knob_level(b, &s->knob[K_CCOUNT], 0) == 1;
     if (float_count && !s->caps.color_buffer_half && !s->warned_count) {
         gk_log("lightmap: lightmap_count=float needs R16F render targets (GLES 3.2 or "
