@@ -41,6 +41,15 @@ if "$BIN" scenes | grep -q 'radiosity'; then
     run radiosity --scenes cornell,furnace --methods radiosity --budget radiosity_sync=lockstep \
         --sweep 'radiosity_bins=8,12,16;radiosity_bounces=1,2,4,8'
 fi
+# CPU photon mapping into light maps: photon groups x sync on cornell (async: the frame never waits
+# for the photon work; lockstep: it does), and the render thread's frame with one photon thread
+# against [cpu] workers (default cores - 1) on cornell-spot-anim, whose turning spot keeps the
+# workers busy every frame (M2): the frame_ms ratio of the two rows is the photon work's cost to the
+# frame.
+if "$BIN" scenes | grep -q 'lightmap'; then
+    run lightmap --scenes cornell --methods lightmap --sweep 'lightmap_groups=77,154,308,616;lightmap_sync=async,lockstep'
+    run lightmap-workers --scenes cornell-spot-anim --methods lightmap --sweep 'lightmap_workers=1,config;lightmap_groups=77,616'
+fi
 # Choosing a method: per scene ONE chart with every method's default sweep against one ruler
 # (SCENE-1bounce.exr where it exists, else SCENE.exr), the Pareto front over all of them, each
 # point's spread (median to p95 of its frames) and the kiosk's automatic choice at 400 ms, 640x360

@@ -356,7 +356,8 @@ int gk_renderer_draw(gk_renderer *r, const gk_frame_params *fp, unsigned target_
     r->shown = r->hdr.color[0];
 
     gk_scene *s = r->scene;
-    gk_scene_evaluate(s, fp ? (float)fp->time_s : 0.0f);
+    r->time_s = fp ? fp->time_s : 0.0;
+    gk_scene_evaluate(s, (float)r->time_s);
     gk_gbuffer_view gb = {
         .albedo = r->gbuf.color[0], .normal = r->gbuf.color[1], .emission = r->gbuf.color[2],
         .depth = r->gbuf.depth, .specular = r->gbuf.color[3], .width = r->render_w, .height = r->render_h,

@@ -250,6 +250,7 @@ int gk_render_gi_run(gk_render_gi *g, gk_renderer *r, const char *method, const 
     memset(&f, 0, sizeof f);
     f.pass = ctx;
     f.scene = r->scene;
+    f.time_s = r->time_s; /* gi.h: the time the scene was evaluated at (lightmap's IIM blend reads it) */
     f.scene_changed = changed || r->scene->features.has_animation;
     f.width = gb->width;
     f.height = gb->height;

@@ -64,6 +64,7 @@ struct gk_renderer {
     gk_gl_caps caps;
     gk_program_cache *progs;
     gk_timer *timer;
+    double time_s;               /* the frame's animation time (gk_frame_params), lent to the GI method */
     GLuint empty_vao;           /* full-screen passes draw gl_VertexID-only triangles */
     GLuint ltc_tex;             /* RGBA32F GK_LTC_N x 2 GK_LTC_N: rect lights' GGX (ltc_table.h) */
 

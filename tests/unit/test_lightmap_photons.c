@@ -72,7 +72,7 @@ static void static_run(const gk_scene *s, const lm_atlas *a, int threads, int ti
     gk_err e = {0};
     lm_worker *w = lm_worker_create(s, a, threads, &e);
     assert_non_null(w);
-    lm_tick_settings set = {77, 80};
+    lm_tick_settings set = {.groups = 77, .aim_texels = 80};
     int t0 = converge(w, s, &set, 200);
     size_t n = (size_t)a->width * (size_t)a->height * 4;
     uint64_t seen = 0;
@@ -132,7 +132,7 @@ static void aim_budget_and_order(void **state)
     lm_atlas a;
     assert_int_equal(lm_atlas_build(&a, s, 5, &e), 0);
     lm_worker *w = lm_worker_create(s, &a, 1, &e);
-    lm_tick_settings set = {77, 20};
+    lm_tick_settings set = {.groups = 77, .aim_texels = 20};
     lm_worker_stats st;
     int ticks = 0;
     do {
@@ -202,7 +202,7 @@ static void locality_two_rooms(void **state)
     assert_int_equal(lm_atlas_build(&a, &t.s, 5, &e), 0);
     lm_worker *w = lm_worker_create(&t.s, &a, 2, &e);
     assert_non_null(w);
-    lm_tick_settings set = {77, 1 << 20};
+    lm_tick_settings set = {.groups = 77, .aim_texels = 1 << 20};
     converge(w, &t.s, &set, 100);
     size_t n = (size_t)a.width * (size_t)a.height * 4;
     float *before = malloc(sizeof(float) * n), *after = malloc(sizeof(float) * n);
@@ -285,7 +285,7 @@ static void moving_spot_invalidates(void **state)
     lm_atlas a;
     assert_int_equal(lm_atlas_build(&a, s, 5, &e), 0);
     lm_worker *w = lm_worker_create(s, &a, 1, &e);
-    lm_tick_settings set = {77, 80};
+    lm_tick_settings set = {.groups = 77, .aim_texels = 80};
     lm_worker_stats st;
     lm_worker_submit(w, s, &set);
     lm_worker_wait(w);

@@ -9,14 +9,14 @@
 #include <string.h>
 
 typedef struct tri_key {
-    long long k[4];          /* quantised normal (3) and plane offset */
+    long long k[5];          /* quantised normal (3), plane offset, region (lm_split.h) */
     int tri;
 } tri_key;
 
 static int cmp_key(const void *pa, const void *pb)
 {
     const tri_key *a = pa, *b = pb;
-    for (int i = 0; i < 4; i++)
+    for (int i = 0; i < 5; i++)
         if (a->k[i] != b->k[i])
             return a->k[i] < b->k[i] ? -1 : 1;
     return a->tri < b->tri ? -1 : a->tri > b->tri;
@@ -100,7 +100,8 @@ static int pack(lm_atlas *a, gk_err *e)
     return 0;
 }
 
-static int build_protos(const gk_scene *s, proto **out, int *n_out, tri_key **keys_out, gk_err *e)
+static int build_protos(const gk_scene *s, const lm_regions *regions, proto **out, int *n_out, tri_key **keys_out,
+                        gk_err *e)
 {
     size_t total = 0;
     for (int i = 0; i < s->n_nodes; i++)
@@ -134,6 +135,7 @@ static int build_protos(const gk_scene *s, proto **out, int *n_out, tri_key **ke
                 keys[at].k[1] = llroundf(nn.y * 1e4f);
                 keys[at].k[2] = llroundf(nn.z * 1e4f);
                 keys[at].k[3] = llroundf(v3_dot(nn, p0) / dq);
+                keys[at].k[4] = regions && m < regions->n_meshes && regions->tri[m] ? regions->tri[m][t] : 0;
                 keys[at].tri = (int)t;
                 at++;
             }
@@ -332,12 +334,17 @@ fail:
 
 int lm_atlas_build(lm_atlas *a, const gk_scene *s, int texels_across, gk_err *e)
 {
+    return lm_atlas_build_regions(a, s, texels_across, NULL, e);
+}
+
+int lm_atlas_build_regions(lm_atlas *a, const gk_scene *s, int texels_across, const lm_regions *regions, gk_err *e)
+{
     memset(a, 0, sizeof *a);
     a->texels_across = texels_across < 1 ? 1 : texels_across;
     proto *ps = NULL;
     tri_key *keys = NULL;
     int np = 0;
-    if (build_protos(s, &ps, &np, &keys, e))
+    if (build_protos(s, regions, &ps, &np, &keys, e))
         return -1;
     a->n_charts = np;
     a->charts = calloc((size_t)(np > 0 ? np : 1), sizeof *a->charts);

@@ -363,8 +363,39 @@ int lm_display_draw(lm_state *s, const gk_gi_frame *f, gk_err *e)
     return 0;
 }
 
+/* Called by lm_worker_take_caustics under the pool's lock. */
+static void take_caustics(void *ctx, const float *points, int n)
+{
+    lm_state *s = ctx;
+    gk_err e = {0};
+    if (lm_caustic_gpu_upload(&s->caustic, points, n, 6, &e)) {
+        s->caustic.n_points = 0; /* out of memory: no caustics this time (the frame goes on) */
+        return;
+    }
+    /* the seed counts photons of one colour: their mean flux */
+    double sum[3] = {0, 0, 0};
+    for (int i = 0; i < n; i++)
+        for (int c = 0; c < 3; c++)
+            sum[c] += points[6 * i + 3 + c];
+    s->caustic_flux = n > 0 ? v3((float)(sum[0] / n), (float)(sum[1] / n), (float)(sum[2] / n)) : v3(0, 0, 0);
+}
+
+int lm_display_caustics(lm_state *s, const gk_gi_frame *f, gk_err *e)
+{
+    lm_worker_take_caustics(s->worker, &s->caustic_seen, take_caustics, s);
+    gk_gbuffer_view gb = gk_gi_gbuffer(f);
+    if (lm_caustic_gpu_draw(&s->caustic, s->ctx.programs, &gb, s->caustic_flux, s->caustic_cull, f->hdr_fbo, f->pass, e))
+        return -1;
+    s->st.caustic_points = s->caustic.n_points;
+    s->st.caustic_tiles = s->caustic.tiles_filtered;
+    s->st.caustic_tiles_total = s->caustic.tiles_x * s->caustic.tiles_y;
+    s->st.caustic_pixels = s->caustic.pixels_filtered;
+    return 0;
+}
+
 void lm_display_free(lm_state *s)
 {
+    lm_caustic_gpu_free(&s->caustic);
     if (s->vao)
         glDeleteVertexArrays(1, &s->vao);
     if (s->vbo)

@@ -6,9 +6,10 @@
 #include "gl/gl_program.h"
 #include "lightmap.h"
 #include "lm_atlas.h"
+#include "lm_caustic_gpu.h"
 #include "lm_gather.h"
 
-#define LM_KNOBS 6
+#define LM_KNOBS 10
 #define LM_IIM_TAU_S 0.25 /* the IIM blend (research B.2's recommendation; the seed: "fairly fast") */
 
 typedef struct lm_state {
@@ -17,6 +18,7 @@ typedef struct lm_state {
     gk_knob knob[LM_KNOBS];
     gk_lightmap_stats st;
     int threads_override;
+    bool one_worker;             /* lightmap_workers=1 this frame */
     /* the scene: the method's own copy loaded from the scene's file (the worker threads read it
        while the renderer's may be freed), or borrowed when the scene has no file (tests) */
     gk_scene *own_scene;
@@ -45,6 +47,13 @@ typedef struct lm_state {
     int *order;
     GLuint uv_fbo, uv_tex, uv_depth;
     int uv_w, uv_h;
+    /* caustics: the points of the worker's newest list on the GPU and their mean flux */
+    lm_caustic_gpu caustic;
+    uint64_t caustic_seen;
+    vec3 caustic_flux;
+    bool caustic_cull;           /* filter only the tiles with photons (false: the whole screen) */
+    gk_gl_caps caps;             /* R16F counts need color_buffer_half */
+    bool warned_count;           /* lightmap_count=float without R16F targets, logged once */
 } lm_state;
 
 /* lm_display.c */
@@ -54,5 +63,8 @@ void lm_display_upload(void *state, const float *indirect, const float *full, co
 int lm_display_gather(lm_state *s, const gk_gi_frame *f, int texels, int res, gk_err *e);
 int lm_display_draw(lm_state *s, const gk_gi_frame *f, gk_err *e);
 void lm_display_free(lm_state *s);
+/* Takes the worker's newest caustic photons (lm_worker_take_caustics) and adds the filtered
+   caustics to the frame. */
+int lm_display_caustics(lm_state *s, const gk_gi_frame *f, gk_err *e);
 
 #endif

@@ -24,6 +24,7 @@ struct lm_worker {
     gk_node *nodes;
     mat4 *built_worlds;          /* the node matrices rs was built with */
     bool have_rs;
+    bool rs_rebuilt;             /* refresh_scene rebuilt rs this tick (nodes moved) */
     gk_ref_scene rs;
     lm_photons ph;
     bool have_ph;
@@ -38,6 +39,14 @@ struct lm_worker {
     float *pub_irr, *pub_full;   /* the published ones (under mu) */
     float *pub_queue;            /* per chart: > 0 queues its texels for the final gather (under mu) */
     lm_worker_stats st;          /* under mu */
+    /* caustics: the coordinator's list, the fresh traces of a tick, the published points */
+    lm_caustics caus;
+    bool have_caus;
+    int caus_req_n, caus_req_window; /* the settings caus was made for */
+    vec3 *caus_new_pos, *caus_new_pow;
+    bool *caus_new_has;
+    float *pub_caustic;          /* 6 floats a kept photon (under mu) */
+    int pub_caustic_n;
 
     /* the pool */
     pthread_t *threads;
@@ -140,6 +149,7 @@ static int refresh_scene(lm_worker *w, const mat4 *worlds)
         return -1;
     }
     w->have_rs = true;
+    w->rs_rebuilt = true;
     memcpy(w->built_worlds, worlds, sizeof *worlds * (size_t)n);
     if (w->rs.n_tris != w->atlas->n_ref) {
         char msg[160];
@@ -192,8 +202,81 @@ static void aim_chart(lm_worker *w, int item, int thread)
                         (1u << LM_HIT_DIRECT) | (1u << LM_HIT_CAUSTIC) | (1u << LM_HIT_INDIRECT));
 }
 
+/* Caustic photons are traced in chunks (a lock per item of the pool would cost more than a
+   photon's few bounces). */
+#define LM_CAUSTIC_CHUNK 64
+
+static void trace_caustic_chunk(lm_worker *w, int item, int thread)
+{
+    (void)thread;
+    int end = (item + 1) * LM_CAUSTIC_CHUNK < w->caus.n ? (item + 1) * LM_CAUSTIC_CHUNK : w->caus.n;
+    for (int k = item * LM_CAUSTIC_CHUNK; k < end; k++)
+        if (lm_caustics_due(&w->caus, k))
+            lm_caustics_trace(&w->caus, &w->rs, k, &w->caus_new_pos[k], &w->caus_new_pow[k], &w->caus_new_has[k]);
+}
+
+/* One progressive caustic update (lm_caustics.h) and its publication when a hit changed. */
+static void tick_caustics(lm_worker *w)
+{
+    if (!w->have_caus || w->caus_req_n != w->set.caustic_photons || w->caus_req_window != w->set.caustic_window) {
+        if (w->have_caus)
+            lm_caustics_free(&w->caus);
+        free(w->caus_new_pos), free(w->caus_new_pow), free(w->caus_new_has), free(w->pub_caustic);
+        w->caus_new_pos = w->caus_new_pow = NULL, w->caus_new_has = NULL;
+        w->have_caus = false;
+        gk_err e = {0};
+        if (lm_caustics_init(&w->caus, &w->rs, w->set.caustic_photons, w->set.caustic_window, &e)) {
+            fail_tick(w, e.msg);
+            return;
+        }
+        size_t n = (size_t)(w->caus.n > 0 ? w->caus.n : 1);
+        w->caus_new_pos = calloc(n, sizeof *w->caus_new_pos);
+        w->caus_new_pow = calloc(n, sizeof *w->caus_new_pow);
+        w->caus_new_has = calloc(n, sizeof *w->caus_new_has);
+        float *pub = calloc(n * 6, sizeof(float));
+        if (!w->caus_new_pos || !w->caus_new_pow || !w->caus_new_has || !pub) {
+            free(pub);
+            lm_caustics_free(&w->caus);
+            fail_tick(w, "lightmap: out of memory for the caustic photons");
+            return;
+        }
+        pthread_mutex_lock(&w->mu);
+        w->pub_caustic = pub;
+        w->pub_caustic_n = 0;
+        w->st.caustic_seq++; /* the new (empty) list replaces the old one */
+        pthread_mutex_unlock(&w->mu);
+        w->caus_req_n = w->set.caustic_photons, w->caus_req_window = w->set.caustic_window;
+        w->have_caus = true;
+    }
+    lm_caustics *c = &w->caus;
+    if (c->n == 0)
+        return;
+    if (w->rs_rebuilt)
+        lm_caustics_aim(c, &w->rs); /* a generator or light may have moved */
+    parallel_for(w, trace_caustic_chunk, (c->n + LM_CAUSTIC_CHUNK - 1) / LM_CAUSTIC_CHUNK);
+    bool first = c->ticks == 0;
+    bool changed = lm_caustics_apply(c, w->caus_new_pos, w->caus_new_pow, w->caus_new_has);
+    pthread_mutex_lock(&w->mu);
+    if (changed || first) {
+        int m = 0;
+        for (int k = 0; k < c->n; k++)
+            if (c->has[k]) {
+                float *o = &w->pub_caustic[6 * m++];
+                o[0] = c->pos[k].x, o[1] = c->pos[k].y, o[2] = c->pos[k].z;
+                o[3] = c->power[k].x, o[4] = c->power[k].y, o[5] = c->power[k].z;
+            }
+        w->pub_caustic_n = m;
+        w->st.caustic_seq++;
+    }
+    w->st.caustic_photons = c->n;
+    w->st.caustic_hits = w->pub_caustic_n;
+    w->st.caustic_retraced = c->retraced;
+    pthread_mutex_unlock(&w->mu);
+}
+
 static void tick(lm_worker *w, const mat4 *worlds)
 {
+    w->rs_rebuilt = false;
     if (refresh_scene(w, worlds))
         return;
     const lm_atlas *a = w->atlas;
@@ -247,6 +330,7 @@ static void tick(lm_worker *w, const mat4 *worlds)
         if (!same_path(&ph->paths[k], &w->scratch[k]))
             lm_photons_replace(ph, k, &w->scratch[k]), replaced++;
     }
+    tick_caustics(w);
     int n_sel = lm_aim_select(a, ph, w->set.aim_texels, w->selected);
     parallel_for(w, aim_chart, n_sel);
     int texels_updated = 0;
@@ -405,6 +489,9 @@ void lm_worker_destroy(lm_worker *w)
         gk_ref_scene_free(&w->rs);
     if (w->have_ph)
         lm_photons_free(&w->ph);
+    if (w->have_caus)
+        lm_caustics_free(&w->caus);
+    free(w->caus_new_pos), free(w->caus_new_pow), free(w->caus_new_has), free(w->pub_caustic);
     for (int i = 0; w->trees && i < 2 * w->n_threads; i++)
         lm_kdtree_free(&w->trees[i]);
     free(w->scratch), free(w->scratch_j);
@@ -448,6 +535,19 @@ bool lm_worker_take(lm_worker *w, uint64_t *seen, lm_take_fn fn, void *ctx)
         fn(ctx, w->pub_irr, w->pub_full, w->pub_queue);
         memset(w->pub_queue, 0, sizeof(float) * (size_t)(w->atlas->n_charts > 0 ? w->atlas->n_charts : 1));
         *seen = w->st.result_seq;
+        called = true;
+    }
+    pthread_mutex_unlock(&w->mu);
+    return called;
+}
+
+bool lm_worker_take_caustics(lm_worker *w, uint64_t *seen, lm_take_caustics_fn fn, void *ctx)
+{
+    bool called = false;
+    pthread_mutex_lock(&w->mu);
+    if (w->st.caustic_seq != *seen) {
+        fn(ctx, w->pub_caustic, w->pub_caustic_n);
+        *seen = w->st.caustic_seq;
         called = true;
     }
     pthread_mutex_unlock(&w->mu);

@@ -13,11 +13,14 @@
 #include <stdint.h>
 
 #include "lm_atlas.h"
+#include "lm_caustics.h"
 #include "lm_photons.h"
 
 typedef struct lm_tick_settings {
     int groups;              /* photon groups (photons = groups x 40); a change re-emits them all */
     int aim_texels;          /* AIM texels per tick */
+    int caustic_photons;     /* caustic photons (lm_caustics.h); 0: none. A change re-emits them */
+    int caustic_window;      /* W: ticks over which each caustic photon is retraced once */
 } lm_tick_settings;
 
 typedef struct lm_worker_stats {
@@ -34,6 +37,11 @@ typedef struct lm_worker_stats {
     /* since the start */
     uint64_t traced_total, invalidations_total, texels_total;
     uint64_t result_seq;     /* publications of the atlas */
+    /* caustics (lm_caustics.h) */
+    int caustic_photons;     /* shot (0: no caustic generator or light in the scene) */
+    int caustic_hits;        /* of them, L S+ D photons kept, as published */
+    int caustic_retraced;    /* by the last tick */
+    uint64_t caustic_seq;    /* publications of the caustic list */
     bool failed;             /* the tracer could not run (message in error) */
     char error[1024];
 } lm_worker_stats;
@@ -55,6 +63,10 @@ void lm_worker_wait(lm_worker *w);
  * coordinator waits for it just when publishing). */
 typedef void (*lm_take_fn)(void *ctx, const float *indirect, const float *full, const float *queue);
 bool lm_worker_take(lm_worker *w, uint64_t *seen, lm_take_fn fn, void *ctx);
+/* Calls fn with the newest published caustic photons (n points of 6 floats: world position xyz,
+ * flux rgb) when they are newer than *seen (then updates *seen); returns whether it called. */
+typedef void (*lm_take_caustics_fn)(void *ctx, const float *points, int n);
+bool lm_worker_take_caustics(lm_worker *w, uint64_t *seen, lm_take_caustics_fn fn, void *ctx);
 void lm_worker_get_stats(lm_worker *w, lm_worker_stats *out);
 /* Copies each group's invalidation count (room for `cap`); returns the group count. */
 int lm_worker_group_invalidations(lm_worker *w, unsigned *out, int cap);
