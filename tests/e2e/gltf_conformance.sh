@@ -10,7 +10,8 @@ json_field() { sed -n "s/.*\"$1\": \(\[[^]]*\]\|[^,}]*\).*/\1/p" "$2"; }
 
 expect_exit 0 "scenes --check on a GLB with an embedded image" "$GIKIOSK" scenes --check $DIR/texture-glb.glb
 check "it reports the embedded image" grep -q "^gltf reads: .*1 embedded images" "$TMP/stdout"
-check "it reports the default studio" grep -q "^lights: *3 (the file has none: the default studio" "$TMP/stdout"
+check "it reports the default studio" grep -q "^lights: *1 (the file has none: the default studio, its environment and a key light)" "$TMP/stdout"
+check "it shows the studio's environment" grep -q "^environment: built-in studio, 128x64 lat-long, intensity 1; split into [0-9]* area lights" "$TMP/stdout"
 stderr_has "scene texture-glb has no lights: using the default studio" "the studio is logged"
 
 expect_exit 0 "scenes --check on a data: uri image" "$GIKIOSK" scenes --check $DIR/texture-data-uri.gltf
