@@ -43,7 +43,7 @@ typedef struct split_map {
     float *res;      /* residual radiance, w * h * 3 */
     float *dir;      /* pixel centre directions, w * h * 3 */
     float *omega;    /* solid angle per row */
-    float mean[3];   /* mean radiance of the whole map (fixed: the residual a light leaves) */
+    float mean[3];   /* mean radiance of the residual map before the current light */
 } split_map;
 
 static float *px(const split_map *m, int i, int j) { return m->res + 3 * ((size_t)j * (size_t)m->w + (size_t)i); }
@@ -197,12 +197,14 @@ int gk_env_split(gk_scene *s, int max_lights, gk_err *e)
             sh_add(&m, i, j, px(&m, i, j), 1.0f, env->ambient_sh[0]);
         }
     }
-    for (int c = 0; c < 3; c++)
-        m.mean[c] = (float)(sum[c] / (4.0 * M_PI));
     env->env_light_first = s->n_lights;
     env->n_env_lights = 0;
     int rc = 0;
     for (int k = 0; k < max_lights && rc == 0; k++) {
+        /* the average the residual holds now: each light lowers it, so later lights reach further
+           down into the map (the sky's gradient once the panels are out) */
+        for (int c = 0; c < 3; c++)
+            m.mean[c] = (float)(sum[c] / (4.0 * M_PI));
         int si = 0, sj = 0;
         float best = 0.0f;
         for (int j = 0; j < m.h; j++)
@@ -231,8 +233,10 @@ int gk_env_split(gk_scene *s, int max_lights, gk_err *e)
                 omega += m.omega[j];
                 sh_add(&m, i, j, x, -1.0f, env->ambient_sh[k + 1]);
                 float *p = px(&m, i, j);
-                for (int c = 0; c < 3; c++)
+                for (int c = 0; c < 3; c++) {
                     p[c] -= x[c]; /* the light takes the excess, the mean stays */
+                    sum[c] -= (double)x[c] * m.omega[j];
+                }
             }
         rc = append_light(s, k, v3_norm(centroid), (float)omega, phi, e);
         if (rc == 0)

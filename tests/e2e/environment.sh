@@ -58,10 +58,11 @@ check "the tracer lights env-studio by its environment (mean ratio $(json_field 
 
 # The rasterizer's split against the direct-light reference (method none: direct light only), every
 # other knob pinned. Measured at 160x120 on llvmpipe (README, "Environment lighting"):
-#   env_lights   4: rel_rmse 0.135, mean ratio 1.054     16: 0.118, 1.047
-#               8:          0.134,            1.055     32: 0.106, 1.039
-# The residual ambient is unshadowed (no sky occlusion under the objects): what is left at 32. Bounds:
-# every N within 0.15 and its mean within 7%; 32 lights at least 0.02 better than 4.
+#   env_lights   4: rel_rmse 0.111, mean ratio 1.041     16: 0.099, 1.031
+#               8:          0.106,            1.038     32: 0.095, 1.025
+# The residual ambient is unshadowed (no sky occlusion under the objects): most of what is left at
+# 32. Bounds: every N within 0.13 and its mean within 6%; 32 lights at least 0.01 better than 4
+# (measured 0.016; the render is deterministic, the margin is for another Mesa).
 for n in 4 32; do
     "$GIKIOSK" run --platform mock --scenes-dir "$D" --scene env-studio --method none --frames 2 --size 160x120 \
         --budget render_scale=1,shadow=pcss,shadow_map=1024,shadow_subdiv=3,env_lights=$n \
@@ -73,8 +74,8 @@ for n in 4 32; do
     eval "err$n=$(json_field rel_rmse "$TMP/n$n.json")"
     ratio=$(json_field mean_ratio "$TMP/n$n.json")
     echo "# env_lights=$n: rel_rmse $(eval echo \$err$n), mean_ratio $ratio"
-    check "env_lights=$n: rel_rmse within 0.15" awk -v e="$(eval echo \$err$n)" 'BEGIN { exit !(e <= 0.15) }'
-    check "env_lights=$n: mean ratio $ratio within 7%" awk -v r="$ratio" 'BEGIN { exit !(r >= 0.93 && r <= 1.07) }'
+    check "env_lights=$n: rel_rmse within 0.13" awk -v e="$(eval echo \$err$n)" 'BEGIN { exit !(e <= 0.13) }'
+    check "env_lights=$n: mean ratio $ratio within 6%" awk -v r="$ratio" 'BEGIN { exit !(r >= 0.94 && r <= 1.06) }'
 done
-check "32 lights are more accurate than 4 ($err32 vs $err4)" awk -v a="$err32" -v b="$err4" 'BEGIN { exit !(a <= b - 0.02) }'
+check "32 lights are more accurate than 4 ($err32 vs $err4)" awk -v a="$err32" -v b="$err4" 'BEGIN { exit !(a <= b - 0.01) }'
 finish
