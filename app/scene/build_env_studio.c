@@ -33,9 +33,12 @@ static int write_environment(const char *dir, gk_err *e)
     gk_env_studio_pixels(img.pixels, ENV_HEIGHT);
     char path[1024];
     snprintf(path, sizeof path, "%s/env-studio.exr", dir);
-    gk_image_meta meta = {.count = 1,
-                          .keys = {"gikiosk:environment"},
-                          .values = {"procedural studio (app/scene/environment.c), lat-long, row 0 = +Y"}};
+    /* a fixed DateTime: OpenImageIO stamps the time of writing otherwise, and `make scenes` must
+       write the committed bytes again (tests/e2e/scenes.sh) */
+    gk_image_meta meta = {.count = 2,
+                          .keys = {"gikiosk:environment", "DateTime"},
+                          .values = {"procedural studio (app/scene/environment.c), lat-long, row 0 = +Y",
+                                     "2026:01:01 00:00:00"}};
     int rc = gk_image_write_float(path, &img, &meta, e);
     gk_image_free(&img);
     return rc;
