@@ -83,9 +83,11 @@ for sc in ${CONFORMANCE_SCENES:-texture-glb emissive-texture vertex-colors norma
 done
 
 # The normal maps change the picture (tilted toward +u the quad faces the key light more, toward
-# +v less), so agreeing with the reference above is about the map, not about a flat quad.
+# +v less), so agreeing with the reference above is about the map, not about a flat quad (which
+# gives 1). Measured 0.10 under the studio's former three directional lights, 0.62 since its
+# environment fills the side the key misses; bound 0.8. The ratio must be a number.
 "$GIKIOSK" compare "$TMP/normal-map-ref1.exr" "$TMP/normal-map-v-ref1.exr" --json >"$TMP/nm.json"
 ratio=$(json_field mean_ratio "$TMP/nm.json")
-check "the two tilts give different pictures (mean ratio $ratio, measured 0.10)" \
-    awk -v r="$ratio" 'BEGIN { exit !(r < 0.5) }'
+check "the two tilts give different pictures (mean ratio $ratio, measured 0.62)" \
+    awk -v r="$ratio" 'BEGIN { exit !(r ~ /^[0-9.]+$/ && r + 0 < 0.8) }'
 finish
