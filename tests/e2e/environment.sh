@@ -78,4 +78,51 @@ for n in 4 32; do
     check "env_lights=$n: mean ratio $ratio within 6%" awk -v r="$ratio" 'BEGIN { exit !(r >= 0.94 && r <= 1.06) }'
 done
 check "32 lights are more accurate than 4 ($err32 vs $err4)" awk -v a="$err32" -v b="$err4" 'BEGIN { exit !(a <= b - 0.01) }'
+# A uniform environment (L = 0.5 x intensity 2 = 1 nit) over a Lambertian quad (specularFactor 0,
+# base (0.8, 0.6, 0.4), 20 x 20 m): nothing is above the map's mean, so the split has no light and the
+# whole map is ambient, E = pi L, and the quad's radiance is exactly base x L; beyond the quad's far
+# edge the top rows see the map itself, 1 nit. Checks the SH ambient and the background of
+# shaders_gles/direct/environment.frag against the closed form (float16 HDR target: 1e-3).
+U=$TMP/uniform
+mkdir -p "$U"
+oiiotool --pattern constant:color=0.5,0.5,0.5 128x64 3 -d float -o "$U/uniform.exr" 2>/dev/null
+cat >"$U/quad.gltf" <<'GLTF'
+{
+  "asset": {"version": "2.0"},
+  "extensionsUsed": ["KHR_materials_specular"],
+  "scene": 0,
+  "scenes": [{"nodes": [0, 1], "extras": {"gikiosk": {"environment": {"uri": "uniform.exr", "intensity": 2}}}}],
+  "nodes": [
+    {"mesh": 0, "scale": [10, 1, 10]},
+    {"translation": [0, 2, 3], "rotation": [-0.2297529, 0, 0, 0.9732489], "camera": 0}
+  ],
+  "cameras": [{"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.05, "zfar": 50}}],
+  "materials": [{"pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.6, 0.4, 1], "metallicFactor": 0, "roughnessFactor": 1},
+                 "extensions": {"KHR_materials_specular": {"specularFactor": 0}}}],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1}, "indices": 2, "material": 0}]}],
+  "buffers": [{"byteLength": 110, "uri": "data:application/octet-stream;base64,AACAvwAAAAAAAIC/AACAPwAAAAAAAIC/AACAPwAAAAAAAIA/AACAvwAAAAAAAIA/AAAAAAAAgD8AAAAAAAAAAAAAgD8AAAAAAAAAAAAAgD8AAAAAAAAAAAAAgD8AAAAAAAACAAEAAAADAAIAAAA="}],
+  "bufferViews": [
+    {"buffer": 0, "byteOffset": 0, "byteLength": 48},
+    {"buffer": 0, "byteOffset": 48, "byteLength": 48},
+    {"buffer": 0, "byteOffset": 96, "byteLength": 12}
+  ],
+  "accessors": [
+    {"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-1, 0, -1], "max": [1, 0, 1]},
+    {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC3"},
+    {"bufferView": 2, "componentType": 5123, "count": 6, "type": "SCALAR"}
+  ]
+}
+GLTF
+expect_exit 0 "a quad under a uniform environment loads" "$GIKIOSK" scenes --check "$U/quad.gltf"
+check "its environment has no light above the mean" grep -q "split into 0 area lights" "$TMP/stdout"
+"$GIKIOSK" run --platform mock --scenes-dir "$U" --scene quad --method none --frames 2 --size 160x120 \
+    --budget render_scale=1 --capture "$TMP/uq" --hdr >/dev/null 2>&1
+exr=$(ls "$TMP/uq"/*.exr 2>/dev/null | tail -1)
+check "the quad renders" test -n "$exr"
+avg() { oiiotool "$exr" --crop "$1" --printstats 2>/dev/null | sed -n 's/.*Stats Avg: *\([^ ]*\) *\([^ ]*\) *\([^ ]*\).*/\1 \2 \3/p'; }
+sky=$(avg 160x2+0+0) floor=$(avg 160x10+0+110)
+echo "# uniform environment: top rows $sky (expected 1 1 1), bottom rows $floor (expected 0.8 0.6 0.4)"
+near() { echo "$1" | awk -v a="$2" -v b="$3" -v c="$4" '{ exit !(NF == 3 && ($1 - a) ^ 2 < 1e-6 && ($2 - b) ^ 2 < 1e-6 && ($3 - c) ^ 2 < 1e-6) }'; }
+check "the background is the map's radiance ($sky)" near "$sky" 1 1 1
+check "the quad is base x L ($floor)" near "$floor" 0.8 0.6 0.4
 finish
