@@ -41,12 +41,17 @@ static const float kBand[9] = {3.14159265f, 2.0943951f, 2.0943951f, 2.0943951f, 
 typedef struct split_map {
     int w, h;
     float *res;      /* residual radiance, w * h * 3 */
-    float *dir;      /* pixel centre directions, w * h * 3 */
     float *omega;    /* solid angle per row */
     float mean[3];   /* mean radiance of the residual map before the current light */
 } split_map;
 
 static float *px(const split_map *m, int i, int j) { return m->res + 3 * ((size_t)j * (size_t)m->w + (size_t)i); }
+
+/* Direction through the centre of pixel (i, j). */
+static vec3 pixel_dir(const split_map *m, int i, int j)
+{
+    return gk_env_dir((i + 0.5f) / (float)m->w, (j + 0.5f) / (float)m->h);
+}
 
 /* Excess over the mean, per channel, of one pixel (radiance). */
 static void excess(const split_map *m, int i, int j, float out[3])
@@ -77,9 +82,8 @@ static double rect_energy(const split_map *m, int i0, int wi, int j0, int j1)
    as irradiance coefficients. */
 static void sh_add(const split_map *m, int i, int j, const float rad[3], float sign, float c[9][3])
 {
-    const float *d = m->dir + 3 * ((size_t)j * (size_t)m->w + (size_t)i);
     float y[9];
-    gk_sh9_basis(v3(d[0], d[1], d[2]), y);
+    gk_sh9_basis(pixel_dir(m, i, j), y);
     float w = sign * m->omega[j];
     for (int b = 0; b < 9; b++)
         for (int k = 0; k < 3; k++)
@@ -177,11 +181,10 @@ int gk_env_split(gk_scene *s, int max_lights, gk_err *e)
     split_map m = {.w = env->width, .h = env->height};
     size_t n = (size_t)m.w * (size_t)m.h;
     m.res = malloc(n * 3 * sizeof *m.res);
-    m.dir = malloc(n * 3 * sizeof *m.dir);
     m.omega = malloc((size_t)m.h * sizeof *m.omega);
     env->ambient_sh = calloc((size_t)max_lights + 1, sizeof *env->ambient_sh);
-    if (!m.res || !m.dir || !m.omega || !env->ambient_sh) {
-        free(m.res), free(m.dir), free(m.omega);
+    if (!m.res || !m.omega || !env->ambient_sh) {
+        free(m.res), free(m.omega);
         return gk_fail(e, GK_ERUNTIME, "%s: out of memory splitting the environment", s->path);
     }
     memcpy(m.res, env->rgb, n * 3 * sizeof *m.res);
@@ -189,9 +192,6 @@ int gk_env_split(gk_scene *s, int max_lights, gk_err *e)
     for (int j = 0; j < m.h; j++) {
         m.omega[j] = gk_env_pixel_solid_angle(env, j);
         for (int i = 0; i < m.w; i++) {
-            vec3 d = gk_env_dir((i + 0.5f) / (float)m.w, (j + 0.5f) / (float)m.h);
-            float *dp = m.dir + 3 * ((size_t)j * (size_t)m.w + (size_t)i);
-            dp[0] = d.x, dp[1] = d.y, dp[2] = d.z;
             for (int c = 0; c < 3; c++)
                 sum[c] += (double)px(&m, i, j)[c] * m.omega[j];
             sh_add(&m, i, j, px(&m, i, j), 1.0f, env->ambient_sh[0]);
@@ -225,9 +225,8 @@ int gk_env_split(gk_scene *s, int max_lights, gk_err *e)
                 int i = (i0 + q) % m.w;
                 float x[3];
                 excess(&m, i, j, x);
-                const float *d = m.dir + 3 * ((size_t)j * (size_t)m.w + (size_t)i);
                 float lum = gk_luminance(x[0], x[1], x[2]) * m.omega[j];
-                centroid = v3_add(centroid, v3_scale(v3(d[0], d[1], d[2]), lum));
+                centroid = v3_add(centroid, v3_scale(pixel_dir(&m, i, j), lum));
                 for (int c = 0; c < 3; c++)
                     phi[c] += (double)x[c] * m.omega[j];
                 omega += m.omega[j];
@@ -242,6 +241,6 @@ int gk_env_split(gk_scene *s, int max_lights, gk_err *e)
         if (rc == 0)
             env->n_env_lights++;
     }
-    free(m.res), free(m.dir), free(m.omega);
+    free(m.res), free(m.omega);
     return rc;
 }

@@ -74,6 +74,12 @@ int gk_env_load(gk_environment *env, const char *scene_path, const char *base_di
     gk_err ie = {0};
     if (gk_image_read(path, &img, &ie) != 0)
         return gk_fail(e, GK_EINPUT, "%s: %s '%s' is missing or unreadable (%s)", scene_path, key, env->uri, ie.msg);
+    if (img.width > GK_ENV_MAX_WIDTH) {
+        gk_fail(e, GK_EINPUT, "%s: %s '%s' is %dx%d; at most %dx%d (a distant light needs no more: downsample it)",
+                scene_path, key, env->uri, img.width, img.height, GK_ENV_MAX_WIDTH, GK_ENV_MAX_WIDTH / 2);
+        gk_image_free(&img);
+        return -1;
+    }
     if (img.width != 2 * img.height || img.height < 4 || img.channels < 3) {
         gk_fail(e, GK_EINPUT,
                 "%s: %s '%s' is %dx%d with %d channels; an environment is a lat-long RGB map, width = 2 x height, "

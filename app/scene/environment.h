@@ -18,6 +18,10 @@
  * pixel, finer than any feature of the map (the panels are at least 20 degrees wide). */
 #define GK_ENV_STUDIO_HEIGHT 64
 
+/* The largest map accepted: 4096 x 2048 (96 MiB as float RGB, 0.09 degrees a pixel). The loader
+   splits it on the CPU and the renderer uploads it (halved until GL_MAX_TEXTURE_SIZE admits it). */
+#define GK_ENV_MAX_WIDTH 4096
+
 /* Direction through lat-long coordinates u, v in [0, 1] (v = 0 up). */
 vec3 gk_env_dir(float u, float v);
 /* Lat-long coordinates of a unit direction, u in [0, 1), v in [0, 1]. */
@@ -31,7 +35,8 @@ float gk_env_pixel_solid_angle(const gk_environment *env, int j);
 
 /* Reads the map env->uri (relative to base_dir, confined to it) and multiplies it by
  * env->intensity. Refuses, naming scene_path and the key: a missing or unreadable file, a layout
- * that is not lat-long (width != 2 height, fewer than 8 x 4 pixels, fewer than 3 channels), and
+ * that is not lat-long (width != 2 height, fewer than 8 x 4 pixels, fewer than 3 channels), one
+ * wider than GK_ENV_MAX_WIDTH, and
  * negative, NaN or infinite radiance. GK_EINPUT on bad input. */
 int gk_env_load(gk_environment *env, const char *scene_path, const char *base_dir, gk_err *e);
 

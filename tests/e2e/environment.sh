@@ -34,6 +34,12 @@ variant negpix 's/"uri":"env-studio.exr"/"uri":"negative.exr"/'
 expect_exit 2 "negative radiance exits 2" "$GIKIOSK" scenes --check "$D/negpix.gltf"
 stderr_has "negpix.gltf: .*'negative.exr': pixel \(0, 0\) channel 1 is -1" "naming the pixel"
 
+oiiotool --pattern constant:color=1,1,1 4098x2049 3 -d half -o "$D/huge.exr" 2>/dev/null
+variant huge 's/"uri":"env-studio.exr"/"uri":"huge.exr"/'
+expect_exit 2 "a map wider than 4096 exits 2" "$GIKIOSK" scenes --check "$D/huge.gltf"
+stderr_has "huge.gltf: .*'huge.exr' is 4098x2049; at most 4096x2048" "naming the limit"
+rm -f "$D/huge.exr"
+
 variant negint 's/"intensity":1/"intensity":-2/'
 expect_exit 2 "a negative intensity exits 2" "$GIKIOSK" scenes --check "$D/negint.gltf"
 stderr_has "negint.gltf: scene extras gikiosk.environment.intensity: -2 is not a finite number >= 0" \
