@@ -54,12 +54,13 @@ typedef struct gk_gi_blend {
 } gk_gi_blend;
 
 /* The shadow maps of a static scene are kept while this stays the same (compared by value). */
-typedef struct gk_shadow_cache_key {
+typedef struct gk_shadow_cache_key { /* compared with memcmp: no padding (fields ordered to fill it) */
     unsigned scene_generation;  /* 0: nothing cached */
+    int env_lights;             /* the environment's lights shadowed (render_env.h) */
     const gk_shadow_method *method;
     int map_size, subdiv;
-    int env_lights;             /* the environment's lights shadowed (render_env.h) */
 } gk_shadow_cache_key;
+_Static_assert(sizeof(gk_shadow_cache_key) == 4 * sizeof(int) + sizeof(void *), "gk_shadow_cache_key has padding");
 
 struct gk_renderer {
     gk_render_opts opts;
