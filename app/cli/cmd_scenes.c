@@ -100,11 +100,19 @@ static int check(const char *path)
     printf("triangles:   %u drawn, %u degenerate dropped, %d meshes\n", s->n_triangles, s->n_degenerate_dropped,
            s->n_meshes);
     printf("materials:   %d (with the default), textures: %d\n", s->n_materials, s->n_textures);
-    printf("lights:      %d%s\n", s->n_lights,
-           s->default_lighting ? " (the file has none: the default studio, key/fill/rim directional)" : "");
+    const gk_environment *env = &s->environment;
+    printf("lights:      %d%s\n", s->n_lights - env->n_env_lights,
+           s->default_lighting ? " (the file has none: the default studio, its environment and a key light)" : "");
     for (int i = 0; i < s->n_lights; i++)
-        printf("  %-16s %-18s intensity %g %s\n", s->lights[i].name, light_kind(&s->lights[i]), s->lights[i].intensity,
+        if (!s->lights[i].env_part)
+            printf("  %-16s %-18s intensity %g %s\n", s->lights[i].name, light_kind(&s->lights[i]), s->lights[i].intensity,
                s->lights[i].type == GK_LIGHT_DIRECTIONAL ? "lux" : "cd");
+    if (env->present)
+        printf("environment: %s, %dx%d lat-long, intensity %g; split into %d area lights (CSSM-shadowed in the "
+               "rasterizer, knob env_lights)\n", env->uri[0] ? env->uri : "built-in studio", env->width, env->height,
+               env->intensity, env->n_env_lights);
+    else
+        printf("environment: none\n");
     printf("camera:      %s\n", s->camera_node >= 0 ? s->nodes[s->camera_node].name : "default (framing the bounds)");
     printf("bounds:      (%.3f, %.3f, %.3f) .. (%.3f, %.3f, %.3f) m\n", s->bmin.x, s->bmin.y, s->bmin.z, s->bmax.x,
            s->bmax.y, s->bmax.z);
@@ -171,12 +179,16 @@ static int list(const char *dir)
             }
             if (strlen(desc) > 60)
                 memcpy(desc + 57, "...", 4);
-            printf("%-22s %7u %6d  %-30s %-36s %s\n", s->name, s->n_triangles, s->n_lights, feat, meth, desc);
+            char lights[24]; /* "+env": lit by an environment too (its split's lights not counted) */
+            snprintf(lights, sizeof lights, "%d%s", s->n_lights - s->environment.n_env_lights,
+                     s->environment.present ? "+env" : "");
+            printf("%-22s %7u %6s  %-30s %-36s %s\n", s->name, s->n_triangles, lights, feat, meth, desc);
             gk_scene_free(s);
         }
         free(files[i]);
     }
-    printf("\nMETHODS: what the kiosk runs on the scene; [+...]: methods the scene needs that are not implemented yet.\n");
+    printf("\nLIGHTS: +env: also lit by an environment map (the default studio's or the file's).\n");
+    printf("METHODS: what the kiosk runs on the scene; [+...]: methods the scene needs that are not implemented yet.\n");
     if (n == 0)
         fprintf(stderr, "gikiosk scenes: %s: no .gltf or .glb files\n", dir);
     return rc;

@@ -129,6 +129,10 @@ static bool sample_one(const gk_ref_scene *rs, int li, vec3 p, float u1, float u
         s->pdf = d2 / (cos_l * L->area);
         return true;
     }
+    case GK_REF_ENV:
+        s->dist = INFINITY;
+        return gk_ref_env_sample(&rs->env, u1, u2, &s->wi, &s->li, &s->pdf) &&
+               (s->li.x > 0.0f || s->li.y > 0.0f || s->li.z > 0.0f);
     case GK_REF_MESH: {
         float pt;
         int k = pick_cdf(rs->emissive_cdf, rs->n_emissive, u3, &pt);
@@ -186,6 +190,8 @@ float gk_light_pdf(const gk_ref_scene *rs, int li, int tri, vec3 p, vec3 x, vec3
     switch (L->kind) {
     case GK_REF_SUN:
         return pl / (2.0f * GK_PI * (1.0f - L->sun_cos_max));
+    case GK_REF_ENV:
+        return pl * gk_ref_env_pdf(&rs->env, d);
     case GK_REF_SPHERE: {
         vec3 dc = v3_sub(L->pos, p);
         float dc2 = v3_dot(dc, dc), r2 = L->radius * L->radius;
@@ -342,6 +348,24 @@ bool gk_light_photon_of(const gk_ref_scene *rs, int li, float pl, const float u[
         *o = L->pos;
         *d = gk_to_world(gk_sample_uniform_cone(u1, u2, L->cos_outer), t, b, L->axis);
         *flux = v3_scale(L->intensity, gk_spot_falloff(L, *d) * 2.0f * GK_PI * (1.0f - L->cos_outer) / pl);
+        return true;
+    }
+    case GK_REF_ENV: {
+        /* A direction from the environment's importance sampling (u3, u4), then a point on a disc
+           covering the scene's bounding sphere upstream of it (u1, u2), as for directional lights:
+           flux = L / pdf(direction) x disc area. */
+        vec3 wi, le;
+        float pdf;
+        if (!gk_ref_env_sample(&rs->env, u3, u4, &wi, &le, &pdf))
+            return false;
+        *d = v3_scale(wi, -1.0f);
+        vec3 t, b;
+        gk_onb(*d, &t, &b);
+        float dx, dy;
+        gk_sample_uniform_disc(u1, u2, &dx, &dy);
+        vec3 c = v3_add(rs->centre, v3_scale(wi, 2.0f * rs->radius));
+        *o = v3_add(c, v3_add(v3_scale(t, dx * rs->radius), v3_scale(b, dy * rs->radius)));
+        *flux = v3_scale(le, GK_PI * rs->radius * rs->radius / (pdf * pl));
         return true;
     }
     case GK_REF_DIRECTIONAL:

@@ -37,7 +37,8 @@ bool gk_area_lights_occlude(const gk_ref_scene *rs, vec3 o, vec3 d, float tmax);
 vec3 gk_area_light_emission(const gk_ref_scene *rs, int li, vec3 d);
 /* Radiance of an emissive triangle seen along d (0 from the back unless double-sided). */
 vec3 gk_tri_emission(const gk_ref_scene *rs, const gk_ref_tri *t, float b1, float b2, vec3 d);
-/* Radiance of the sky along an escaping direction d (sun discs). */
+/* Radiance of the sky's sun discs along an escaping direction d (the environment map, a light of
+   its own, is rs->env: gk_env_radiance). */
 vec3 gk_sky_emission(const gk_ref_scene *rs, vec3 d, int *light);
 
 /* Solid-angle pdf with which gk_light_sample_from would have produced the point x on light li

@@ -164,6 +164,7 @@ int gk_ref_scene_build(gk_ref_scene *rs, const gk_scene *s, mat4 view, mat4 proj
 {
     memset(rs, 0, sizeof *rs);
     rs->mesh_light = -1;
+    rs->env_light = -1;
     rs->materials = s->materials;
     rs->n_materials = s->n_materials;
     rs->textures = s->textures;
@@ -175,7 +176,7 @@ int gk_ref_scene_build(gk_ref_scene *rs, const gk_scene *s, mat4 view, mat4 proj
         for (int m = nd->mesh_first; m < nd->mesh_first + nd->mesh_count; m++)
             if (m >= 0 && m < s->n_meshes && add_mesh_triangles(rs, s, nd, &s->meshes[m], &cap, e))
                 goto fail;
-        if (nd->light >= 0 && nd->light < s->n_lights)
+        if (nd->light >= 0 && nd->light < s->n_lights && !s->lights[nd->light].env_part)
             n_punctual++;
     }
     /* Emissive triangles become one mesh light, sampled in proportion to emitted power. */
@@ -184,7 +185,7 @@ int gk_ref_scene_build(gk_ref_scene *rs, const gk_scene *s, mat4 view, mat4 proj
         if (mt->emissive[0] > 0 || mt->emissive[1] > 0 || mt->emissive[2] > 0)
             rs->n_emissive++;
     }
-    rs->lights = calloc((size_t)n_punctual + 1, sizeof *rs->lights);
+    rs->lights = calloc((size_t)n_punctual + 2, sizeof *rs->lights); /* + mesh light + environment */
     rs->emissive_tris = malloc(sizeof(uint32_t) * (rs->n_emissive + 1));
     rs->emissive_cdf = malloc(sizeof(float) * (rs->n_emissive + 1));
     if (!rs->lights || !rs->emissive_tris || !rs->emissive_cdf) {
@@ -213,7 +214,7 @@ int gk_ref_scene_build(gk_ref_scene *rs, const gk_scene *s, mat4 view, mat4 proj
         }
     for (int i = 0; i < s->n_nodes; i++) {
         const gk_node *nd = &s->nodes[i];
-        if (nd->light < 0 || nd->light >= s->n_lights)
+        if (nd->light < 0 || nd->light >= s->n_lights || s->lights[nd->light].env_part)
             continue;
         gk_ref_light *L = &rs->lights[rs->n_lights++];
         light_from_node(L, &s->lights[nd->light], nd->world);
@@ -267,6 +268,17 @@ int gk_ref_scene_build(gk_ref_scene *rs, const gk_scene *s, mat4 view, mat4 proj
         L->kind = GK_REF_MESH;
         L->power = GK_PI * rs->emissive_cdf[ne];
     }
+    if (gk_ref_env_build(&rs->env, &s->environment) != 0) {
+        gk_fail(e, GK_ERUNTIME, "reference: out of memory for the environment's sampling tables");
+        goto fail;
+    }
+    if (rs->env.env) {
+        rs->env_light = rs->n_lights;
+        gk_ref_light *L = &rs->lights[rs->n_lights++];
+        memset(L, 0, sizeof *L);
+        L->kind = GK_REF_ENV;
+        L->power = rs->env.flux_density * GK_PI * rs->radius * rs->radius; /* as directional lights */
+    }
     for (uint32_t i = 0; i < rs->n_tris; i++) {
         if (gk_ref_material_may_be_delta(&s->materials[rs->tris[i].material]))
             rs->has_delta_surfaces = true;
@@ -314,8 +326,10 @@ void gk_ref_scene_free(gk_ref_scene *rs)
     free(rs->delta_cdf);
     free(rs->emissive_tris);
     free(rs->emissive_cdf);
+    gk_ref_env_free(&rs->env);
     memset(rs, 0, sizeof *rs);
     rs->mesh_light = -1;
+    rs->env_light = -1;
 }
 
 vec3 gk_ref_camera_dir(const gk_ref_scene *rs, float px, float py)

@@ -15,11 +15,13 @@
 
 #include "bvh.h"
 #include "medium.h"
+#include "ref_env.h"
 #include "scene/scene.h"
 
 enum gk_ref_light_kind {
     GK_REF_POINT, GK_REF_SPOT, GK_REF_DIRECTIONAL, /* deltas: only light sampling or light tracing finds them */
-    GK_REF_SUN, GK_REF_SPHERE, GK_REF_DISC, GK_REF_RECT, GK_REF_MESH
+    GK_REF_SUN, GK_REF_SPHERE, GK_REF_DISC, GK_REF_RECT, GK_REF_MESH,
+    GK_REF_ENV         /* the scene's environment map (ref_env.h), at infinity like a sun */
 };
 
 typedef struct gk_ref_light {
@@ -59,6 +61,9 @@ typedef struct gk_ref_scene {
     float *delta_cdf;      /* n_lights + 1, over delta lights only: light tracing picks one */
     uint32_t *emissive_tris; float *emissive_cdf; int n_emissive; /* the mesh light's triangles */
     int mesh_light;        /* index of the GK_REF_MESH light or -1 */
+    gk_ref_env env;        /* the environment's sampling tables; env.env NULL without one */
+    int env_light;         /* index of the GK_REF_ENV light or -1 (the scene's env_part lights, the
+                              rasterizer's split of the same map, are not lights here) */
     bool has_delta_lights, has_delta_surfaces;
     /* Test hook (white-furnace tests of the transport): every surface pure Lambert (metallic,
        transmission and the KHR_materials_specular weight 0), so a surface's albedo is exactly its

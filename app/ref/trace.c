@@ -7,6 +7,7 @@
 #include "lights.h"
 #include "materials.h"
 #include "medium.h"
+#include "scene/environment.h"
 
 /* Offsets for spawning rays off surfaces, relative to the scene size: large enough to escape the
    float error of the hit point, small enough not to skip thin geometry. */
@@ -218,9 +219,15 @@ vec3 gk_trace_eye(const gk_ref_scene *rs, vec3 o, vec3 d, unsigned mask, unsigne
         if (!hit) {
             int sun;
             vec3 le = gk_sky_emission(rs, d, &sun);
-            if (sun >= 0 && within_bounces(n_diffuse, max_diffuse) && wanted(term_here, cls_here, mask, terms)) {
+            bool count = within_bounces(n_diffuse, max_diffuse) && wanted(term_here, cls_here, mask, terms);
+            if (sun >= 0 && count) {
                 float w = prev_delta ? 1.0f : gk_power_heuristic(prev_pdf, gk_light_pdf(rs, sun, -1, prev_p, prev_p, d));
                 radiance = v3_add(radiance, v3_mul(beta, v3_scale(le, w)));
+            }
+            if (rs->env_light >= 0 && count) { /* the environment map, weighted against its own sampling */
+                float w = prev_delta ? 1.0f
+                                     : gk_power_heuristic(prev_pdf, gk_light_pdf(rs, rs->env_light, -1, prev_p, prev_p, d));
+                radiance = v3_add(radiance, v3_mul(beta, v3_scale(gk_env_radiance(rs->env.env, d), w)));
             }
             break;
         }

@@ -10,6 +10,7 @@
 #include "base/log.h"
 #include "../core/tonemap.h"
 #include "gl/gbuffer_bind.h"
+#include "render_env.h"
 #include "render_gi.h"
 #include "render_glass.h"
 #include "renderer_internal.h"
@@ -45,8 +46,23 @@ static int method_index(const gk_shadow_method *m)
 typedef struct frame_light {
     int node;
     bool shadowed;
+    const gk_shadow_method *method; /* the knob's, or CSSM for the environment's lights (render_env.h) */
+    int slot;                       /* the light's slot in its method's state */
     gk_shadow_view view;
 } frame_light;
+
+/* The method's state, created on first use; NULL with e set on failure. */
+static void *shadow_state(gk_renderer *r, const gk_shadow_method *m, gk_err *e)
+{
+    int mi = method_index(m);
+    if (mi < 0) {
+        gk_fail(e, GK_ERUNTIME, "shadow method %s is not in gk_shadow_methods[]", m->name);
+        return NULL;
+    }
+    if (!r->shadow_state[mi] && !(r->shadow_state[mi] = m->create()))
+        gk_fail(e, GK_ERUNTIME, "shadow method %s: out of memory", m->name);
+    return r->shadow_state[mi];
+}
 
 static int pass_shadows(gk_renderer *r, const gk_frame_knobs *fk, const gk_pass_ctx *pctx, frame_light *fl, int n,
                         gk_err *e)
@@ -55,11 +71,7 @@ static int pass_shadows(gk_renderer *r, const gk_frame_knobs *fk, const gk_pass_
     int map_size = fk->shadow_map;
     if (!m)
         return 0;
-    int mi = method_index(m);
-    if (mi < 0)
-        return gk_fail(e, GK_ERUNTIME, "shadow method %s is not in gk_shadow_methods[]", m->name);
-    if (!r->shadow_state[mi] && !(r->shadow_state[mi] = m->create()))
-        return gk_fail(e, GK_ERUNTIME, "shadow method %s: out of memory", m->name);
+    const gk_shadow_method *env_m = gk_render_env_shadow_method();
     gk_shadow_ctx ctx = {.progs = r->progs, .scene = r->scene, .gpu = &r->gpu, .caps = &r->caps,
                          .subdiv = fk->shadow_subdiv, .pass = pctx};
     /* Static scene, same lights, same shadow knobs: the maps of the last frame are still right, so
@@ -67,23 +79,33 @@ static int pass_shadows(gk_renderer *r, const gk_frame_knobs *fk, const gk_pass_
        scenes are static, and the prefiltered maps (SAT, Fourier bases) cost more than the rest of
        the frame. The bench turns this off to measure a method's per-frame cost. */
     gk_shadow_cache_key key = {.scene_generation = r->scene_generation, .method = m, .map_size = map_size,
-                               .subdiv = fk->shadow_subdiv};
+                               .subdiv = fk->shadow_subdiv, .env_lights = fk->env_lights};
     bool reuse = !r->opts.rerender_static_shadows && !r->scene->features.has_animation &&
                  memcmp(&key, &r->shadow_cache, sizeof key) == 0;
-    int slot = 0;
-    for (int i = 0; i < n && slot < GK_SHADOW_MAX_LIGHTS; i++) {
+    int slots[GK_MAX_SHADOW_METHODS] = {0}; /* next free slot of each method's state */
+    for (int i = 0; i < n; i++) {
         int size = map_size;
         const gk_light *l = &r->scene->lights[r->scene->nodes[fl[i].node].light];
+        const gk_shadow_method *lm = l->env_part && env_m ? env_m : m;
+        if (l->env_part)
+            size = GK_ENV_SHADOW_MAP;
         if (l->type != GK_LIGHT_DIRECTIONAL && (l->shape == GK_SHAPE_POINT || l->shape == GK_SHAPE_SPHERE) && size > 1024)
             size = 1024; /* six faces: 2048^2 x 6 x 4 B = 96 MB is past a board's budget */
+        int mi = method_index(lm);
+        if (mi < 0 || slots[mi] >= GK_SHADOW_MAX_LIGHTS)
+            continue; /* lights past the method's slots are unshadowed */
+        void *st = shadow_state(r, lm, e);
+        if (!st)
+            return -1;
         if (!gk_shadow_view_for_light(r->scene, fl[i].node, size, &fl[i].view))
             continue;
-        if (!reuse && m->render(r->shadow_state[mi], &ctx, slot, &fl[i].view, e) != 0) {
+        if (!reuse && lm->render(st, &ctx, slots[mi], &fl[i].view, e) != 0) {
             memset(&r->shadow_cache, 0, sizeof r->shadow_cache);
             return -1;
         }
         fl[i].shadowed = true;
-        slot++;
+        fl[i].method = lm;
+        fl[i].slot = slots[mi]++;
     }
     r->shadow_cache = key;
     return 0;
@@ -190,7 +212,7 @@ static void set_light_uniforms(const light_uniforms *lu, const gk_light *l, vec3
     glUniform2f(lu->u_light_size, l->size[0], l->size[1]);
 }
 
-static int pass_direct(gk_renderer *r, const gk_shadow_method *m, const frame_light *fl, int n,
+static int pass_direct(gk_renderer *r, const gk_frame_knobs *fk, const frame_light *fl, int n,
                        const gk_gbuffer_view *gbuf, gk_err *e)
 {
     glBindFramebuffer(GL_FRAMEBUFFER, r->hdr.fbo);
@@ -211,15 +233,13 @@ static int pass_direct(gk_renderer *r, const gk_shadow_method *m, const frame_li
     glEnable(GL_BLEND);
     glBlendEquation(GL_FUNC_ADD);
     glBlendFunc(GL_ONE, GL_ONE);
-    int mi = m ? method_index(m) : -1;
-    int slot = 0;
     for (int i = 0; i < n; i++) {
         const gk_scene *s = r->scene;
         const gk_light *l = &s->lights[s->nodes[fl[i].node].light];
         char defines[256];
         snprintf(defines, sizeof defines, "#define GK_LIGHT_KIND %d\n%s%s", gk_render_light_kind(l),
                  l->type == GK_LIGHT_SPOT ? "#define GK_LIGHT_SPOT 1\n" : "",
-                 fl[i].shadowed ? m->glsl_define : "");
+                 fl[i].shadowed ? fl[i].method->glsl_define : "");
         prog = gk_program_get(r->progs, "common/fullscreen.vert", "direct/light.frag", defines, e);
         const light_uniforms *lu = prog ? gk_program_uniforms(r->progs, prog, GK_FIELDS(light_fields), sizeof *lu, e) : NULL;
         if (!lu) {
@@ -235,15 +255,16 @@ static int pass_direct(gk_renderer *r, const gk_shadow_method *m, const frame_li
         glBindTexture(GL_TEXTURE_2D, r->ltc_tex);
         glBindSampler(UNIT_LTC, 0);
         glUniform1i(lu->u_ltc, UNIT_LTC);
-        if (fl[i].shadowed &&
-            m->bind(r->shadow_state[mi], r->progs, slot++, &fl[i].view, prog, UNIT_SHADOW, e) != 0) {
+        if (fl[i].shadowed && fl[i].method->bind(r->shadow_state[method_index(fl[i].method)], r->progs, fl[i].slot,
+                                                 &fl[i].view, prog, UNIT_SHADOW, e) != 0) {
             glDisable(GL_BLEND);
             return -1;
         }
         gk_render_fullscreen(r);
     }
+    int rc = gk_render_env_pass(r, gbuf, fk->env_lights, e);
     glDisable(GL_BLEND);
-    return 0;
+    return rc;
 }
 
 int gk_render_compose(gk_renderer *r, GLuint fbo, int w, int h, bool linear_out, gk_err *e)
@@ -345,7 +366,6 @@ int gk_renderer_draw(gk_renderer *r, const gk_frame_params *fp, unsigned target_
     const gk_budget *b = fp ? fp->budget : NULL;
     gk_frame_knobs fk;
     gk_render_knobs_read(&r->knobs, b, &fk);
-    const gk_shadow_method *m = fk.shadow;
     int w = (int)lroundf((float)r->opts.width * fk.render_scale), h = (int)lroundf((float)r->opts.height * fk.render_scale);
     if (w < 1) w = 1;
     if (h < 1) h = 1;
@@ -376,7 +396,8 @@ int gk_renderer_draw(gk_renderer *r, const gk_frame_params *fp, unsigned target_
     frame_light fl[64];
     int n = 0;
     for (int i = 0; i < s->n_nodes && n < 64; i++)
-        if (s->nodes[i].light >= 0 && s->nodes[i].light < s->n_lights)
+        if (s->nodes[i].light >= 0 && s->nodes[i].light < s->n_lights &&
+            gk_render_env_light_on(s, s->nodes[i].light, fk.env_lights))
             fl[n++] = (frame_light){.node = i};
 
     while (glGetError() != GL_NO_ERROR) {
@@ -400,7 +421,7 @@ int gk_renderer_draw(gk_renderer *r, const gk_frame_params *fp, unsigned target_
     }
     if (rc == 0 && !abandoned && !(abandoned = stop_before(fp, "direct", &last))) {
         gk_pass_begin(&ctx, "direct");
-        rc = pass_direct(r, m, fl, n, &gb, e);
+        rc = pass_direct(r, &fk, fl, n, &gb, e);
         gk_pass_end(&ctx);
     }
     if (rc == 0 && !abandoned && gi_runs(r, fp) && !(abandoned = stop_before(fp, "gi", &last)))

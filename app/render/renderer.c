@@ -98,6 +98,8 @@ void gk_renderer_destroy(gk_renderer *r)
         glDeleteVertexArrays(1, &r->empty_vao);
     if (r->ltc_tex)
         glDeleteTextures(1, &r->ltc_tex);
+    if (r->env_tex)
+        glDeleteTextures(1, &r->env_tex);
     gk_timer_destroy(r->timer);
     gk_program_cache_destroy(r->progs);
     free(r->shader_dir);

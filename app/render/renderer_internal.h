@@ -20,6 +20,7 @@ enum { UNIT_ALBEDO = 0, UNIT_NORMAL = 1, UNIT_EMISSION = 2, UNIT_DEPTH = 3, UNIT
 /* The renderer's knobs, read each frame through handles (no names in the frame loop). */
 typedef struct gk_render_knobs {
     gk_knob scale, shadow, shadow_map, shadow_subdiv, gi_blend;
+    gk_knob env_lights;
     const gk_shadow_method *shadow_of_level[GK_MAX_KNOB_VALUES]; /* knob `shadow` level -> method */
     const gk_knob_def *shadow_table_def; /* the definition shadow_of_level was built from */
     const gk_shadow_method *shadow_without_budget;               /* PCSS, the framework reference */
@@ -32,6 +33,7 @@ typedef struct gk_frame_knobs {
     int shadow_map;
     int shadow_subdiv;          /* level of shadow_subdiv (VSSM) */
     int gi_blend;               /* frames a GI change is cross-faded over (0: off) */
+    int env_lights;             /* environment area lights drawn (render_env.h) */
 } gk_frame_knobs;
 
 /* Cross-fade of the GI result when the method or a budget changes (render_gi_blend.c): the
@@ -52,11 +54,13 @@ typedef struct gk_gi_blend {
 } gk_gi_blend;
 
 /* The shadow maps of a static scene are kept while this stays the same (compared by value). */
-typedef struct gk_shadow_cache_key {
+typedef struct gk_shadow_cache_key { /* compared with memcmp: no padding (fields ordered to fill it) */
     unsigned scene_generation;  /* 0: nothing cached */
+    int env_lights;             /* the environment's lights shadowed (render_env.h) */
     const gk_shadow_method *method;
     int map_size, subdiv;
 } gk_shadow_cache_key;
+_Static_assert(sizeof(gk_shadow_cache_key) == 4 * sizeof(int) + sizeof(void *), "gk_shadow_cache_key has padding");
 
 struct gk_renderer {
     gk_render_opts opts;
@@ -88,6 +92,8 @@ struct gk_renderer {
     gk_shadow_cache_key shadow_cache; /* what the maps now in shadow_state were rendered for */
     void *shadow_state[GK_MAX_SHADOW_METHODS]; /* per method of gk_shadow_methods[], created on first use */
 
+    GLuint env_tex;             /* the scene environment's lat-long map (render_env.c), RGBA32F */
+    unsigned env_tex_generation; /* scene generation env_tex was uploaded for */
     float exposure;             /* display scale, fixed per scene (tonemap.h) */
     bool exposure_known;
     bool have_frame;            /* hdr holds a finished frame for capture */

@@ -1,30 +1,29 @@
 /* The default studio: lights for a scene whose file brings none. glTF assets usually ship without
  * lights (lighting is the viewer's business), and a kiosk that shows such a model black has shown
- * nothing. A file with no light node and no emissive surface gets three directional lights placed
- * around its view camera, the classic key / fill / rim arrangement, added to the scene itself so
- * both renderers (the GLES one and the reference tracer) light it identically and `compare` means
- * what it always means. Directions follow the view camera so the key always lights the side the
- * visitor sees.
- *
- * Why directional lights and not an environment: neither renderer draws environment light yet
- * (an environment split into area lights, seed 001 ch. 5, is part of the accuracy issue); three
- * directional lights are what every method here already handles, with shadows. Surfaces facing
- * away from all three stay dark, which an environment would fill: the documented difference. */
+ * nothing. A file with no light node, no emissive surface and no environment gets the studio of
+ * DESIGN §4: the built-in procedural environment (environment.h: a sun-less gradient sky over a
+ * grey ground with three soft panels) plus a key light, a small disc sun placed around its view
+ * camera. Both are added to the scene itself, so both renderers (the GLES one, which splits the
+ * environment into area lights, env_split.h, and the reference tracer, which samples the map) light
+ * it identically and `compare` means what it always means. The key's direction follows the view
+ * camera so it always lights the side the visitor sees; the environment fills what faces away. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "base/log.h"
+#include "environment.h"
 #include "scene_internal.h"
 
-/* Illuminance of the key light (lux); fill and rim are fractions of it. The absolute value only
- * sets the exposure the renderer's auto-exposure (measured key) then normalises. The key is a
- * small disc sun (angular radius 0.03 rad, 1.7°) so its shadows are soft, like a studio softbox. */
+/* Illuminance of the key light (lux). The absolute value only sets the exposure the renderer's
+ * auto-exposure (measured key) then normalises; what matters is its ratio to the environment, whose
+ * irradiance on an upward surface is about 4 lux at intensity 1 (sky 0.3..0.9 nits plus the
+ * panels), so the key is the brighter of the two without flattening the environment's shading.
+ * The key is a small disc sun (angular radius 0.03 rad, 1.7°) so its shadows are soft. */
 #define STUDIO_KEY_LUX 3.0f
-#define STUDIO_FILL_RATIO 0.35f
-#define STUDIO_RIM_RATIO 0.5f
 #define STUDIO_KEY_ANGULAR_RADIUS 0.03f
+#define STUDIO_ENV_INTENSITY 1.0f
 
 typedef struct studio_light {
     const char *name;
@@ -50,19 +49,19 @@ static bool has_light_or_emitter(const gk_scene *s)
     for (int i = 0; i < s->n_nodes; i++)
         if (s->nodes[i].light >= 0 && s->lights[s->nodes[i].light].intensity > 0)
             return true;
-    return s->features.has_emissive;
+    return s->features.has_emissive || s->environment.present;
 }
 
 int gk_scene_add_default_studio(gk_scene *s, gk_err *e)
 {
     if (has_light_or_emitter(s))
         return 0;
-    static const studio_light kStudio[3] = {
+    static const studio_light kStudio[1] = {
         {"studio key", 0.6f, 1.0f, 0.6f, STUDIO_KEY_LUX, STUDIO_KEY_ANGULAR_RADIUS},
-        {"studio fill", -0.9f, 0.25f, 0.6f, STUDIO_KEY_LUX * STUDIO_FILL_RATIO, 0.0f},
-        {"studio rim", 0.2f, 0.7f, -1.0f, STUDIO_KEY_LUX * STUDIO_RIM_RATIO, 0.0f},
     };
-    int n = 3;
+    int n = 1;
+    if (gk_env_make_studio(&s->environment, GK_ENV_STUDIO_HEIGHT, STUDIO_ENV_INTENSITY, e) != 0)
+        return -1;
     gk_light *lights = realloc(s->lights, (size_t)(s->n_lights + n + 1) * sizeof *lights);
     if (!lights)
         return gk_fail(e, GK_ERUNTIME, "%s: out of memory adding the default studio", s->path);
@@ -103,6 +102,6 @@ int gk_scene_add_default_studio(gk_scene *s, gk_err *e)
         s->n_nodes++;
     }
     s->default_lighting = true;
-    gk_log("scene %s has no lights: using the default studio (key, fill and rim directional lights)", s->name);
+    gk_log("scene %s has no lights: using the default studio (the built-in studio environment and a key light)", s->name);
     return 0;
 }

@@ -116,6 +116,8 @@ void read_scene_extras(const Model &m, gk_scene *s);
 const Value *scene_gikiosk_extras(const Model &m);
 // The scene medium, extras "gikiosk": {"medium": {...}} (scene.h, gk_medium).
 bool read_medium(Loader &L, const Value *g, gk_scene *s);
+// The scene environment, "extras": {"gikiosk": {"environment": {...}}} (gltf_environment.cpp).
+bool read_environment(Loader &L, const Value *g, gk_scene *s);
 
 } // namespace gkgltf
 

@@ -126,7 +126,8 @@ gk_scene *convert(Loader &L, const Model &m, const char *base_dir)
     s->camera_node = -1;
     read_scene_extras(m, s);
     std::vector<int> tex_usage(m.textures.size() + 1, 0);
-    bool ok = read_medium(L, scene_gikiosk_extras(m), s) && read_textures(L, m, s) &&
+    bool ok = read_medium(L, scene_gikiosk_extras(m), s) && read_environment(L, scene_gikiosk_extras(m), s) &&
+              read_textures(L, m, s) &&
               read_materials(L, m, s, tex_usage) && read_lights(L, m, s) &&
               read_cameras(L, m, s);
     std::vector<int> mesh_first(m.meshes.size()), mesh_count(m.meshes.size());

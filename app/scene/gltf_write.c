@@ -90,6 +90,7 @@ struct gkw_doc {
     param params[16]; int n_params;
     bool has_medium; double sigma_s[3], sigma_a[3], g;
     bool medium_bounded; double medium_lo[3], medium_hi[3];
+    char environment_uri[256]; double environment_intensity; /* "" = none */
     bool oom;
 };
 
@@ -291,6 +292,12 @@ void gkw_medium(gkw_doc *d, const double sigma_s[3], const double sigma_a[3], do
     d->g = g;
 }
 
+void gkw_environment(gkw_doc *d, const char *uri, double intensity)
+{
+    snprintf(d->environment_uri, sizeof d->environment_uri, "%s", uri);
+    d->environment_intensity = intensity;
+}
+
 void gkw_medium_bounds(gkw_doc *d, const double lo[3], const double hi[3])
 {
     d->medium_bounded = true;
@@ -455,6 +462,13 @@ static void write_nodes_and_scene(gkw_doc *d, sbuf *b)
             sb_nums(b, d->medium_hi, 3);
             sb_printf(b, "]");
         }
+        sb_printf(b, "}");
+    }
+    if (d->environment_uri[0]) {
+        sb_printf(b, ",\"environment\":{\"uri\":");
+        sb_str(b, d->environment_uri);
+        sb_printf(b, ",\"intensity\":");
+        sb_num(b, d->environment_intensity);
         sb_printf(b, "}");
     }
     sb_printf(b, "}}}]");

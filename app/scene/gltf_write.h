@@ -71,6 +71,9 @@ void gkw_exposure(gkw_doc *d, double ev);
 void gkw_medium(gkw_doc *d, const double sigma_s[3], const double sigma_a[3], double g);
 /* ... limited to the box [lo, hi] (extras.gikiosk.medium.bounds). */
 void gkw_medium_bounds(gkw_doc *d, const double lo[3], const double hi[3]);
+/* The scene environment in extras.gikiosk.environment (scene.h, gk_environment): an image next to
+   the scene file, written by the builder itself. */
+void gkw_environment(gkw_doc *d, const char *uri, double intensity);
 /* A named number list in extras.gikiosk.params (up to 4 values). */
 void gkw_param(gkw_doc *d, const char *key, int n, const double *v);
 /* Writes DIR/NAME.gltf and DIR/NAME.bin. */

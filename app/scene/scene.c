@@ -6,6 +6,8 @@
 #include <sys/stat.h>
 
 #include "base/log.h"
+#include "env_split.h"
+#include "environment.h"
 #include "scene_internal.h"
 
 #define GK_SCENE_MAX_DRAWN 4000000ull
@@ -35,6 +37,7 @@ void gk_scene_free(gk_scene *s)
     free(s->cameras);
     free(s->nodes);
     free(s->channels);
+    gk_env_free(&s->environment);
     free(s);
 }
 
@@ -165,6 +168,8 @@ int gk_scene_finish(gk_scene *s, const char *base_dir, const int *tex_usage, gk_
         gk_scene_validate_cameras(s, e) || gk_scene_validate_animations(s, e) || gk_scene_validate_methods(s, e) ||
         gk_scene_load_textures(s, base_dir, tex_usage, e))
         return -1;
+    if (s->environment.present && gk_env_load(&s->environment, s->path, base_dir, e) != 0)
+        return -1;
     /* Instancing multiplies geometry: a small file can ask for billions of drawn triangles. Beyond
      * this limit (about 25x the atrium, our largest scene) a scene is refused rather than loaded. */
     uint64_t drawn = 0;
@@ -191,7 +196,10 @@ int gk_scene_finish(gk_scene *s, const char *base_dir, const int *tex_usage, gk_
      * around the view camera chosen above; its lights change what light reaches, so re-derive. */
     if (gk_scene_add_default_studio(s, e) != 0)
         return -1;
-    if (s->default_lighting) {
+    /* The environment's area lights for the rasterizer (the tracer samples the map itself). */
+    if (gk_env_split(s, GK_ENV_MAX_LIGHTS, e) != 0)
+        return -1;
+    if (s->default_lighting || s->environment.n_env_lights > 0) {
         gk_scene_evaluate(s, 0.0f);
         gk_scene_derive_features(s);
     }

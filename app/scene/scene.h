@@ -88,6 +88,9 @@ typedef struct gk_light {
     float inner_cone, outer_cone; /* spot, radians */
     float radius;              /* sphere/disc radius (m) or sun angular radius (rad) */
     float size[2];             /* rectangle W, H (m) */
+    /* A light of the environment's split (env_split.h): the rasterizer draws it in place of the
+       environment; the path tracer skips it, because it samples the environment map itself. */
+    bool env_part;
 } gk_light;
 
 typedef struct gk_camera {
@@ -167,6 +170,27 @@ typedef struct gk_medium {
     vec3 box_min, box_max;
 } gk_medium;
 
+/* A distant environment around the scene (DESIGN §4), given in the scene's extras:
+ *   "extras": {"gikiosk": {"environment": {"uri": "sky.exr", "intensity": 1.0}}}
+ * uri: an EXR (or any float image OpenImageIO reads) next to the scene, in the lat-long layout:
+ * width = 2 x height, row 0 looking straight up (+Y), column u at azimuth phi = 2 pi (u + 0.5) / W
+ * measured from -Z towards +X (environment.h, gk_env_dir). intensity (default 1, finite, >= 0)
+ * multiplies the map's linear RGB radiance (nits). The default studio (default_studio.c) brings a
+ * built-in procedural one (uri ""). */
+typedef struct gk_environment {
+    bool present;
+    char uri[256];             /* relative to the scene's folder; "" for a built-in map */
+    float intensity;
+    int width, height;         /* lat-long: width = 2 height */
+    float *rgb;                /* width * height * 3 radiance, intensity applied, row 0 = up */
+    /* The environment's split into area lights for the rasterizer (env_split.h): the scene's
+       lights with env_part set, the first of them at index env_light_first, n_env_lights of them
+       in the order the greedy fit found them; after k of them, the residual's irradiance is
+       ambient_sh[k] (9 SH coefficients x RGB, E(n) = sum c_i Y_i(n), see env_split.h). */
+    int env_light_first, n_env_lights;
+    float (*ambient_sh)[9][3]; /* n_env_lights + 1 entries */
+} gk_environment;
+
 typedef struct gk_scene {
     char name[64];             /* file stem: "cornell" */
     char path[512];            /* file it was loaded from */
@@ -194,6 +218,7 @@ typedef struct gk_scene {
     gk_scene_gltf_use gltf;
     bool default_lighting;     /* the file has no light and no emitter: the default studio was added */
     gk_medium medium;          /* scene extras "gikiosk": {"medium": {...}} (above) */
+    gk_environment environment; /* scene extras "gikiosk": {"environment": {...}} (above) */
 } gk_scene;
 
 /* Loads .gltf/.glb; validates everything (indices, accessors, NaN/Inf, textures). On error returns

@@ -33,8 +33,9 @@ int gk_scene_load_textures(gk_scene *s, const char *base_dir, const int *tex_usa
 
 /* features.c */
 void gk_scene_derive_features(gk_scene *s);
-/* When the file has no light and no emitter, appends the default studio (three directional lights
- * around the view camera; default_studio.c) and sets s->default_lighting; else does nothing. */
+/* When the file has no light, no emitter and no environment, adds the default studio (the built-in
+ * studio environment and a key light placed around the view camera; default_studio.c) and sets
+ * s->default_lighting; else does nothing. */
 int gk_scene_add_default_studio(gk_scene *s, gk_err *e);
 /* Generates m->tangents (tangents.c) when the mesh has UVs and none; 0, or -1 out of memory. */
 int gk_mesh_generate_tangents(gk_mesh *m);

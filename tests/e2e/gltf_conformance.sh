@@ -10,7 +10,8 @@ json_field() { sed -n "s/.*\"$1\": \(\[[^]]*\]\|[^,}]*\).*/\1/p" "$2"; }
 
 expect_exit 0 "scenes --check on a GLB with an embedded image" "$GIKIOSK" scenes --check $DIR/texture-glb.glb
 check "it reports the embedded image" grep -q "^gltf reads: .*1 embedded images" "$TMP/stdout"
-check "it reports the default studio" grep -q "^lights: *3 (the file has none: the default studio" "$TMP/stdout"
+check "it reports the default studio" grep -q "^lights: *1 (the file has none: the default studio, its environment and a key light)" "$TMP/stdout"
+check "it shows the studio's environment" grep -q "^environment: built-in studio, 128x64 lat-long, intensity 1; split into [0-9]* area lights" "$TMP/stdout"
 stderr_has "scene texture-glb has no lights: using the default studio" "the studio is logged"
 
 expect_exit 0 "scenes --check on a data: uri image" "$GIKIOSK" scenes --check $DIR/texture-data-uri.gltf
@@ -67,9 +68,10 @@ for sc in ${CONFORMANCE_SCENES:-texture-glb emissive-texture vertex-colors norma
         err=$(json_field rel_rmse "$TMP/$m.json")
         ratio=$(json_field mean_ratio "$TMP/$m.json")
         echo "# $sc $m: rel_rmse $err vs the reference (its own noise: ref-vs-ref $noise), mean_ratio $ratio"
-        # Lit, and lit as the tracer lights it: the energy within 3% (measured 0.9988 to 0.9995 on
-        # the three models; a renderer that ignored the texture or the vertex colours is off by
-        # 30% or more, the flat white emitter by 2x).
+        # Lit, and lit as the tracer lights it: the energy within 3% (measured 0.980 to 1.020 on
+        # the five models under the studio's environment and key, 0.9988 to 0.9995 on three under
+        # its former three directional lights; a renderer that ignored the texture or the vertex
+        # colours is off by 30% or more, the flat white emitter by 2x).
         check "$sc: $m: lit like the reference (mean ratio $ratio in [0.97, 1.03])" \
             awk -v r="$ratio" 'BEGIN { exit !(r >= 0.97 && r <= 1.03) }'
         # The renderer's own error: rel_rmse(gpu, ref1)^2 - rel_rmse(ref1, ref2)^2 / 2 removes ref1's
@@ -82,9 +84,11 @@ for sc in ${CONFORMANCE_SCENES:-texture-glb emissive-texture vertex-colors norma
 done
 
 # The normal maps change the picture (tilted toward +u the quad faces the key light more, toward
-# +v less), so agreeing with the reference above is about the map, not about a flat quad.
+# +v less), so agreeing with the reference above is about the map, not about a flat quad (which
+# gives 1). Measured 0.10 under the studio's former three directional lights, 0.62 since its
+# environment fills the side the key misses; bound 0.8. The ratio must be a number.
 "$GIKIOSK" compare "$TMP/normal-map-ref1.exr" "$TMP/normal-map-v-ref1.exr" --json >"$TMP/nm.json"
 ratio=$(json_field mean_ratio "$TMP/nm.json")
-check "the two tilts give different pictures (mean ratio $ratio, measured 0.10)" \
-    awk -v r="$ratio" 'BEGIN { exit !(r < 0.5) }'
+check "the two tilts give different pictures (mean ratio $ratio, measured 0.62)" \
+    awk -v r="$ratio" 'BEGIN { exit !(r ~ /^[0-9.]+$/ && r + 0 < 0.8) }'
 finish

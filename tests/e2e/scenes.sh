@@ -5,7 +5,7 @@
 
 "$GIKIOSK" scenes --dir config/scenes >"$TMP/list" 2>"$TMP/list.err"
 check "scenes lists the committed scenes (exit 0)" test $? -eq 0
-for s in cornell cornell-spot cornell-spot-anim shadow-planes light-leak caustic-ring atrium furnace glass; do
+for s in cornell cornell-spot cornell-spot-anim shadow-planes light-leak caustic-ring atrium furnace glass env-studio; do
     check "scenes lists $s" grep -q "^$s " "$TMP/list"
 done
 n=$(grep -c '^[a-z]' "$TMP/list")

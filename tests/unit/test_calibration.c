@@ -201,7 +201,11 @@ static void shipped_table_has_every_knob_level(void **state)
        of the three new methods takes the better part of an hour on llvmpipe). Their knobs move by
        the scheduler's priors and step responses until the next full `make calibrate`. */
     static const char *const default_only_methods[] = {"radiosity", "lgv", "volcaustics"};
-    static const char *const default_only_scenes[] = {"glass", "caustic-ring-fog"};
+    static const char *const default_only_scenes[] = {"glass", "caustic-ring-fog", "env-studio"};
+    /* Knobs added after the last full calibration, named so the list cannot grow unnoticed:
+       env_lights (the environment's split, render_env.h) changes nothing on scenes without an
+       environment; its rows come with the next full `make calibrate`. */
+    static const char *const default_only_knobs[] = {"env_lights"};
     int checked = 0, default_only = 0;
     for (int i = 0; i < c.n; i++) {
         const gk_calib_row *d = &c.rows[i];
@@ -220,6 +224,11 @@ static void shipped_table_has_every_knob_level(void **state)
             const gk_knob_def *def = b.def[k];
             const char *owner = def->owner ? def->owner : "";
             if (def->fixed || (strcmp(owner, "render") != 0 && strcmp(owner, d->method) != 0))
+                continue;
+            bool knob_default_only = false;
+            for (size_t q = 0; q < sizeof default_only_knobs / sizeof *default_only_knobs; q++)
+                knob_default_only = knob_default_only || strcmp(def->name, default_only_knobs[q]) == 0;
+            if (knob_default_only)
                 continue;
             int top = def->auto_max_level > 0 ? def->auto_max_level : def->n_values - 1;
             for (int l = 0; l <= top; l++) {

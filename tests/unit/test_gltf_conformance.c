@@ -183,32 +183,38 @@ static void required_extensions_not_read_are_refused_by_name(void **state)
     expect_refused("requires-draco.gltf", "requires extension 'KHR_draco_mesh_compression'");
 }
 
-/* The studio's lights come from the camera's side: each light's direction (node -Z) must point
- * into the scene, i.e. away from the camera for key and fill (it lights what the visitor sees). */
+/* The studio (default_studio.c): the built-in environment plus one key light from the camera's
+ * side: the key's direction (node -Z) must point into the scene, away from the camera (it lights
+ * what the visitor sees); the environment is split into area lights for the rasterizer. */
 static void a_file_without_lights_gets_the_default_studio(void **state)
 {
     (void)state;
     gk_scene *s = load("texture-glb.glb");
     assert_true(s->default_lighting);
-    assert_int_equal(s->n_lights, 3);
+    assert_true(s->environment.present);
+    assert_string_equal(s->environment.uri, "");
+    assert_true(s->environment.n_env_lights > 0);
+    assert_int_equal(s->n_lights, 1 + s->environment.n_env_lights);
     mat4 view;
     vec3 eye;
     gk_scene_camera(s, 16.0f / 9.0f, &view, NULL, &eye);
     vec3 centre = v3_scale(v3_add(s->bmin, s->bmax), 0.5f);
     vec3 to_scene = v3_norm(v3_sub(centre, eye));
-    int lit_from_front = 0;
+    int keys = 0, lit_from_front = 0;
     for (int i = 0; i < s->n_nodes; i++) {
-        if (s->nodes[i].light < 0)
+        if (s->nodes[i].light < 0 || s->lights[s->nodes[i].light].env_part)
             continue;
         const gk_light *l = &s->lights[s->nodes[i].light];
         assert_int_equal(l->type, GK_LIGHT_DIRECTIONAL);
         vec3 pos, dir, u, v;
         gk_scene_light_frame(s, i, &pos, &dir, &u, &v);
         assert_float_equal(v3_len(dir), 1.0f, 1e-4f);
+        keys++;
         if (v3_dot(dir, to_scene) > 0.2f)
             lit_from_front++;
     }
-    assert_int_equal(lit_from_front, 2); /* key and fill; the rim comes from behind */
+    assert_int_equal(keys, 1);
+    assert_int_equal(lit_from_front, 1);
     /* the quad faces +z, the default camera looks from +z: the key reaches its lit face */
     gk_scene_free(s);
 }

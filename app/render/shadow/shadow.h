@@ -30,7 +30,8 @@
 #include "gl/pass.h"
 #include "../scene_gpu.h"
 
-#define GK_SHADOW_MAX_LIGHTS 8   /* lights past this are unshadowed */
+#define GK_SHADOW_MAX_LIGHTS 40  /* per method: lights past this are unshadowed (8 of the scene's own +
+                                    the environment's GK_ENV_MAX_LIGHTS = 32 split lights, CSSM) */
 #define GK_SHADOW_MAX_FACES 6
 
 typedef struct gk_shadow_view {
