@@ -26,6 +26,9 @@ struct rad_worker {
     uint64_t geo_id;
     rad_settings geo_set, direct_set;
     bool direct_valid;
+    rad_link_cache cache;      /* the static pairs' bins of geo's tree (rad_links_update) */
+    uint64_t links_seq;
+    int moved_since_links;     /* ticks that moved meshes since the last link build */
     float *e_direct, *work_b0;
 
     /* published (under mu) */
@@ -46,6 +49,45 @@ static void fail(rad_worker *w, const char *msg)
 static bool same_geometry(const rad_settings *a, const rad_settings *b)
 {
     return a->edge == b->edge && a->n_face == b->n_face && a->weight == b->weight && a->max_verts == b->max_verts;
+}
+
+/* UpdateElements on a copy of the published geometry (the frame may be reading it), and the links
+   at the link update rate; the copy becomes w->geo and the caller frees *old once it published. */
+static int refit(rad_worker *w, const mat4 *worlds, const rad_settings *set, rad_geometry **old)
+{
+    rad_geometry *g = calloc(1, sizeof *g);
+    if (!g || rad_geometry_clone(g, w->geo)) {
+        free(g);
+        fail(w, "radiosity: out of memory refitting");
+        return -1;
+    }
+    if (rad_geometry_refit(g, worlds, w->view.n_nodes) == 0) {
+        rad_geometry_free(g), free(g);
+        return 0; /* only lights (or nodes without charts) moved */
+    }
+    bool relink = ++w->moved_since_links >= (set->link_every > 0 ? set->link_every : 1);
+    if (relink) {
+        gk_err e = {0};
+        if (rad_geometry_relink(g, &w->cache, &e)) {
+            rad_geometry_free(g), free(g);
+            fail(w, e.msg);
+            return -1;
+        }
+        g->links_id = ++w->links_seq;
+        w->moved_since_links = 0;
+    }
+    *old = w->geo;
+    w->geo = g;
+    w->geo_id++;
+    pthread_mutex_lock(&w->mu);
+    w->st.refits++;
+    if (relink) {
+        w->st.link_updates++;
+        w->st.leaf_links = g->links.leaf_links, w->st.links_created = g->links.created;
+        w->st.pairs_linked = g->links.pairs_linked, w->st.pairs_cached = g->links.pairs_cached;
+    }
+    pthread_mutex_unlock(&w->mu);
+    return 0;
 }
 
 static void tick(rad_worker *w, const mat4 *worlds, const rad_settings *set)
@@ -93,13 +135,21 @@ static void tick(rad_worker *w, const mat4 *worlds, const rad_settings *set)
         w->geo = g;
         w->geo_set = *set;
         w->geo_id++;
+        g->links_id = ++w->links_seq;
+        rad_link_cache_free(&w->cache);
+        w->moved_since_links = 0;
         w->direct_valid = false;
         pthread_mutex_lock(&w->mu);
         w->st.geometry_builds++;
         w->st.vertices = g->mesh.n_verts, w->st.nodes = g->tree.n_nodes, w->st.charts = g->mesh.n_charts;
         w->st.leaf_links = g->links.leaf_links, w->st.links_created = g->links.created;
         w->st.bin_bytes = g->links.bin_bytes;
+        w->st.moving_charts = rad_geometry_moving_charts(g);
+        w->st.pairs_linked = g->links.pairs_linked, w->st.pairs_cached = g->links.pairs_cached;
         pthread_mutex_unlock(&w->mu);
+    } else if (moved && rad_geometry_moving_charts(w->geo) > 0) {
+        if (refit(w, worlds, set, &old))
+            return;
     }
     if (!old && !moved && w->direct_valid && w->direct_set.samples == set->samples)
         return; /* nothing new to publish */
@@ -204,6 +254,7 @@ void rad_worker_destroy(rad_worker *w)
         gk_ref_scene_free(&w->rs);
     if (w->geo)
         rad_geometry_free(w->geo), free(w->geo);
+    rad_link_cache_free(&w->cache);
     free(w->e_direct), free(w->work_b0), free(w->pub_b0);
     free(w->nodes), free(w->req_worlds), free(w->built_worlds);
     free(w);
