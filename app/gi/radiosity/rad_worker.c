@@ -192,13 +192,13 @@ static void *worker_main(void *p)
         memcpy(worlds, w->req_worlds, sizeof *worlds * (size_t)n);
         rad_settings set = w->req_set;
         w->pending = false;
-        w->busy = true;
+        w->busy = w->st.busy = true;
         bool failed = w->st.failed;
         pthread_mutex_unlock(&w->mu);
         if (!failed && worlds)
             tick(w, worlds, &set);
         pthread_mutex_lock(&w->mu);
-        w->busy = false;
+        w->busy = w->st.busy = false;
         w->st.ticks++;
         pthread_cond_broadcast(&w->cv_idle);
     }

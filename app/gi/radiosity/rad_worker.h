@@ -27,6 +27,7 @@ typedef struct rad_settings {
 
 typedef struct rad_worker_stats {
     uint64_t ticks, submitted, publications;
+    bool busy;                 /* a tick is running */
     uint64_t geometry_builds, direct_updates;
     uint64_t refits;           /* ticks that moved charts of animated nodes (UpdateElements) */
     uint64_t link_updates;     /* link rebuilds after the geometry's first (moving meshes) */
