@@ -56,6 +56,25 @@ rad_settings rad_settings_for(const gk_scene *sc, float tess, int n_face, rad_we
                           .max_verts = RAD_MAX_VERTS, .link_every = 1};
 }
 
+float gk_radiosity_tess(int level)
+{
+    const gk_knob_def *k = &knobs[K_TESS];
+    return (float)atof(k->values[level >= 0 && level < k->n_values ? level : k->default_level]);
+}
+
+int gk_radiosity_tess_levels(void) { return knobs[K_TESS].n_values; }
+
+int gk_radiosity_refined_vertices(const gk_scene *s, int tess_level, gk_err *e)
+{
+    rad_settings set = rad_settings_for(s, gk_radiosity_tess(tess_level), 12, RAD_WEIGHT_SPILL);
+    rad_mesh m;
+    if (rad_mesh_build(&m, s, set.edge, set.max_verts, e))
+        return -1;
+    int n = m.n_verts;
+    rad_mesh_free(&m);
+    return n;
+}
+
 static void declare_knobs(gk_budget *b)
 {
     gk_budget_add_all(b, knobs, K_COUNT);
