@@ -310,6 +310,45 @@ static void test_link_update_rate(void **state)
     gk_scene_free(s);
 }
 
+/* the bench's --rebuild-gi: a static scene redoes the seed's whole per-frame pipeline on request */
+static void test_redo_rebuilds_every_link(void **state)
+{
+    (void)state;
+    gk_err e = {0};
+    gk_scene *s = gk_scene_load("config/scenes/cornell.gltf", &e);
+    if (!s)
+        fail_msg("%s", e.msg);
+    gk_scene_evaluate(s, 0.0f);
+    rad_worker *wk = rad_worker_create(s, &e);
+    assert_non_null(wk);
+    vec3 ext = v3_sub(s->bmax, s->bmin);
+    rad_settings set = {.edge = v3_len(ext) / 16.0f, .n_face = 8, .weight = RAD_WEIGHT_SPILL, .samples = 4,
+                        .max_verts = 60000, .link_every = 1};
+    uint64_t seen = 0;
+    taken tk = {0};
+    for (int k = 0; k < 2; k++) { /* static: the second request publishes nothing */
+        rad_worker_submit(wk, s, &set);
+        rad_worker_wait(wk);
+        assert_true(rad_worker_take(wk, &seen, take_pose, &tk) == (k == 0));
+    }
+    uint64_t first_links = tk.links_id;
+    rad_worker_redo(wk);
+    rad_worker_submit(wk, s, &set);
+    rad_worker_wait(wk);
+    assert_true(rad_worker_take(wk, &seen, take_pose, &tk));
+    rad_worker_stats st;
+    rad_worker_get_stats(wk, &st);
+    assert_false(st.failed);
+    assert_int_equal(st.geometry_builds, 1);
+    assert_int_equal(st.link_updates, 1);
+    assert_int_equal(st.direct_updates, 2);
+    assert_true(tk.links_id != first_links);
+    assert_int_equal(st.pairs_cached, 0); /* every pair linked anew */
+    assert_int_equal(st.pairs_linked, (long)st.charts * (st.charts - 1) / 2);
+    rad_worker_destroy(wk);
+    gk_scene_free(s);
+}
+
 static void test_offered_where_a_mesh_moves(void **state)
 {
     (void)state;
@@ -327,6 +366,7 @@ int main(void)
         cmocka_unit_test(test_links_follow_the_block),
         cmocka_unit_test(test_worker_never_blocks_the_frame),
         cmocka_unit_test(test_link_update_rate),
+        cmocka_unit_test(test_redo_rebuilds_every_link),
         cmocka_unit_test(test_offered_where_a_mesh_moves),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -184,6 +184,15 @@ static int render(void *self, const gk_gi_frame *f, gk_err *e)
     return 0;
 }
 
+/* gi.h's invalidate (the bench's --rebuild-gi): the worker redoes the seed's per-frame pipeline on
+   its next request (rad_worker_redo). */
+static void invalidate(void *self)
+{
+    rad_state *s = self;
+    if (s->worker)
+        rad_worker_redo(s->worker);
+}
+
 static long memory_bytes(const void *self) { return rad_gpu_memory(&((const rad_state *)self)->gpu); }
 
 static void destroy(void *self)
@@ -228,5 +237,6 @@ const gk_gi_method gk_gi_radiosity = {
     .set_scene = set_scene,
     .render = render,
     .memory_bytes = memory_bytes,
+    .invalidate = invalidate,
     .destroy = destroy,
 };

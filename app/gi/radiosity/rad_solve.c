@@ -121,7 +121,7 @@ int rad_geometry_relink(rad_geometry *g, rad_link_cache *cache, gk_err *e)
     for (int c = 0; c < g->mesh.n_charts; c++)
         moving[c] = g->mesh.charts[c].moving;
     rad_links fresh;
-    int rc = rad_links_update(&fresh, &g->tree, g->n_face, g->weight, moving, cache, e);
+    int rc = rad_links_update(&fresh, &g->tree, g->n_face, g->weight, cache ? moving : NULL, cache, e);
     free(moving);
     if (rc)
         return -1;

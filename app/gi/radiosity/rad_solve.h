@@ -42,7 +42,8 @@ int rad_geometry_clone(rad_geometry *dst, const rad_geometry *src);
  * node world matrices), then the hierarchy bottom up (rad_mesh_refit, rad_tree_refit). Returns the
  * number of charts that moved. */
 int rad_geometry_refit(rad_geometry *g, const mat4 *worlds, int n_worlds);
-/* The links at the current pose, the static pairs from `cache` (rad_links_update). */
+/* The links at the current pose, the static pairs from `cache` (rad_links_update; NULL: every pair
+ * linked anew). */
 int rad_geometry_relink(rad_geometry *g, rad_link_cache *cache, gk_err *e);
 /* Charts that move (animated nodes) in g. */
 int rad_geometry_moving_charts(const rad_geometry *g);

@@ -13,6 +13,7 @@ struct rad_worker {
     pthread_mutex_t mu;
     pthread_cond_t cv_work, cv_idle;
     bool pending, busy, quit;
+    bool req_redo;             /* rad_worker_redo: the next tick redoes the per-frame pipeline */
     mat4 *req_worlds;          /* the newest request (under mu) */
     rad_settings req_set;
 
@@ -53,7 +54,7 @@ static bool same_geometry(const rad_settings *a, const rad_settings *b)
 
 /* UpdateElements on a copy of the published geometry (the frame may be reading it), and the links
    at the link update rate; the copy becomes w->geo and the caller frees *old once it published. */
-static int refit(rad_worker *w, const mat4 *worlds, const rad_settings *set, rad_geometry **old)
+static int refit(rad_worker *w, const mat4 *worlds, const rad_settings *set, bool redo, rad_geometry **old)
 {
     rad_geometry *g = calloc(1, sizeof *g);
     if (!g || rad_geometry_clone(g, w->geo)) {
@@ -61,14 +62,16 @@ static int refit(rad_worker *w, const mat4 *worlds, const rad_settings *set, rad
         fail(w, "radiosity: out of memory refitting");
         return -1;
     }
-    if (rad_geometry_refit(g, worlds, w->view.n_nodes) == 0) {
+    if (rad_geometry_refit(g, worlds, w->view.n_nodes) == 0 && !redo) {
         rad_geometry_free(g), free(g);
         return 0; /* only lights (or nodes without charts) moved */
     }
-    bool relink = ++w->moved_since_links >= (set->link_every > 0 ? set->link_every : 1);
+    if (redo)
+        rad_tree_refit(&g->tree, &g->mesh); /* every node, as the seed's frame does */
+    bool relink = redo || ++w->moved_since_links >= (set->link_every > 0 ? set->link_every : 1);
     if (relink) {
         gk_err e = {0};
-        if (rad_geometry_relink(g, &w->cache, &e)) {
+        if (rad_geometry_relink(g, redo ? NULL : &w->cache, &e)) {
             rad_geometry_free(g), free(g);
             fail(w, e.msg);
             return -1;
@@ -90,7 +93,7 @@ static int refit(rad_worker *w, const mat4 *worlds, const rad_settings *set, rad
     return 0;
 }
 
-static void tick(rad_worker *w, const mat4 *worlds, const rad_settings *set)
+static void tick(rad_worker *w, const mat4 *worlds, const rad_settings *set, bool redo)
 {
     int n = w->view.n_nodes;
     bool moved = !w->have_rs || memcmp(w->built_worlds, worlds, sizeof *worlds * (size_t)n);
@@ -111,8 +114,8 @@ static void tick(rad_worker *w, const mat4 *worlds, const rad_settings *set)
     }
     rad_geometry *old = NULL;
     if (!w->geo || !same_geometry(&w->geo_set, set)) {
-        /* geometry is built once per setting at the pose of its first request: the method treats
-           meshes as static (rad_tree.h) */
+        /* geometry is built once per setting at the pose of its first request; moving meshes are
+           refit from that rest pose (rad_tree.h) */
         rad_geometry *g = calloc(1, sizeof *g);
         gk_err e = {0};
         if (!g || rad_geometry_build(g, &w->view, set->edge, set->max_verts, set->n_face, set->weight, &e)) {
@@ -147,11 +150,11 @@ static void tick(rad_worker *w, const mat4 *worlds, const rad_settings *set)
         w->st.moving_charts = rad_geometry_moving_charts(g);
         w->st.pairs_linked = g->links.pairs_linked, w->st.pairs_cached = g->links.pairs_cached;
         pthread_mutex_unlock(&w->mu);
-    } else if (moved && rad_geometry_moving_charts(w->geo) > 0) {
-        if (refit(w, worlds, set, &old))
+    } else if (redo || (moved && rad_geometry_moving_charts(w->geo) > 0)) {
+        if (refit(w, worlds, set, redo, &old))
             return;
     }
-    if (!old && !moved && w->direct_valid && w->direct_set.samples == set->samples)
+    if (!old && !moved && !redo && w->direct_valid && w->direct_set.samples == set->samples)
         return; /* nothing new to publish */
     rad_direct_irradiance(&w->rs, &w->geo->tree, set->samples, 0, w->geo->tree.n_leaves, w->e_direct);
     rad_initial_radiance(w->geo, w->e_direct, w->work_b0);
@@ -191,12 +194,14 @@ static void *worker_main(void *p)
             break;
         memcpy(worlds, w->req_worlds, sizeof *worlds * (size_t)n);
         rad_settings set = w->req_set;
+        bool redo = w->req_redo;
+        w->req_redo = false;
         w->pending = false;
         w->busy = w->st.busy = true;
         bool failed = w->st.failed;
         pthread_mutex_unlock(&w->mu);
         if (!failed && worlds)
-            tick(w, worlds, &set);
+            tick(w, worlds, &set, redo);
         pthread_mutex_lock(&w->mu);
         w->busy = w->st.busy = false;
         w->st.ticks++;
@@ -270,6 +275,13 @@ void rad_worker_submit(rad_worker *w, const gk_scene *evaluated, const rad_setti
     w->st.submitted++; /* one waiting request is replaced by the newer one: ticks <= submitted */
     w->pending = true;
     pthread_cond_signal(&w->cv_work);
+    pthread_mutex_unlock(&w->mu);
+}
+
+void rad_worker_redo(rad_worker *w)
+{
+    pthread_mutex_lock(&w->mu);
+    w->req_redo = true;
     pthread_mutex_unlock(&w->mu);
 }
 

@@ -29,7 +29,7 @@ typedef struct rad_worker_stats {
     uint64_t ticks, submitted, publications;
     bool busy;                 /* a tick is running */
     uint64_t geometry_builds, direct_updates;
-    uint64_t refits;           /* ticks that moved charts of animated nodes (UpdateElements) */
+    uint64_t refits;           /* ticks that refit the hierarchy (UpdateElements): a mesh moved, or a redo */
     uint64_t link_updates;     /* link rebuilds after the geometry's first (moving meshes) */
     int moving_charts;         /* charts of animated nodes */
     long pairs_linked, pairs_cached; /* of the last link build: root pairs linked, taken from the cache */
@@ -47,6 +47,11 @@ rad_worker *rad_worker_create(const gk_scene *scene, gk_err *e);
 void rad_worker_destroy(rad_worker *w);
 /* Non-blocking: the frame's evaluated scene (its node matrices are copied) and settings. */
 void rad_worker_submit(rad_worker *w, const gk_scene *evaluated, const rad_settings *set);
+/* The next tick redoes what the seed does every frame whether or not anything moved (UpdateElements
+ * over every node, link creation over every pair, refinement, push-down, direct light), and
+ * publishes it: the bench's --rebuild-gi times the seed's per-frame pipeline with it (in lockstep
+ * the frame waits for it: Table 4.1's frame). */
+void rad_worker_redo(rad_worker *w);
 /* Blocks until no request is pending or running (lockstep mode, tests). */
 void rad_worker_wait(rad_worker *w);
 /* Calls fn with the newest publication when it is newer than *seen (then updates *seen): the
