@@ -37,6 +37,11 @@ fi
 if "$BIN" scenes | grep -q 'radiosity'; then
     run radiosity --scenes cornell,furnace --methods radiosity --budget radiosity_sync=lockstep \
         --sweep 'radiosity_bins=8,12,16;radiosity_bounces=1,2,4,8'
+    # The seed's Table 4.1: the whole per-frame pipeline every frame (--rebuild-gi: refit, link
+    # creation, refinement and push-down, direct light on the worker, which the lockstep frame waits
+    # for in its radiosity_upload pass; then the bounces), one series per bin resolution.
+    run radiosity-bins --scenes cornell --methods radiosity --budget radiosity_sync=lockstep \
+        --sweep 'radiosity_bins=8,12,16' --rebuild-gi
 fi
 # Choosing a method: per scene ONE chart with every method's default sweep against one ruler
 # (SCENE-1bounce.exr where it exists, else SCENE.exr), the Pareto front over all of them, each
