@@ -83,6 +83,16 @@ for t in 16 24 32; do
     prev=${l:-0}
 done
 
+# --- the link update rate (radiosity_link_every): a knob like the others, in the stats ----------
+# (its effect is measured where meshes move: tests/unit/test_radiosity_refit.c)
+check "radiosity_link_every=4 runs (cornell-spot-anim, async)" "$GIKIOSK" run --platform mock \
+    --scene cornell-spot-anim --method radiosity --size 64x48 --frames 3 --budget radiosity_link_every=4 \
+    --stats "$TMP/link.csv"
+v=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "radiosity_link_every") c = i } NR == 4 { print $c }' "$TMP/link.csv")
+check "the stats give radiosity_link_every=4 ($v)" test "$v" = 4
+expect_exit 2 "radiosity_link_every=3 is refused (not a level)" "$GIKIOSK" run --platform mock --scene cornell \
+    --method radiosity --frames 1 --budget radiosity_link_every=3
+
 # --- cornell-spot-anim: the indirect light follows the spot -----------------------------------
 anim() { # METHOD: frames 29 and 59 (--capture-every takes every 30th) as $TMP/anim-METHOD-0.exr, -30.exr
     rm -rf "$TMP/cap"
