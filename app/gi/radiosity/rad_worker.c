@@ -173,6 +173,8 @@ static void tick(rad_worker *w, const mat4 *worlds, const rad_settings *set, boo
     } else {
         w->st.failed = true;
         snprintf(w->st.error, sizeof w->st.error, "radiosity: out of memory publishing");
+        if (w->pub_geo == old)
+            w->pub_geo = NULL; /* freed below: nothing is taken any more (the frame keeps its upload) */
     }
     w->st.direct_updates++;
     pthread_mutex_unlock(&w->mu);
