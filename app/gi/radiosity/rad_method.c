@@ -26,10 +26,10 @@
  *   radiosity_link_every: the link update rate where meshes move: links rebuilt on every 4th, 2nd or
  *                      every (the seed: every frame) worker tick that moved a mesh; the hierarchy is
  *                      refit every tick. Its cost is the worker's, which the frame does not wait for
- *                      (async); on the render thread only the link upload follows it (8 bytes a leaf
- *                      link, every rebuild), which the priors count as a tenth of the frame at the
- *                      rate of every tick -- no scene of ours moves a mesh, so it has no
- *                      calibration row to measure it from */
+ *                      (async): on the render thread only the link upload follows it, and on a
+ *                      scene without moving meshes it changes nothing. Flat priors: the scheduler
+ *                      expects no saving from it, so it is the last knob it steps down (it still
+ *                      can: a knob believed free is dropped once every other is at its floor) */
 enum { K_BINS, K_BOUNCES, K_TESS, K_WEIGHT, K_SYNC, K_LINK_EVERY, K_COUNT };
 _Static_assert(K_COUNT == RAD_KNOBS, "rad_internal.h's RAD_KNOBS counts the knobs");
 static const gk_knob_def knobs[K_COUNT] = {
@@ -44,7 +44,7 @@ static const gk_knob_def knobs[K_COUNT] = {
     {.name = "radiosity_sync", .owner = "radiosity", .n_values = 2, .values = {"async", "lockstep"},
      .cost = {1.0f, 1.0f}, .default_level = 0, .fixed = true},
     {.name = "radiosity_link_every", .owner = "radiosity", .n_values = 3, .values = {"4", "2", "1"},
-     .cost = {1.0f, 1.03f, 1.1f}, .default_level = 2},
+     .cost = {1.0f, 1.0f, 1.0f}, .default_level = 2},
 };
 
 
