@@ -12,6 +12,8 @@
  *  - the worker: the render thread's submit/take never wait for a link build (the worker is busy
  *    building while 200 submits return), requests coalesce to the newest, and radiosity_link_every=2
  *    rebuilds the links on every second tick that moved the block;
+ *  - research 2.6's "hierarchy not adapted to deformation": the block stretched x3 in height, the
+ *    refit (rest areas and grouping) against a geometry built from scratch at the stretched pose;
  *  - the method is offered where a mesh moves. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -214,6 +216,54 @@ static void test_links_follow_the_block(void **state)
     gk_scene_free(s);
 }
 
+/* Research 2.6: "hierarchy precomputed once, not adapted to deformation". The short block
+   stretched x3 in height (a scale about its base): the refit moves the surfels but keeps the rest
+   pose's areas and vertex grouping; against a geometry built from scratch at the stretched pose
+   (three times the block's surfels), the floor's gather is off. The floor's leaves are the same in
+   both (chart 0, static). */
+static void test_stretch_not_adapted(void **state)
+{
+    (void)state;
+    int block;
+    gk_scene *s = load_moving_block(&block);
+    rad_geometry g;
+    gk_err e = {0};
+    assert_int_equal(rad_geometry_build(&g, s, 0.1f, 60000, 8, RAD_WEIGHT_SPILL, &e), 0);
+    mat4 *w = worlds_of(s);
+    mat4 stretch = m4_trs(v3(0, 0, 0), (quat){0, 0, 0, 1}, v3(1, 3, 1));
+    w[block] = m4_mul(stretch, s->nodes[block].world);
+    rad_geometry_refit(&g, w, s->n_nodes);
+    rad_link_cache cache = {0};
+    assert_int_equal(rad_geometry_relink(&g, &cache, &e), 0);
+    s->nodes[block].world = w[block];
+    rad_geometry fresh;
+    assert_int_equal(rad_geometry_build(&fresh, s, 0.1f, 60000, 8, RAD_WEIGHT_SPILL, &e), 0);
+    assert_int_equal(fresh.mesh.charts[0].n_verts, g.mesh.charts[0].n_verts);
+    assert_int_equal(fresh.mesh.charts[0].first_vert, g.mesh.charts[0].first_vert);
+    size_t n = 3 * (size_t)fresh.tree.n_leaves;
+    float *eg = malloc(sizeof *eg * 3 * (size_t)g.tree.n_leaves), *ef = malloc(sizeof *ef * n);
+    gather_floor(&g, eg);
+    gather_floor(&fresh, ef);
+    double d = floor_difference(&fresh, eg, ef);
+    double block_area_refit = 0, block_area_fresh = 0;
+    for (int i = 0; i < g.tree.n_leaves; i++)
+        block_area_refit += g.mesh.charts[g.mesh.chart[i]].moving ? g.tree.area[i] : 0.0f;
+    for (int i = 0; i < fresh.tree.n_leaves; i++)
+        block_area_fresh += fresh.mesh.charts[fresh.mesh.chart[i]].moving ? fresh.tree.area[i] : 0.0f;
+    printf("# block stretched x3: %d vs %d surfels, block area %.4f (rest, kept) vs %.4f m²; floor irradiance vs a fresh build %.4f\n",
+           g.tree.n_leaves, fresh.tree.n_leaves, block_area_refit, block_area_fresh, d);
+    /* measured 0.234 (601 refit surfels with the rest pose's 0.137 m² against 733 with 0.357 m²:
+       the kept areas weigh the block's surfels 2.6x too low, and the grouping is the rest pose's);
+       a rigidly moved block: 0.0000 (test_links_follow_the_block). Bound: above 0.1 -- the
+       limitation shows, as research 2.6 expects of a strong deformation */
+    assert_true(d > 0.1);
+    free(eg), free(ef);
+    rad_link_cache_free(&cache);
+    rad_geometry_free(&fresh), rad_geometry_free(&g);
+    free(w);
+    gk_scene_free(s);
+}
+
 typedef struct taken { uint64_t links_id; mat4 pose; int moving_chart; } taken;
 
 static void take_pose(void *ctx, const rad_geometry *g, uint64_t geometry_id, const float *b0)
@@ -364,6 +414,7 @@ int main(void)
         cmocka_unit_test(test_refit_moves_the_block_rigidly),
         cmocka_unit_test(test_incremental_links_equal_full),
         cmocka_unit_test(test_links_follow_the_block),
+        cmocka_unit_test(test_stretch_not_adapted),
         cmocka_unit_test(test_worker_never_blocks_the_frame),
         cmocka_unit_test(test_link_update_rate),
         cmocka_unit_test(test_redo_rebuilds_every_link),
