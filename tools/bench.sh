@@ -40,6 +40,11 @@ fi
 if "$BIN" scenes | grep -q 'radiosity'; then
     run radiosity --scenes cornell,furnace --methods radiosity --budget radiosity_sync=lockstep \
         --sweep 'radiosity_bins=8,12,16;radiosity_bounces=1,2,4,8'
+    # The seed's Table 4.1: the whole per-frame pipeline every frame (--rebuild-gi: refit, link
+    # creation, refinement and push-down, direct light on the worker, which the lockstep frame waits
+    # for in its radiosity_upload pass; then the bounces), one series per bin resolution.
+    run radiosity-bins --scenes cornell --methods radiosity --budget radiosity_sync=lockstep \
+        --sweep 'radiosity_bins=8,12,16' --rebuild-gi
 fi
 # CPU photon mapping into light maps: photon groups x sync on cornell (async: the frame never waits
 # for the photon work; lockstep: it does), and the render thread's frame with one photon thread

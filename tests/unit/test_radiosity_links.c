@@ -21,6 +21,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "common/rad_squares.h"
 #include "gi/radiosity/rad_links.h"
 
 /* N log N from 486 to 3,750 vertices has a log-log slope of 1 + ln(ln 3750 / ln 486) / ln(3750 / 486)
@@ -28,49 +29,6 @@
    growing (not constant), and no faster than N log N with some room. */
 #define RAD_GROWTH_LO 0.6
 #define RAD_GROWTH_HI 1.25
-
-/* A hand-made mesh of square charts, each a g x g grid of surfels (g a power of two) in Morton
-   order, so the quadtree is the exact one. */
-typedef struct square { vec3 centre, normal, tu; float side; int g; } square;
-
-static uint32_t compact(uint32_t x)
-{
-    x &= 0x55555555u;
-    x = (x | (x >> 1)) & 0x33333333u;
-    x = (x | (x >> 2)) & 0x0F0F0F0Fu;
-    x = (x | (x >> 4)) & 0x00FF00FFu;
-    x = (x | (x >> 8)) & 0x0000FFFFu;
-    return x;
-}
-
-static void squares_mesh(rad_mesh *m, const square *sq, int n)
-{
-    memset(m, 0, sizeof *m);
-    int total = 0;
-    for (int i = 0; i < n; i++)
-        total += sq[i].g * sq[i].g;
-    m->pos = calloc((size_t)total, sizeof *m->pos);
-    m->area = calloc((size_t)total, sizeof *m->area);
-    m->centre = calloc((size_t)total, sizeof *m->centre);
-    m->chart = calloc((size_t)total, sizeof *m->chart);
-    m->charts = calloc((size_t)n, sizeof *m->charts);
-    m->n_charts = n;
-    for (int c = 0; c < n; c++) {
-        const square *s = &sq[c];
-        vec3 tv = v3_cross(s->normal, s->tu);
-        m->charts[c] = (rad_chart){.normal = s->normal, .tu = s->tu, .tv = tv, .first_vert = m->n_verts, .n_verts = s->g * s->g};
-        float cell = s->side / (float)s->g;
-        for (int k = 0; k < s->g * s->g; k++) {
-            int i = (int)compact((uint32_t)k), j = (int)compact((uint32_t)k >> 1);
-            float u = ((float)i + 0.5f) * cell - 0.5f * s->side, v = ((float)j + 0.5f) * cell - 0.5f * s->side;
-            m->pos[m->n_verts] = v3_add(s->centre, v3_add(v3_scale(s->tu, u), v3_scale(tv, v)));
-            m->centre[m->n_verts] = m->pos[m->n_verts]; /* cell centres */
-            m->area[m->n_verts] = cell * cell;
-            m->chart[m->n_verts] = c;
-            m->n_verts++;
-        }
-    }
-}
 
 /* Point-to-parallel-square form factor, the square of side s centred at height h above the
    point: four corner rectangles a = b = s / (2h) (Howell's catalogue, B-3). */

@@ -6,7 +6,10 @@
  *  - the seed's full 3-level tree: 16 leaves -> 21 nodes, leaves 0-15, level 1 16-19, root 20;
  *  - parent/children arithmetic against each other for every node of real scenes, areas summing
  *    up, a root per chart;
- *  - a refinement past the vertex limit is an input error naming the scene. */
+ *  - a refinement past the vertex limit is an input error naming the scene;
+ *  - the refined vertex counts `gikiosk scenes` prints (gk_radiosity_refined_vertices), counted
+ *    another way: by Euler's formula from the refined triangles alone, a chart being a triangulated
+ *    disc (V = 1 + (F + B) / 2, F its triangles, B its boundary edges). */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -18,6 +21,7 @@
 #include <string.h>
 
 #include "gi/radiosity/rad_tree.h"
+#include "gi/radiosity/radiosity.h"
 
 static gk_scene *load(const char *name)
 {
@@ -93,6 +97,70 @@ static void test_furnace_counts(void **state)
     assert_int_equal(m.n_verts, 6 * 25);
     rad_mesh_free(&m);
     gk_scene_free(s);
+}
+
+typedef struct edge_key { uint32_t a, b; } edge_key;
+
+static int cmp_edge_key(const void *x, const void *y)
+{
+    const edge_key *p = x, *q = y;
+    return p->a != q->a ? (p->a < q->a ? -1 : 1) : p->b != q->b ? (p->b < q->b ? -1 : 1) : 0;
+}
+
+/* Σ over charts of 1 + (F + B) / 2, from the triangles only */
+static long euler_vertices(const rad_mesh *m)
+{
+    edge_key *ed = malloc(sizeof *ed * 3 * (size_t)m->n_tris);
+    long total = 0;
+    for (int c = 0; c < m->n_charts; c++) {
+        size_t n = 0;
+        long f = 0;
+        for (int t = 0; t < m->n_tris; t++) {
+            if (m->chart[m->tris[3 * t]] != c)
+                continue;
+            f++;
+            for (int k = 0; k < 3; k++) {
+                uint32_t a = m->tris[3 * t + k], b = m->tris[3 * t + (k + 1) % 3];
+                ed[n++] = (edge_key){a < b ? a : b, a < b ? b : a};
+            }
+        }
+        qsort(ed, n, sizeof *ed, cmp_edge_key);
+        long boundary = 0;
+        for (size_t i = 0; i < n;) {
+            size_t j = i;
+            while (j < n && cmp_edge_key(&ed[i], &ed[j]) == 0)
+                j++;
+            boundary += j - i == 1;
+            i = j;
+        }
+        total += 1 + (f + boundary) / 2;
+    }
+    free(ed);
+    return total;
+}
+
+static void test_refined_counts_by_euler(void **state)
+{
+    (void)state;
+    const char *scenes[] = {"cornell", "furnace", "light-leak"};
+    for (int si = 0; si < 3; si++) {
+        gk_scene *s = load(scenes[si]);
+        printf("# %s:", scenes[si]);
+        for (int l = 0; l < gk_radiosity_tess_levels(); l++) {
+            gk_err e = {0};
+            int n = gk_radiosity_refined_vertices(s, l, &e);
+            vec3 ext = v3_sub(s->bmax, s->bmin);
+            rad_mesh m;
+            assert_int_equal(rad_mesh_build(&m, s, v3_len(ext) / gk_radiosity_tess(l), 60000, &e), 0);
+            long by_euler = euler_vertices(&m);
+            printf(" tess %g: %d (Euler %ld)", (double)gk_radiosity_tess(l), n, by_euler);
+            assert_int_equal(n, m.n_verts);
+            assert_int_equal(by_euler, n);
+            rad_mesh_free(&m);
+        }
+        printf("\n");
+        gk_scene_free(s);
+    }
 }
 
 static void test_segments(void **state)
@@ -226,6 +294,7 @@ int main(void)
         cmocka_unit_test(test_full_tree),
         cmocka_unit_test(test_tree_consistency),
         cmocka_unit_test(test_too_fine_is_input_error),
+        cmocka_unit_test(test_refined_counts_by_euler),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

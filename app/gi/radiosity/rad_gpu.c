@@ -75,7 +75,7 @@ static void upload_geometry(rad_gpu *gpu, const rad_geometry *g)
     }
     glBindVertexArray(gpu->vao);
     glBindBuffer(GL_ARRAY_BUFFER, gpu->vbo);
-    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(sizeof *pos * 3 * (size_t)g->mesh.n_verts), pos, GL_STATIC_DRAW);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(sizeof *pos * 3 * (size_t)g->mesh.n_verts), pos, GL_DYNAMIC_DRAW);
     glEnableVertexAttribArray(0);
     glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), (void *)0);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, gpu->ibo);
@@ -100,16 +100,34 @@ static void upload_geometry(rad_gpu *gpu, const rad_geometry *g)
     free(lk), free(lv), free(nd), free(idx), free(pos);
 }
 
+static void upload_positions(rad_gpu *gpu, const rad_geometry *g)
+{
+    float *pos = staging(gpu, 3 * (size_t)g->mesh.n_verts);
+    if (!pos) {
+        gpu->out_of_memory = true;
+        return;
+    }
+    for (int i = 0; i < g->mesh.n_verts; i++)
+        pos[3 * i] = g->mesh.pos[i].x, pos[3 * i + 1] = g->mesh.pos[i].y, pos[3 * i + 2] = g->mesh.pos[i].z;
+    glBindBuffer(GL_ARRAY_BUFFER, gpu->vbo);
+    glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)(sizeof *pos * 3 * (size_t)g->mesh.n_verts), pos);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+}
+
 /* rad_take_fn: called under the worker's lock with its newest publication. */
 void rad_gpu_take(void *state, const rad_geometry *g, uint64_t geometry_id, const float *b0)
 {
     rad_state *s = state;
     rad_gpu *gpu = &s->gpu;
     if (geometry_id != gpu->geometry_id) {
-        upload_geometry(gpu, g);
+        if (gpu->geometry_id && g->links_id == gpu->links_id && g->tree.n_nodes == gpu->n_nodes)
+            upload_positions(gpu, g); /* a refit between link rebuilds: the vertices moved */
+        else
+            upload_geometry(gpu, g);
         if (gpu->out_of_memory)
             return; /* the frame keeps what it had */
         gpu->geometry_id = geometry_id;
+        gpu->links_id = g->links_id;
     }
     float *v = staging(gpu, 4 * (size_t)gpu->n_nodes);
     if (!v)

@@ -6,7 +6,7 @@
 #include "gl/gl_program.h"
 #include "radiosity.h"
 
-#define RAD_KNOBS 5
+#define RAD_KNOBS 6
 #define RAD_MAX_VERTS 60000     /* ~2x the richest tessellation of our scenes: a dropped-in scene
                                    too large for it shows direct light only, with a log line */
 #define RAD_DIRECT_SAMPLES 64   /* per area light and surfel: the direct light's noise (1/8) only
@@ -23,6 +23,7 @@ typedef struct rad_gpu {
     int level_first[RAD_MAX_LEVELS + 1];
     long link_count;
     uint64_t geometry_id;            /* the worker's geometry uploaded (0: none) */
+    uint64_t links_id;               /* its link set (rad_geometry.links_id) */
     bool have_b0;
     float *scratch;                  /* vec4 staging */
     size_t scratch_cap;

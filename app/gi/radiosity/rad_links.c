@@ -174,7 +174,56 @@ static int descend(builder *b, int node, const int32_t *in_t, const float *in_l,
     return 0;
 }
 
+/* Links the pairs of chart roots: all of them (moving NULL), or those with a moving chart
+   (want_moving) or those without. */
+static void link_roots(builder *b, const bool *moving, bool want_moving, long *pairs)
+{
+    const rad_tree *t = b->t;
+    for (int i = 0; i < t->n_charts; i++)
+        for (int j = i + 1; j < t->n_charts; j++) {
+            bool m = moving && (moving[i] || moving[j]);
+            if (moving && m != want_moving)
+                continue;
+            link_nodes(b, t->roots[i], t->roots[j]);
+            (*pairs)++;
+        }
+}
+
+/* cache->target/len := the bins of the static pairs (made once; the caller frees with
+   rad_link_cache_free). */
+static int fill_cache(rad_link_cache *cache, const builder *proto, size_t cells, const bool *moving)
+{
+    cache->target = malloc(sizeof *cache->target * cells);
+    cache->len = malloc(sizeof *cache->len * cells);
+    if (!cache->target || !cache->len) {
+        rad_link_cache_free(cache);
+        return -1;
+    }
+    memset(cache->target, 0xFF, sizeof *cache->target * cells);
+    cache->cells = cells;
+    builder b = *proto;
+    b.target = cache->target, b.len = cache->len;
+    rad_links scratch = {0};
+    b.L = &scratch;
+    long pairs = 0;
+    link_roots(&b, moving, false, &pairs);
+    cache->static_pairs = pairs;
+    return 0;
+}
+
+void rad_link_cache_free(rad_link_cache *c)
+{
+    free(c->target), free(c->len);
+    memset(c, 0, sizeof *c);
+}
+
 int rad_links_build(rad_links *L, const rad_tree *t, int n_face, rad_weight weight, gk_err *e)
+{
+    return rad_links_update(L, t, n_face, weight, NULL, NULL, e);
+}
+
+int rad_links_update(rad_links *L, const rad_tree *t, int n_face, rad_weight weight, const bool *moving,
+                     rad_link_cache *cache, gk_err *e)
 {
     memset(L, 0, sizeof *L);
     L->n_face = n_face;
@@ -195,9 +244,18 @@ int rad_links_build(rad_links *L, const rad_tree *t, int n_face, rad_weight weig
     memset(b.target, 0xFF, sizeof *b.target * cells);
     for (int k = 0; k < b.bins; k++)
         b.omega[k] = rad_bin_solid_angle(k, n_face);
-    for (int i = 0; i < t->n_charts; i++)
-        for (int j = i + 1; j < t->n_charts; j++)
-            link_nodes(&b, t->roots[i], t->roots[j]);
+    if (moving && cache) {
+        /* incremental: the static pairs' bins are the same at every pose (link() reads only the
+           two subtrees' nodes, and a bin keeps the shortest of what is stored in it whatever the
+           order), so they are made once and copied; only pairs with a moving chart are linked */
+        if ((!cache->target || cache->cells != cells) && (rad_link_cache_free(cache), fill_cache(cache, &b, cells, moving)))
+            goto done;
+        memcpy(b.target, cache->target, sizeof *b.target * cells);
+        memcpy(b.len, cache->len, sizeof *b.len * cells);
+        link_roots(&b, moving, true, &L->pairs_linked);
+        L->pairs_cached = cache->static_pairs;
+    } else
+        link_roots(&b, NULL, false, &L->pairs_linked);
     /* leaves are numbered chart by chart, so walking the charts in order fills the lists in leaf
        order; offset[i + 1] is written at each leaf */
     rc = 0;

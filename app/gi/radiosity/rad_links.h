@@ -37,6 +37,7 @@
 #ifndef GK_RAD_LINKS_H
 #define GK_RAD_LINKS_H
 
+#include <stdbool.h>
 #include <stdint.h>
 
 #include "rad_tree.h"
@@ -54,13 +55,32 @@ typedef struct rad_links {
     long leaf_links;           /* entries in the leaf lists (weight > 0) */
     long occluder_links;       /* leaf entries dropped for weight 0 (back faces) */
     long bin_bytes;            /* the bin grid's memory (every node x 6N² x 8 bytes) */
+    long pairs_linked;         /* chart-root pairs linked by this build */
+    long pairs_cached;         /* chart-root pairs whose bins came from the cache (incremental) */
 } rad_links;
+
+/* The bins made by the pairs of chart roots of which neither moves (rad_links_update). */
+typedef struct rad_link_cache {
+    int32_t *target;
+    float *len;
+    size_t cells;              /* n_nodes x 6N²: a cache of another tree or N is remade */
+    long static_pairs;
+} rad_link_cache;
+void rad_link_cache_free(rad_link_cache *c);
 
 /* The gathering weight of a link (see above). */
 typedef enum rad_weight { RAD_WEIGHT_SPILL, RAD_WEIGHT_ELEMENT, RAD_WEIGHT_BIN } rad_weight;
 
 /* Builds the links of t at N = n_face. GK_ERUNTIME when memory runs out. */
 int rad_links_build(rad_links *L, const rad_tree *t, int n_face, rad_weight weight, gk_err *e);
+/* The links of t at its current pose (after rad_tree_refit), incrementally where nothing moved:
+ * moving[c] says chart c moves (its node is animated); the pairs of two static charts are linked once
+ * into `cache` (empty at first, kept by the caller for the same tree and N) and copied from it; the
+ * pairs with a moving chart are linked anew, then refinement and push-down run over the whole grid.
+ * The result is the one rad_links_build gives at this pose (tests/unit/test_radiosity_refit.c).
+ * moving or cache NULL: a full build. */
+int rad_links_update(rad_links *L, const rad_tree *t, int n_face, rad_weight weight, const bool *moving,
+                     rad_link_cache *cache, gk_err *e);
 void rad_links_free(rad_links *L);
 
 /* The cube-map bin of a direction (6 N² bins: face +x, -x, +y, -y, +z, -z, then v-major texels),

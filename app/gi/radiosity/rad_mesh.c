@@ -12,6 +12,7 @@ typedef struct src_tri {
     vec3 n;          /* unit face normal, turned to the side the vertex normals face */
     float area;
     int material;
+    int node;        /* the scene node that draws it: a chart moves with one node (refit) */
 } src_tri;
 
 int rad_mesh_segments(float len, float edge)
@@ -112,6 +113,7 @@ static int collect(const gk_scene *s, src_tri **out, int *n_out, double *area_ou
                 st.n = v3_scale(c, 1.0f / len);
                 st.area = 0.5f * len;
                 st.material = mat;
+                st.node = ni;
                 if (n == cap) {
                     cap = cap ? 2 * cap : 256;
                     src_tri *g = realloc(t, sizeof *t * (size_t)cap);
@@ -155,7 +157,7 @@ static int make_charts(const src_tri *t, int n, float q, int *chart_of)
     for (int i = 0; i + 1 < 3 * n; i++)
         for (int j = i + 1; j < 3 * n && edges[j].a == edges[i].a && edges[j].b == edges[i].b; j++) {
             const src_tri *x = &t[edges[i].tri], *y = &t[edges[j].tri];
-            if (x->material == y->material && v3_dot(x->n, y->n) > COPLANAR_COS) {
+            if (x->material == y->material && x->node == y->node && v3_dot(x->n, y->n) > COPLANAR_COS) {
                 int rx = find(parent, edges[i].tri), ry = find(parent, edges[j].tri);
                 if (rx != ry)
                     parent[rx > ry ? rx : ry] = rx < ry ? rx : ry;
@@ -294,6 +296,48 @@ static int refine_chart(rad_mesh *m, const src_tri *t, const int *tris, int n_tr
     return 0;
 }
 
+/* The pose the mesh was built at, which every refit starts from (no drift over frames). */
+static int keep_rest_pose(rad_mesh *m, const gk_scene *s)
+{
+    size_t nv = (size_t)(m->n_verts > 0 ? m->n_verts : 1);
+    m->rest_pos = malloc(sizeof *m->rest_pos * nv);
+    m->rest_centre = malloc(sizeof *m->rest_centre * nv);
+    m->n_scene_nodes = s->n_nodes;
+    m->rest_world_inv = malloc(sizeof *m->rest_world_inv * (size_t)(s->n_nodes > 0 ? s->n_nodes : 1));
+    if (!m->rest_pos || !m->rest_centre || !m->rest_world_inv)
+        return -1;
+    memcpy(m->rest_pos, m->pos, sizeof *m->pos * (size_t)m->n_verts);
+    memcpy(m->rest_centre, m->centre, sizeof *m->centre * (size_t)m->n_verts);
+    for (int i = 0; i < s->n_nodes; i++)
+        m->rest_world_inv[i] = m4_inverse(s->nodes[i].world);
+    /* the pose as rad_mesh_refit computes it (world x world^-1 need not be exactly the identity in
+       floats): a refit at the build pose then moves nothing */
+    for (int c = 0; c < m->n_charts; c++)
+        m->charts[c].pose = m4_mul(s->nodes[m->charts[c].node].world, m->rest_world_inv[m->charts[c].node]);
+    return 0;
+}
+
+int rad_mesh_refit(rad_mesh *m, const mat4 *worlds, int n_worlds)
+{
+    int moved = 0;
+    for (int c = 0; c < m->n_charts; c++) {
+        rad_chart *ch = &m->charts[c];
+        ch->refit_moved = false;
+        if (!ch->moving || ch->node >= n_worlds || ch->node >= m->n_scene_nodes)
+            continue;
+        mat4 d = m4_mul(worlds[ch->node], m->rest_world_inv[ch->node]);
+        if (memcmp(&d, &ch->pose, sizeof d) == 0)
+            continue; /* the same pose as the last refit */
+        ch->pose = d;
+        ch->normal = v3_norm(m4_dir(m4_transpose(m4_inverse(d)), ch->rest_normal));
+        for (int i = ch->first_vert; i < ch->first_vert + ch->n_verts; i++)
+            m->pos[i] = m4_point(d, m->rest_pos[i]), m->centre[i] = m4_point(d, m->rest_centre[i]);
+        ch->refit_moved = true;
+        moved++;
+    }
+    return moved;
+}
+
 int rad_mesh_build(rad_mesh *m, const gk_scene *s, float edge, int max_verts, gk_err *e)
 {
     memset(m, 0, sizeof *m);
@@ -356,12 +400,17 @@ int rad_mesh_build(rad_mesh *m, const gk_scene *s, float edge, int max_verts, gk
             nsum = v3_add(nsum, v3_scale(t[bucket[k]].n, t[bucket[k]].area));
         ch->normal = v3_norm(nsum);
         ch->material = t[bucket[count[c]]].material;
+        ch->node = t[bucket[count[c]]].node;
+        ch->moving = s->nodes[ch->node].animated;
+        ch->rest_normal = ch->normal;
         vec3 a = fabsf(ch->normal.x) < 0.9f ? v3(1, 0, 0) : v3(0, 1, 0);
         ch->tu = v3_norm(v3_cross(a, ch->normal));
         ch->tv = v3_cross(ch->normal, ch->tu);
         rc = refine_chart(m, t, bucket + count[c], count[c + 1] - count[c], edge, q, max_verts, c);
     }
     free(t), free(chart_of), free(count), free(bucket), free(fill);
+    if (rc == 0)
+        rc = keep_rest_pose(m, s);
     if (rc) {
         int nv = m->n_verts;
         rad_mesh_free(m);
@@ -376,5 +425,6 @@ int rad_mesh_build(rad_mesh *m, const gk_scene *s, float edge, int max_verts, gk
 void rad_mesh_free(rad_mesh *m)
 {
     free(m->pos), free(m->area), free(m->centre), free(m->chart), free(m->tris), free(m->charts);
+    free(m->rest_pos), free(m->rest_centre), free(m->rest_world_inv);
     memset(m, 0, sizeof *m);
 }

@@ -11,7 +11,7 @@
  * the radiosity itself only sees vertices).
  *
  * Charts [ours: the seed uses the artists' UV segments, which our scenes do not have]: connected
- * regions of coplanar triangles (face normals within 1°, sharing an edge, one material). Each chart
+ * regions of coplanar triangles (face normals within 1°, sharing an edge, one material, one scene node). Each chart
  * has its own vertices (a room's corner has one vertex per wall), so a surfel has one normal and one
  * albedo. Within a chart the vertices are sorted in Morton (Z) order of their plane coordinates,
  * which is what lets the quadtree group them four by four (rad_tree.h).
@@ -26,6 +26,7 @@
 #ifndef GK_RAD_MESH_H
 #define GK_RAD_MESH_H
 
+#include <stdbool.h>
 #include <stdint.h>
 
 #include "base/err.h"
@@ -33,10 +34,15 @@
 #include "scene/scene.h"
 
 typedef struct rad_chart {
-    vec3 normal;            /* unit, world */
-    vec3 tu, tv;            /* plane axes (unit), for the Morton order */
+    vec3 normal;            /* unit, world, at the pose of the last refit */
+    vec3 tu, tv;            /* plane axes (unit) at the build pose, for the Morton order */
     int first_vert, n_verts;/* its vertices: a contiguous range, in Morton order */
     int material;
+    int node;               /* the scene node drawing it (charts never span nodes: each moves rigidly) */
+    bool moving;            /* its node is animated (scene.h): refit every frame */
+    vec3 rest_normal;       /* the normal at the build pose */
+    mat4 pose;              /* world now x world at build, as of the last refit (identity: built) */
+    bool refit_moved;       /* the last refit moved it */
 } rad_chart;
 
 typedef struct rad_mesh {
@@ -52,6 +58,10 @@ typedef struct rad_mesh {
     int n_source_tris;      /* triangles of the scene taken (drawn, not light proxies) */
     float edge;             /* target edge length used (world units) */
     double surface_area;    /* sum of the source triangles' areas */
+    /* the build ("rest") pose, which every refit starts from, so frames never accumulate drift */
+    vec3 *rest_pos, *rest_centre;
+    int n_scene_nodes;
+    mat4 *rest_world_inv;   /* per scene node: the inverse of its world matrix at build */
 } rad_mesh;
 
 /* Builds the refined mesh of scene s (evaluated: node world matrices valid). edge > 0 is the target
@@ -59,6 +69,13 @@ typedef struct rad_mesh {
  * error naming the scene and the count (a coarser edge fits). */
 int rad_mesh_build(rad_mesh *m, const gk_scene *s, float edge, int max_verts, gk_err *e);
 void rad_mesh_free(rad_mesh *m);
+
+/* UpdateElements' first half [doc, Algorithm 1 step 1]: moves the vertices, surfel centres and chart
+ * normals of every chart whose node is animated to the pose of `worlds` (the scene's node world
+ * matrices, n_worlds of them), from the rest pose by world_now x world_at_build^-1 (normals by its
+ * inverse transpose). Surfel areas stay (the seed: area "varies very little"; under a node's scale
+ * animation they are those of the rest pose). Sets each chart's refit_moved; returns how many moved. */
+int rad_mesh_refit(rad_mesh *m, const mat4 *worlds, int n_worlds);
 
 /* The number of segments a triangle edge of length `len` is cut into for target edge `edge`
  * (exposed for the tests: the refinement rule in one place). */

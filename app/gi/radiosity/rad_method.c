@@ -22,8 +22,15 @@
  *   radiosity_weight:  the gathering weight (rad_links.h): spill (ours, default), or the seed's two
  *                      readings, element (eq. 4.5) and bin (assumption 4); a variant switch
  *   radiosity_sync:    async (the seed: the frame uses the last complete link set) or lockstep (the
- *                      frame waits for its request: deterministic captures for tests) */
-enum { K_BINS, K_BOUNCES, K_TESS, K_WEIGHT, K_SYNC, K_COUNT };
+ *                      frame waits for its request: deterministic captures for tests)
+ *   radiosity_link_every: the link update rate where meshes move: links rebuilt on every 4th, 2nd or
+ *                      every (the seed: every frame) worker tick that moved a mesh; the hierarchy is
+ *                      refit every tick. Its cost is the worker's, which the frame does not wait for
+ *                      (async): on the render thread only the link upload follows it, and on a
+ *                      scene without moving meshes it changes nothing. Flat priors: the scheduler
+ *                      expects no saving from it, so it is the last knob it steps down (it still
+ *                      can: a knob believed free is dropped once every other is at its floor) */
+enum { K_BINS, K_BOUNCES, K_TESS, K_WEIGHT, K_SYNC, K_LINK_EVERY, K_COUNT };
 _Static_assert(K_COUNT == RAD_KNOBS, "rad_internal.h's RAD_KNOBS counts the knobs");
 static const gk_knob_def knobs[K_COUNT] = {
     {.name = "radiosity_bins", .owner = "radiosity", .n_values = 3, .values = {"8", "12", "16"},
@@ -36,6 +43,8 @@ static const gk_knob_def knobs[K_COUNT] = {
      .cost = {1.0f, 1.0f, 1.0f}, .default_level = 0, .fixed = true},
     {.name = "radiosity_sync", .owner = "radiosity", .n_values = 2, .values = {"async", "lockstep"},
      .cost = {1.0f, 1.0f}, .default_level = 0, .fixed = true},
+    {.name = "radiosity_link_every", .owner = "radiosity", .n_values = 3, .values = {"4", "2", "1"},
+     .cost = {1.0f, 1.0f, 1.0f}, .default_level = 2},
 };
 
 
@@ -44,7 +53,26 @@ rad_settings rad_settings_for(const gk_scene *sc, float tess, int n_face, rad_we
     vec3 ext = v3_sub(sc->bmax, sc->bmin);
     float diag = v3_len(ext) > 0.0f ? v3_len(ext) : 1.0f;
     return (rad_settings){.edge = diag / tess, .n_face = n_face, .weight = weight, .samples = RAD_DIRECT_SAMPLES,
-                          .max_verts = RAD_MAX_VERTS};
+                          .max_verts = RAD_MAX_VERTS, .link_every = 1};
+}
+
+float gk_radiosity_tess(int level)
+{
+    const gk_knob_def *k = &knobs[K_TESS];
+    return (float)atof(k->values[level >= 0 && level < k->n_values ? level : k->default_level]);
+}
+
+int gk_radiosity_tess_levels(void) { return knobs[K_TESS].n_values; }
+
+int gk_radiosity_refined_vertices(const gk_scene *s, int tess_level, gk_err *e)
+{
+    rad_settings set = rad_settings_for(s, gk_radiosity_tess(tess_level), 12, RAD_WEIGHT_SPILL);
+    rad_mesh m;
+    if (rad_mesh_build(&m, s, set.edge, set.max_verts, e))
+        return -1;
+    int n = m.n_verts;
+    rad_mesh_free(&m);
+    return n;
 }
 
 static void declare_knobs(gk_budget *b)
@@ -52,9 +80,9 @@ static void declare_knobs(gk_budget *b)
     gk_budget_add_all(b, knobs, K_COUNT);
 }
 
-/* Light bouncing between diffuse surfaces, no mesh that moves (the hierarchy and the links are
-   built once per scene, radiosity.h; moving lights are fine: cornell-spot-anim), and a model of the
-   seed's size: its scenes have 2.5k-5k vertices, the refinement never merges triangles, and link
+/* Light bouncing between diffuse surfaces and a model of the seed's size (moving meshes are fine:
+   the hierarchy is refit every frame and the links rebuilt at the link update rate, rad_worker.h;
+   moving lights recompute the direct light: cornell-spot-anim): its scenes have 2.5k-5k vertices, the refinement never merges triangles, and link
    creation pairs every chart root. RAD_MAX_SOURCE_TRIS lets caustic-ring (202 triangles, 0.9 s to
    its first result on llvmpipe's machine) in and keeps atrium (79,808, past the vertex limit before
    any link) out. */
@@ -62,12 +90,7 @@ static void declare_knobs(gk_budget *b)
 
 static bool applies(const gk_scene *s)
 {
-    if (!s->features.has_interreflection || s->n_triangles > RAD_MAX_SOURCE_TRIS)
-        return false;
-    for (int i = 0; i < s->n_nodes; i++)
-        if (s->nodes[i].animated && s->nodes[i].mesh_count > 0)
-            return false;
-    return true;
+    return s->features.has_interreflection && s->n_triangles <= RAD_MAX_SOURCE_TRIS;
 }
 
 static void *create(const gk_gi_context *ctx, gk_err *e)
@@ -133,6 +156,7 @@ static int render(void *self, const gk_gi_frame *f, gk_err *e)
     rad_settings set = rad_settings_for(f->scene, gk_knob_number(b, &s->knob[K_TESS], 24.0f),
                                         (int)gk_knob_number(b, &s->knob[K_BINS], 12.0f),
                                         (rad_weight)gk_knob_level(b, &s->knob[K_WEIGHT], 0));
+    set.link_every = (int)gk_knob_number(b, &s->knob[K_LINK_EVERY], 1.0f);
     bool lockstep = gk_knob_level(b, &s->knob[K_SYNC], 0) == 1;
     /* the render thread's share of the CPU work: hand over the frame's node matrices, (lockstep:
        wait), upload the newest publication if there is one */
@@ -158,6 +182,15 @@ static int render(void *self, const gk_gi_frame *f, gk_err *e)
     if (err != GL_NO_ERROR)
         return gk_fail(e, GK_ERUNTIME, "radiosity: GL error 0x%04x during the frame", err);
     return 0;
+}
+
+/* gi.h's invalidate (the bench's --rebuild-gi): the worker redoes the seed's per-frame pipeline on
+   its next request (rad_worker_redo). */
+static void invalidate(void *self)
+{
+    rad_state *s = self;
+    if (s->worker)
+        rad_worker_redo(s->worker);
 }
 
 static long memory_bytes(const void *self) { return rad_gpu_memory(&((const rad_state *)self)->gpu); }
@@ -204,5 +237,6 @@ const gk_gi_method gk_gi_radiosity = {
     .set_scene = set_scene,
     .render = render,
     .memory_bytes = memory_bytes,
+    .invalidate = invalidate,
     .destroy = destroy,
 };

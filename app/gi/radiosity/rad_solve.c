@@ -1,6 +1,7 @@
 /* The radiosity geometry bundle and the CPU bounces (rad_solve.h). */
 #include "rad_solve.h"
 
+#include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -40,6 +41,93 @@ void rad_geometry_free(rad_geometry *g)
     rad_mesh_free(&g->mesh);
     free(g->albedo), free(g->emission);
     g->albedo = g->emission = NULL;
+}
+
+/* a copy of n elements of size sz (NULL for NULL) */
+static void *dup_array(const void *src, size_t n, size_t sz, bool *fail)
+{
+    if (!src)
+        return NULL;
+    void *p = malloc(n * sz + 1);
+    if (!p) {
+        *fail = true;
+        return NULL;
+    }
+    memcpy(p, src, n * sz);
+    return p;
+}
+
+int rad_geometry_clone(rad_geometry *d, const rad_geometry *g)
+{
+    *d = *g;
+    bool fail = false;
+    const rad_mesh *m = &g->mesh;
+    size_t nv = (size_t)m->n_verts, nc = (size_t)m->n_charts;
+    d->mesh.pos = dup_array(m->pos, nv, sizeof *m->pos, &fail);
+    d->mesh.area = dup_array(m->area, nv, sizeof *m->area, &fail);
+    d->mesh.centre = dup_array(m->centre, nv, sizeof *m->centre, &fail);
+    d->mesh.chart = dup_array(m->chart, nv, sizeof *m->chart, &fail);
+    d->mesh.tris = dup_array(m->tris, 3 * (size_t)m->n_tris, sizeof *m->tris, &fail);
+    d->mesh.charts = dup_array(m->charts, nc, sizeof *m->charts, &fail);
+    d->mesh.rest_pos = dup_array(m->rest_pos, nv, sizeof *m->rest_pos, &fail);
+    d->mesh.rest_centre = dup_array(m->rest_centre, nv, sizeof *m->rest_centre, &fail);
+    d->mesh.rest_world_inv = dup_array(m->rest_world_inv, (size_t)m->n_scene_nodes, sizeof *m->rest_world_inv, &fail);
+    const rad_tree *t = &g->tree;
+    size_t nn = (size_t)t->n_nodes, tc = (size_t)t->n_charts + 1;
+    d->tree.chart_levels = dup_array(t->chart_levels, tc, sizeof *t->chart_levels, &fail);
+    d->tree.off = dup_array(t->off, tc, sizeof *t->off, &fail);
+    d->tree.cnt = dup_array(t->cnt, tc, sizeof *t->cnt, &fail);
+    d->tree.roots = dup_array(t->roots, tc, sizeof *t->roots, &fail);
+    d->tree.node_chart = dup_array(t->node_chart, nn, sizeof *t->node_chart, &fail);
+    d->tree.node_level = dup_array(t->node_level, nn, sizeof *t->node_level, &fail);
+    d->tree.pos = dup_array(t->pos, nn, sizeof *t->pos, &fail);
+    d->tree.nrm = dup_array(t->nrm, nn, sizeof *t->nrm, &fail);
+    d->tree.area = dup_array(t->area, nn, sizeof *t->area, &fail);
+    const rad_links *L = &g->links;
+    size_t nl = L->offset ? L->offset[L->n_leaves] : 0;
+    d->links.offset = dup_array(L->offset, (size_t)L->n_leaves + 1, sizeof *L->offset, &fail);
+    d->links.target = dup_array(L->target, nl, sizeof *L->target, &fail);
+    d->links.weight = dup_array(L->weight, nl, sizeof *L->weight, &fail);
+    d->albedo = dup_array(g->albedo, 3 * nv, sizeof *g->albedo, &fail);
+    d->emission = dup_array(g->emission, 3 * nv, sizeof *g->emission, &fail);
+    if (fail) {
+        rad_geometry_free(d);
+        return -1;
+    }
+    return 0;
+}
+
+int rad_geometry_refit(rad_geometry *g, const mat4 *worlds, int n_worlds)
+{
+    int moved = rad_mesh_refit(&g->mesh, worlds, n_worlds);
+    if (moved)
+        rad_tree_refit(&g->tree, &g->mesh);
+    return moved;
+}
+
+int rad_geometry_moving_charts(const rad_geometry *g)
+{
+    int n = 0;
+    for (int c = 0; c < g->mesh.n_charts; c++)
+        n += g->mesh.charts[c].moving;
+    return n;
+}
+
+int rad_geometry_relink(rad_geometry *g, rad_link_cache *cache, gk_err *e)
+{
+    bool *moving = malloc(sizeof *moving * (size_t)(g->mesh.n_charts + 1));
+    if (!moving)
+        return gk_fail(e, GK_ERUNTIME, "radiosity: out of memory relinking");
+    for (int c = 0; c < g->mesh.n_charts; c++)
+        moving[c] = g->mesh.charts[c].moving;
+    rad_links fresh;
+    int rc = rad_links_update(&fresh, &g->tree, g->n_face, g->weight, cache ? moving : NULL, cache, e);
+    free(moving);
+    if (rc)
+        return -1;
+    rad_links_free(&g->links);
+    g->links = fresh;
+    return 0;
 }
 
 void rad_pullup(const rad_tree *t, float *v)

@@ -28,12 +28,25 @@ typedef struct rad_geometry {
     float edge;
     int n_face;
     rad_weight weight;
+    uint64_t links_id;   /* which link set it carries (the worker numbers them; the GPU re-uploads the
+                            links only when it changes, the vertices when the geometry does) */
 } rad_geometry;
 
 /* s: evaluated. Errors as rad_mesh_build (input: too many vertices) and out of memory. */
 int rad_geometry_build(rad_geometry *g, const gk_scene *s, float edge, int max_verts, int n_face, rad_weight weight,
                        gk_err *e);
 void rad_geometry_free(rad_geometry *g);
+/* A deep copy (the worker refits a copy while the frame reads the published one). -1: out of memory. */
+int rad_geometry_clone(rad_geometry *dst, const rad_geometry *src);
+/* UpdateElements [doc, Algorithm 1 step 1]: the animated charts to the pose of `worlds` (the scene's
+ * node world matrices), then the hierarchy bottom up (rad_mesh_refit, rad_tree_refit). Returns the
+ * number of charts that moved. */
+int rad_geometry_refit(rad_geometry *g, const mat4 *worlds, int n_worlds);
+/* The links at the current pose, the static pairs from `cache` (rad_links_update; NULL: every pair
+ * linked anew). */
+int rad_geometry_relink(rad_geometry *g, rad_link_cache *cache, gk_err *e);
+/* Charts that move (animated nodes) in g. */
+int rad_geometry_moving_charts(const rad_geometry *g);
 
 /* Fills the inner nodes of v (3 floats per node) from its leaves by area ratio. */
 void rad_pullup(const rad_tree *t, float *v);

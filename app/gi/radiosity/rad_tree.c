@@ -83,25 +83,37 @@ int rad_tree_build(rad_tree *t, const rad_mesh *m, gk_err *e)
                 t->node_chart[t->off[c][l] + j] = c;
                 t->node_level[t->off[c][l] + j] = (unsigned char)l;
             }
-    for (int i = 0; i < m->n_verts; i++) {
-        t->pos[i] = m->centre[i];
-        t->nrm[i] = m->charts[m->chart[i]].normal;
+    for (int i = 0; i < m->n_verts; i++)
         t->area[i] = m->area[i];
-    }
-    /* bottom-up: children precede their parents in the index */
+    /* inner areas: sums, once (the refit keeps them) */
     for (int i = m->n_verts; i < next; i++) {
         int first, k = rad_tree_children(t, i, &first);
-        vec3 p = v3(0, 0, 0), n = v3(0, 0, 0);
         float a = 0.0f;
         for (int q = first; q < first + k; q++)
-            p = v3_add(p, t->pos[q]), n = v3_add(n, t->nrm[q]), a += t->area[q];
-        t->pos[i] = v3_scale(p, 1.0f / (float)k);
-        t->nrm[i] = v3_norm(n);
+            a += t->area[q];
         t->area[i] = a;
     }
+    rad_tree_refit(t, m);
     for (int c = 0; c < nc; c++)
         t->roots[c] = t->off[c][t->chart_levels[c] - 1];
     return 0;
+}
+
+void rad_tree_refit(rad_tree *t, const rad_mesh *m)
+{
+    for (int i = 0; i < m->n_verts; i++) {
+        t->pos[i] = m->centre[i];
+        t->nrm[i] = m->charts[m->chart[i]].normal;
+    }
+    /* bottom-up: children precede their parents in the index */
+    for (int i = m->n_verts; i < t->n_nodes; i++) {
+        int first, k = rad_tree_children(t, i, &first);
+        vec3 p = v3(0, 0, 0), n = v3(0, 0, 0);
+        for (int q = first; q < first + k; q++)
+            p = v3_add(p, t->pos[q]), n = v3_add(n, t->nrm[q]);
+        t->pos[i] = v3_scale(p, 1.0f / (float)k);
+        t->nrm[i] = v3_norm(n);
+    }
 }
 
 void rad_tree_free(rad_tree *t)

@@ -14,8 +14,10 @@
  * the same arithmetic (rad_tree_children).
  *
  * Node data [doc]: position = average of the children's, normal = average (normalised), area = sum.
- * Refitting them every frame (animated geometry) is not built: the method treats geometry as static
- * (rad_method.c: it does not apply to scenes whose meshes move). */
+ * UpdateElements [doc, Algorithm 1 step 1, "similar to BVH refit"]: every frame a mesh moved,
+ * rad_mesh_refit moves the leaves and rad_tree_refit recomputes positions and normals bottom up;
+ * areas are not recomputed (the seed: they vary very little). The hierarchy itself (which vertices
+ * group) is the build pose's, as in the seed ("precomputed once, not adapted to deformation"). */
 #ifndef GK_RAD_TREE_H
 #define GK_RAD_TREE_H
 
@@ -40,6 +42,8 @@ typedef struct rad_tree {
 
 int rad_tree_build(rad_tree *t, const rad_mesh *m, gk_err *e);
 void rad_tree_free(rad_tree *t);
+/* Bottom-up refit of positions and normals from the mesh's current pose (areas kept). */
+void rad_tree_refit(rad_tree *t, const rad_mesh *m);
 
 /* Index arithmetic (see above). Parent: -1 for a root. Children: returns the count (0 for a leaf)
  * and the first child in *first. */

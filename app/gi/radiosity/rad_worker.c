@@ -13,6 +13,7 @@ struct rad_worker {
     pthread_mutex_t mu;
     pthread_cond_t cv_work, cv_idle;
     bool pending, busy, quit;
+    bool req_redo;             /* rad_worker_redo: the next tick redoes the per-frame pipeline */
     mat4 *req_worlds;          /* the newest request (under mu) */
     rad_settings req_set;
 
@@ -26,6 +27,9 @@ struct rad_worker {
     uint64_t geo_id;
     rad_settings geo_set, direct_set;
     bool direct_valid;
+    rad_link_cache cache;      /* the static pairs' bins of geo's tree (rad_links_update) */
+    uint64_t links_seq;
+    int moved_since_links;     /* ticks that moved meshes since the last link build */
     float *e_direct, *work_b0;
 
     /* published (under mu) */
@@ -48,7 +52,48 @@ static bool same_geometry(const rad_settings *a, const rad_settings *b)
     return a->edge == b->edge && a->n_face == b->n_face && a->weight == b->weight && a->max_verts == b->max_verts;
 }
 
-static void tick(rad_worker *w, const mat4 *worlds, const rad_settings *set)
+/* UpdateElements on a copy of the published geometry (the frame may be reading it), and the links
+   at the link update rate; the copy becomes w->geo and the caller frees *old once it published. */
+static int refit(rad_worker *w, const mat4 *worlds, const rad_settings *set, bool redo, rad_geometry **old)
+{
+    rad_geometry *g = calloc(1, sizeof *g);
+    if (!g || rad_geometry_clone(g, w->geo)) {
+        free(g);
+        fail(w, "radiosity: out of memory refitting");
+        return -1;
+    }
+    if (rad_geometry_refit(g, worlds, w->view.n_nodes) == 0 && !redo) {
+        rad_geometry_free(g), free(g);
+        return 0; /* only lights (or nodes without charts) moved */
+    }
+    if (redo)
+        rad_tree_refit(&g->tree, &g->mesh); /* every node, as the seed's frame does */
+    bool relink = redo || ++w->moved_since_links >= (set->link_every > 0 ? set->link_every : 1);
+    if (relink) {
+        gk_err e = {0};
+        if (rad_geometry_relink(g, redo ? NULL : &w->cache, &e)) {
+            rad_geometry_free(g), free(g);
+            fail(w, e.msg);
+            return -1;
+        }
+        g->links_id = ++w->links_seq;
+        w->moved_since_links = 0;
+    }
+    *old = w->geo;
+    w->geo = g;
+    w->geo_id++;
+    pthread_mutex_lock(&w->mu);
+    w->st.refits++;
+    if (relink) {
+        w->st.link_updates++;
+        w->st.leaf_links = g->links.leaf_links, w->st.links_created = g->links.created;
+        w->st.pairs_linked = g->links.pairs_linked, w->st.pairs_cached = g->links.pairs_cached;
+    }
+    pthread_mutex_unlock(&w->mu);
+    return 0;
+}
+
+static void tick(rad_worker *w, const mat4 *worlds, const rad_settings *set, bool redo)
 {
     int n = w->view.n_nodes;
     bool moved = !w->have_rs || memcmp(w->built_worlds, worlds, sizeof *worlds * (size_t)n);
@@ -69,8 +114,8 @@ static void tick(rad_worker *w, const mat4 *worlds, const rad_settings *set)
     }
     rad_geometry *old = NULL;
     if (!w->geo || !same_geometry(&w->geo_set, set)) {
-        /* geometry is built once per setting at the pose of its first request: the method treats
-           meshes as static (rad_tree.h) */
+        /* geometry is built once per setting at the pose of its first request; moving meshes are
+           refit from that rest pose (rad_tree.h) */
         rad_geometry *g = calloc(1, sizeof *g);
         gk_err e = {0};
         if (!g || rad_geometry_build(g, &w->view, set->edge, set->max_verts, set->n_face, set->weight, &e)) {
@@ -93,15 +138,23 @@ static void tick(rad_worker *w, const mat4 *worlds, const rad_settings *set)
         w->geo = g;
         w->geo_set = *set;
         w->geo_id++;
+        g->links_id = ++w->links_seq;
+        rad_link_cache_free(&w->cache);
+        w->moved_since_links = 0;
         w->direct_valid = false;
         pthread_mutex_lock(&w->mu);
         w->st.geometry_builds++;
         w->st.vertices = g->mesh.n_verts, w->st.nodes = g->tree.n_nodes, w->st.charts = g->mesh.n_charts;
         w->st.leaf_links = g->links.leaf_links, w->st.links_created = g->links.created;
         w->st.bin_bytes = g->links.bin_bytes;
+        w->st.moving_charts = rad_geometry_moving_charts(g);
+        w->st.pairs_linked = g->links.pairs_linked, w->st.pairs_cached = g->links.pairs_cached;
         pthread_mutex_unlock(&w->mu);
+    } else if (redo || (moved && rad_geometry_moving_charts(w->geo) > 0)) {
+        if (refit(w, worlds, set, redo, &old))
+            return;
     }
-    if (!old && !moved && w->direct_valid && w->direct_set.samples == set->samples)
+    if (!old && !moved && !redo && w->direct_valid && w->direct_set.samples == set->samples)
         return; /* nothing new to publish */
     rad_direct_irradiance(&w->rs, &w->geo->tree, set->samples, 0, w->geo->tree.n_leaves, w->e_direct);
     rad_initial_radiance(w->geo, w->e_direct, w->work_b0);
@@ -120,6 +173,8 @@ static void tick(rad_worker *w, const mat4 *worlds, const rad_settings *set)
     } else {
         w->st.failed = true;
         snprintf(w->st.error, sizeof w->st.error, "radiosity: out of memory publishing");
+        if (w->pub_geo == old)
+            w->pub_geo = NULL; /* freed below: nothing is taken any more (the frame keeps its upload) */
     }
     w->st.direct_updates++;
     pthread_mutex_unlock(&w->mu);
@@ -141,14 +196,16 @@ static void *worker_main(void *p)
             break;
         memcpy(worlds, w->req_worlds, sizeof *worlds * (size_t)n);
         rad_settings set = w->req_set;
+        bool redo = w->req_redo;
+        w->req_redo = false;
         w->pending = false;
-        w->busy = true;
+        w->busy = w->st.busy = true;
         bool failed = w->st.failed;
         pthread_mutex_unlock(&w->mu);
         if (!failed && worlds)
-            tick(w, worlds, &set);
+            tick(w, worlds, &set, redo);
         pthread_mutex_lock(&w->mu);
-        w->busy = false;
+        w->busy = w->st.busy = false;
         w->st.ticks++;
         pthread_cond_broadcast(&w->cv_idle);
     }
@@ -204,6 +261,7 @@ void rad_worker_destroy(rad_worker *w)
         gk_ref_scene_free(&w->rs);
     if (w->geo)
         rad_geometry_free(w->geo), free(w->geo);
+    rad_link_cache_free(&w->cache);
     free(w->e_direct), free(w->work_b0), free(w->pub_b0);
     free(w->nodes), free(w->req_worlds), free(w->built_worlds);
     free(w);
@@ -219,6 +277,13 @@ void rad_worker_submit(rad_worker *w, const gk_scene *evaluated, const rad_setti
     w->st.submitted++; /* one waiting request is replaced by the newer one: ticks <= submitted */
     w->pending = true;
     pthread_cond_signal(&w->cv_work);
+    pthread_mutex_unlock(&w->mu);
+}
+
+void rad_worker_redo(rad_worker *w)
+{
+    pthread_mutex_lock(&w->mu);
+    w->req_redo = true;
     pthread_mutex_unlock(&w->mu);
 }
 

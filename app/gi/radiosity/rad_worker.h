@@ -1,8 +1,10 @@
 /* The radiosity method's CPU side on a worker thread (seed 001 ch. 4 builds links on the CPU;
  * research dong-001.md §2.3 steps 0-4): the render thread submits each frame's node matrices and
  * settings and never waits; the worker runs the newest request -- (re)builds the geometry (mesh,
- * hierarchy, links: rad_solve.h) when a setting that shapes it changed, recomputes the direct light
- * at the surfels when a light moved (rad_direct.h) -- and publishes the initial radiance B0 of every
+ * hierarchy, links: rad_solve.h) when a setting that shapes it changed; when a mesh moved, refits a
+ * copy of it to the new pose and, at the link update rate, rebuilds its links incrementally (the
+ * pairs of static charts come from a cache: rad_links_update); recomputes the direct light at the
+ * surfels when anything moved (rad_direct.h) -- and publishes the initial radiance B0 of every
  * node with the geometry it belongs to. The frame uses the last complete publication. */
 #ifndef GK_RAD_WORKER_H
 #define GK_RAD_WORKER_H
@@ -18,11 +20,19 @@ typedef struct rad_settings {
     rad_weight weight;
     int samples;           /* direct-light samples per area light and surfel */
     int max_verts;
+    int link_every;        /* while meshes move: links rebuilt every link_every-th tick that moved
+                              them (the link update rate); the other ticks refit the hierarchy and
+                              keep the last links (their targets and weights) */
 } rad_settings;
 
 typedef struct rad_worker_stats {
     uint64_t ticks, submitted, publications;
+    bool busy;                 /* a tick is running */
     uint64_t geometry_builds, direct_updates;
+    uint64_t refits;           /* ticks that refit the hierarchy (UpdateElements): a mesh moved, or a redo */
+    uint64_t link_updates;     /* link rebuilds after the geometry's first (moving meshes) */
+    int moving_charts;         /* charts of animated nodes */
+    long pairs_linked, pairs_cached; /* of the last link build: root pairs linked, taken from the cache */
     int vertices, nodes, charts;
     long leaf_links, links_created, bin_bytes;
     bool failed;
@@ -37,6 +47,11 @@ rad_worker *rad_worker_create(const gk_scene *scene, gk_err *e);
 void rad_worker_destroy(rad_worker *w);
 /* Non-blocking: the frame's evaluated scene (its node matrices are copied) and settings. */
 void rad_worker_submit(rad_worker *w, const gk_scene *evaluated, const rad_settings *set);
+/* The next tick redoes what the seed does every frame whether or not anything moved (UpdateElements
+ * over every node, link creation over every pair, refinement, push-down, direct light), and
+ * publishes it: the bench's --rebuild-gi times the seed's per-frame pipeline with it (in lockstep
+ * the frame waits for it: Table 4.1's frame). */
+void rad_worker_redo(rad_worker *w);
 /* Blocks until no request is pending or running (lockstep mode, tests). */
 void rad_worker_wait(rad_worker *w);
 /* Calls fn with the newest publication when it is newer than *seen (then updates *seen): the
