@@ -135,7 +135,7 @@ typedef struct parse_ctx {
     gk_err *e;
 } parse_ctx;
 
-static const char *const sections[] = {"display", "frame", "buttons", "playlist", "cpu", "budgets", NULL};
+static const char *const sections[] = {"display", "frame", "buttons", "playlist", "cpu", "budgets", "truth", NULL};
 
 static int fail_at(parse_ctx *p, const char *fmt, const char *a, const char *b)
 {
@@ -179,7 +179,7 @@ static char *reader(char *str, int num, void *stream)
             for (int i = 0; sections[i]; i++)
                 known |= !strcmp(sections[i], sec);
             if (!known)
-                fail_at(p, "unknown section [%s] (known: display, frame, buttons, playlist, cpu, budgets)%s", sec, "");
+                fail_at(p, "unknown section [%s] (known: display, frame, buttons, playlist, cpu, budgets, truth)%s", sec, "");
         }
     }
     return str;
@@ -449,6 +449,16 @@ static int handler(void *user, const char *section, const char *name, const char
     }
     if (!strcmp(section, "budgets"))
         return budgets_key(p, name, val);
+    if (!strcmp(section, "truth")) {
+        if (!strcmp(name, "enabled")) {
+            if (!parse_bool(val, &p->c->truth_enabled))
+                return fail_at(p, "enabled: '%s' is not true or false%s", val, "");
+            return 1;
+        }
+        if (!strcmp(name, "workers")) /* 0 = cores - 1, at least 1 */
+            return int_in(p, name, val, 0, 64, &p->c->truth_workers);
+        return fail_at(p, "unknown key '%s' in [%s]", name, "truth");
+    }
     if (!section[0])
         return fail_at(p, "key '%s' outside any section%s", name, "");
     return 0; /* unknown section: already reported by the reader */
