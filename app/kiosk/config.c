@@ -121,6 +121,8 @@ void gk_kiosk_config_defaults(gk_kiosk_config *c)
     b->evdev_code[GK_BTN_INFO] = KEY_I;
     c->dwell_s = 30;
     c->pause_after_input_s = 60;
+    c->truth_max_w = 160; /* GK_TRUTH_MAX_W x GK_TRUTH_MAX_H (truth.h) */
+    c->truth_max_h = 120;
 }
 
 /* ---- the parser -------------------------------------------------------------------------- */
@@ -457,6 +459,11 @@ static int handler(void *user, const char *section, const char *name, const char
         }
         if (!strcmp(name, "workers")) /* 0 = cores - 1, at least 1 */
             return int_in(p, name, val, 0, 64, &p->c->truth_workers);
+        if (!strcmp(name, "size")) {
+            if (gk_parse_size(val, &p->c->truth_max_w, &p->c->truth_max_h))
+                return fail_at(p, "size: '%s' is not WxH (e.g. 160x120)%s", val, "");
+            return 1;
+        }
         return fail_at(p, "unknown key '%s' in [%s]", name, "truth");
     }
     if (!section[0])

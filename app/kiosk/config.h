@@ -56,6 +56,7 @@ typedef struct gk_kiosk_config {
     /* [truth] (app/kiosk/truth.h) */
     bool truth_enabled;                /* the live ground truth and error on the HUD; off by default */
     int truth_workers;                 /* its path-tracing threads, 0 = cores - 1 (at least 1) */
+    int truth_max_w, truth_max_h;      /* the largest truth image (160x120) */
     /* [budgets] */
     int n_ranges;
     gk_budget_range ranges[GK_MAX_KNOBS];

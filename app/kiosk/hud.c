@@ -9,6 +9,7 @@
 #include "gl/gl.h"
 #include "gl/gl_program.h"
 #include "font_atlas.h"
+#include "hud_internal.h"
 
 /* hud/hud.{vert,frag} */
 typedef struct hud_uniforms {
@@ -16,18 +17,6 @@ typedef struct hud_uniforms {
 } hud_uniforms;
 static const gk_uniform_field hud_fields[] = {GK_UNIFORM(hud_uniforms, u_viewport), GK_UNIFORM(hud_uniforms, u_atlas)};
 
-struct gk_hud {
-    int width, height;
-    gk_program_cache *programs;
-    GLuint program, vao, vbo, atlas_tex;
-    const hud_uniforms *u;         /* resolved with the program, kept by the cache */
-    gk_font_atlas font;
-    int has_text;
-    float *verts;                  /* x y u v r g b a per vertex */
-    int n_verts, cap_verts;
-};
-
-#define FLOATS_PER_VERT 8
 
 gk_hud *gk_hud_create(int width, int height, const char *shader_dir, int gles, const char *font_path, gk_err *e)
 {
@@ -124,7 +113,7 @@ int gk_hud_has_text(const gk_hud *h) { return h && h->has_text; }
 
 /* ---- geometry ------------------------------------------------------------------------------- */
 
-static void quad(gk_hud *h, float x0, float y0, float x1, float y1, float u0, float v0, float u1, float v1,
+void gk_hud_quad(gk_hud *h, float x0, float y0, float x1, float y1, float u0, float v0, float u1, float v1,
                  const float c[4])
 {
     if (h->n_verts + 6 > h->cap_verts) {
@@ -144,14 +133,14 @@ static void quad(gk_hud *h, float x0, float y0, float x1, float y1, float u0, fl
     }
 }
 
-static void rect(gk_hud *h, float x0, float y0, float x1, float y1, const float c[4])
+void gk_hud_rect(gk_hud *h, float x0, float y0, float x1, float y1, const float c[4])
 {
     float u = (h->font.white_x + 1.0f) / (float)h->font.width, v = (h->font.white_y + 1.0f) / (float)h->font.height;
-    quad(h, x0, y0, x1, y1, u, v, u, v, c);
+    gk_hud_quad(h, x0, y0, x1, y1, u, v, u, v, c);
 }
 
 /* Draws s with its baseline at y; returns the pen position after it. */
-static float text(gk_hud *h, float x, float y, const char *s, const float c[4])
+float gk_hud_text(gk_hud *h, float x, float y, const char *s, const float c[4])
 {
     if (!h->has_text)
         return x;
@@ -163,7 +152,7 @@ static float text(gk_hud *h, float x, float y, const char *s, const float c[4])
         const gk_glyph *g = &h->font.glyphs[ch - GK_FONT_FIRST];
         float gx = (float)(int)(x + g->xoff + 0.5f), gy = (float)(int)(y + g->yoff + 0.5f);
         if (g->x1 > g->x0)
-            quad(h, gx, gy, gx + (g->x1 - g->x0), gy + (g->y1 - g->y0), g->x0 * iw, g->y0 * ih, g->x1 * iw,
+            gk_hud_quad(h, gx, gy, gx + (g->x1 - g->x0), gy + (g->y1 - g->y0), g->x0 * iw, g->y0 * ih, g->x1 * iw,
                  g->y1 * ih, c);
         x += g->xadvance;
     }
@@ -177,6 +166,10 @@ void gk_hud_draw(gk_hud *h, unsigned fbo, const gk_hud_info *in)
                        bar_over[4] = {0.95f, 0.35f, 0.25f, 0.9f}, target_line[4] = {1, 0.85f, 0.2f, 1};
     h->n_verts = 0;
     float px = gk_font_px_for_height(h->height);
+    if (in->split)
+        gk_hud_split_view(h, in, px); /* under the panels */
+    if (in->panels_hidden)
+        goto draw;
     float pad = px * 0.5f, line = px * 1.25f;
     float x0 = pad, y0 = pad;
     float panel_w = (float)h->width * 0.42f;
@@ -209,21 +202,27 @@ void gk_hud_draw(gk_hud *h, unsigned fbo, const gk_hud_info *in)
         if (budget_lines[n_budget_lines][0])
             n_budget_lines++;
     }
-    int text_lines = h->has_text ? 2 + n_budget_lines : 0;
+    char error_line[160];
+    gk_hud_error_line(in, error_line, sizeof error_line);
+    int text_lines = h->has_text ? 2 + (error_line[0] != '\0') + n_budget_lines : 0;
     float panel_h = pad + text_lines * line + graph_h + pad;
-    rect(h, x0, y0, x0 + panel_w, y0 + panel_h, panel);
+    gk_hud_rect(h, x0, y0, x0 + panel_w, y0 + panel_h, panel);
 
     float y = y0 + pad + px; /* first baseline */
     char buf[256];
     if (h->has_text) {
-        float x = text(h, x0 + pad, y, in->scene ? in->scene : "-", white);
+        float x = gk_hud_text(h, x0 + pad, y, in->scene ? in->scene : "-", white);
         snprintf(buf, sizeof buf, "   method %s%s%s%s", in->method ? in->method : "-", in->method_mode ? " (" : "",
                  in->method_mode ? in->method_mode : "", in->method_mode ? ")" : "");
-        text(h, x, y, buf, grey);
+        gk_hud_text(h, x, y, buf, grey);
         y += line;
         snprintf(buf, sizeof buf, "frame %.1f ms   median %.1f   p95 %.1f   target %.1f", in->frame_ms,
                  in->median_ms, in->p95_ms, in->target_ms);
-        text(h, x0 + pad, y, buf, white);
+        gk_hud_text(h, x0 + pad, y, buf, white);
+        if (error_line[0]) {
+            y += line;
+            gk_hud_text(h, x0 + pad, y, error_line, white);
+        }
         y += line * 0.5f;
     }
     /* Graph: the recent frame times as bars; full height = 2 x target, the target line across. */
@@ -237,14 +236,18 @@ void gk_hud_draw(gk_hud *h, unsigned fbo, const gk_hud_info *in)
             if (hgt > gy1 - gy0)
                 hgt = gy1 - gy0;
             float bx = gx0 + (float)(GK_RECENT_FRAMES - in->recent->count + i) * bw;
-            rect(h, bx, gy1 - hgt, bx + (bw > 2 ? bw - 1 : bw), gy1, ms > in->target_ms ? bar_over : bar_ok);
+            gk_hud_rect(h, bx, gy1 - hgt, bx + (bw > 2 ? bw - 1 : bw), gy1, ms > in->target_ms ? bar_over : bar_ok);
         }
     }
     float ty = gy1 - (float)in->target_ms * scale;
-    rect(h, gx0, ty - 1, gx1, ty + 1, target_line);
+    gk_hud_rect(h, gx0, ty - 1, gx1, ty + 1, target_line);
     y = gy1 + line * 0.25f + px;
     for (int i = 0; i < n_budget_lines; i++, y += line)
-        text(h, x0 + pad, y, budget_lines[i], grey);
+        gk_hud_text(h, x0 + pad, y, budget_lines[i], grey);
+    if (in->truth_note)
+        gk_hud_error_plot(h, in, px);
+
+draw:;
 
     /* Draw, saving and restoring the state we touch. */
     GLint prev_fbo, prev_prog, prev_vao, prev_buf, prev_tex, prev_active, vp[4];

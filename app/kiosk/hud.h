@@ -18,6 +18,20 @@ typedef struct gk_hud_info {
     double frame_ms, median_ms, p95_ms, target_ms;
     const gk_recent *recent;
     const gk_budget *budget;
+    bool panels_hidden;           /* info clicked: no panels (the split view may still show) */
+    /* The live error (live_error.h). truth_note NULL: [truth] is off, nothing of it is drawn; "":
+       the truth runs; else why there is none. */
+    const char *truth_note;
+    double error, truth_noise;    /* the last measurement (NAN before the first) */
+    long truth_spp;
+    const struct gk_live_point *points; /* this scene's speed-vs-error points, current highlighted */
+    int n_points, current_point;
+    /* Split view: the truth's estimate (truth_w x truth_h RGB, a pixel per truth_sub^2 frame
+       pixels) over the right half, tonemapped with exposure as the frame is. */
+    bool split;
+    const float *truth_rgb;
+    int truth_w, truth_h, truth_sub;
+    float exposure;
 } gk_hud_info;
 
 /* font_path NULL: DejaVu Sans. A missing font is logged, not an error; a shader or GL failure is

@@ -26,8 +26,10 @@ typedef struct truth_job {
     int sub;                  /* frame pixels per truth pixel along each axis */
     int width, height, tiles_x, n_tiles;
     long next_item;           /* item = pass * n_tiles + tile */
-    double *sum, *sum_sq;     /* width * height * 3 each */
-    int *count;               /* samples per pixel */
+    double *sum, *sum_sq;     /* width * height * 3 each: over complete cycles, of their means */
+    int *count;               /* complete cycles per pixel */
+    double *cycle_sum;        /* width * height * 3: the passes of the cycle under way */
+    int *cycle_n;             /* and how many passes it holds */
     long fixed_spp;
     double fixed_noise;
     float *fixed_rgb;
@@ -58,10 +60,10 @@ int gk_truth_worker_count(int configured)
     return n > 1 ? (int)n - 1 : 1;
 }
 
-int gk_truth_size(int fw, int fh, int *w, int *h)
+int gk_truth_size(int fw, int fh, int max_w, int max_h, int *w, int *h)
 {
     int d = 1;
-    while (fw / d > GK_TRUTH_MAX_W || fh / d > GK_TRUTH_MAX_H)
+    while (fw / d > max_w || fh / d > max_h)
         d++;
     *w = fw / d > 0 ? fw / d : 1;
     *h = fh / d > 0 ? fh / d : 1;
@@ -77,6 +79,8 @@ static void job_free(truth_job *j)
     free(j->sum);
     free(j->sum_sq);
     free(j->count);
+    free(j->cycle_sum);
+    free(j->cycle_n);
     free(j->fixed_rgb);
     free(j);
 }
@@ -106,7 +110,7 @@ static void lower_priority(gk_truth *t)
 }
 
 /* Traces one pass of one tile into the local buffers; false when the view was retired meanwhile. */
-static bool trace_tile(gk_truth *t, truth_job *j, long item, double *acc, double *acc_sq, uint64_t *traced)
+static bool trace_tile(gk_truth *t, truth_job *j, long item, double *acc, uint64_t *traced)
 {
     int tile = (int)(item % j->n_tiles);
     uint64_t pass = (uint64_t)(item / j->n_tiles);
@@ -121,9 +125,11 @@ static bool trace_tile(gk_truth *t, truth_job *j, long item, double *acc, double
             uint64_t pix = (uint64_t)y * (uint64_t)j->width + (uint64_t)x;
             gk_rng rng;
             gk_rng_seed(&rng, j->seed, pix, pass, 2);
-            /* one of the centres of the sub x sub frame pixels this pixel stands for, at random */
-            float sx = (float)(gk_rng_u32(&rng) % (uint32_t)j->sub), sy = (float)(gk_rng_u32(&rng) % (uint32_t)j->sub);
-            vec3 d = gk_ref_camera_dir(rs, (float)x + (sx + 0.5f) / (float)j->sub, (float)y + (sy + 0.5f) / (float)j->sub);
+            /* pass p goes through the centre of frame pixel k = p mod sub^2 of those this pixel
+               stands for: a cycle of sub^2 passes visits each once (see truth.h) */
+            int k = (int)(pass % (uint64_t)(j->sub * j->sub));
+            float sx = (float)(k % j->sub), sy = (float)(k / j->sub);
+            vec3 d = gk_ref_camera_dir(rs, (float)(x * j->sub) + sx + 0.5f, (float)(y * j->sub) + sy + 0.5f);
             vec3 l = gk_trace_eye(rs, rs->eye, d, GK_PATH_ALL, GK_TERM_ALL, GK_BOUNCES_UNLIMITED, 32, 4, &rng, &st);
             (*traced)++;
             if (atomic_load_explicit(&t->generation, memory_order_relaxed) != j->generation)
@@ -131,15 +137,13 @@ static bool trace_tile(gk_truth *t, truth_job *j, long item, double *acc, double
             if (!(isfinite(l.x) && isfinite(l.y) && isfinite(l.z)))
                 l = (vec3){0, 0, 0}; /* as the reference renderer: a NaN sample counts as black */
             double v[3] = {l.x, l.y, l.z};
-            for (int c = 0; c < 3; c++) {
+            for (int c = 0; c < 3; c++)
                 acc[3 * i + c] = v[c];
-                acc_sq[3 * i + c] = v[c] * v[c];
-            }
         }
     return true;
 }
 
-static void add_tile_locked(truth_job *j, long item, const double *acc, const double *acc_sq)
+static void add_tile_locked(truth_job *j, long item, const double *acc)
 {
     int tile = (int)(item % j->n_tiles);
     int x0 = (tile % j->tiles_x) * TILE, y0 = (tile / j->tiles_x) * TILE;
@@ -147,10 +151,17 @@ static void add_tile_locked(truth_job *j, long item, const double *acc, const do
     for (int y = y0; y < y0 + TILE && y < j->height; y++)
         for (int x = x0; x < x0 + TILE && x < j->width; x++, i++) {
             size_t p = (size_t)y * (size_t)j->width + (size_t)x;
-            for (int c = 0; c < 3; c++) {
-                j->sum[3 * p + c] += acc[3 * i + c];
-                j->sum_sq[3 * p + c] += acc_sq[3 * i + c];
+            for (int c = 0; c < 3; c++)
+                j->cycle_sum[3 * p + c] += acc[3 * i + c];
+            if (++j->cycle_n[p] < j->sub * j->sub)
+                continue;
+            for (int c = 0; c < 3; c++) { /* a complete cycle: one sample of the box-filtered pixel */
+                double m = j->cycle_sum[3 * p + c] / (j->sub * j->sub);
+                j->sum[3 * p + c] += m;
+                j->sum_sq[3 * p + c] += m * m;
+                j->cycle_sum[3 * p + c] = 0;
             }
+            j->cycle_n[p] = 0;
             j->count[p]++;
         }
 }
@@ -159,7 +170,7 @@ static void *worker(void *arg)
 {
     gk_truth *t = arg;
     lower_priority(t);
-    double acc[TILE * TILE * 3], acc_sq[TILE * TILE * 3];
+    double acc[TILE * TILE * 3];
     pthread_mutex_lock(&t->lock);
     while (!t->quit) {
         truth_job *j = t->job;
@@ -172,12 +183,12 @@ static void *worker(void *arg)
         t->busy++;
         pthread_mutex_unlock(&t->lock);
         uint64_t traced = 0;
-        bool whole = trace_tile(t, j, item, acc, acc_sq, &traced);
+        bool whole = trace_tile(t, j, item, acc, &traced);
         pthread_mutex_lock(&t->lock);
         t->busy--;
         j->users--;
         if (whole && !j->retired) {
-            add_tile_locked(j, item, acc, acc_sq);
+            add_tile_locked(j, item, acc);
             t->samples += traced;
         } else if (!whole) {
             t->aborted_tiles++; /* left part-way: the retirement was seen between two samples */
@@ -241,10 +252,13 @@ static truth_job *job_alloc(int width, int height, bool fixed)
     j->n_tiles = j->tiles_x * ((height + TILE - 1) / TILE);
     if (fixed ? !(j->fixed_rgb = malloc(n * 3 * sizeof(float)))
               : !(j->sum = calloc(n * 3, sizeof(double))) || !(j->sum_sq = calloc(n * 3, sizeof(double))) ||
-                    !(j->count = calloc(n, sizeof(int)))) {
+                    !(j->count = calloc(n, sizeof(int))) || !(j->cycle_sum = calloc(n * 3, sizeof(double))) ||
+                    !(j->cycle_n = calloc(n, sizeof(int)))) {
         free(j->sum);
         free(j->sum_sq);
         free(j->count);
+        free(j->cycle_sum);
+        free(j->cycle_n);
         free(j->fixed_rgb);
         free(j);
         return NULL;
@@ -264,9 +278,9 @@ static uint64_t install(gk_truth *t, truth_job *j)
     return j->generation;
 }
 
-uint64_t gk_truth_restart(gk_truth *t, gk_ref_scene *rs, int sub, uint64_t seed)
+uint64_t gk_truth_restart(gk_truth *t, gk_ref_scene *rs, int width, int height, int sub, uint64_t seed)
 {
-    truth_job *j = job_alloc(rs->width, rs->height, false);
+    truth_job *j = job_alloc(width, height, false);
     if (!j) {
         gk_ref_scene_free(rs);
         gk_truth_stop(t);

@@ -57,18 +57,24 @@ static void sizes(void **state)
 {
     (void)state;
     int w, h;
-    assert_int_equal(gk_truth_size(1280, 720, &w, &h), 8);
+    assert_int_equal(gk_truth_size(1280, 720, GK_TRUTH_MAX_W, GK_TRUTH_MAX_H, &w, &h), 8);
     assert_int_equal(w, 160);
     assert_int_equal(h, 90);
-    assert_int_equal(gk_truth_size(320, 180, &w, &h), 2);
+    assert_int_equal(gk_truth_size(320, 180, GK_TRUTH_MAX_W, GK_TRUTH_MAX_H, &w, &h), 2);
     assert_int_equal(w, 160);
     assert_int_equal(h, 90);
-    gk_truth_size(640, 480, &w, &h); /* the committed references' size */
+    gk_truth_size(640, 480, GK_TRUTH_MAX_W, GK_TRUTH_MAX_H, &w, &h); /* the committed references' size */
     assert_int_equal(w, 160);
     assert_int_equal(h, 120);
-    gk_truth_size(100, 50, &w, &h);
+    gk_truth_size(100, 50, GK_TRUTH_MAX_W, GK_TRUTH_MAX_H, &w, &h);
     assert_int_equal(w, 100);
     assert_int_equal(h, 50);
+    assert_int_equal(gk_truth_size(320, 180, 320, 180, &w, &h), 1); /* [truth] size = 320x180 */
+    assert_int_equal(w, 320);
+    assert_int_equal(h, 180);
+    assert_int_equal(gk_truth_size(1366, 768, 160, 120, &w, &h), 9); /* not a divisor: 1359x765 compared */
+    assert_int_equal(w, 151);
+    assert_int_equal(h, 85);
     assert_int_equal(gk_truth_worker_count(3), 3);
     long cores = sysconf(_SC_NPROCESSORS_ONLN);
     assert_int_equal(gk_truth_worker_count(0), cores > 1 ? cores - 1 : 1);
@@ -101,7 +107,7 @@ static void noise_estimate_predicts_error(void **state)
     build(s, ref.width, ref.height, &rs);
     gk_truth *t = gk_truth_create(1, &e);
     assert_non_null(t);
-    gk_truth_restart(t, &rs, 1, 1);
+    gk_truth_restart(t, &rs, ref.width, ref.height, 1, 1);
     gk_truth_view v = {0};
     assert_true(wait_spp(t, &v, 32, 120));
     gk_truth_stop(t);
@@ -147,8 +153,8 @@ static void restart_and_stop(void **state)
     uint64_t last_gen = 0;
     for (int trial = 0; trial < stops; trial++) {
         gk_ref_scene rs;
-        build(s, 160, 90, &rs);
-        uint64_t g = gk_truth_restart(t, &rs, 2, (uint64_t)trial + 1);
+        build(s, 320, 180, &rs);
+        uint64_t g = gk_truth_restart(t, &rs, 160, 90, 2, (uint64_t)trial + 1);
         assert_true(g > last_gen);
         last_gen = g;
         assert_true(wait_spp(t, &v, 1, 60));
