@@ -163,6 +163,8 @@ static void begin_visit(kiosk *k)
     k->sched_skip = 0; /* the scheduler's own warm-up (gk_sched_params.warmup) covers a new visit */
 }
 
+static void draw_hud(void *user, const gk_pass_ctx *ctx, unsigned fbo);
+
 static int capture(kiosk *k, long frame, const char *scene, const char *method, gk_err *e)
 {
     char png[4096], exr[4096];
@@ -173,6 +175,13 @@ static int capture(kiosk *k, long frame, const char *scene, const char *method, 
     if (gk_renderer_capture(k->r, png, k->o->hdr ? exr : NULL, e))
         return gk_fail_prefix(e, "capture: ");
     gk_log("capture: %s", png);
+    if (k->o->capture_hud && k->hud) {
+        char hud[4096];
+        snprintf(hud, sizeof hud, "%.*s-hud.png", (int)strlen(png) - 4, png);
+        if (gk_renderer_capture_overlay(k->r, hud, draw_hud, k, e))
+            return gk_fail_prefix(e, "capture: ");
+        gk_log("capture: %s", hud);
+    }
     return 0;
 }
 
