@@ -22,7 +22,11 @@ typedef struct gk_font_atlas {
     int white_x, white_y;          /* a 2x2 block of full coverage, for solid rectangles */
 } gk_font_atlas;
 
-/* Pixel height of HUD text for a panel height: 28 px at 1080 lines, proportional, at least 10. */
+/* The smallest HUD text: 12 px (DejaVu Sans capitals about 9 px high), legible on a 640x360 panel;
+ * 10 px (the old floor) left capitals 7 px high, hard to read at kiosk distance. */
+#define GK_FONT_MIN_PX 12.0f
+/* Pixel height of HUD text for a panel height: 28 px at 1080 lines, proportional, at least
+ * GK_FONT_MIN_PX. */
 float gk_font_px_for_height(int panel_height);
 /* Bakes the font; GK_EINPUT if the file is missing or not a font. */
 int gk_font_atlas_build(gk_font_atlas *a, const char *ttf_path, float px, gk_err *e);

@@ -170,55 +170,40 @@ void gk_hud_draw(gk_hud *h, unsigned fbo, const gk_hud_info *in)
         gk_hud_split_view(h, in, px); /* under the panels */
     if (in->panels_hidden)
         goto draw;
+    /* Layout by panel size: corners only, never over the image centre (the middle third in both
+       directions, GK_HUD_CENTRE_*): top-left the scene, frame times, error and the frame-time graph,
+       no taller than the top third; bottom-left the knob levels, no wider than the left third and
+       inside the bottom third; bottom-right the speed-vs-error plot (hud_truth.c). */
     float pad = px * 0.5f, line = px * 1.25f;
     float x0 = pad, y0 = pad;
-    float panel_w = (float)h->width * 0.42f;
-    if (panel_w < 20 * px)
-        panel_w = (float)h->width - 2 * pad;
     float graph_h = 3 * line;
-
-    /* Budget lines wrap at the panel width. */
-    char budget_lines[6][256];
-    int n_budget_lines = 0;
-    budget_lines[0][0] = '\0';
-    if (h->has_text && in->budget) {
-        for (int k = 0; k < in->budget->n; k++) {
-            if (!gk_budget_knob_active(in->budget, k, in->method))
-                continue; /* knobs of methods not on screen say nothing to a visitor */
-            char item[96];
-            snprintf(item, sizeof item, "%s%s=%s", budget_lines[n_budget_lines][0] ? "  " : "",
-                     in->budget->def[k]->name, in->budget->def[k]->values[in->budget->level[k]]);
-            char trial[352];
-            snprintf(trial, sizeof trial, "%s%s", budget_lines[n_budget_lines], item);
-            if (budget_lines[n_budget_lines][0] && gk_font_text_width(&h->font, trial) > panel_w - 2 * pad) {
-                if (n_budget_lines == 5)
-                    break;
-                n_budget_lines++;
-                snprintf(budget_lines[n_budget_lines], sizeof budget_lines[0], "%s", item + 2);
-            } else {
-                snprintf(budget_lines[n_budget_lines], sizeof budget_lines[0], "%.255s", trial);
-            }
-        }
-        if (budget_lines[n_budget_lines][0])
-            n_budget_lines++;
-    }
-    char error_line[160];
+    char frame_line[256], method_line[160], error_line[160];
+    snprintf(method_line, sizeof method_line, "   method %s%s%s%s", in->method ? in->method : "-",
+             in->method_mode ? " (" : "", in->method_mode ? in->method_mode : "", in->method_mode ? ")" : "");
+    snprintf(frame_line, sizeof frame_line, "frame %.1f ms   median %.1f   p95 %.1f   target %.1f", in->frame_ms,
+             in->median_ms, in->p95_ms, in->target_ms);
     gk_hud_error_line(in, error_line, sizeof error_line);
-    int text_lines = h->has_text ? 2 + (error_line[0] != '\0') + n_budget_lines : 0;
+    float panel_w = (float)h->width * 0.3f; /* the graph's width at least */
+    if (h->has_text) {
+        float widths[3] = {gk_font_text_width(&h->font, in->scene ? in->scene : "-") +
+                               gk_font_text_width(&h->font, method_line),
+                           gk_font_text_width(&h->font, frame_line), gk_font_text_width(&h->font, error_line)};
+        for (int i = 0; i < 3; i++)
+            if (widths[i] + 2 * pad > panel_w)
+                panel_w = widths[i] + 2 * pad;
+    }
+    if (panel_w > (float)h->width - 2 * pad)
+        panel_w = (float)h->width - 2 * pad;
+    int text_lines = h->has_text ? 2 + (error_line[0] != '\0') : 0;
     float panel_h = pad + text_lines * line + graph_h + pad;
     gk_hud_rect(h, x0, y0, x0 + panel_w, y0 + panel_h, panel);
 
     float y = y0 + pad + px; /* first baseline */
-    char buf[256];
     if (h->has_text) {
         float x = gk_hud_text(h, x0 + pad, y, in->scene ? in->scene : "-", white);
-        snprintf(buf, sizeof buf, "   method %s%s%s%s", in->method ? in->method : "-", in->method_mode ? " (" : "",
-                 in->method_mode ? in->method_mode : "", in->method_mode ? ")" : "");
-        gk_hud_text(h, x, y, buf, grey);
+        gk_hud_text(h, x, y, method_line, grey);
         y += line;
-        snprintf(buf, sizeof buf, "frame %.1f ms   median %.1f   p95 %.1f   target %.1f", in->frame_ms,
-                 in->median_ms, in->p95_ms, in->target_ms);
-        gk_hud_text(h, x0 + pad, y, buf, white);
+        gk_hud_text(h, x0 + pad, y, frame_line, white);
         if (error_line[0]) {
             y += line;
             gk_hud_text(h, x0 + pad, y, error_line, white);
@@ -241,9 +226,49 @@ void gk_hud_draw(gk_hud *h, unsigned fbo, const gk_hud_info *in)
     }
     float ty = gy1 - (float)in->target_ms * scale;
     gk_hud_rect(h, gx0, ty - 1, gx1, ty + 1, target_line);
-    y = gy1 + line * 0.25f + px;
-    for (int i = 0; i < n_budget_lines; i++, y += line)
-        gk_hud_text(h, x0 + pad, y, budget_lines[i], grey);
+
+    /* Knob levels, bottom-left: wrapped at the left third, as many lines as the bottom third holds
+       (the rest are left out: the stats CSV has every knob). */
+    float bw_max = (float)h->width / 3.0f - 2 * pad;
+    int max_lines = (int)(((float)h->height / 3.0f - 3 * pad) / line);
+    if (max_lines > GK_HUD_MAX_BUDGET_LINES)
+        max_lines = GK_HUD_MAX_BUDGET_LINES;
+    char budget_lines[GK_HUD_MAX_BUDGET_LINES][256];
+    int n_budget_lines = 0;
+    budget_lines[0][0] = '\0';
+    if (h->has_text && in->budget && max_lines > 0) {
+        for (int k = 0; k < in->budget->n; k++) {
+            if (!gk_budget_knob_active(in->budget, k, in->method))
+                continue; /* knobs of methods not on screen say nothing to a visitor */
+            char item[96];
+            snprintf(item, sizeof item, "%s%s=%s", budget_lines[n_budget_lines][0] ? "  " : "",
+                     in->budget->def[k]->name, in->budget->def[k]->values[in->budget->level[k]]);
+            char trial[352];
+            snprintf(trial, sizeof trial, "%s%s", budget_lines[n_budget_lines], item);
+            if (budget_lines[n_budget_lines][0] && gk_font_text_width(&h->font, trial) > bw_max - 2 * pad) {
+                if (n_budget_lines == max_lines - 1)
+                    break;
+                n_budget_lines++;
+                snprintf(budget_lines[n_budget_lines], sizeof budget_lines[0], "%s", item + 2);
+            } else {
+                snprintf(budget_lines[n_budget_lines], sizeof budget_lines[0], "%.255s", trial);
+            }
+        }
+        if (budget_lines[n_budget_lines][0])
+            n_budget_lines++;
+    }
+    if (n_budget_lines > 0) {
+        float bw = 0;
+        for (int i = 0; i < n_budget_lines; i++) {
+            float w = gk_font_text_width(&h->font, budget_lines[i]);
+            bw = w > bw ? w : bw;
+        }
+        float by1 = (float)h->height - pad, by0 = by1 - (2 * pad + (float)n_budget_lines * line);
+        gk_hud_rect(h, x0, by0, x0 + bw + 2 * pad, by1, panel);
+        y = by0 + pad + px;
+        for (int i = 0; i < n_budget_lines; i++, y += line)
+            gk_hud_text(h, x0 + pad, y, budget_lines[i], grey);
+    }
     if (in->truth_note)
         gk_hud_error_plot(h, in, px);
 

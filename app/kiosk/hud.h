@@ -1,5 +1,7 @@
 /* The kiosk's HUD: scene, method, frame time (current, median, p95) with a frame-time graph against
- * the target line, and the budget knobs, drawn with alpha blending over the final image after
+ * the target line, the live error and its speed-vs-error plot ([truth] enabled), and the budget
+ * knobs, laid out in the corners by panel size and never over the image centre (the middle third
+ * in both directions: GK_HUD_CENTRE_* below), on semi-transparent panels, drawn with alpha blending over the final image after
  * gk_renderer_draw (so it is never in the renderer's captures). Text comes from a DejaVu Sans atlas
  * sized for the panel height; without the font the HUD shows the graph only. GL state it changes
  * is restored. */
@@ -11,6 +13,11 @@
 #include "stats.h"
 
 typedef struct gk_hud gk_hud;
+
+/* The image centre the panels keep clear of: [W/3, 2W/3) x [H/3, 2H/3) (the split view's truth
+ * image and divider are the exception: they are the image). */
+#define GK_HUD_CENTRE_LO (1.0 / 3.0)
+#define GK_HUD_CENTRE_HI (2.0 / 3.0)
 
 typedef struct gk_hud_info {
     const char *scene, *method;

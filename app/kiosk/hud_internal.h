@@ -20,6 +20,7 @@ struct gk_hud {
 };
 
 #define FLOATS_PER_VERT 8
+#define GK_HUD_MAX_BUDGET_LINES 8
 
 void gk_hud_quad(gk_hud *h, float x0, float y0, float x1, float y1, float u0, float v0, float u1, float v1,
                  const float c[4]);

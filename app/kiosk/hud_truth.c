@@ -96,21 +96,24 @@ void gk_hud_split_view(gk_hud *h, const gk_hud_info *in, float px)
             }
     }
     gk_hud_rect(h, mid - 1, 0, mid + 1, (float)h->height, divider);
-    /* the divider's label, at the bottom centre: both numbers */
-    char left[96], right[96];
-    snprintf(left, sizeof left, "%s %.1f ms  error %s", in->method ? in->method : "-", in->frame_ms,
-             isfinite(in->error) ? "" : "-");
+    /* the divider's label, two short lines centred on the divider at the bottom edge, between the
+       corner panels (the bottom third's middle is theirs to leave free): both numbers */
+    char top[96], bottom[96];
     if (isfinite(in->error))
-        snprintf(left + strlen(left), sizeof left - strlen(left), "%.3f", in->error);
-    if (in->truth_rgb && isfinite(in->truth_noise))
-        snprintf(right, sizeof right, "truth %ld spp  noise %.3f", in->truth_spp, in->truth_noise);
-    else if (in->truth_rgb)
-        snprintf(right, sizeof right, "truth %ld spp", in->truth_spp);
+        snprintf(top, sizeof top, "%s %.1f ms | error %.3f", in->method ? in->method : "-", in->frame_ms, in->error);
     else
-        snprintf(right, sizeof right, "%s", in->truth_note && in->truth_note[0] ? in->truth_note : "no truth");
-    float pad = px * 0.5f, wl = gk_font_text_width(&h->font, left), wr = gk_font_text_width(&h->font, right);
-    float y1 = (float)h->height - pad - 10 * px - pad; /* above the plot's row */
-    gk_hud_rect(h, mid - wl - 3 * pad, y1 - px - 2 * pad, mid + wr + 3 * pad, y1, panel);
-    gk_hud_text(h, mid - wl - 2 * pad, y1 - 1.3f * pad, left, white);
-    gk_hud_text(h, mid + 2 * pad, y1 - 1.3f * pad, right, white);
+        snprintf(top, sizeof top, "%s %.1f ms | error -", in->method ? in->method : "-", in->frame_ms);
+    if (in->truth_rgb && isfinite(in->truth_noise))
+        snprintf(bottom, sizeof bottom, "truth %ld spp | noise %.3f", in->truth_spp, in->truth_noise);
+    else if (in->truth_rgb)
+        snprintf(bottom, sizeof bottom, "truth %ld spp", in->truth_spp);
+    else
+        snprintf(bottom, sizeof bottom, "%s", in->truth_note && in->truth_note[0] ? in->truth_note : "no truth yet");
+    float pad = px * 0.5f, line = px * 1.25f;
+    float wt = gk_font_text_width(&h->font, top), wb = gk_font_text_width(&h->font, bottom);
+    float w = (wt > wb ? wt : wb) + 2 * pad;
+    float y1 = (float)h->height - pad, y0 = y1 - 2 * pad - 2 * line;
+    gk_hud_rect(h, mid - w / 2, y0, mid + w / 2, y1, panel);
+    gk_hud_text(h, mid - wt / 2, y0 + pad + px, top, white);
+    gk_hud_text(h, mid - wb / 2, y0 + pad + px + line, bottom, white);
 }

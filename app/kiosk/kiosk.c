@@ -423,9 +423,9 @@ static int frame(kiosk *k, double now, gk_err *e)
     if (k->live) {
         char levels[160];
         gk_budget_format_active(ran_budget(k), method, levels, sizeof levels);
-        if (gk_live_error_frame(k->live, k->r, now, method, levels, frame_ms, measured) && k->live->error_spp > 0 &&
-            (k->live->error_spp & (k->live->error_spp - 1)) == 0 && k->live->error_spp != k->last_logged_spp) {
-            /* one line each time the truth's samples double: how the error converges */
+        if (gk_live_error_frame(k->live, k->r, now, method, levels, frame_ms, judged) && k->live->error_spp > 0 &&
+            (k->live->error_spp >= 2 * k->last_logged_spp || k->live->error_spp < k->last_logged_spp)) {
+            /* one line each time the truth's samples double (or a new view starts): how it converges */
             k->last_logged_spp = k->live->error_spp;
             gk_log("truth: %s with %s: error %.4f (truth %ld spp, noise %.4f)", scene, method, k->live->error,
                    k->live->error_spp, k->live->error_noise);

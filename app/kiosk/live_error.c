@@ -165,10 +165,10 @@ static gk_live_point *point_for(gk_live_error *le, const char *method, const cha
 }
 
 bool gk_live_error_frame(gk_live_error *le, gk_renderer *r, double now, const char *method, const char *levels,
-                         double frame_ms, bool measured)
+                         double frame_ms, bool judged)
 {
     gk_live_point *pt = point_for(le, method, levels);
-    if (pt && measured) {
+    if (pt && judged) {
         pt->ms_sum += frame_ms;
         pt->frames++;
     }

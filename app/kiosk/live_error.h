@@ -33,7 +33,7 @@
 typedef struct gk_live_point {
     char method[32];
     char levels[160];         /* the active knobs as "name=value ..." */
-    double ms_sum;            /* frame times while it was shown */
+    double ms_sum;            /* judged frame times while it was shown (not the warm-up's one-off costs) */
     long frames;
     double error;             /* latest measured error (NAN: none yet) */
 } gk_live_point;
@@ -62,10 +62,11 @@ void gk_live_error_close(gk_live_error *le);
 /* A new scene is shown (s evaluated at t = 0 by the caller or not yet: done here). */
 void gk_live_error_scene(gk_live_error *le, gk_scene *s, int scene_index, const char *scene_name,
                          const char *scenes_dir);
-/* After a frame drawn and shown: its (method, levels) point gets the frame time; every
+/* After a frame drawn and shown: its (method, levels) point gets the frame time when judged (the
+ * scheduler's judged frames: no warm-up); every
  * GK_LIVE_ERROR_PERIOD_S the error is measured. Returns true when a new measurement was taken. */
 bool gk_live_error_frame(gk_live_error *le, gk_renderer *r, double now, const char *method, const char *levels,
-                         double frame_ms, bool measured);
+                         double frame_ms, bool judged);
 
 /* rel RMSE of a linear RGBA frame (fw x fh, top row first) box-downsampled by sub against truth
  * (w x h RGB, w * sub <= fw, h * sub <= fh); down receives the downsampled frame (w * h * 3). */
