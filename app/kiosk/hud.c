@@ -195,6 +195,11 @@ void gk_hud_draw(gk_hud *h, unsigned fbo, const gk_hud_info *in)
     if (panel_w > (float)h->width - 2 * pad)
         panel_w = (float)h->width - 2 * pad;
     int text_lines = h->has_text ? 2 + (error_line[0] != '\0') : 0;
+    float top_third = (float)h->height * (float)GK_HUD_CENTRE_LO - 1;
+    if (y0 + 2 * pad + text_lines * line + graph_h > top_third) /* small panels: a flatter graph */
+        graph_h = top_third - y0 - 2 * pad - text_lines * line;
+    if (graph_h < line)
+        graph_h = line;
     float panel_h = pad + text_lines * line + graph_h + pad;
     gk_hud_rect(h, x0, y0, x0 + panel_w, y0 + panel_h, panel);
 

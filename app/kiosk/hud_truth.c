@@ -39,8 +39,11 @@ void gk_hud_error_plot(gk_hud *h, const gk_hud_info *in, float px)
 {
     static const float panel[4] = {0, 0, 0, 0.55f}, axis[4] = {0.75f, 0.75f, 0.75f, 1},
                        ring[4] = {1, 1, 1, 1}, grey[4] = {0.75f, 0.75f, 0.75f, 1};
-    /* bottom-right corner: 16 x 10 text heights, clear of the centre (hud.h's layout rule) */
+    /* bottom-right corner: 16 x 10 text heights, at most the right third wide, so clear of the
+       centre (hud.h's layout rule) */
     float pad = px * 0.5f, w = 16 * px, hgt = 10 * px;
+    if (w > (float)h->width * (float)(1 - GK_HUD_CENTRE_HI) - 2 * pad)
+        w = (float)h->width * (float)(1 - GK_HUD_CENTRE_HI) - 2 * pad;
     float x1 = (float)h->width - pad, y1 = (float)h->height - pad, x0 = x1 - w, y0 = y1 - hgt;
     gk_hud_rect(h, x0, y0, x1, y1, panel);
     gk_hud_text(h, x0 + pad, y0 + pad + px, "error", grey);
