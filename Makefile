@@ -62,7 +62,7 @@ TEST_SHADERS := $(shell find tests/shaders -type f 2>/dev/null | LC_ALL=C sort)
 TEST_SHADER_STAMP := $(BUILD)/tests/shaders/.stamp
 $(TESTLIB_OBJS): CFLAGS_ALL += -DGK_TEST_SHADERS=\"$(abspath $(BUILD))/tests/shaders\"
 
-.PHONY: all run test test-only bench bench-compare calibrate references scenes ltc deps install asan tsan fuzz clean shaders-check
+.PHONY: all run test test-only bench bench-compare calibrate references scenes ltc deps install asan tsan bench-truth fuzz clean shaders-check
 all: $(BIN)
 
 $(BUILD)/obj/%.o: %.c
@@ -175,6 +175,10 @@ tsan: deps
 
 bench: deps $(BIN)
 	sh tools/bench.sh $(BIN)
+
+# The frame time with the live ground truth's workers on against off, runs interleaved (ratios).
+bench-truth: deps $(BIN)
+	sh tools/truth_bench.sh $(BIN)
 
 # This tree against an earlier commit, runs interleaved (tools/bench_compare.sh): per-pass ratios.
 # make bench-compare REV=<commit> [COMPARE_ARGS="--scene cornell --size 640x360 --runs 5"]
