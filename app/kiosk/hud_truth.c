@@ -35,6 +35,11 @@ static void method_colour(const char *m, float c[4])
     c[3] = 1;
 }
 
+/* Judged frames a point needs before it is plotted: one or two frames at a new level can still
+ * carry one-off costs the warm-up rule missed (a 1.5 s mean stretched the axis of the first
+ * screenshots); ten is a sixth of a second at 60 Hz. */
+#define PLOT_MIN_FRAMES 10
+
 void gk_hud_error_plot(gk_hud *h, const gk_hud_info *in, float px)
 {
     static const float panel[4] = {0, 0, 0, 0.55f}, axis[4] = {0.75f, 0.75f, 0.75f, 1},
@@ -53,7 +58,9 @@ void gk_hud_error_plot(gk_hud *h, const gk_hud_info *in, float px)
     double max_ms = in->target_ms, max_err = 0;
     for (int i = 0; i < in->n_points; i++) {
         const gk_live_point *p = &in->points[i];
-        if (p->frames > 0 && p->ms_sum / p->frames > max_ms)
+        if (p->frames < PLOT_MIN_FRAMES || !isfinite(p->error))
+            continue;
+        if (p->ms_sum / p->frames > max_ms)
             max_ms = p->ms_sum / p->frames;
         if (isfinite(p->error) && p->error > max_err)
             max_err = p->error;
@@ -67,7 +74,7 @@ void gk_hud_error_plot(gk_hud *h, const gk_hud_info *in, float px)
     gk_hud_text(h, ax1 - gk_font_text_width(&h->font, buf), y0 + pad + px, buf, grey);
     for (int i = 0; i < in->n_points; i++) {
         const gk_live_point *p = &in->points[i];
-        if (p->frames == 0 || !isfinite(p->error))
+        if (p->frames < PLOT_MIN_FRAMES || !isfinite(p->error))
             continue; /* not measured yet: no place on the plot */
         float x = ax0 + (float)(p->ms_sum / p->frames / max_ms) * (ax1 - ax0);
         float y = ay1 - (float)(p->error / max_err) * (ay1 - ay0);
