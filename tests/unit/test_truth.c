@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "io/image_io.h"
+#include "kiosk/live_error.h"
 #include "kiosk/truth.h"
 #include "ref/render.h"
 #include "scene/scene.h"
@@ -207,10 +208,33 @@ static void fixed_image(void **state)
     gk_truth_destroy(t);
 }
 
+/* The live error's measure: a 4x2 RGBA frame box-downsampled by 2 to 2x1, then rel RMSE against
+ * the truth, worked by hand: blocks average to (1,1,1) and (3,3,3); the truth (1,1,1), (2,2,2):
+ * rmse = sqrt((0 + 3 x 1^2) / 6) = sqrt(0.5), truth mean 1.5, rel RMSE = sqrt(0.5) / 1.5. */
+static void live_error_measure(void **state)
+{
+    (void)state;
+    float frame[4 * 2 * 4];
+    for (int y = 0; y < 2; y++)
+        for (int x = 0; x < 4; x++) {
+            float v = x < 2 ? (x + y == 1 ? 1.5f : 0.5f) : (x == 2 ? 2.0f : 4.0f);
+            float *p = &frame[4 * (y * 4 + x)];
+            p[0] = p[1] = p[2] = v;
+            p[3] = 123; /* alpha never counts */
+        }
+    const float truth[6] = {1, 1, 1, 2, 2, 2};
+    float down[6];
+    double err = gk_live_error_measure(frame, 4, 2, 2, truth, 2, 1, down);
+    assert_float_equal(down[0], 1.0f, 1e-6);
+    assert_float_equal(down[3], 3.0f, 1e-6);
+    assert_float_equal(err, sqrt(0.5) / 1.5, 1e-9);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(sizes),
+        cmocka_unit_test(live_error_measure),
         cmocka_unit_test(fixed_image),
         cmocka_unit_test(restart_and_stop),
         cmocka_unit_test(noise_estimate_predicts_error),
