@@ -24,7 +24,7 @@ typedef struct gk_font_atlas {
 
 /* The smallest HUD text: 14 px. stb_truetype's pixel height spans ascent to descent, so DejaVu Sans
  * capitals come out at about 0.6 of it: measured (tests/gpu/test_hud.c) 8 px high at 14 px, 7 at
- * 12, 11 at 720 lines (18.7 px), 17 at 1080 (28 px); the old floor of 10 px gave 6. */
+ * 12, 12 at 720 lines (18.7 px), 18 at 1080 (28 px); the old floor of 10 px gave 6. */
 #define GK_FONT_MIN_PX 14.0f
 /* Pixel height of HUD text for a panel height: 28 px at 1080 lines, proportional, at least
  * GK_FONT_MIN_PX. */

@@ -159,6 +159,33 @@ float gk_hud_text(gk_hud *h, float x, float y, const char *s, const float c[4])
     return x;
 }
 
+int gk_hud_wrap(gk_hud *h, const char *text, float max_w, char (*out)[256], int max_lines)
+{
+    int n = 0;
+    if (max_lines <= 0)
+        return 0;
+    out[0][0] = '\0';
+    const char *p = text;
+    while (*p) {
+        const char *sep = strstr(p, "   ");
+        size_t len = sep ? (size_t)(sep - p) : strlen(p);
+        char trial[520];
+        snprintf(trial, sizeof trial, "%s%s%.*s", out[n], out[n][0] ? "   " : "", (int)len, p);
+        if (out[n][0] && gk_font_text_width(&h->font, trial) > max_w) {
+            if (n + 1 == max_lines)
+                return n + 1; /* the rest is left out */
+            n++;
+            snprintf(out[n], sizeof out[n], "%.*s", (int)len, p);
+        } else {
+            snprintf(out[n], sizeof out[n], "%.255s", trial);
+        }
+        p += len;
+        while (*p == ' ')
+            p++;
+    }
+    return out[n][0] ? n + 1 : n;
+}
+
 void gk_hud_draw(gk_hud *h, unsigned fbo, const gk_hud_info *in)
 {
     static const float white[4] = {1, 1, 1, 1}, grey[4] = {0.75f, 0.75f, 0.75f, 1},
@@ -172,49 +199,42 @@ void gk_hud_draw(gk_hud *h, unsigned fbo, const gk_hud_info *in)
         goto draw;
     /* Layout by panel size: corners only, never over the image centre (the middle third in both
        directions, GK_HUD_CENTRE_*): top-left the scene, frame times, error and the frame-time graph,
-       no taller than the top third; bottom-left the knob levels, no wider than the left third and
-       inside the bottom third; bottom-right the speed-vs-error plot (hud_truth.c). */
+       within the left third; bottom-left the knob levels, within the left third and the bottom
+       third; bottom-right the speed-vs-error plot (hud_truth.c). */
     float pad = px * 0.5f, line = px * 1.25f;
     float x0 = pad, y0 = pad;
     float graph_h = 3 * line;
-    char frame_line[256], method_line[160], error_line[160];
-    snprintf(method_line, sizeof method_line, "   method %s%s%s%s", in->method ? in->method : "-",
-             in->method_mode ? " (" : "", in->method_mode ? in->method_mode : "", in->method_mode ? ")" : "");
-    snprintf(frame_line, sizeof frame_line, "frame %.1f ms   median %.1f   p95 %.1f   target %.1f", in->frame_ms,
+    /* The top-left panel stays inside the left third (so the top middle, where a ceiling light
+       usually is, stays clear): its lines are wrapped there, between items 3 spaces apart. */
+    float panel_w = (float)h->width * (float)GK_HUD_CENTRE_LO - pad - 1;
+    char groups[3][256], lines[GK_HUD_MAX_TOP_LINES][256];
+    int n_lines = 0, first_grey = -1;
+    snprintf(groups[0], sizeof groups[0], "%.63s   method %s%s%s%s", in->scene ? in->scene : "-",
+             in->method ? in->method : "-", in->method_mode ? " (" : "", in->method_mode ? in->method_mode : "",
+             in->method_mode ? ")" : "");
+    snprintf(groups[1], sizeof groups[1], "frame %.1f ms   median %.1f   p95 %.1f   target %.1f", in->frame_ms,
              in->median_ms, in->p95_ms, in->target_ms);
-    gk_hud_error_line(in, error_line, sizeof error_line);
-    float panel_w = (float)h->width * 0.3f; /* the graph's width at least */
-    if (h->has_text) {
-        float widths[3] = {gk_font_text_width(&h->font, in->scene ? in->scene : "-") +
-                               gk_font_text_width(&h->font, method_line),
-                           gk_font_text_width(&h->font, frame_line), gk_font_text_width(&h->font, error_line)};
-        for (int i = 0; i < 3; i++)
-            if (widths[i] + 2 * pad > panel_w)
-                panel_w = widths[i] + 2 * pad;
+    gk_hud_error_line(in, groups[2], sizeof groups[2]);
+    for (int g = 0; g < 3 && h->has_text; g++) {
+        if (!groups[g][0])
+            continue;
+        n_lines += gk_hud_wrap(h, groups[g], panel_w - 2 * pad, lines + n_lines, GK_HUD_MAX_TOP_LINES - n_lines);
+        if (g == 0)
+            first_grey = n_lines; /* the scene's own line is white, the rest of its group grey */
     }
-    if (panel_w > (float)h->width - 2 * pad)
-        panel_w = (float)h->width - 2 * pad;
-    int text_lines = h->has_text ? 2 + (error_line[0] != '\0') : 0;
-    float top_third = (float)h->height * (float)GK_HUD_CENTRE_LO - 1;
-    if (y0 + 2 * pad + text_lines * line + graph_h > top_third) /* small panels: a flatter graph */
-        graph_h = top_third - y0 - 2 * pad - text_lines * line;
+    float limit = (float)h->height * (float)GK_HUD_CENTRE_HI - pad; /* above the knob panel's third */
+    if (y0 + 2 * pad + n_lines * line + graph_h > limit)
+        graph_h = limit - y0 - 2 * pad - n_lines * line;
     if (graph_h < line)
         graph_h = line;
-    float panel_h = pad + text_lines * line + graph_h + pad;
+    float panel_h = pad + n_lines * line + graph_h + pad;
     gk_hud_rect(h, x0, y0, x0 + panel_w, y0 + panel_h, panel);
 
     float y = y0 + pad + px; /* first baseline */
-    if (h->has_text) {
-        float x = gk_hud_text(h, x0 + pad, y, in->scene ? in->scene : "-", white);
-        gk_hud_text(h, x, y, method_line, grey);
-        y += line;
-        gk_hud_text(h, x0 + pad, y, frame_line, white);
-        if (error_line[0]) {
-            y += line;
-            gk_hud_text(h, x0 + pad, y, error_line, white);
-        }
-        y += line * 0.5f;
-    }
+    for (int i = 0; i < n_lines; i++, y += line)
+        gk_hud_text(h, x0 + pad, y, lines[i], i == 0 || i >= first_grey ? white : grey);
+    if (n_lines > 0)
+        y -= line * 0.5f; /* the graph starts half a line under the last baseline */
     /* Graph: the recent frame times as bars; full height = 2 x target, the target line across. */
     float gx0 = x0 + pad, gx1 = x0 + panel_w - pad, gy0 = y, gy1 = y + graph_h - line * 0.25f;
     float scale = in->target_ms > 0 ? (gy1 - gy0) / (float)(2 * in->target_ms) : 0;

@@ -21,6 +21,10 @@ struct gk_hud {
 
 #define FLOATS_PER_VERT 8
 #define GK_HUD_MAX_BUDGET_LINES 8
+#define GK_HUD_MAX_TOP_LINES 8
+
+/* Wraps text (items separated by 3 spaces) into lines of at most max_w pixels; returns the count. */
+int gk_hud_wrap(gk_hud *h, const char *text, float max_w, char (*out)[256], int max_lines);
 
 void gk_hud_quad(gk_hud *h, float x0, float y0, float x1, float y1, float u0, float v0, float u1, float v1,
                  const float c[4]);

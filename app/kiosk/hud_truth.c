@@ -18,7 +18,7 @@ void gk_hud_error_line(const gk_hud_info *in, char *out, int len)
     else if (!isfinite(in->error))
         snprintf(out, (size_t)len, "error: waiting for the truth's first pass");
     else if (isfinite(in->truth_noise))
-        snprintf(out, (size_t)len, "error %.3f   truth %ld spp, noise %.3f", in->error, in->truth_spp, in->truth_noise);
+        snprintf(out, (size_t)len, "error %.3f   truth %ld spp   noise %.3f", in->error, in->truth_spp, in->truth_noise);
     else
         snprintf(out, (size_t)len, "error %.3f   truth %ld spp", in->error, in->truth_spp);
 }

@@ -159,6 +159,8 @@ static void begin_visit(kiosk *k)
         calibrate_visit(k, gk_playlist_scene(&k->pl), method, active);
     }
     gk_recent_clear(&k->recent);
+    if (k->live)
+        gk_live_error_method(k->live); /* the last method's error is not this one's */
     k->floor_over = 0;
     k->sched_skip = 0; /* the scheduler's own warm-up (gk_sched_params.warmup) covers a new visit */
 }
@@ -431,7 +433,7 @@ static int frame(kiosk *k, double now, gk_err *e)
                    k->live->error_spp, k->live->error_noise);
         }
         if (k->csv)
-            gk_stats_csv_truth(k->csv, k->live->error, k->live->error_spp);
+            gk_stats_csv_truth(k->csv, k->live->error, isfinite(k->live->error) ? k->live->error_spp : 0);
     }
     if (k->csv && gk_stats_csv_row(k->csv, k->frame, now, scene, method, &report, ran_budget(k), e))
         return -1;

@@ -164,6 +164,12 @@ static gk_live_point *point_for(gk_live_error *le, const char *method, const cha
     return p;
 }
 
+void gk_live_error_method(gk_live_error *le)
+{
+    le->error = NAN;
+    le->settle = true;
+}
+
 bool gk_live_error_frame(gk_live_error *le, gk_renderer *r, double now, const char *method, const char *levels,
                          double frame_ms, bool judged)
 {
@@ -171,6 +177,10 @@ bool gk_live_error_frame(gk_live_error *le, gk_renderer *r, double now, const ch
     if (pt && judged) {
         pt->ms_sum += frame_ms;
         pt->frames++;
+    }
+    if (le->settle) {
+        le->settle = false;
+        le->next_measure_s = now + GK_LIVE_SETTLE_S;
     }
     if (!gk_truth_snapshot(le->truth, &le->view) || now < le->next_measure_s)
         return false;

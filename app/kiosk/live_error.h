@@ -28,6 +28,10 @@
 #include "truth.h"
 
 #define GK_LIVE_ERROR_PERIOD_S 0.5
+/* After a method change the error is unknown until this much kiosk time has passed: the renderer
+ * cross-fades GI over gi_blend frames (4 by default; 0.1 s is 6 frames at 60 Hz), and a blend of two
+ * methods is neither's error. */
+#define GK_LIVE_SETTLE_S 0.1
 #define GK_LIVE_MAX_POINTS 24
 
 typedef struct gk_live_point {
@@ -49,6 +53,7 @@ typedef struct gk_live_error {
     long error_spp;           /* the truth's spp at that measurement */
     double error_noise;       /* and its noise */
     double next_measure_s;
+    bool settle;              /* a method change: the next measurement waits GK_LIVE_SETTLE_S */
     float *down;              /* the downsampled frame, w * h * 3 */
     int scene_index;
     int n_points[GK_MAX_PLAYLIST];
@@ -62,6 +67,8 @@ void gk_live_error_close(gk_live_error *le);
 /* A new scene is shown (s evaluated at t = 0 by the caller or not yet: done here). */
 void gk_live_error_scene(gk_live_error *le, gk_scene *s, int scene_index, const char *scene_name,
                          const char *scenes_dir);
+/* The method shown changed: the error is unknown (NAN) until it is measured on the new method. */
+void gk_live_error_method(gk_live_error *le);
 /* After a frame drawn and shown: its (method, levels) point gets the frame time when judged (the
  * scheduler's judged frames: no warm-up); every
  * GK_LIVE_ERROR_PERIOD_S the error is measured. Returns true when a new measurement was taken. */

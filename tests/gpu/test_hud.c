@@ -16,8 +16,8 @@
 #include "kiosk/hud.h"
 #include "kiosk/live_error.h"
 
-/* Capital height of the smallest HUD text (GK_FONT_MIN_PX, 14 px at 640x360): measured 8 px, 11 at
- * 1280x720, 17 at 1920x1080 (12 px text gave 7). 8 px is the floor asserted: a capital of fewer
+/* Capital height of the smallest HUD text (GK_FONT_MIN_PX, 14 px at 640x360): measured 8 px, 12 at
+ * 1280x720, 18 at 1920x1080 (12 px text gave 7). 8 px is the floor asserted: a capital of fewer
  * rows is hard to read at kiosk distance. */
 #define GK_TEST_MIN_CAP_PX 8
 
