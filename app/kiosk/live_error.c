@@ -151,16 +151,23 @@ static gk_live_point *point_for(gk_live_error *le, const char *method, const cha
             le->current_point = i;
             return &pts[i];
         }
-    if (le->n_points[si] == GK_LIVE_MAX_POINTS) {
-        le->current_point = -1;
-        return NULL; /* the plot is full: later configurations are not plotted */
+    int slot = le->n_points[si];
+    if (slot == GK_LIVE_MAX_POINTS) {
+        /* full: the point with the fewest frames gives way (the levels the scheduler only passed
+           through while stepping down), so the configuration now shown always has its point */
+        slot = 0;
+        for (int i = 1; i < GK_LIVE_MAX_POINTS; i++)
+            if (pts[i].frames < pts[slot].frames)
+                slot = i;
+    } else {
+        le->n_points[si]++;
     }
-    gk_live_point *p = &pts[le->n_points[si]];
+    gk_live_point *p = &pts[slot];
     memset(p, 0, sizeof *p);
     snprintf(p->method, sizeof p->method, "%s", method);
     snprintf(p->levels, sizeof p->levels, "%s", levels);
     p->error = NAN;
-    le->current_point = le->n_points[si]++;
+    le->current_point = slot;
     return p;
 }
 

@@ -15,7 +15,7 @@
  * (E[error^2] = true error^2 + noise^2, so the number means something once noise << error).
  *
  * The plot: per scene, one point per (method, knob levels) shown in this run: its mean frame time
- * and its latest error. */
+ * and its latest error; at most GK_LIVE_MAX_POINTS, the one with the fewest frames giving way. */
 #ifndef GK_KIOSK_LIVE_ERROR_H
 #define GK_KIOSK_LIVE_ERROR_H
 
