@@ -1,5 +1,5 @@
 # gikiosk — one entry point (DESIGN §1). `make` builds build/gikiosk.
-# Targets: all run test bench calibrate references scenes deps install asan fuzz clean
+# Targets: all run test bench calibrate references scenes deps install asan tsan fuzz clean
 
 PREFIX  ?= /usr/local
 DESTDIR ?=
@@ -62,7 +62,7 @@ TEST_SHADERS := $(shell find tests/shaders -type f 2>/dev/null | LC_ALL=C sort)
 TEST_SHADER_STAMP := $(BUILD)/tests/shaders/.stamp
 $(TESTLIB_OBJS): CFLAGS_ALL += -DGK_TEST_SHADERS=\"$(abspath $(BUILD))/tests/shaders\"
 
-.PHONY: all run test test-only bench bench-compare calibrate references scenes ltc deps install asan fuzz clean shaders-check
+.PHONY: all run test test-only bench bench-compare calibrate references scenes ltc deps install asan tsan bench-truth fuzz clean shaders-check
 all: $(BIN)
 
 $(BUILD)/obj/%.o: %.c
@@ -165,8 +165,20 @@ asan: deps
 	@GK_MESA_ASAN_OPTIONS=detect_leaks=0 $(MAKE) --no-print-directory BUILD=build-asan OPT=-O1 NO_FUZZ=1 \
 		SANITIZE="-fsanitize=address,undefined -fno-omit-frame-pointer" test-only
 
+# ThreadSanitizer over the threads of the kiosk's live ground truth (app/kiosk/truth.c): the truth's
+# unit test and the kiosk running with [truth] enabled on the mock platform (tools/tsan.sh). Mesa's
+# own races (llvmpipe's threads, inside the driver) are suppressed in tests/tsan.supp, nothing else.
+tsan: deps
+	@$(MAKE) --no-print-directory BUILD=build-tsan OPT=-O1 NO_FUZZ=1 SANITIZE="-fsanitize=thread" \
+		build-tsan/gikiosk build-tsan/tests/unit/test_truth
+	sh tools/tsan.sh build-tsan
+
 bench: deps $(BIN)
 	sh tools/bench.sh $(BIN)
+
+# The frame time with the live ground truth's workers on against off, runs interleaved (ratios).
+bench-truth: deps $(BIN)
+	sh tools/truth_bench.sh $(BIN)
 
 # This tree against an earlier commit, runs interleaved (tools/bench_compare.sh): per-pass ratios.
 # make bench-compare REV=<commit> [COMPARE_ARGS="--scene cornell --size 640x360 --runs 5"]
@@ -204,6 +216,6 @@ install: $(BIN)
 	install -m 644 board/99-gikiosk.rules $(DESTDIR)/lib/udev/rules.d/99-gikiosk.rules
 
 clean:
-	rm -rf build build-asan out
+	rm -rf build build-asan build-tsan out
 
 -include $(shell find $(BUILD)/obj -name '*.d' 2>/dev/null)

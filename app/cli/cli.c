@@ -26,6 +26,7 @@ void gk_run_usage(FILE *f)
           "  --capture DIR          write DIR/FFFFFF-SCENE-METHOD.png (the last frame of each scene visit)\n"
           "  --capture-every N      capture every Nth frame instead\n"
           "  --hdr                  captures also as linear .exr\n"
+          "  --capture-hud          captures also with the HUD drawn, as shown: FFFFFF-SCENE-METHOD-hud.png\n"
           "  --stats FILE.csv       one row per frame: times per pass and budget levels\n"
           "  --gles 3.1|3.2         restrict the renderer to GLES 3.1 (portable path) or allow 3.2\n"
           "  --budget K=V[,K=V]     pin budget knobs (the scheduler leaves them alone)\n"
@@ -53,6 +54,10 @@ int gk_run_parse_args(int argc, char **argv, gk_run_opts *o, gk_err *e)
         }
         if (!strcmp(arg, "--hdr")) {
             o->hdr = true;
+            continue;
+        }
+        if (!strcmp(arg, "--capture-hud")) {
+            o->capture_hud = true;
             continue;
         }
         if (strncmp(arg, "--", 2) != 0)
@@ -157,6 +162,8 @@ int gk_run_parse_args(int argc, char **argv, gk_run_opts *o, gk_err *e)
         return gk_fail(e, GK_EINPUT, "--capture-every: needs --capture DIR");
     if (o->hdr && !o->capture_dir)
         return gk_fail(e, GK_EINPUT, "--hdr: needs --capture DIR");
+    if (o->capture_hud && !o->capture_dir)
+        return gk_fail(e, GK_EINPUT, "--capture-hud: needs --capture DIR");
     if (o->scene) {
         char buf[1024], *save = NULL;
         snprintf(buf, sizeof buf, "%s", o->scene);

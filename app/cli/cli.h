@@ -21,6 +21,7 @@ typedef struct gk_run_opts {
     const char *capture_dir;
     long capture_every;             /* 0: the last frame of each scene visit */
     bool hdr;
+    bool capture_hud;   /* captures also with the HUD drawn (-hud.png) */
     const char *stats_path;
     int gles;                       /* 0 = best available, 31 or 32 */
     const char *budget_pins;        /* KNOB=VALUE,... */

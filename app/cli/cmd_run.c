@@ -72,7 +72,7 @@ static int run(int argc, char **argv, gk_err *e)
     }
     gk_kiosk_opts ko = {
         .size_set = o.size_set, .frames = o.frames, .seconds = o.seconds, .method = o.method,
-        .script = o.script, .capture_dir = o.capture_dir, .capture_every = o.capture_every, .hdr = o.hdr,
+        .script = o.script, .capture_dir = o.capture_dir, .capture_every = o.capture_every, .hdr = o.hdr, .capture_hud = o.capture_hud,
         .stats_path = o.stats_path, .gles = o.gles, .budget_pins = o.budget_pins,
         .shader_dir = o.shader_dir, .scenes_dir = o.scenes_dir,
     };

@@ -121,6 +121,8 @@ void gk_kiosk_config_defaults(gk_kiosk_config *c)
     b->evdev_code[GK_BTN_INFO] = KEY_I;
     c->dwell_s = 30;
     c->pause_after_input_s = 60;
+    c->truth_max_w = 160; /* GK_TRUTH_MAX_W x GK_TRUTH_MAX_H (truth.h) */
+    c->truth_max_h = 120;
 }
 
 /* ---- the parser -------------------------------------------------------------------------- */
@@ -135,7 +137,7 @@ typedef struct parse_ctx {
     gk_err *e;
 } parse_ctx;
 
-static const char *const sections[] = {"display", "frame", "buttons", "playlist", "cpu", "budgets", NULL};
+static const char *const sections[] = {"display", "frame", "buttons", "playlist", "cpu", "budgets", "truth", NULL};
 
 static int fail_at(parse_ctx *p, const char *fmt, const char *a, const char *b)
 {
@@ -179,7 +181,7 @@ static char *reader(char *str, int num, void *stream)
             for (int i = 0; sections[i]; i++)
                 known |= !strcmp(sections[i], sec);
             if (!known)
-                fail_at(p, "unknown section [%s] (known: display, frame, buttons, playlist, cpu, budgets)%s", sec, "");
+                fail_at(p, "unknown section [%s] (known: display, frame, buttons, playlist, cpu, budgets, truth)%s", sec, "");
         }
     }
     return str;
@@ -449,6 +451,21 @@ static int handler(void *user, const char *section, const char *name, const char
     }
     if (!strcmp(section, "budgets"))
         return budgets_key(p, name, val);
+    if (!strcmp(section, "truth")) {
+        if (!strcmp(name, "enabled")) {
+            if (!parse_bool(val, &p->c->truth_enabled))
+                return fail_at(p, "enabled: '%s' is not true or false%s", val, "");
+            return 1;
+        }
+        if (!strcmp(name, "workers")) /* 0 = cores - 1, at least 1 */
+            return int_in(p, name, val, 0, 64, &p->c->truth_workers);
+        if (!strcmp(name, "size")) {
+            if (gk_parse_size(val, &p->c->truth_max_w, &p->c->truth_max_h))
+                return fail_at(p, "size: '%s' is not WxH (e.g. 160x120)%s", val, "");
+            return 1;
+        }
+        return fail_at(p, "unknown key '%s' in [%s]", name, "truth");
+    }
     if (!section[0])
         return fail_at(p, "key '%s' outside any section%s", name, "");
     return 0; /* unknown section: already reported by the reader */

@@ -53,6 +53,10 @@ typedef struct gk_kiosk_config {
     /* [cpu] */
     int cpu_workers;                   /* threads a GI method may run on the CPU (lightmap's photon
                                           tracing), 0 = cores - 1 */
+    /* [truth] (app/kiosk/truth.h) */
+    bool truth_enabled;                /* the live ground truth and error on the HUD; off by default */
+    int truth_workers;                 /* its path-tracing threads, 0 = cores - 1 (at least 1) */
+    int truth_max_w, truth_max_h;      /* the largest truth image (160x120) */
     /* [budgets] */
     int n_ranges;
     gk_budget_range ranges[GK_MAX_KNOBS];

@@ -11,7 +11,7 @@
 float gk_font_px_for_height(int panel_height)
 {
     float px = 28.0f * (float)panel_height / 1080.0f;
-    return px < 10.0f ? 10.0f : px;
+    return px < GK_FONT_MIN_PX ? GK_FONT_MIN_PX : px;
 }
 
 static unsigned char *read_file(const char *path, long *len, gk_err *e)

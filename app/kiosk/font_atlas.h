@@ -22,7 +22,12 @@ typedef struct gk_font_atlas {
     int white_x, white_y;          /* a 2x2 block of full coverage, for solid rectangles */
 } gk_font_atlas;
 
-/* Pixel height of HUD text for a panel height: 28 px at 1080 lines, proportional, at least 10. */
+/* The smallest HUD text: 14 px. stb_truetype's pixel height spans ascent to descent, so DejaVu Sans
+ * capitals come out at about 0.6 of it: measured (tests/gpu/test_hud.c) 8 px high at 14 px, 7 at
+ * 12, 12 at 720 lines (18.7 px), 18 at 1080 (28 px); the old floor of 10 px gave 6. */
+#define GK_FONT_MIN_PX 14.0f
+/* Pixel height of HUD text for a panel height: 28 px at 1080 lines, proportional, at least
+ * GK_FONT_MIN_PX. */
 float gk_font_px_for_height(int panel_height);
 /* Bakes the font; GK_EINPUT if the file is missing or not a font. */
 int gk_font_atlas_build(gk_font_atlas *a, const char *ttf_path, float px, gk_err *e);

@@ -9,6 +9,7 @@
 #include "gl/gl.h"
 #include "gl/gl_program.h"
 #include "font_atlas.h"
+#include "hud_internal.h"
 
 /* hud/hud.{vert,frag} */
 typedef struct hud_uniforms {
@@ -16,18 +17,6 @@ typedef struct hud_uniforms {
 } hud_uniforms;
 static const gk_uniform_field hud_fields[] = {GK_UNIFORM(hud_uniforms, u_viewport), GK_UNIFORM(hud_uniforms, u_atlas)};
 
-struct gk_hud {
-    int width, height;
-    gk_program_cache *programs;
-    GLuint program, vao, vbo, atlas_tex;
-    const hud_uniforms *u;         /* resolved with the program, kept by the cache */
-    gk_font_atlas font;
-    int has_text;
-    float *verts;                  /* x y u v r g b a per vertex */
-    int n_verts, cap_verts;
-};
-
-#define FLOATS_PER_VERT 8
 
 gk_hud *gk_hud_create(int width, int height, const char *shader_dir, int gles, const char *font_path, gk_err *e)
 {
@@ -124,7 +113,7 @@ int gk_hud_has_text(const gk_hud *h) { return h && h->has_text; }
 
 /* ---- geometry ------------------------------------------------------------------------------- */
 
-static void quad(gk_hud *h, float x0, float y0, float x1, float y1, float u0, float v0, float u1, float v1,
+void gk_hud_quad(gk_hud *h, float x0, float y0, float x1, float y1, float u0, float v0, float u1, float v1,
                  const float c[4])
 {
     if (h->n_verts + 6 > h->cap_verts) {
@@ -144,14 +133,14 @@ static void quad(gk_hud *h, float x0, float y0, float x1, float y1, float u0, fl
     }
 }
 
-static void rect(gk_hud *h, float x0, float y0, float x1, float y1, const float c[4])
+void gk_hud_rect(gk_hud *h, float x0, float y0, float x1, float y1, const float c[4])
 {
     float u = (h->font.white_x + 1.0f) / (float)h->font.width, v = (h->font.white_y + 1.0f) / (float)h->font.height;
-    quad(h, x0, y0, x1, y1, u, v, u, v, c);
+    gk_hud_quad(h, x0, y0, x1, y1, u, v, u, v, c);
 }
 
 /* Draws s with its baseline at y; returns the pen position after it. */
-static float text(gk_hud *h, float x, float y, const char *s, const float c[4])
+float gk_hud_text(gk_hud *h, float x, float y, const char *s, const float c[4])
 {
     if (!h->has_text)
         return x;
@@ -163,11 +152,38 @@ static float text(gk_hud *h, float x, float y, const char *s, const float c[4])
         const gk_glyph *g = &h->font.glyphs[ch - GK_FONT_FIRST];
         float gx = (float)(int)(x + g->xoff + 0.5f), gy = (float)(int)(y + g->yoff + 0.5f);
         if (g->x1 > g->x0)
-            quad(h, gx, gy, gx + (g->x1 - g->x0), gy + (g->y1 - g->y0), g->x0 * iw, g->y0 * ih, g->x1 * iw,
+            gk_hud_quad(h, gx, gy, gx + (g->x1 - g->x0), gy + (g->y1 - g->y0), g->x0 * iw, g->y0 * ih, g->x1 * iw,
                  g->y1 * ih, c);
         x += g->xadvance;
     }
     return x;
+}
+
+int gk_hud_wrap(gk_hud *h, const char *text, float max_w, char (*out)[256], int max_lines)
+{
+    int n = 0;
+    if (max_lines <= 0)
+        return 0;
+    out[0][0] = '\0';
+    const char *p = text;
+    while (*p) {
+        const char *sep = strstr(p, "   ");
+        size_t len = sep ? (size_t)(sep - p) : strlen(p);
+        char trial[520];
+        snprintf(trial, sizeof trial, "%s%s%.*s", out[n], out[n][0] ? "   " : "", (int)len, p);
+        if (out[n][0] && gk_font_text_width(&h->font, trial) > max_w) {
+            if (n + 1 == max_lines)
+                return n + 1; /* the rest is left out */
+            n++;
+            snprintf(out[n], sizeof out[n], "%.*s", (int)len, p);
+        } else {
+            snprintf(out[n], sizeof out[n], "%.255s", trial);
+        }
+        p += len;
+        while (*p == ' ')
+            p++;
+    }
+    return out[n][0] ? n + 1 : n;
 }
 
 void gk_hud_draw(gk_hud *h, unsigned fbo, const gk_hud_info *in)
@@ -177,55 +193,48 @@ void gk_hud_draw(gk_hud *h, unsigned fbo, const gk_hud_info *in)
                        bar_over[4] = {0.95f, 0.35f, 0.25f, 0.9f}, target_line[4] = {1, 0.85f, 0.2f, 1};
     h->n_verts = 0;
     float px = gk_font_px_for_height(h->height);
+    if (in->split)
+        gk_hud_split_view(h, in, px); /* under the panels */
+    if (in->panels_hidden)
+        goto draw;
+    /* Layout by panel size: corners only, never over the image centre (the middle third in both
+       directions, GK_HUD_CENTRE_*): top-left the scene, frame times, error and the frame-time graph,
+       within the left third; bottom-left the knob levels, within the left third and the bottom
+       third; bottom-right the speed-vs-error plot (hud_truth.c). */
     float pad = px * 0.5f, line = px * 1.25f;
     float x0 = pad, y0 = pad;
-    float panel_w = (float)h->width * 0.42f;
-    if (panel_w < 20 * px)
-        panel_w = (float)h->width - 2 * pad;
     float graph_h = 3 * line;
-
-    /* Budget lines wrap at the panel width. */
-    char budget_lines[6][256];
-    int n_budget_lines = 0;
-    budget_lines[0][0] = '\0';
-    if (h->has_text && in->budget) {
-        for (int k = 0; k < in->budget->n; k++) {
-            if (!gk_budget_knob_active(in->budget, k, in->method))
-                continue; /* knobs of methods not on screen say nothing to a visitor */
-            char item[96];
-            snprintf(item, sizeof item, "%s%s=%s", budget_lines[n_budget_lines][0] ? "  " : "",
-                     in->budget->def[k]->name, in->budget->def[k]->values[in->budget->level[k]]);
-            char trial[352];
-            snprintf(trial, sizeof trial, "%s%s", budget_lines[n_budget_lines], item);
-            if (budget_lines[n_budget_lines][0] && gk_font_text_width(&h->font, trial) > panel_w - 2 * pad) {
-                if (n_budget_lines == 5)
-                    break;
-                n_budget_lines++;
-                snprintf(budget_lines[n_budget_lines], sizeof budget_lines[0], "%s", item + 2);
-            } else {
-                snprintf(budget_lines[n_budget_lines], sizeof budget_lines[0], "%.255s", trial);
-            }
-        }
-        if (budget_lines[n_budget_lines][0])
-            n_budget_lines++;
+    /* The top-left panel stays inside the left third (so the top middle, where a ceiling light
+       usually is, stays clear): its lines are wrapped there, between items 3 spaces apart. */
+    float panel_w = (float)h->width * (float)GK_HUD_CENTRE_LO - pad - 1;
+    char groups[3][256], lines[GK_HUD_MAX_TOP_LINES][256];
+    int n_lines = 0, first_grey = -1;
+    snprintf(groups[0], sizeof groups[0], "%.63s   method %s%s%s%s", in->scene ? in->scene : "-",
+             in->method ? in->method : "-", in->method_mode ? " (" : "", in->method_mode ? in->method_mode : "",
+             in->method_mode ? ")" : "");
+    snprintf(groups[1], sizeof groups[1], "frame %.1f ms   median %.1f   p95 %.1f   target %.1f", in->frame_ms,
+             in->median_ms, in->p95_ms, in->target_ms);
+    gk_hud_error_line(in, groups[2], sizeof groups[2]);
+    for (int g = 0; g < 3 && h->has_text; g++) {
+        if (!groups[g][0])
+            continue;
+        n_lines += gk_hud_wrap(h, groups[g], panel_w - 2 * pad, lines + n_lines, GK_HUD_MAX_TOP_LINES - n_lines);
+        if (g == 0)
+            first_grey = n_lines; /* the scene's own line is white, the rest of its group grey */
     }
-    int text_lines = h->has_text ? 2 + n_budget_lines : 0;
-    float panel_h = pad + text_lines * line + graph_h + pad;
-    rect(h, x0, y0, x0 + panel_w, y0 + panel_h, panel);
+    float limit = (float)h->height * (float)GK_HUD_CENTRE_HI - pad; /* above the knob panel's third */
+    if (y0 + 2 * pad + n_lines * line + graph_h > limit)
+        graph_h = limit - y0 - 2 * pad - n_lines * line;
+    if (graph_h < line)
+        graph_h = line;
+    float panel_h = pad + n_lines * line + graph_h + pad;
+    gk_hud_rect(h, x0, y0, x0 + panel_w, y0 + panel_h, panel);
 
     float y = y0 + pad + px; /* first baseline */
-    char buf[256];
-    if (h->has_text) {
-        float x = text(h, x0 + pad, y, in->scene ? in->scene : "-", white);
-        snprintf(buf, sizeof buf, "   method %s%s%s%s", in->method ? in->method : "-", in->method_mode ? " (" : "",
-                 in->method_mode ? in->method_mode : "", in->method_mode ? ")" : "");
-        text(h, x, y, buf, grey);
-        y += line;
-        snprintf(buf, sizeof buf, "frame %.1f ms   median %.1f   p95 %.1f   target %.1f", in->frame_ms,
-                 in->median_ms, in->p95_ms, in->target_ms);
-        text(h, x0 + pad, y, buf, white);
-        y += line * 0.5f;
-    }
+    for (int i = 0; i < n_lines; i++, y += line)
+        gk_hud_text(h, x0 + pad, y, lines[i], i == 0 || i >= first_grey ? white : grey);
+    if (n_lines > 0)
+        y -= line * 0.5f; /* the graph starts half a line under the last baseline */
     /* Graph: the recent frame times as bars; full height = 2 x target, the target line across. */
     float gx0 = x0 + pad, gx1 = x0 + panel_w - pad, gy0 = y, gy1 = y + graph_h - line * 0.25f;
     float scale = in->target_ms > 0 ? (gy1 - gy0) / (float)(2 * in->target_ms) : 0;
@@ -237,14 +246,58 @@ void gk_hud_draw(gk_hud *h, unsigned fbo, const gk_hud_info *in)
             if (hgt > gy1 - gy0)
                 hgt = gy1 - gy0;
             float bx = gx0 + (float)(GK_RECENT_FRAMES - in->recent->count + i) * bw;
-            rect(h, bx, gy1 - hgt, bx + (bw > 2 ? bw - 1 : bw), gy1, ms > in->target_ms ? bar_over : bar_ok);
+            gk_hud_rect(h, bx, gy1 - hgt, bx + (bw > 2 ? bw - 1 : bw), gy1, ms > in->target_ms ? bar_over : bar_ok);
         }
     }
     float ty = gy1 - (float)in->target_ms * scale;
-    rect(h, gx0, ty - 1, gx1, ty + 1, target_line);
-    y = gy1 + line * 0.25f + px;
-    for (int i = 0; i < n_budget_lines; i++, y += line)
-        text(h, x0 + pad, y, budget_lines[i], grey);
+    gk_hud_rect(h, gx0, ty - 1, gx1, ty + 1, target_line);
+
+    /* Knob levels, bottom-left: wrapped at the left third, as many lines as the bottom third holds
+       (the rest are left out: the stats CSV has every knob). */
+    float bw_max = (float)h->width / 3.0f - 2 * pad;
+    int max_lines = (int)(((float)h->height / 3.0f - 3 * pad) / line);
+    if (max_lines > GK_HUD_MAX_BUDGET_LINES)
+        max_lines = GK_HUD_MAX_BUDGET_LINES;
+    char budget_lines[GK_HUD_MAX_BUDGET_LINES][256];
+    int n_budget_lines = 0;
+    budget_lines[0][0] = '\0';
+    if (h->has_text && in->budget && max_lines > 0) {
+        for (int k = 0; k < in->budget->n; k++) {
+            if (!gk_budget_knob_active(in->budget, k, in->method))
+                continue; /* knobs of methods not on screen say nothing to a visitor */
+            char item[96];
+            snprintf(item, sizeof item, "%s%s=%s", budget_lines[n_budget_lines][0] ? "  " : "",
+                     in->budget->def[k]->name, in->budget->def[k]->values[in->budget->level[k]]);
+            char trial[352];
+            snprintf(trial, sizeof trial, "%s%s", budget_lines[n_budget_lines], item);
+            if (budget_lines[n_budget_lines][0] && gk_font_text_width(&h->font, trial) > bw_max - 2 * pad) {
+                if (n_budget_lines == max_lines - 1)
+                    break;
+                n_budget_lines++;
+                snprintf(budget_lines[n_budget_lines], sizeof budget_lines[0], "%s", item + 2);
+            } else {
+                snprintf(budget_lines[n_budget_lines], sizeof budget_lines[0], "%.255s", trial);
+            }
+        }
+        if (budget_lines[n_budget_lines][0])
+            n_budget_lines++;
+    }
+    if (n_budget_lines > 0) {
+        float bw = 0;
+        for (int i = 0; i < n_budget_lines; i++) {
+            float w = gk_font_text_width(&h->font, budget_lines[i]);
+            bw = w > bw ? w : bw;
+        }
+        float by1 = (float)h->height - pad, by0 = by1 - (2 * pad + (float)n_budget_lines * line);
+        gk_hud_rect(h, x0, by0, x0 + bw + 2 * pad, by1, panel);
+        y = by0 + pad + px;
+        for (int i = 0; i < n_budget_lines; i++, y += line)
+            gk_hud_text(h, x0 + pad, y, budget_lines[i], grey);
+    }
+    if (in->truth_note)
+        gk_hud_error_plot(h, in, px);
+
+draw:;
 
     /* Draw, saving and restoring the state we touch. */
     GLint prev_fbo, prev_prog, prev_vao, prev_buf, prev_tex, prev_active, vp[4];

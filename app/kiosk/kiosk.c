@@ -19,6 +19,7 @@
 #include "../sched/calibration.h"
 #include "../sched/scheduler.h"
 #include "hud.h"
+#include "live_error.h"
 #include "playlist.h"
 #include "stats.h"
 #include "visit_memory.h"
@@ -29,6 +30,7 @@ typedef struct kiosk {
     gk_platform *plat;
     gk_renderer *r;
     gk_hud *hud;
+    gk_live_error *live;                 /* the live ground truth ([truth] enabled), or NULL */
     int width, height;
     gk_playlist pl;
     gk_scene *scenes[GK_MAX_PLAYLIST];  /* loaded on first visit, kept */
@@ -47,6 +49,7 @@ typedef struct kiosk {
     bool have_frame;                     /* a frame of the current visit is drawn and not captured */
     double last_frame_ms;                /* newest measured frame (the HUD's number) */
     long last_frame;
+    long last_logged_spp;                /* the truth's spp at the last error logged */
     char last_scene[GK_NAME_LEN], last_method[GK_METHOD_LEN];
     long floor_over;                     /* judged frames of this visit over the target at the floor */
     gk_notify notify;                    /* systemd readiness + watchdog (Type=notify) */
@@ -156,9 +159,13 @@ static void begin_visit(kiosk *k)
         calibrate_visit(k, gk_playlist_scene(&k->pl), method, active);
     }
     gk_recent_clear(&k->recent);
+    if (k->live)
+        gk_live_error_method(k->live); /* the last method's error is not this one's */
     k->floor_over = 0;
     k->sched_skip = 0; /* the scheduler's own warm-up (gk_sched_params.warmup) covers a new visit */
 }
+
+static void draw_hud(void *user, const gk_pass_ctx *ctx, unsigned fbo);
 
 static int capture(kiosk *k, long frame, const char *scene, const char *method, gk_err *e)
 {
@@ -170,6 +177,13 @@ static int capture(kiosk *k, long frame, const char *scene, const char *method, 
     if (gk_renderer_capture(k->r, png, k->o->hdr ? exr : NULL, e))
         return gk_fail_prefix(e, "capture: ");
     gk_log("capture: %s", png);
+    if (k->o->capture_hud && k->hud) {
+        char hud[4096];
+        snprintf(hud, sizeof hud, "%.*s-hud.png", (int)strlen(png) - 4, png);
+        if (gk_renderer_capture_overlay(k->r, hud, draw_hud, k, e))
+            return gk_fail_prefix(e, "capture: ");
+        gk_log("capture: %s", hud);
+    }
     return 0;
 }
 
@@ -238,6 +252,8 @@ static int enter_scene(kiosk *k, gk_err *e)
     for (int m = 0; m < n; m++)
         snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", m ? "," : "", methods[m]);
     gk_log("scene %s (method %s; methods %s)", name, gk_playlist_method(&k->pl), list);
+    if (k->live)
+        gk_live_error_scene(k->live, k->scenes[k->pl.current], k->pl.current, name, k->o->scenes_dir);
     begin_visit(k);
     return 0;
 }
@@ -258,7 +274,7 @@ static int open_outputs(kiosk *k, gk_err *e)
 {
     if (k->o->capture_dir && mkdir(k->o->capture_dir, 0777) != 0 && errno != EEXIST)
         return gk_fail(e, GK_ERUNTIME, "--capture: cannot create '%s': %s", k->o->capture_dir, strerror(errno));
-    if (k->o->stats_path && !(k->csv = gk_stats_csv_open(k->o->stats_path, e)))
+    if (k->o->stats_path && !(k->csv = gk_stats_csv_open_truth(k->o->stats_path, k->live != NULL, e)))
         return -1;
     return 0;
 }
@@ -290,7 +306,25 @@ static void draw_hud(void *user, const gk_pass_ctx *ctx, unsigned fbo)
         .method_mode = k->o->method || k->pl.method != k->pl.default_method ? "forced" : "auto",
         .median_ms = gk_recent_percentile(&k->recent, 0.5f), .p95_ms = gk_recent_percentile(&k->recent, 0.95f),
         .target_ms = k->c->target_ms, .recent = &k->recent, .budget = ran_budget(k),
+        .panels_hidden = !k->pl.hud_visible, .error = NAN, .truth_noise = NAN,
     };
+    if (k->live) {
+        const gk_live_error *le = k->live;
+        int si = le->scene_index < 0 ? 0 : le->scene_index;
+        info.truth_note = le->note;
+        info.error = le->error;
+        info.truth_noise = le->error_noise;
+        info.truth_spp = le->error_spp;
+        info.points = le->points[si];
+        info.n_points = le->n_points[si];
+        info.current_point = le->current_point;
+        info.split = k->pl.split_view;
+        info.truth_rgb = le->view.generation ? le->view.rgb : NULL;
+        info.truth_w = le->view.width;
+        info.truth_h = le->view.height;
+        info.truth_sub = le->sub;
+        info.exposure = gk_renderer_exposure(k->r);
+    }
     gk_hud_draw(k->hud, fbo, &info);
 }
 
@@ -345,7 +379,7 @@ static int frame(kiosk *k, double now, gk_err *e)
 {
     const char *scene = gk_playlist_scene(&k->pl), *method = gk_playlist_method(&k->pl);
     gk_frame_params fp = {.time_s = now - k->pl.visit_start_s, .method = method, .budget = &k->budget};
-    if (k->hud && k->pl.hud_visible) {
+    if (k->hud && (k->pl.hud_visible || (k->pl.split_view && k->live))) {
         fp.overlay = draw_hud;
         fp.overlay_user = k;
     }
@@ -387,6 +421,19 @@ static int frame(kiosk *k, double now, gk_err *e)
         if (frame_ms > k->c->target_ms && ++k->floor_over == FLOOR_OVER_TO_SAY)
             gk_log("scene %s: cannot meet the %.0f ms target with method %s: %d judged frames over it with every "
                    "knob at its floor (this one %.1f ms)", scene, k->c->target_ms, method, FLOOR_OVER_TO_SAY, frame_ms);
+    }
+    if (k->live) {
+        char levels[160];
+        gk_budget_format_active(ran_budget(k), method, levels, sizeof levels);
+        if (gk_live_error_frame(k->live, k->r, now, method, levels, frame_ms, judged) && k->live->error_spp > 0 &&
+            (k->live->error_spp >= 2 * k->last_logged_spp || k->live->error_spp < k->last_logged_spp)) {
+            /* one line each time the truth's samples double (or a new view starts): how it converges */
+            k->last_logged_spp = k->live->error_spp;
+            gk_log("truth: %s with %s: error %.4f (truth %ld spp, noise %.4f)", scene, method, k->live->error,
+                   k->live->error_spp, k->live->error_noise);
+        }
+        if (k->csv)
+            gk_stats_csv_truth(k->csv, k->live->error, isfinite(k->live->error) ? k->live->error_spp : 0);
     }
     if (k->csv && gk_stats_csv_row(k->csv, k->frame, now, scene, method, &report, ran_budget(k), e))
         return -1;
@@ -440,6 +487,9 @@ static int handle_input(kiosk *k, double now, bool *scene_changed, gk_err *e)
         }
         if (what & GK_PL_HUD)
             gk_log("HUD %s", k->pl.hud_visible ? "on" : "off");
+        if (what & GK_PL_SPLIT)
+            gk_log("split view %s%s", k->pl.split_view ? "on" : "off",
+                   k->live ? "" : " (no ground truth: [truth] enabled = false)");
     }
     if (gk_playlist_tick(&k->pl, now) & GK_PL_SCENE) {
         gk_log("attract mode: next scene at %.2f s", now);
@@ -547,6 +597,14 @@ static int open_renderer(kiosk *k, gk_err *e)
     k->hud = gk_hud_create(k->width, k->height, k->o->shader_dir, ro.gles_version >= 32 ? 32 : 31, NULL, &he);
     if (!k->hud)
         gk_log("running without HUD: %s", he.msg); /* the kiosk never dies for its overlay */
+    if (k->c->truth_enabled) {
+        gk_err te = {0};
+        if (!(k->live = malloc(sizeof *k->live)) || gk_live_error_open(k->live, k->c, k->width, k->height, &te)) {
+            gk_log("running without the live ground truth: %s", te.msg[0] ? te.msg : "out of memory");
+            free(k->live);
+            k->live = NULL;
+        }
+    }
     return 0;
 }
 
@@ -583,6 +641,10 @@ done:
     fflush(stdout);
     gk_summary_free(&k->summary);
     gk_hud_destroy(k->hud);
+    if (k->live) {
+        gk_live_error_close(k->live);
+        free(k->live);
+    }
     gk_renderer_destroy(k->r);
     for (int i = 0; i < GK_MAX_PLAYLIST; i++)
         gk_scene_free(k->scenes[i]);

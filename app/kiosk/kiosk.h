@@ -17,6 +17,8 @@ typedef struct gk_kiosk_opts {
     const char *capture_dir;        /* NULL = no captures */
     long capture_every;             /* 0: the last frame of each scene visit */
     bool hdr;                       /* captures also as linear .exr */
+    bool capture_hud;               /* captures also with the HUD drawn over them (-hud.png); the
+                                       normal captures stay HUD-free */
     const char *stats_path;         /* per-frame CSV, NULL = none */
     int gles;                       /* 0 = best available, 31 or 32 */
     const char *budget_pins;        /* KNOB=VALUE,... or NULL */

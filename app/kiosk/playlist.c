@@ -104,6 +104,9 @@ int gk_playlist_input(gk_playlist *pl, const gk_input_event *ev)
             break;
         default: break;
         }
+    } else if (ev->kind == GK_INPUT_HOLD && ev->button == GK_BTN_INFO) {
+        pl->split_view = !pl->split_view;
+        changed |= GK_PL_SPLIT;
     } else if (ev->kind == GK_INPUT_HOLD && ev->button == GK_BTN_MODE && pl->method != pl->default_method) {
         pl->method = pl->default_method;
         changed |= GK_PL_METHOD;

@@ -6,7 +6,8 @@
  * happens at max(visit start + dwell_s, last input + pause_after_input_s).
  * Buttons (clicks): next/prev change scene (wrapping, skipping scenes that failed to load); mode
  * cycles the GI methods that apply to the current scene; info toggles the HUD. Holding mode resets
- * to the scene's default method. Presses and releases only count as input (they pause attract). */
+ * to the scene's default method; holding info toggles the split view (the real-time image left,
+ * the live ground truth right, when [truth] is enabled). Presses and releases only count as input (they pause attract). */
 #ifndef GK_KIOSK_PLAYLIST_H
 #define GK_KIOSK_PLAYLIST_H
 
@@ -18,7 +19,7 @@
 #define GK_PL_MAX_METHODS 8
 #define GK_METHOD_LEN 32
 
-enum { GK_PL_SCENE = 1, GK_PL_METHOD = 2, GK_PL_HUD = 4, GK_PL_INPUT = 8 };
+enum { GK_PL_SCENE = 1, GK_PL_METHOD = 2, GK_PL_HUD = 4, GK_PL_INPUT = 8, GK_PL_SPLIT = 16 };
 
 typedef struct gk_playlist {
     int n;
@@ -30,6 +31,7 @@ typedef struct gk_playlist {
     double last_input_s;
     bool had_input;
     bool hud_visible;
+    bool split_view;                   /* info held: real-time left, ground truth right */
     int n_methods;                     /* methods of the current scene, set by the kiosk */
     char methods[GK_PL_MAX_METHODS][GK_METHOD_LEN];
     int method, default_method;

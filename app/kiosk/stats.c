@@ -3,6 +3,7 @@
 
 #include <errno.h>
 #include <fcntl.h>
+#include <math.h>
 #include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
@@ -146,6 +147,9 @@ void gk_summary_free(gk_summary *s)
 struct gk_stats_csv {
     char *path, *spool_path;
     FILE *spool;
+    bool truth;                /* the error and truth_spp columns (the kiosk's ground truth runs) */
+    double error;              /* for the next row: NAN = none yet */
+    long truth_spp;
     int n_pass;
     char pass[MAX_PASS_NAMES][GK_PASS_PATH_LEN];
 };
@@ -164,6 +168,8 @@ static void csv_free(gk_stats_csv *c)
    frame,time_s,scene,method,frame_ms,passes_ms,budgets with passes_ms = "PATH=MS PATH=MS ..." and
    budgets = "KNOB=VALUE ...". The wide CSV is made from it at the end, when the pass union is known. */
 static const char SPOOL_HEADER[] = "frame,time_s,scene,method,frame_ms,passes_ms,budgets\n";
+/* With the ground truth, an eighth field: "error=X truth_spp=N" (empty values while there is none). */
+static const char SPOOL_HEADER_TRUTH[] = "frame,time_s,scene,method,frame_ms,passes_ms,budgets,truth\n";
 
 static FILE *create_spool(gk_stats_csv *c, gk_err *e)
 {
@@ -189,7 +195,9 @@ static FILE *create_spool(gk_stats_csv *c, gk_err *e)
     return NULL;
 }
 
-gk_stats_csv *gk_stats_csv_open(const char *path, gk_err *e)
+gk_stats_csv *gk_stats_csv_open(const char *path, gk_err *e) { return gk_stats_csv_open_truth(path, false, e); }
+
+gk_stats_csv *gk_stats_csv_open_truth(const char *path, bool truth, gk_err *e)
 {
     gk_stats_csv *c = calloc(1, sizeof *c);
     if (!c || !(c->path = strdup(path))) {
@@ -197,6 +205,8 @@ gk_stats_csv *gk_stats_csv_open(const char *path, gk_err *e)
         gk_fail(e, GK_ERUNTIME, "--stats: out of memory");
         return NULL;
     }
+    c->truth = truth;
+    c->error = NAN;
     /* The spool is created beside the CSV now, so a directory that cannot be written fails before
        the run; the CSV itself is not touched until the run's rows are complete (an existing one
        stays as it was when this run fails). */
@@ -206,7 +216,7 @@ gk_stats_csv *gk_stats_csv_open(const char *path, gk_err *e)
         csv_free(c);
         return NULL;
     }
-    if (fputs(SPOOL_HEADER, c->spool) == EOF || fflush(c->spool) != 0) {
+    if (fputs(truth ? SPOOL_HEADER_TRUTH : SPOOL_HEADER, c->spool) == EOF || fflush(c->spool) != 0) {
         gk_fail(e, GK_ERUNTIME, "--stats: cannot write '%s': %s", c->spool_path, strerror(errno));
         fclose(c->spool);
         c->spool = NULL;
@@ -253,11 +263,25 @@ int gk_stats_csv_row(gk_stats_csv *c, long frame, double time_s, const char *sce
     /* knob values hold no comma, quote, space or '=' (budget.h's value strings are tokens) */
     for (int i = 0; i < b->n; i++)
         fprintf(f, "%s%s=%s", i ? " " : "", b->def[i]->name, b->def[i]->values[b->level[i]]);
+    if (c->truth) {
+        fputs(",error=", f);
+        if (isfinite(c->error))
+            fprintf(f, "%.6g", c->error);
+        fputs(" truth_spp=", f);
+        if (c->truth_spp > 0)
+            fprintf(f, "%ld", c->truth_spp);
+    }
     fputc('\n', f);
     /* flushed at every row: a row in the spool survives SIGKILL */
     if (fflush(f) != 0 || ferror(f))
         return gk_fail(e, GK_ERUNTIME, "--stats: cannot write '%s': %s", c->spool_path, strerror(errno));
     return 0;
+}
+
+void gk_stats_csv_truth(gk_stats_csv *c, double error, long truth_spp)
+{
+    c->error = error;
+    c->truth_spp = truth_spp;
 }
 
 /* "NAME=VALUE NAME=VALUE": the value of name, or NULL. Writes the value's length to *len. */
@@ -286,6 +310,8 @@ static void write_wide_csv(gk_stats_csv *c, const gk_budget *b, FILE *out, gk_cs
         fprintf(out, ",%s_ms", c->pass[i]);
     for (int i = 0; i < b->n; i++)
         fprintf(out, ",%s", b->def[i]->name);
+    if (c->truth)
+        fputs(",error,truth_spp", out);
     fputc('\n', out);
     rewind(c->spool);
     bool header = true;
@@ -308,6 +334,11 @@ static void write_wide_csv(gk_stats_csv *c, const gk_budget *b, FILE *out, gk_cs
             size_t len;
             const char *v = pair_value(gk_csv_get(rec, 6), b->def[i]->name, &len);
             fprintf(out, ",%.*s", v ? (int)len : 0, v ? v : "");
+        }
+        for (int i = 0; c->truth && i < 2; i++) {
+            size_t len;
+            const char *v = rec->n > 7 ? pair_value(gk_csv_get(rec, 7), i ? "truth_spp" : "error", &len) : NULL;
+            fprintf(out, ",%.*s", v ? (int)len : 0, v ? v : ""); /* empty: no truth yet */
         }
         fputc('\n', out);
     }

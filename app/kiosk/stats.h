@@ -67,6 +67,12 @@ void gk_summary_free(gk_summary *s);
 typedef struct gk_stats_csv gk_stats_csv;
 
 gk_stats_csv *gk_stats_csv_open(const char *path, gk_err *e);
+/* truth: the kiosk's ground truth runs (truth.h): two more columns after the knobs, `error` (the
+ * shown method's rel RMSE against the truth, as last measured) and `truth_spp` (the truth's samples
+ * per pixel then), empty in rows before the first measurement. */
+gk_stats_csv *gk_stats_csv_open_truth(const char *path, bool truth, gk_err *e);
+/* The error and truth_spp of the rows that follow (error NAN, spp 0: empty). */
+void gk_stats_csv_truth(gk_stats_csv *c, double error, long truth_spp);
 int gk_stats_csv_row(gk_stats_csv *c, long frame, double time_s, const char *scene, const char *method,
                      const gk_frame_report *report, const gk_budget *b, gk_err *e);
 /* The spool in use: FILE.part, or FILE.part-N when a previous run's spool is still there. */

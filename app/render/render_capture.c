@@ -8,8 +8,10 @@
 #include "../io/image_io.h"
 #include "renderer_internal.h"
 
-/* linear: RGBA (alpha 1) when rgba, else RGB like the references; display: RGB. */
-static int read_image(gk_renderer *r, GLenum format, bool linear, bool rgba, gk_image *img, gk_err *e)
+/* linear: RGBA (alpha 1) when rgba, else RGB like the references; display: RGB. overlay (display
+ * only, may be NULL) is drawn over the composed image before it is read. */
+static int read_image_overlay(gk_renderer *r, GLenum format, bool linear, bool rgba, gk_overlay_fn overlay, void *user,
+                              gk_image *img, gk_err *e)
 {
     int w = r->opts.width, h = r->opts.height;
     gk_target t;
@@ -17,6 +19,8 @@ static int read_image(gk_renderer *r, GLenum format, bool linear, bool rgba, gk_
                          false, e) != 0)
         return -1;
     int rc = gk_render_compose(r, t.fbo, w, h, linear, e);
+    if (rc == 0 && overlay && !linear)
+        overlay(user, NULL, t.fbo);
     float *px = NULL;
     if (rc == 0 && (px = malloc(sizeof(float) * 4 * (size_t)w * (size_t)h)) == NULL)
         rc = gk_fail(e, GK_ERUNTIME, "capture: out of memory");
@@ -52,6 +56,23 @@ static int read_image(gk_renderer *r, GLenum format, bool linear, bool rgba, gk_
     gk_target_destroy(&t);
     if (rc != 0)
         gk_image_free(img);
+    return rc;
+}
+
+static int read_image(gk_renderer *r, GLenum format, bool linear, bool rgba, gk_image *img, gk_err *e)
+{
+    return read_image_overlay(r, format, linear, rgba, NULL, NULL, img, e);
+}
+
+int gk_renderer_capture_overlay(gk_renderer *r, const char *png_path, gk_overlay_fn overlay, void *user, gk_err *e)
+{
+    if (!r->have_frame)
+        return gk_fail(e, GK_ERUNTIME, "capture: no frame rendered yet");
+    gk_image img;
+    if (read_image_overlay(r, GL_RGBA8, false, false, overlay, user, &img, e) != 0)
+        return -1;
+    int rc = gk_image_write(png_path, &img, NULL, e);
+    gk_image_free(&img);
     return rc;
 }
 

@@ -95,6 +95,10 @@ bool gk_renderer_gi_failed(const gk_renderer *r, const char *method);
  * radiance before exposure (either may be NULL). */
 int gk_renderer_capture(gk_renderer *r, const char *png_path, const char *exr_path, gk_err *e);
 
+/* The last frame's display image (as gk_renderer_capture's png) with overlay drawn over it, as the
+ * frame's last pass draws it on screen: the kiosk's HUD captures. */
+int gk_renderer_capture_overlay(gk_renderer *r, const char *png_path, gk_overlay_fn overlay, void *user, gk_err *e);
+
 /* Added by the renderer: the last frame's linear image (RGBA float, output size, top row first,
  * before exposure) without writing a file -- for tests and in-process metrics. */
 struct gk_image;

@@ -23,7 +23,8 @@ static void full_config_sets_every_value(void **state)
         "[playlist]\nscenes = cornell, sponza ,caustics\ndwell_s = 12\npause_after_input_s = 45\n"
         "methods.cornell = vct, none\n"
         "[cpu]\nworkers = 3\n"
-        "[budgets]\nshadow_map = 512..2048\n";
+        "[budgets]\nshadow_map = 512..2048\n"
+        "[truth]\nenabled = true\nworkers = 2\nsize = 320x180\n";
     gk_kiosk_config c;
     gk_kiosk_config_defaults(&c);
     gk_err e = {0};
@@ -54,6 +55,10 @@ static void full_config_sets_every_value(void **state)
     assert_string_equal(c.ranges[0].max, "2048");
     assert_int_equal(c.ranges[0].line, 33);
     assert_int_equal(c.cpu_workers, 3);
+    assert_true(c.truth_enabled);
+    assert_int_equal(c.truth_workers, 2);
+    assert_int_equal(c.truth_max_w, 320);
+    assert_int_equal(c.truth_max_h, 180);
 }
 
 /* Parses text and checks the error message is exactly want. */
@@ -78,9 +83,13 @@ static void errors_name_file_and_line(void **state)
     expect_error("[frame]\ntarget_ms = 0.1\n", "config/kiosk.ini:2: target_ms: '0.1' is out of range 1..1000");
     expect_error("[frame]\ntarget_ms = fast\n", "config/kiosk.ini:2: target_ms: 'fast' is not a number");
     expect_error("[display]\n[frmae]\ntarget_ms = 5\n",
-                 "config/kiosk.ini:2: unknown section [frmae] (known: display, frame, buttons, playlist, cpu, budgets)");
+                 "config/kiosk.ini:2: unknown section [frmae] (known: display, frame, buttons, playlist, cpu, budgets, truth)");
     expect_error("[cpu]\nworkers = 65\n", "config/kiosk.ini:2: workers: '65' is out of range 0..64");
     expect_error("[cpu]\nthreads = 2\n", "config/kiosk.ini:2: unknown key 'threads' in [cpu]");
+    expect_error("[truth]\nenabled = maybe\n", "config/kiosk.ini:2: enabled: 'maybe' is not true or false");
+    expect_error("[truth]\nworkers = -1\n", "config/kiosk.ini:2: workers: '-1' is out of range 0..64");
+    expect_error("[truth]\nsize = 0x90\n", "config/kiosk.ini:2: size: '0x90' is not WxH (e.g. 160x120)");
+    expect_error("[truth]\nspp = 4\n", "config/kiosk.ini:2: unknown key 'spp' in [truth]");
     expect_error("[display]\nplatform = x11\n", "config/kiosk.ini:2: platform: 'x11' is not auto, kms or mock");
     expect_error("[buttons]\nline_next = 5000\n", "config/kiosk.ini:2: line_next: '5000' is out of range -1..1023");
     expect_error("[buttons]\nbias = up\n",

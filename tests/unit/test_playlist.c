@@ -109,6 +109,15 @@ static void mode_cycles_methods_info_toggles_hold_resets(void **state)
     e = ev(GK_INPUT_CLICK, GK_BTN_INFO, 3);
     assert_int_equal(gk_playlist_input(&pl, &e), GK_PL_INPUT | GK_PL_HUD);
     assert_false(pl.hud_visible);
+    /* holding info toggles the split view (and leaves the HUD and the method alone) */
+    assert_false(pl.split_view);
+    e = ev(GK_INPUT_HOLD, GK_BTN_INFO, 3.5);
+    assert_int_equal(gk_playlist_input(&pl, &e), GK_PL_INPUT | GK_PL_SPLIT);
+    assert_true(pl.split_view);
+    assert_false(pl.hud_visible);
+    assert_string_equal(gk_playlist_method(&pl), "vct");
+    assert_int_equal(gk_playlist_input(&pl, &e), GK_PL_INPUT | GK_PL_SPLIT);
+    assert_false(pl.split_view);
     /* a single method: mode changes nothing */
     gk_playlist_set_methods(&pl, m, 1, 0);
     e = ev(GK_INPUT_CLICK, GK_BTN_MODE, 4);

@@ -41,6 +41,40 @@ static const gk_knob_def scale = {
     .values = {"0.5", "0.75", "1"}, .cost = {1, 2.25f, 4}, .default_level = 2,
 };
 
+/* With the ground truth: `error` and `truth_spp` after the knob columns, empty before the first
+ * measurement, then the values given for the rows that follow. */
+static void csv_truth_columns(void **state)
+{
+    (void)state;
+    char path[] = "/tmp/gk-stats-XXXXXX";
+    int fd = mkstemp(path);
+    assert_true(fd >= 0);
+    close(fd);
+    gk_budget b;
+    gk_budget_init(&b);
+    gk_budget_add(&b, &scale);
+    gk_err e = {0};
+    gk_stats_csv *c = gk_stats_csv_open_truth(path, true, &e);
+    assert_non_null(c);
+    gk_frame_report t1 = {.total_ms = 3.75, .n = 1, .pass = {{"gbuffer", -1, 3.75}}};
+    assert_int_equal(gk_stats_csv_row(c, 0, 0.0, "cornell", "vct", &t1, &b, &e), 0);
+    gk_stats_csv_truth(c, 0.125, 64);
+    assert_int_equal(gk_stats_csv_row(c, 1, 0.5, "cornell", "vct", &t1, &b, &e), 0);
+    assert_int_equal(gk_stats_csv_close(c, &b, &e), 0);
+    FILE *f = fopen(path, "r");
+    assert_non_null(f);
+    char line[512];
+    assert_non_null(fgets(line, sizeof line, f));
+    assert_string_equal(line, "frame,time_s,scene,method,frame_ms,gbuffer_ms,render_scale,error,truth_spp\n");
+    assert_non_null(fgets(line, sizeof line, f));
+    assert_string_equal(line, "0,0.000000,cornell,vct,3.750,3.750,1,,\n");
+    assert_non_null(fgets(line, sizeof line, f));
+    assert_string_equal(line, "1,0.500000,cornell,vct,3.750,3.750,1,0.125,64\n");
+    assert_null(fgets(line, sizeof line, f));
+    fclose(f);
+    remove(path);
+}
+
 static void csv_has_pass_union_and_knob_columns(void **state)
 {
     (void)state;
@@ -337,6 +371,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(percentiles_nearest_rank),
         cmocka_unit_test(csv_has_pass_union_and_knob_columns),
+        cmocka_unit_test(csv_truth_columns),
         cmocka_unit_test(csv_open_fails_on_bad_path),
         cmocka_unit_test(csv_quotes_fields),
         cmocka_unit_test(spool_is_a_valid_csv_while_running),
