@@ -1,6 +1,6 @@
 // Anisotropic pre-integration (thesis §3.2, equations 3.1/3.2 as corrected in summary A.2.2): one
-// @variant CONSERVATIVE=1 AVERAGE_CAS=0 EMISSIVE=0 DIRECTIONAL_INJECTION=0
-// @variant CONSERVATIVE=1 AVERAGE_CAS=1 EMISSIVE=1 DIRECTIONAL_INJECTION=1
+// @variant CONSERVATIVE=1 AVERAGE_CAS=0 EMISSIVE=0 DIRECTIONAL_INJECTION=0 PROJECTED_COVERAGE=1
+// @variant CONSERVATIVE=1 AVERAGE_CAS=1 EMISSIVE=1 DIRECTIONAL_INJECTION=1 PROJECTED_COVERAGE=0
 // direction per dispatch (a minimum-spec GLES 3.1 has only 4 compute image units). For each of the
 // 4 front/back voxel pairs along the direction's axis, composite with "over" on premultiplied
 // colour,  C' = C1 + (1 - a1) C2,  a' = a1 + (1 - a1) a2  (front voxel 1), and average the 4.
@@ -38,22 +38,35 @@ vec3 view_dir(int dir)   // where the viewer of this view stands
     return (dir % 2) == 0 ? v : -v;
 }
 
+// The mean of the fragments' unit normals in level-0 voxel c (length < 1 where they disagree).
+vec3 mean_normal(ivec3 c)
+{
+    int i = vox_index(c), N = vox_count();
+#if AVERAGE_CAS
+    uint q = s[CH_NRM * N + i];
+    return vec3(float(q & 0xFEu), float((q >> 8) & 0xFEu), float((q >> 16) & 0xFEu)) / 255.0 * 2.0 - 1.0;
+#else
+    uint cnt = max(s[CH_COUNT * N + i], 1u);
+    return vec3(float(int(s[(CH_NRM + 0) * N + i])), float(int(s[(CH_NRM + 1) * N + i])),
+                float(int(s[(CH_NRM + 2) * N + i]))) / (127.0 * float(cnt));
+#endif
+}
+
 vec4 fetch(ivec3 c)
 {
     vec4 v = imageLoad(u_src, u_from_level0 ? c : packed_at(c, 2 * u_dst_res));
-#if DIRECTIONAL_INJECTION
+#if DIRECTIONAL_INJECTION || PROJECTED_COVERAGE
     if (u_from_level0 && v.a > 0.0) {
-        int i = vox_index(c), N = vox_count();
-#if AVERAGE_CAS
-        uint q = s[CH_NRM * N + i];
-        vec3 n = vec3(float(q & 0xFEu), float((q >> 8) & 0xFEu), float((q >> 16) & 0xFEu)) / 255.0 * 2.0 - 1.0;
-#else
-        vec3 n = vec3(float(int(s[(CH_NRM + 0) * N + i])), float(int(s[(CH_NRM + 1) * N + i])), float(int(s[(CH_NRM + 2) * N + i])));
-#endif
+        vec3 n = mean_normal(c);
         float l = length(n);
         if (l > 1e-6) {
-            float facing = smoothstep(0.0, 0.2, dot(n / l, view_dir(u_dir)));  // back and edge-on: dark
-            v.rgb *= facing;
+            float cos_view = dot(n / l, view_dir(u_dir));
+#if DIRECTIONAL_INJECTION
+            v.rgb *= smoothstep(0.0, 0.2, cos_view);  // back and edge-on: dark
+#endif
+#if PROJECTED_COVERAGE
+            v *= mix(1.0, abs(cos_view), min(l, 1.0));
+#endif
         }
     }
 #endif
