@@ -46,7 +46,7 @@ void gk_vct_default_options(gk_vct_options *o)
     o->opacity_correction = false;
     o->directional_injection = false;
     o->clip_cones = true;
-    o->projected_coverage = true;
+    o->projected_coverage = false;
     o->footprint_clamp = 1.0f / 3.0f;
     o->specular = -1;
     o->apex_offset = 2.5f;
