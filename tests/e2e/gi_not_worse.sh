@@ -11,11 +11,10 @@
 export EGL_PLATFORM=surfaceless
 REFS=tests/references
 # scene/method pairs known to be worse than none, each with why:
-#   cornell-spot/vct: spot-light injection/cone sampling of the small lit patch (issue 11, open);
 #   light-leak/vct, light-leak/vpl: light through the 2 cm wall, the ruler is black;
 #   light-leak/lightmap: its light-map charts span both rooms under the wall (lightmap.sh);
 #   light-leak/radiosity: links through the wall the bins cannot resolve (radiosity.sh measures it).
-KNOWN="cornell-spot/vct light-leak/vct light-leak/vpl light-leak/lightmap light-leak/radiosity"
+KNOWN="light-leak/vct light-leak/vpl light-leak/lightmap light-leak/radiosity"
 
 json_field() { sed -n "s/.*\"$1\": \(\[[^]]*\]\|[^,}]*\).*/\1/p" "$2"; }
 le() { awk -v a="$1" -v b="$2" 'BEGIN { n = "^[-+]?[0-9.]+([eE][-+]?[0-9]+)?$"; exit !(a ~ n && b ~ n && a + 0 <= b + 0) }'; }

@@ -83,7 +83,9 @@ bool vct_tris_update(vct_tris *t, const gk_scene *s, vec3 *bmin, vec3 *bmax);
 /* vct_passes.c */
 int vct_pass_voxelize(gk_vct *v, const int lo[3], const int hi[3], gk_err *e);
 int vct_pass_inject(gk_vct *v, const gk_gi_frame *f, gk_err *e);
-int vct_pass_mips(gk_vct *v, gk_err *e);
+/* directional: DIRECTIONAL_INJECTION in the level-1 views (the option, or off for the map the second
+   bounce gathers from) */
+int vct_pass_mips(gk_vct *v, bool directional, gk_err *e);
 /* vct_bounces=2: gathers the first bounce into every voxel (vct/bounce.comp) with the budget's cone
    set; vox0 then holds direct + bounce, and the mips must be rebuilt. */
 int vct_pass_bounce(gk_vct *v, const vct_budget *b, gk_err *e);

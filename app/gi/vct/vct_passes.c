@@ -264,7 +264,7 @@ int vct_pass_inject(gk_vct *v, const gk_gi_frame *f, gk_err *e)
     return 0;
 }
 
-int vct_pass_mips(gk_vct *v, gk_err *e)
+int vct_pass_mips(gk_vct *v, bool directional, gk_err *e)
 {
     if (!v->cur.aniso) {
         glBindTexture(GL_TEXTURE_3D, v->vox0);
@@ -277,7 +277,7 @@ int vct_pass_mips(gk_vct *v, gk_err *e)
     defines_common(v, defs, sizeof defs);
     size_t used = strlen(defs);
     snprintf(defs + used, sizeof defs - used, "#define DIRECTIONAL_INJECTION %d\n#define PROJECTED_COVERAGE %d\n",
-             v->opt.directional_injection ? 1 : 0, v->opt.projected_coverage ? 1 : 0);
+             directional ? 1 : 0, v->opt.projected_coverage ? 1 : 0);
     GLuint p = gk_program_get_compute(v->ctx.programs, "vct/mip_aniso.comp", defs, e);
     const mip_uniforms *u = p ? gk_program_uniforms(v->ctx.programs, p, GK_FIELDS(mip_fields), sizeof *u, e) : NULL;
     if (!u)
