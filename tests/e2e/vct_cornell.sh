@@ -24,11 +24,14 @@ vct_err=$(json_field rel_rmse "$TMP/vct.json")
 vct_ratio=$(json_field mean_ratio "$TMP/vct.json")
 none_ratio=$(json_field mean_ratio "$TMP/none.json")
 echo "# cornell 160x120: rel_rmse none $none_err, vct $vct_err; mean_ratio none $none_ratio, vct $vct_ratio"
-# Measured (llvmpipe, 64^3, 6 cones, step 1, trace scale 0.5): none 0.339 / 0.784, vct 0.169 / 0.911
-# (the full reference has every bounce; against the one-bounce one vct is at 0.080, gi_bounce.sh).
+# Measured (llvmpipe, 64^3, 6 cones, step 1, trace scale 0.5): none 0.326 / 0.789, vct 0.214 / 0.866
+# (the full reference has every bounce; against the one-bounce one vct is at 0.085, gi_bounce.sh).
+# Before issue 11, with isotropic level-1 views: 0.153 / 0.916 (0.080 against one bounce); the
+# directional views the default has since (vct.c, why: cornell-spot) lose light where a cone
+# crosses a wall obliquely, which the full reference's every-bounce energy makes look larger here.
 check "vct is closer to the reference than direct light alone" lt "$vct_err" "$none_err"
 # bound: 1.25x the measured error (the reference's own noise floor is 0.017)
-check "vct rel_rmse below 0.21" lt "$vct_err" 0.21
+check "vct rel_rmse below 0.27" lt "$vct_err" 0.27
 # one bounce misses energy but must add most of what direct light lacks: ratio in (0.85, 1.02)
 check "vct mean_ratio above 0.85" lt 0.85 "$vct_ratio"
 check "vct mean_ratio below 1.02 (no energy gain beyond the reference)" lt "$vct_ratio" 1.02

@@ -240,7 +240,7 @@ static void lone_plane_does_not_illuminate_itself(void **state)
             gk_vct_options o;
             gk_vct_default_options(&o);
             if (m == 1)
-                o.footprint_clamp = 0, o.clip_cones = false;   /* the thesis's cones */
+                o.footprint_clamp = 0, o.clip_cones = false, o.directional_injection = false; /* the thesis's cones */
             if (m == 2)
                 o.footprint_clamp = 0, o.directional_injection = true;
             o.apex_offset = offsets[i];
