@@ -294,13 +294,12 @@ static int vct_render(void *self, const gk_gi_frame *f, gk_err *e)
         if (rc != 0)
             return -1;
         gk_pass_begin(f->pass, "vct_mips");
-        /* Directional views (gk_vct_options.directional_injection) with one bounce only: they keep a
-           bright patch from lighting what sees it edge-on (cornell-spot vs its one-bounce reference
-           0.486 -> 0.342), but a cone crossing a surface obliquely then mixes its lit face-on view
-           with a dark edge-on one and loses light (cornell one bounce 1.016 -> 0.961 of the
-           reference's energy), which compounds over bounces: cornell vs the full reference with
-           vct_bounces=2 0.082 with isotropic views, 0.156 with directional ones for the last gather,
-           0.178 for both. */
+        /* Directional views (gk_vct_options.directional_injection, mip_aniso.comp) with one bounce
+           only: they keep a bright patch from lighting what sees it edge-on or from behind
+           (cornell-spot vs its one-bounce reference 0.486 -> 0.355), but a cone crossing a surface
+           obliquely then sees part of its lit face dark, and the loss compounds over bounces:
+           cornell vs the full reference with vct_bounces=2 0.082 with isotropic views, 0.154 with
+           directional ones. */
         bool directional = v->opt.directional_injection && b.bounces == 1;
         rc = vct_pass_mips(v, directional, e);
         gk_pass_end(f->pass);

@@ -30,8 +30,9 @@ typedef struct gk_vct_options {
                                  false (default): calibrated weights W_k/pi, rho/pi composition */
     bool axis_weight_sq;      /* d^2 axis weights (calibrated) instead of the thesis's |d| */
     bool opacity_correction;  /* step-length opacity correction (not in the thesis) */
-    bool directional_injection; /* level-1 views show a voxel's radiance only to viewers its normal faces
-                                   (not in the thesis). false (default, thesis): lit from every side. */
+    bool directional_injection; /* level-1 views show a voxel's radiance by how its normal faces their viewer:
+                                   none from behind, 0.26 edge-on (not in the thesis; mip_aniso.comp).
+                                   true (default, one bounce only); false (thesis): lit from every side. */
     bool projected_coverage;  /* true (default): a level-0 voxel enters a directional view of level 1 with its
                                  surface's projected area, |n.axis| of its mean normal n, as opacity and
                                  radiance weight (a wall seen edge-on covers nothing); false (thesis): every
