@@ -33,7 +33,7 @@ for res in 32 64 128; do
     check "light-leak vct_res=$res thesis renders" leak "$res" thesis
     leak_thesis=$leak
     echo "# light-leak vct_res=$res: leak ratio default $leak_default, thesis $leak_thesis"
-    # Measured (llvmpipe): default 2.0% / 2.2% / 2.4%, thesis 13.2% / 15.1% / 14.9% at 32 / 64 / 128
+    # Measured (llvmpipe): default 2.3% / 2.6% / 2.8%, thesis 13.2% / 15.1% / 14.9% at 32 / 64 / 128
     # (default with directional level-1 views since issue 11; with isotropic ones 3.3% / 3.9% / 4.3%)
     # (before the glTF Appendix B BRDF, whose (1 - F) lowers the walls' diffuse reflection, 10%
     # more: 3.7% / 4.3% / 4.8% and 13.9% / 15.9% / 15.7%).
@@ -42,7 +42,7 @@ for res in 32 64 128; do
     # (isotropic) radiance at full opacity. Directional injection halves it (measured 2.2-2.5%)
     # (gk_vct_options.directional_injection, the default with one bounce); an anisotropic level 0
     # (6x its memory) would remove the rest. Bound 1.5x the measurement.
-    check "vct_res=$res: default leaks under 3.6% of the lit wall ($leak_default)" lt "$leak_default" 0.036
+    check "vct_res=$res: default leaks under 4.2% of the lit wall ($leak_default)" lt "$leak_default" 0.042
     # the improvements must show: less than half the thesis's leak
     check "vct_res=$res: default leaks < half the thesis ($leak_default vs $leak_thesis)" \
         lt "$leak_default" "$(awk -v t="$leak_thesis" 'BEGIN { print t / 2 }')"
@@ -50,7 +50,7 @@ done
 
 # The second bounce (vct_bounces=2) gathers what leaked into the dark room's voxels and re-emits it
 # there; the wall's own voxels (both faces in one voxel, mean normal < 0.25) gather nothing.
-# Measured at 64^3: 2.2% one bounce (directional views), 6.7% two (isotropic views, vct.c says why).
+# Measured at 64^3: 2.6% one bounce (directional views), 6.7% two (isotropic views, vct.c says why).
 # Bound 1.5x the measurement.
 check "light-leak vct_res=64 vct_bounces=2 renders" leak 64 default ,vct_bounces=2
 echo "# light-leak vct_res=64 vct_bounces=2: leak ratio $leak"
