@@ -15,6 +15,7 @@
 #include "vct/common.glsl"
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 layout(std430, binding = 1) readonly buffer Scratch { uint s[]; };
+#include "vct/voxel_read.glsl"
 layout(binding = 0, rgba16f) writeonly uniform highp image3D u_out;
 
 #define MAX_LIGHTS 4
@@ -39,7 +40,6 @@ uniform highp sampler2D u_shadow1;
 uniform highp sampler2D u_shadow2;
 uniform highp sampler2D u_shadow3;
 
-vec4 vct_unpack8(uint v) { return vec4(float(v & 0xFFu), float((v >> 8) & 0xFFu), float((v >> 16) & 0xFFu), float(v >> 24)); }
 
 float shadow_depth(int i, vec2 uv)   // constant sampler indices only (GLSL ES)
 {
@@ -90,28 +90,8 @@ void main()
     ivec3 g = ivec3(gl_GlobalInvocationID);
     if (any(greaterThanEqual(g, u_region_size))) return;
     ivec3 c = u_region_lo + g;
-    int i = vox_index(c), N = vox_count();
-    vec3 alb, nrm, frac, emi = vec3(0.0);
-#if AVERAGE_CAS
-    uint a = s[CH_ALB * N + i];
-    if ((a >> 24) == 0u) { imageStore(u_out, c, vec4(0.0)); return; }
-    alb = vct_unpack8(a & 0xFEFEFEFEu).rgb / 255.0;
-    nrm = vct_unpack8(s[CH_NRM * N + i] & 0xFEFEFEFEu).rgb / 255.0 * 2.0 - 1.0;
-    frac = vct_unpack8(s[CH_POS * N + i] & 0xFEFEFEFEu).rgb / 255.0;
-#if EMISSIVE
-    emi = vct_unpack8(s[CH_EMI * N + i] & 0xFEFEFEFEu).rgb / 255.0;
-#endif
-#else
-    uint cnt = s[CH_COUNT * N + i];
-    if (cnt == 0u) { imageStore(u_out, c, vec4(0.0)); return; }
-    float inv = 1.0 / (255.0 * float(cnt));
-    alb = vec3(float(s[(CH_ALB + 0) * N + i]), float(s[(CH_ALB + 1) * N + i]), float(s[(CH_ALB + 2) * N + i])) * inv;
-    nrm = vec3(float(int(s[(CH_NRM + 0) * N + i])), float(int(s[(CH_NRM + 1) * N + i])), float(int(s[(CH_NRM + 2) * N + i]))) / (127.0 * float(cnt));
-    frac = vec3(float(s[(CH_POS + 0) * N + i]), float(s[(CH_POS + 1) * N + i]), float(s[(CH_POS + 2) * N + i])) * inv;
-#if EMISSIVE
-    emi = vec3(float(s[(CH_EMI + 0) * N + i]), float(s[(CH_EMI + 1) * N + i]), float(s[(CH_EMI + 2) * N + i])) * inv;
-#endif
-#endif
+    vec3 alb, nrm, frac, emi;
+    if (!vct_voxel_read(c, alb, nrm, frac, emi)) { imageStore(u_out, c, vec4(0.0)); return; }
     // nrm is the MEAN of the fragments' unit normals, not renormalised: for fragments that all face
     // a light, the mean of their n.l is exactly mean(n).l, so a corner voxel (floor + wall) gets the
     // average of its faces' irradiance. Opposite faces in one voxel (a wall thinner than a voxel)

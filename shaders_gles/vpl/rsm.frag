@@ -14,11 +14,12 @@ uniform int u_mat_flags;
 uniform vec3 u_light_pos;
 uniform vec3 u_light_dir;      // emission axis
 uniform vec3 u_radiant;        // colour · intensity (cd)
-uniform int u_light_kind;      // 0 spot, 1 point (uniform), 2 one-sided Lambertian (rect area)
+uniform int u_light_kind;      // 0 spot, 1 point (uniform), 2 one-sided Lambertian (rect area),
+                               // 3 directional (orthographic face; u_radiant = colour · illuminance, lux)
 uniform float u_cos_inner, u_cos_outer;
 uniform vec2 u_face_origin;    // pixel origin of this face in the atlas
 uniform float u_face_res;
-uniform float u_tan_half;
+uniform float u_tan_half;      // perspective: tan of the half field of view; orthographic: half width (m)
 uniform vec3 u_origin;         // bounds centre
 uniform vec3 u_code;           // scales of position, area, flux (fp16-safe code, vpl_rsm.c rsm_code)
 layout(location = 0) out vec4 o_pos;   // xyz, a = area covered by this texel (m²), encoded
@@ -35,13 +36,16 @@ void main()
     vec3 L = u_light_pos - v_world;
     float d2 = max(dot(L, L), 1e-8);
     vec3 l = L * inversesqrt(d2);
+    if (u_light_kind == 3) { l = -u_light_dir; d2 = 1.0; }
     vec3 n = normalize(v_normal);
     if (dot(n, l) < 0.0)
         n = -n;
     vec2 ndc = (gl_FragCoord.xy - u_face_origin) / u_face_res * 2.0 - 1.0;
     vec2 uv = ndc * u_tan_half;
     float texel = 2.0 * u_tan_half / u_face_res;
-    float dOmega = texel * texel / pow(1.0 + dot(uv, uv), 1.5);
+    // orthographic: "d2 dOmega" is the texel's area across the beam, texel^2 (m^2), and the flux
+    // rho E texel^2 (E: illuminance across the beam); the same code then serves both
+    float dOmega = u_light_kind == 3 ? texel * texel : texel * texel / pow(1.0 + dot(uv, uv), 1.5);
     float c = dot(-l, u_light_dir);
     float I = 1.0;
     if (u_light_kind == 0) {

@@ -240,7 +240,7 @@ static void lone_plane_does_not_illuminate_itself(void **state)
             gk_vct_options o;
             gk_vct_default_options(&o);
             if (m == 1)
-                o.footprint_clamp = 0, o.clip_cones = false;   /* the thesis's cones */
+                o.footprint_clamp = 0, o.clip_cones = false, o.directional_injection = false; /* the thesis's cones */
             if (m == 2)
                 o.footprint_clamp = 0, o.directional_injection = true;
             o.apex_offset = offsets[i];
@@ -255,12 +255,15 @@ static void lone_plane_does_not_illuminate_itself(void **state)
        text asks for >= sqrt(3)). Thesis cone sampling: the plane's coarse voxels look lit from
        every side and wide cones' coarse samples overlap them, so the plane lights itself at every
        offset: measured 79% / 76% / 74% (A.6.1 #3/#4); the bound (> 30%) shows the test sees the
-       failure. Directional injection alone (the other fix, not the default): 40% / 0% / 0%.
-       Bounds 0.1%: float noise is ~1e-6 of the direct light here. */
+       failure. Directional views alone (no footprint clamp): 43% / 5.3% / 4.8%; they show 0.26 of
+       a voxel's radiance edge-on (mip_aniso.comp), which this plane's coarse samples see (with
+       the views dark edge-on, their earlier curve, 40% / 0.06% / 0.10%). Bounds: default 0.1%
+       (float noise is ~1e-6 of the direct light here); directional alone 1.5x the measurement and
+       at most a tenth of the thesis's. */
     for (int i = 1; i < 3; i++) {
         assert_true(r[0][i] < 0.001);
         assert_true(r[1][i] > 0.30);
-        assert_true(r[2][i] < 0.001);
+        assert_true(r[2][i] < 0.08 && r[2][i] < r[1][i] / 10);
     }
     assert_true(r[0][0] > r[0][2] && r[2][0] > r[2][2]);
 }

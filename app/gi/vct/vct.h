@@ -10,6 +10,8 @@
  *   vct_inject    direct light from the lights (with their shadow maps) -> level 0 radiance RGBA16F.
  *                 Runs when geometry or lights change.
  *   vct_mips      six-direction anisotropic pre-integration (eq. 3.1/3.2) or glGenerateMipmap (iso).
+ *   vct_bounce    with vct_bounces=2 (not in the thesis): the diffuse cones from every voxel add its
+ *                 once-bounced light to level 0, and the mips are rebuilt (after injection only).
  *   vct_trace     diffuse cones (+AO) and the specular cone at trace_scale resolution.
  *   vct_compose   joint bilateral upsampling + additive composition into frame->hdr_fbo. */
 #ifndef GK_VCT_H
@@ -28,8 +30,16 @@ typedef struct gk_vct_options {
                                  false (default): calibrated weights W_k/pi, rho/pi composition */
     bool axis_weight_sq;      /* d^2 axis weights (calibrated) instead of the thesis's |d| */
     bool opacity_correction;  /* step-length opacity correction (not in the thesis) */
-    bool directional_injection; /* level-1 views show a voxel's radiance only to viewers its normal faces
-                                   (not in the thesis). false (default, thesis): lit from every side. */
+    bool directional_injection; /* level-1 views show a voxel's radiance by how its normal faces their viewer:
+                                   none from behind, 0.26 edge-on (not in the thesis; mip_aniso.comp).
+                                   true (default, one bounce only); false (thesis): lit from every side. */
+    bool projected_coverage;  /* true: a level-0 voxel enters a directional view of level 1 with its
+                                 surface's projected area, |n.axis| of its mean normal n, as opacity and
+                                 radiance weight (a wall seen edge-on covers nothing; not in the thesis).
+                                 false (default): every occupied voxel is opaque from every side. Measured
+                                 with isotropic views at 64^3: cornell vs one bounce 0.080 -> 0.070,
+                                 cornell-spot 0.486 -> 0.410, but cones crossing a wall obliquely see it
+                                 partly transparent: test_vct_leak's partition 3.9% -> 12.0%, so off */
     bool clip_cones;          /* true (default): stop every cone at the volume border; false (thesis code):
                                  only cones narrower than 0.3 stop, wide ones sample clamped edge texels */
     float footprint_clamp;    /* c > 0 (default 1/3): a sample's diameter is at most c x its height above
@@ -54,6 +64,7 @@ void gk_vct_set_options(void *self, const gk_vct_options *o);
 
 typedef struct gk_vct_stats {
     int voxelize_runs, inject_runs, mip_runs, trace_runs;
+    int bounce_runs;                /* vct_bounces=2 passes */
     long last_voxelized_region;     /* voxels in the last voxelized region */
     unsigned long last_trace_steps; /* cone samples of the last trace pass (all pixels, all cones) */
     int res;                        /* level-0 resolution in use */
@@ -69,6 +80,10 @@ int gk_vct_channels(bool emissive);
 /* GPU bytes held at a budget: scratch SSBO + level-0 RGBA16F (with its mip chain in iso mode) +
  * six directional RGBA16F chains from level 1 (aniso) + two RGBA16F trace targets + triangles. */
 long gk_vct_memory_formula(int res, bool aniso, int channels, int trace_w, int trace_h, int n_triangles);
+
+/* GPU bytes the second bounce adds (vct_bounces=2): a second level 0 RGBA16F (with its mip chain in
+ * iso mode), the one the bounce pass writes while it reads the first. */
+long gk_vct_bounce_memory(int res, bool aniso);
 
 /* GL names for tests that read the voxel data back. */
 unsigned gk_vct_scratch_buffer(const void *self);

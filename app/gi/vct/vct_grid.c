@@ -100,10 +100,12 @@ void vct_free_gpu(gk_vct *v)
         glDeleteBuffers(1, &v->scratch_ssbo);
     if (v->vox0)
         glDeleteTextures(1, &v->vox0);
+    if (v->vox_bounce)
+        glDeleteTextures(1, &v->vox_bounce);
     for (int i = 0; i < 3; i++)
         if (v->voxp[i])
             glDeleteTextures(1, &v->voxp[i]);
-    v->scratch_ssbo = v->vox0 = 0;
+    v->scratch_ssbo = v->vox0 = v->vox_bounce = 0;
     memset(v->voxp, 0, sizeof v->voxp);
     v->allocated = false;
 }
@@ -131,6 +133,23 @@ int vct_alloc(gk_vct *v, const vct_budget *b, gk_err *e)
     v->cur = *b;
     v->allocated = true;
     v->need_voxelize = v->need_inject = true;
+    return 0;
+}
+
+long gk_vct_bounce_memory(int res, bool aniso)
+{
+    long r3 = (long)res * res * res;
+    return 8 * (aniso ? r3 : chain_texels(res, 0));
+}
+
+int vct_ensure_bounce_target(gk_vct *v, gk_err *e)
+{
+    if (v->vox_bounce)
+        return 0;
+    v->vox_bounce = tex3d(v->res, v->cur.aniso ? 1 : chain_levels(v->res), 1);
+    GLenum err = glGetError();
+    if (err != GL_NO_ERROR)
+        return gk_fail(e, GK_ERUNTIME, "vct: allocating the %d^3 second-bounce grid failed (GL error 0x%x)", v->res, err);
     return 0;
 }
 

@@ -17,6 +17,7 @@ typedef struct vct_budget {
     float trace_scale;  /* vct_trace_scale */
     bool aniso;         /* vct_mips */
     bool thesis;        /* vct_variant=thesis */
+    int bounces;        /* vct_bounces: 1 (thesis) or 2 (vct/bounce.comp) */
 } vct_budget;
 
 typedef struct vct_tris {
@@ -38,6 +39,7 @@ typedef struct gk_vct {
     const gk_scene *scene;
     vct_budget cur;              /* budget the GPU resources were made for */
     gk_knob k_res, k_cones, k_step, k_scale, k_mips, k_variant; /* knob handles (vct.c) */
+    gk_knob k_bounces;
     bool allocated;
     bool need_voxelize, need_inject;
     bool emissive, specular;
@@ -52,6 +54,8 @@ typedef struct gk_vct {
        2a+1 (-axis) in z >= 1/2, so a cone sample reads one texture per axis whatever the signs of its
        direction (vct/cone_lib.glsl); each view's levels stay within its half (vct/mip_aniso.comp). */
     GLuint voxp[3];
+    GLuint vox_bounce;           /* vct_bounces=2: level 0 of direct + first bounce, written by the bounce
+                                    pass while it samples vox0, then swapped with it (same storage) */
     GLuint trace_diffuse, trace_spec;
     int trace_w, trace_h, full_w, full_h;
     GLuint nearest_sampler, level0_sampler, vao;
@@ -66,6 +70,8 @@ int vct_alloc(gk_vct *v, const vct_budget *b, gk_err *e);
 void vct_free_gpu(gk_vct *v);
 int vct_ensure_trace_targets(gk_vct *v, int full_w, int full_h, float scale, gk_err *e);
 int vct_max_res_allowed(int channels);
+/* The second-bounce level 0 (vox_bounce), made on first use at the grid's storage. */
+int vct_ensure_bounce_target(gk_vct *v, gk_err *e);
 
 /* vct_tris.c */
 int vct_tris_build(vct_tris *t, const gk_scene *s, gk_err *e);
@@ -77,7 +83,12 @@ bool vct_tris_update(vct_tris *t, const gk_scene *s, vec3 *bmin, vec3 *bmax);
 /* vct_passes.c */
 int vct_pass_voxelize(gk_vct *v, const int lo[3], const int hi[3], gk_err *e);
 int vct_pass_inject(gk_vct *v, const gk_gi_frame *f, gk_err *e);
-int vct_pass_mips(gk_vct *v, gk_err *e);
+/* directional: DIRECTIONAL_INJECTION in the level-1 views (the option, or off for the map the second
+   bounce gathers from) */
+int vct_pass_mips(gk_vct *v, bool directional, gk_err *e);
+/* vct_bounces=2: gathers the first bounce into every voxel (vct/bounce.comp) with the budget's cone
+   set; vox0 then holds direct + bounce, and the mips must be rebuilt. */
+int vct_pass_bounce(gk_vct *v, const vct_budget *b, gk_err *e);
 int vct_pass_trace(gk_vct *v, const gk_gi_frame *f, const vct_budget *b, gk_err *e);
 int vct_pass_compose(gk_vct *v, const gk_gi_frame *f, gk_err *e);
 /* The cone set for n cones (4, 6 or 9) in the tangent frame (t, n, b); weights calibrated or the

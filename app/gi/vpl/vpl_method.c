@@ -45,10 +45,9 @@ static void declare_knobs(gk_budget *b)
 
 static bool applies(const gk_scene *s)
 {
-    /* One bounce between diffuse surfaces from a light an RSM can see (not directional). */
-    bool light = false;
-    for (int i = 0; i < s->n_lights; i++)
-        light |= s->lights[i].type != GK_LIGHT_DIRECTIONAL;
+    /* One bounce between diffuse surfaces from a light: every light type has an RSM (directional
+       lights an orthographic one, vpl_rsm.c). */
+    bool light = s->n_lights > 0;
     bool diffuse = false;
     for (int i = 0; i < s->n_materials; i++) {
         const gk_material *m = &s->materials[i];

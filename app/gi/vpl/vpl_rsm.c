@@ -2,8 +2,9 @@
  * an atlas of perspective faces: 1 for a spot (fov = 2·outer cone), 6 for a point light (the cube,
  * faces side by side), 5 for a rectangular area light (the hemicube around its emission axis: our
  * "hemispherical map from the centre", free of the paraboloid's straight-edge error on coarse
- * meshes). Directional lights have no RSM (dong-001.md §4.8) and add no VPL. The N VPLs are shared
- * evenly between the lights; VPL i of a light samples its atlas at Halton point i. */
+ * meshes), and 1 orthographic face for a directional light (the sun of 000 §3.2 and 001 ch. 6: the
+ * view's region, the camera frustum's bounds clipped to the scene's, seen along the light). The N
+ * VPLs are shared evenly between the lights; VPL i of a light samples its atlas at Halton point i. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -78,8 +79,11 @@ static vec3 any_up(vec3 d) { return fabsf(d.y) < 0.99f ? v3(0, 1, 0) : v3(1, 0, 
 static int light_faces(const gk_gi_light *L, const gk_light *sl, face *out, float *tan_half, int *kind)
 {
     vec3 d = v3_norm(L->direction);
-    if (sl->type == GK_LIGHT_DIRECTIONAL)
-        return 0;
+    if (sl->type == GK_LIGHT_DIRECTIONAL) { /* one orthographic face; tan_half: set by ortho_region */
+        out[0].dir = d, out[0].up = any_up(d);
+        *tan_half = 1.0f, *kind = 3;
+        return 1;
+    }
     if (sl->shape == GK_SHAPE_RECT) { /* hemicube around the axis; the back face sees nothing */
         vec3 u = v3_norm(L->axis_u), v = v3_norm(L->axis_v);
         vec3 dirs[5] = {d, u, v3_scale(u, -1), v, v3_scale(v, -1)};
@@ -112,13 +116,40 @@ static int light_faces(const gk_gi_light *L, const gk_light *sl, face *out, floa
  * so the VPL row keeps the same code and vpl_generate decodes it per light. */
 typedef struct rsm_code { float pos_scale, area_scale, flux_scale; } rsm_code;
 
-static rsm_code light_code(const vpl_state *s, const gk_gi_light *L, float tan_half)
+static rsm_code light_code(const vpl_state *s, const gk_gi_light *L, float tan_half, bool ortho)
 {
     float texel = 2.0f * tan_half / (float)VPL_RSM_RES;
     float rmax = fmaxf(L->radiant.x, fmaxf(L->radiant.y, L->radiant.z));
     rsm_code c = {2.0f / s->diam, 1.0f / (s->diam * s->diam * texel * texel),
                   1.0f / (fmaxf(rmax, 1e-20f) * texel * texel)};
+    if (ortho) /* texel in metres: area = texel^2 / cos, flux = rho E texel^2 */
+        c.area_scale = 1.0f / (texel * texel);
     return c;
+}
+
+/* The orthographic face of a directional light: the view's region (the bounds of the camera
+   frustum's corners, its far plane clipped to the scene's bounds) seen along the light, centred on
+   it, as wide as its bounding sphere; the depth range covers the whole scene in front of it, so
+   what shades the region from outside it is in the map. Returns the half width (metres). */
+static float ortho_face(const vpl_state *s, const gk_gi_frame *f, vec3 d, vec3 up, mat4 *vp)
+{
+    const gk_scene *sc = f->scene;
+    vec3 lo = v3(1e30f, 1e30f, 1e30f), hi = v3(-1e30f, -1e30f, -1e30f);
+    for (int k = 0; k < 8; k++) {
+        vec4 c = m4_vec4(f->inv_view_proj, (vec4){(k & 1) ? 1.0f : -1.0f, (k & 2) ? 1.0f : -1.0f,
+                                                   (k & 4) ? 1.0f : -1.0f, 1.0f});
+        vec3 p = fabsf(c.w) > 1e-12f ? v3(c.x / c.w, c.y / c.w, c.z / c.w) : v3(s->origin[0], s->origin[1], s->origin[2]);
+        lo = v3_min(lo, p), hi = v3_max(hi, p);
+    }
+    lo = v3_max(lo, sc->bmin), hi = v3_min(hi, sc->bmax);
+    if (!(lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z)) /* camera outside the scene's bounds: all of it */
+        lo = sc->bmin, hi = sc->bmax;
+    vec3 centre = v3_scale(v3_add(lo, hi), 0.5f);
+    float r = fmaxf(0.5f * v3_len(v3_sub(hi, lo)), 1e-3f * s->diam);
+    vec3 eye = v3_sub(centre, v3_scale(d, s->diam));
+    mat4 view = m4_look_at(eye, centre, up);
+    *vp = m4_mul(m4_ortho(-r, r, -r, r, 0.0f, 2.0f * s->diam), view);
+    return r;
 }
 
 /* vpl/rsm.{vert,frag} (u_model and the material uniforms are gk_gi_frame.draw_scene's) */
@@ -184,15 +215,18 @@ static int render_light_rsm(vpl_state *s, const gk_gi_frame *f, const gk_gi_ligh
     glUniform1f(u->u_cos_inner, c_in);
     glUniform1f(u->u_cos_outer, c_out);
     glUniform1f(u->u_face_res, (float)R);
+    mat4 ortho_vp;
+    if (kind == 3)
+        tan_half = ortho_face(s, f, faces[0].dir, faces[0].up, &ortho_vp);
     glUniform1f(u->u_tan_half, tan_half);
-    *code = light_code(s, L, tan_half);
+    *code = light_code(s, L, tan_half, kind == 3);
     glUniform3f(u->u_origin, s->origin[0], s->origin[1], s->origin[2]);
     glUniform3f(u->u_code, code->pos_scale, code->area_scale, code->flux_scale);
     for (int i = 0; i < nf; i++) {
         glViewport(i * R, 0, R, R);
         mat4 view = m4_look_at(L->position, v3_add(L->position, faces[i].dir), faces[i].up);
         mat4 proj = m4_perspective(2.0f * atanf(tan_half), 1.0f, near, far);
-        mat4 vp = m4_mul(proj, view);
+        mat4 vp = kind == 3 ? ortho_vp : m4_mul(proj, view);
         glUniformMatrix4fv(u->u_light_vp, 1, GL_FALSE, vp.m);
         glUniform2f(u->u_face_origin, (float)(i * R), 0.0f);
         if (f->draw_scene(f->draw_ctx, prog, e) != 0)
@@ -245,9 +279,8 @@ int vpl_generate(vpl_state *s, const gk_gi_frame *f, gk_err *e)
     int lit[64], n_lit = 0;
     rsm_code code[64];
     for (int i = 0; i < f->n_lights && n_lit < 64; i++) {
-        const gk_light *sl = &f->scene->lights[f->lights[i].scene_light];
-        if (sl->type != GK_LIGHT_DIRECTIONAL)
-            lit[n_lit++] = i;
+        (void)f->scene->lights[f->lights[i].scene_light]; /* every light type has an RSM */
+        lit[n_lit++] = i;
     }
     for (int j = 0; j < n_lit; j++) {
         int first = n * j / n_lit, count = n * (j + 1) / n_lit - first;
