@@ -43,6 +43,8 @@ typedef struct sx_setup {
     float box_yaw;
     vec3 eye, target;
     float yfov;
+    bool point;                 /* a point light with a rect emitter (6 cube-face maps), as the
+                                   shadow-planes scene has; else a rect spot (1 perspective map) */
 } sx_setup;
 
 static inline vec3 sx_box_corner(const sx_setup *st, int i)
@@ -53,7 +55,8 @@ static inline vec3 sx_box_corner(const sx_setup *st, int i)
 }
 
 /* The scene: receiver 10x10 (rho 0.8), blockers (when `blockers`), a rect spot light of side S
-   facing down (cone 0.95 rad: one perspective map, dong-001.md's "map from the light centre"). */
+   facing down (cone 0.95 rad: one perspective map, dong-001.md's "map from the light centre"), or
+   with `point` a rect point light (cube maps; the receiver's rim lies on the side faces). */
 static inline void sx_build(fx_scene *f, const sx_setup *st, bool blockers)
 {
     fx_init(f, st->eye, st->target, st->yfov);
@@ -74,10 +77,12 @@ static inline void sx_build(fx_scene *f, const sx_setup *st, bool blockers)
             }
         }
     }
-    gk_light *l = gkt_light(f, GK_LIGHT_SPOT, GK_SHAPE_RECT, 20, st->light, v3(0, -1, 0));
+    gk_light *l = gkt_light(f, st->point ? GK_LIGHT_POINT : GK_LIGHT_SPOT, GK_SHAPE_RECT, 20, st->light, v3(0, -1, 0));
     l->size[0] = l->size[1] = st->S;
-    l->outer_cone = 0.95f;
-    l->inner_cone = 0.9f;
+    if (!st->point) {
+        l->outer_cone = 0.95f;
+        l->inner_cone = 0.9f;
+    }
 }
 
 /* --- exact visibility ------------------------------------------------------------------------ */
@@ -217,7 +222,9 @@ typedef struct sx_session {
     gk_budget b;
 } sx_session;
 
-static inline int sx_open(sx_session *x, int w, int h)
+/* Opens a session whose knob `shadow` is `knob` (a test needing other variants than
+   sx_knob_shadow's, which is full at GK_MAX_KNOB_VALUES, passes its own). */
+static inline int sx_open_knob(sx_session *x, int w, int h, const gk_knob_def *knob)
 {
     memset(x, 0, sizeof *x);
     if (fx_gl_open(&x->gl, w, h) != 0)
@@ -230,10 +237,12 @@ static inline int sx_open(sx_session *x, int w, int h)
         return -1;
     }
     gk_budget_init(&x->b);
-    gk_budget_add(&x->b, &sx_knob_shadow);
+    gk_budget_add(&x->b, knob);
     gk_renderer_declare_knobs(x->r, &x->b);
     return 0;
 }
+
+static inline int sx_open(sx_session *x, int w, int h) { return sx_open_knob(x, w, h, &sx_knob_shadow); }
 
 static inline void sx_close(sx_session *x)
 {
