@@ -19,7 +19,9 @@
 // receiver inclined to the map finds its own nearer half "in front of" d: the subdivided kernels
 // of the floor's rim under a cube-face map (the kernel half on the floor, half past its edge, so
 // non-planar) counted that half as blockers, 0.78-0.90 of the light within 0.1 m of the
-// shadow-planes floor edge (test_shadow_rim.c). 0: the thesis's constant d (method vssm_thesis).
+// shadow-planes floor edge (test_shadow_rim.c), and the Cornell walls (parallel to the downward
+// cube face's axis) showed contour bands where the code path switched (test_shadow_contours.c).
+// 0: the thesis's constant d (method vssm_thesis).
 #ifndef VSSM_RECEIVER_PLANE
 #define VSSM_RECEIVER_PLANE 1
 #endif
@@ -39,9 +41,10 @@ uniform highp sampler2DArray u_vssm_zmin;
 uniform highp sampler2DArray u_vssm_zmax;
 uniform highp vec4 u_vssm; // 1/q (SAT dequantisation), top HSM level, contact eps, planar-lit variance threshold
 
-// The receiver plane around the pixel (set by vssm_receiver_plane): in texel coordinates tc its
-// linear depth is k = k0 + g.(tc - tc0) (orthographic maps) or 1 / k (perspective: 1 / depth is
-// affine in the map coordinates over a plane), so sub-kernels far from the pixel are exact too.
+// The receiver plane around the pixel (set by vssm_receiver_plane), to first order as pcss.glsl
+// takes it: linear depth k0 + g.(tc - tc0) in texel coordinates tc. In a perspective map a plane's
+// depth is convex in tc (1 / depth is affine), so the tangent lies in front of the plane and the
+// receiver's own samples never count as blockers.
 highp vec2 vssm_rp_tc0, vssm_rp_g;
 highp float vssm_rp_k0, vssm_rp_n0;
 
@@ -49,31 +52,44 @@ void vssm_receiver_plane(gk_shadow_coord c, highp vec3 p, highp vec3 n)
 {
     vssm_rp_tc0 = c.uv * u_shadow_light.w;
     vssm_rp_n0 = gk_soft_norm(c.d);
+    vssm_rp_k0 = c.d;
     vssm_rp_g = vec2(0.0);
-    bool ortho = u_shadow_proj.z > 0.5;
-    vssm_rp_k0 = ortho ? c.d : 1.0 / c.d;
 #if VSSM_RECEIVER_PLANE
     int f = int(c.layer);
     highp vec3 axis = u_shadow_proj.w > 1.5 ? gk_cube_axis(f) : u_shadow_axis;
     highp float e = 1.0 / u_shadow_light.w; // one texel
     highp float du = gk_shadow_plane_depth(c.uv + vec2(e, 0.0), f, p, n, axis, c.d);
     highp float dv = gk_shadow_plane_depth(c.uv + vec2(0.0, e), f, p, n, axis, c.d);
-    if (ortho)
-        vssm_rp_g = vec2(du, dv) - c.d;
-    else if (du > 0.0 && dv > 0.0)
-        vssm_rp_g = 1.0 / vec2(du, dv) - vssm_rp_k0;
+    // per texel, bounded as gk_shadow_receiver_gradient bounds it (near-grazing planes)
+    vssm_rp_g = clamp(vec2(du, dv) - c.d, vec2(-100.0 * c.d * e), vec2(100.0 * c.d * e));
 #endif
 }
 
-// Normalised depth of the receiver plane at tc minus the pixel's own: the shift of the test depth
-// d for a sub-kernel centred (or a sample) at tc. Past the plane's horizon (1 / depth <= 0) and
-// beyond the far plane the plane is taken at the far plane, where the cleared map reads 1: lit.
+// The shift of the test depth d for a sub-kernel centred (or a sample) at tc: the receiver plane's
+// normalised depth there minus the pixel's own, where that is negative, else 0. Nothing at or
+// behind the receiver's depth d can block it (every segment from the receiver to the light lies
+// in front of d), so a sample must be in front of both d and the plane to count: the plane removes
+// the receiver's own nearer half, d the surfaces behind the plane's extension at concave corners
+// (the floor under a Cornell wall, which darkened the walls' lower rims with the plane alone).
 highp float vssm_plane(highp vec2 tc)
 {
 #if VSSM_RECEIVER_PLANE
-    highp float k = vssm_rp_k0 + dot(vssm_rp_g, tc - vssm_rp_tc0);
-    highp float lin = u_shadow_proj.z > 0.5 ? k : (k > 1e-6 ? 1.0 / k : 1e30);
-    return min(gk_soft_norm(lin), 1.0) - vssm_rp_n0;
+    return min(gk_soft_norm(vssm_rp_k0 + dot(vssm_rp_g, tc - vssm_rp_tc0)) - vssm_rp_n0, 0.0);
+#else
+    return 0.0;
+#endif
+}
+
+// Variance of the receiver's tangent plane over a box of w texels (normalised depth^2): a box that
+// holds only the receiver has this much variance from its slope alone. The planar-lit test
+// (sigma^2 < Threshold) allows for it, and a kernel whose own slope variance passes Threshold is
+// a sloped receiver: its whole-kernel Chebyshev would count the receiver's nearer half as
+// blockers, so it is subdivided (each sub-kernel shifted by its own plane offset) instead.
+highp float vssm_plane_var(highp vec2 w)
+{
+#if VSSM_RECEIVER_PLANE
+    highp vec2 g = vssm_rp_g * w / (u_shadow_proj.y - u_shadow_proj.x);
+    return dot(g, g) / 12.0;
 #else
     return 0.0;
 #endif
@@ -150,7 +166,7 @@ highp vec2 vssm_hsm(ivec2 lo, ivec2 hi, int layer)
 highp vec2 vssm_blocker(highp vec2 tc, highp vec2 w, int layer, highp float d)
 {
     highp vec2 m = gk_sat_moments_smooth(u_vssm_sat_z, u_vssm_sat_z2, tc, w, layer, u_vssm.x);
-    if (m.x < d) {
+    if (m.x < d && vssm_plane_var(w) < u_vssm.w) {
         highp float p = vssm_cheb(m, d);
         if (p >= 0.9999)
             return vec2(d, 0.0);
@@ -193,7 +209,10 @@ highp vec2 vssm_blocker(highp vec2 tc, highp vec2 w, int layer, highp float d)
                     highp vec2 mc = vec2(float(s1), float(s2)) * (u_vssm.x / area);
                     mc = vssm_shift(mc, vssm_plane(0.5 * vec2(px + xc + 2, py + yc + 2)));
                     a_all += area;
-                    if (mc.x < d) {
+                    highp float var = mc.y - mc.x * mc.x;
+                    if (mc.x >= d && var < u_vssm.w + vssm_plane_var(vec2(xc - px, yc - py))) {
+                        // planar and lit (the §5.2 acceleration): no PCF
+                    } else if (mc.x < d) {
                         a_vsm += area;
                         ex += mc.x * area;
                         ex2 += mc.y * area;
@@ -256,7 +275,7 @@ highp float vssm_adaptive(ivec2 lo, ivec2 hi, int layer, highp float d)
             ivec2 clo = clamp(slo, ivec2(0), top), chi = clamp(shi, clo, top); // the box vssm_moments read
             mc.xy = vssm_shift(mc.xy, vssm_plane(0.5 * vec2(clo + chi + 1)));
             highp float var = mc.y - mc.x * mc.x;
-            if (mc.x >= d && var < u_vssm.w) {
+            if (mc.x >= d && var < u_vssm.w + vssm_plane_var(vec2(chi - clo + 1))) {
                 a_lit += mc.z;
             } else if (mc.x < d) {
                 a_vsm += mc.z;
@@ -364,7 +383,7 @@ highp float shadow_visibility(highp vec3 world_pos, highp vec3 world_normal)
         return vssm_contact(tc, wp, layer, d);
 #endif
     highp vec2 m = gk_sat_moments_smooth(u_vssm_sat_z, u_vssm_sat_z2, tc, wp, layer, u_vssm.x);
-    if (m.x < d)
+    if (m.x < d && vssm_plane_var(wp) < u_vssm.w)
         return vssm_cheb(m, d);
 #if VSSM_SUBDIV
     gk_soft_box(tc, wp, lo, hi);
