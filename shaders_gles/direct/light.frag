@@ -13,6 +13,7 @@
 // @variant GK_LIGHT_KIND=3 SHADOW_VSSM VSSM_RECEIVER_PLANE=0
 // @variant GK_LIGHT_KIND=5 SHADOW_CSSM
 // @variant GK_LIGHT_KIND=2 SHADOW_CSSM CSSM_SAT=1
+// @variant GK_LIGHT_KIND=3 SHADOW_CSSM CSSM_SLOPE=0
 precision highp float;
 precision highp int;
 #include "common/brdf.glsl"

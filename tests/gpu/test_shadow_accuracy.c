@@ -163,16 +163,21 @@ static void t1_every_method_matches_analytic(void **state)
          pcss     0      / 0.029 / 0        (12x12 PCF steps + per-pixel jitter)
          vssm     0.0002 / 0.018 / 0.0001   (bias -0.016: the kernel's box average is the area
                                             fraction, a few hundredths below the received light)
-         cssm     0.217  / 0.092 / 0.0008   (K = 4: the 1 m gap is 0.105 of the normalised
-         cssm_sat 0.195  / 0.092 / 0        depth range, below the 0.128 the shifted, clamped
-                                            test needs to saturate -> the umbra leaks ~0.19)
-       Bounds: about 1.5x each measurement (absolute floors 0.005 where it is ~0); the K = 4
-       leak is asserted to stay below 0.3 so a regression of the series shows. */
+         cssm     0.049  / 0.088 / 0.0003   (K = 4, alpha = 1.12: the series saturates 0.064 of the
+         cssm_sat 0.0001 / 0.062 / 0        normalised depth past the shifted receiver; normalised
+                                            per map layer to the depths it holds (#11) the 1 m gap
+                                            is most of the range. Over [near, far] as the thesis
+                                            (cssm_thesis) it was 0.105 of it, and the umbra kept
+                                            0.217 / 0.195 of the light, penumbra 0.092 / 0.092.
+                                            The mipmap path's residual is its coarse levels
+                                            mixing lit texels into the umbra's kernel.)
+       Bounds: about 1.5x each measurement (absolute floors 0.005 where it is ~0); the CSSM umbra
+       at #11's target, 0.05. */
     assert_true(s[M_PCSS].mean[SX_PENUMBRA] < 0.043 && s[M_PCSS].mean[SX_UMBRA] < 0.005);
     assert_true(s[M_VSSM].mean[SX_PENUMBRA] < 0.027 && s[M_VSSM].mean[SX_UMBRA] < 0.005 && s[M_VSSM].mean[SX_LIT] < 0.005);
     assert_true(s[M_VSSM].mean[SX_PENUMBRA] < s[M_PCSS].mean[SX_PENUMBRA]);
-    assert_true(s[M_CSSM].mean[SX_PENUMBRA] < 0.14 && s[M_CSSM].mean[SX_UMBRA] < 0.3 && s[M_CSSM].mean[SX_LIT] < 0.005);
-    assert_true(s[M_CSSM_SAT].mean[SX_PENUMBRA] < 0.14 && s[M_CSSM_SAT].mean[SX_UMBRA] < 0.3);
+    assert_true(s[M_CSSM].mean[SX_PENUMBRA] < 0.13 && s[M_CSSM].mean[SX_UMBRA] <= 0.05 && s[M_CSSM].mean[SX_LIT] < 0.005);
+    assert_true(s[M_CSSM_SAT].mean[SX_PENUMBRA] < 0.093 && s[M_CSSM_SAT].mean[SX_UMBRA] < 0.005);
     /* every soft method beats hard shadows in the penumbra at least 1.4x */
     for (int m = M_PCSS; m < M_N; m++)
         assert_true(s[m].mean[SX_PENUMBRA] * 1.4 < s[M_HARD].mean[SX_PENUMBRA]);
@@ -202,12 +207,16 @@ static void t2_stacked_blockers_and_f1_f4(void **state)
     assert_true(s[M_VSSM].bias[SX_PENUMBRA] < 0.1);
     assert_true(s[M_PCSS].bias[SX_PENUMBRA] < 0.5 * s[M_VSSM].bias[SX_PENUMBRA]);
     /* F4 (umbra underestimation, blocker flattening): umbra area ratio (V < 0.02) vs exact.
-       Measured S = 1 / S = 2: vssm 0.885 / 0.734, cssm 0.905 / 0.491, cssm_sat 1.03 / 1.21,
-       pcss 1.00 / 0.98, hard 1.52 / 2.69. The moment methods underestimate and get worse with
-       the light size, as the thesis says; bounds at the measurement +-0.1 so a change shows. */
+       Measured S = 1 / S = 2: vssm 0.885 / 0.734, cssm 0.349 / 0.000, cssm_sat 0.984 / 0.977,
+       pcss 1.00 / 0.98, hard 1.52 / 2.69 (before #11's per-layer CSSM depth range: cssm 0.905 /
+       0.491, cssm_sat 1.03 / 1.21). The moment methods underestimate and get worse with the
+       light size, as the thesis says; the mipmapped CSSM loses the umbra entirely at S = 2 (its
+       coarse levels mix the lit floor into the umbra's kernel; umbra mean V 0.163), the SAT path
+       keeps it. Bounds at the measurement +-0.1 so a change shows. */
     assert_true(ratio[M_VSSM] < 0.98 && ratio[M_VSSM] > 0.78);
     assert_true(ratio2[M_VSSM] < ratio[M_VSSM] && ratio2[M_VSSM] > 0.63);
-    assert_true(ratio2[M_CSSM] < ratio[M_CSSM] && ratio2[M_CSSM] > 0.39);
+    assert_true(ratio2[M_CSSM] < ratio[M_CSSM] && ratio[M_CSSM] > 0.25 && ratio[M_CSSM] < 0.45);
+    assert_true(ratio[M_CSSM_SAT] > 0.88 && ratio2[M_CSSM_SAT] > 0.87);
     assert_true(ratio[M_PCSS] > 0.9 && ratio2[M_PCSS] > 0.88);
 }
 

@@ -13,7 +13,8 @@
  * no blocker) switch. Not the SAT's precision: the integer SATs are exact (F7 in
  * test_shadow_failures2.c), and the bands stay at map 2048 (17 -> 16 bits). The fix is the
  * receiver plane of every sub-kernel (VSSM_RECEIVER_PLANE, shaders_gles/shadow/vssm.glsl);
- * vssm_thesis is the baseline without it. 256x256 pixels, map 1024 (the default). */
+ * vssm_thesis is the baseline without it. The same walls for CSSM (cssm_thesis the baseline).
+ * 256x256 pixels, map 1024 (the default). */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -29,9 +30,9 @@
 #define DARK 0.97f
 
 static const gk_knob_def knob_contours = {
-    .name = "shadow", .owner = "test", .n_values = 5,
-    .values = {"hard", "pcss", "vssm", "cssm", "vssm_thesis"},
-    .cost = {1, 1, 1, 1, 1}, .default_level = 0,
+    .name = "shadow", .owner = "test", .n_values = 7,
+    .values = {"hard", "pcss", "vssm", "cssm", "vssm_thesis", "cssm_sat", "cssm_thesis"},
+    .cost = {1, 1, 1, 1, 1, 1, 1}, .default_level = 0,
 };
 
 static sx_session ses;
@@ -93,6 +94,7 @@ static int wall_of(fx_scene *f, int x, int y)
 
 typedef struct contour_count {
     int lines, dark, wall;
+    double mean_v;          /* mean V over the wall pixels (exact: 1) */
 } contour_count;
 
 static contour_count count_contours(const char *method, int map)
@@ -118,14 +120,16 @@ static contour_count count_contours(const char *method, int map)
             if (wall[i] && b[i] > 1e-4f) {
                 c.wall++;
                 dark = a[i] / b[i] < DARK;
+                c.mean_v += a[i] / b[i];
                 c.dark += dark;
             }
             c.lines += dark && !prev;
             prev = dark;
         }
     }
-    printf("# %-12s map %4d: %d contour runs, %d dark pixels (V < %.2f) of %d wall pixels\n", method, map, c.lines,
-           c.dark, DARK, c.wall);
+    c.mean_v /= c.wall > 0 ? c.wall : 1;
+    printf("# %-12s map %4d: %d contour runs, %d dark pixels (V < %.2f) of %d wall pixels, mean V %.4f\n", method,
+           map, c.lines, c.dark, DARK, c.wall, c.mean_v);
     gkt_scene_free(&f);
     return c;
 }
@@ -135,7 +139,8 @@ static void vssm_walls_have_no_contours(void **state)
     (void)state;
     contour_count thesis = count_contours("vssm_thesis", 1024), v1 = count_contours("vssm", 1024),
                   v2 = count_contours("vssm", 2048), pcss = count_contours("pcss", 1024),
-                  cssm = count_contours("cssm", 1024);
+                  cssm = count_contours("cssm", 1024), csat = count_contours("cssm_sat", 1024),
+                  cthesis = count_contours("cssm_thesis", 1024);
     assert_true(v1.wall > W * H / 4);
     /* Measured (llvmpipe, 37630 wall pixels): contour runs / dark pixels
          vssm_thesis 1024: 667 / 10615   (bands over the walls' lower halves)
@@ -149,7 +154,15 @@ static void vssm_walls_have_no_contours(void **state)
     assert_true(v1.dark <= 450 && v2.dark <= 600 && v1.dark * 20 < thesis.dark);
     assert_true(thesis.lines > 4 * v1.lines);
     assert_true(pcss.lines <= 5);
-    (void)cssm;
+    /* CSSM on the same walls (#11: 5.3% too dark on the Cornell walls against the path tracer):
+       measured mean V cssm 0.986, cssm_sat 0.986 (234 runs, 9190 dark pixels: a faint uniform
+       step on the upper side walls, V ~ 0.96), cssm_thesis 0.910 (376 runs, 12900 dark pixels:
+       bands on the lower halves, where the walls are inclined to the downward face and their own
+       samples spread past the series' 0.064 transition; the slope-scaled shift CSSM_SLOPE and
+       the per-layer depth range fix them). Bounds: cssm and cssm_sat within 2% of the light on
+       average, the baseline below 0.95. */
+    assert_true(cssm.mean_v > 0.98 && csat.mean_v > 0.98);
+    assert_true(cthesis.mean_v < 0.95);
 }
 
 int main(void)
