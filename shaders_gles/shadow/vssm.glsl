@@ -365,7 +365,6 @@ highp float shadow_visibility(highp vec3 world_pos, highp vec3 world_normal)
     gk_shadow_coord c = gk_shadow_project(world_pos);
     if (!c.inside)
         return 1.0;
-    vssm_receiver_plane(c, world_pos, world_normal);
     int layer = int(c.layer);
     highp vec2 tc = c.uv * u_shadow_light.w;
     highp float d = gk_soft_norm(c.d);
@@ -385,6 +384,8 @@ highp float shadow_visibility(highp vec3 world_pos, highp vec3 world_normal)
         return 1.0;
     if (d > mm.y)
         return 0.0;
+    // the receiver plane only after the HSM's early-outs, which do not use it (two unprojections)
+    vssm_receiver_plane(c, world_pos, world_normal);
     // 2. Average blocker depth.
     highp vec2 b = vssm_blocker(tc, wi, layer, d);
     if (b.y <= 0.0)
