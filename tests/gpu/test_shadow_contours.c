@@ -11,7 +11,8 @@
  * and the subdivided kernels found "blockers" on the lit wall; the bands follow where the
  * kernel's integer width and the code path (Chebyshev on the whole kernel, adaptive subdivision,
  * no blocker) switch. Not the SAT's precision: the integer SATs are exact (F7 in
- * test_shadow_failures2.c), and the bands stay at map 2048 (17 -> 16 bits). The fix is the
+ * test_shadow_failures2.c), and the bands go with the receiver plane on the same 16-bit SATs
+ * (map 1024; 15 bits at 2048 gives the same counts). The fix is the
  * receiver plane of every sub-kernel (VSSM_RECEIVER_PLANE, shaders_gles/shadow/vssm.glsl);
  * vssm_thesis is the baseline without it. The same walls for CSSM (cssm_thesis the baseline).
  * 256x256 pixels, map 1024 (the default). */
