@@ -24,8 +24,24 @@
 #ifndef CSSM_SHARP_B
 #define CSSM_SHARP_B 10.0
 #endif
+// CSSM_SLOPE 1 (default; an addition to the thesis, #11): the receiver depth of each stage is
+// shifted further by half the depth its own tangent plane spans across that stage's kernel
+// (slope-scaled bias). The series' transition is only 0.064 wide past the shift; on a receiver
+// inclined to the map (the Cornell walls under the ceiling light's downward face) the kernel's
+// own samples spread wider than that and darkened the receiver itself. 0: the thesis's one shift.
+#ifndef CSSM_SLOPE
+#define CSSM_SLOPE 1
+#endif
 const highp vec4 CSSM_CK = 3.14159265358979 * vec4(1.0, 3.0, 5.0, 7.0);
 uniform highp vec4 u_cssm; // depth scale (z_c = x * z), receiver shift, SAT 1/q, unused
+// Per layer the (min, max) of the normalised depth the map holds (cssm_range.comp): the bases were
+// computed from z renormalised to it, so the receiver's depth is too ((0, 1) for cssm_thesis).
+uniform highp sampler2DArray u_cssm_range;
+
+highp vec2 cssm_range(int layer)
+{
+    return vec2(texelFetch(u_cssm_range, ivec3(0, 0, layer), 0).r, texelFetch(u_cssm_range, ivec3(1, 0, layer), 0).r);
+}
 
 struct cssm_basis {
     highp vec4 c, s, zc, zs;
@@ -131,24 +147,36 @@ highp float cssm_znum(cssm_basis b, highp float d)
 
 highp float shadow_visibility(highp vec3 world_pos, highp vec3 world_normal)
 {
-    gk_shadow_coord c = gk_shadow_project(gk_shadow_offset(world_pos, world_normal));
+    highp vec3 pos = gk_shadow_offset(world_pos, world_normal);
+    gk_shadow_coord c = gk_shadow_project(pos);
     if (!c.inside)
         return 1.0;
     int layer = int(c.layer);
-    highp float dn = gk_soft_norm(c.d - 0.5 * gk_shadow_texel_world(c.d));
+    highp vec2 range = cssm_range(layer);
+    // clamped like the map's own depths: a receiver behind everything the layer holds stays on the
+    // plateau (d - z < 1, inside the series' period)
+    highp float dn = clamp((gk_soft_norm(c.d - 0.5 * gk_shadow_texel_world(c.d)) - range.x) / (range.y - range.x), 0.0, 1.0);
     highp float d = u_cssm.x * dn - u_cssm.y;
+#if CSSM_SLOPE
+    // half the receiver plane's depth spread per texel of kernel width, in z_c units
+    highp vec2 slope = 0.5 * abs(gk_shadow_receiver_gradient(c, pos, world_normal)) * u_cssm.x /
+                       (u_shadow_light.w * (u_shadow_proj.y - u_shadow_proj.x) * (range.y - range.x));
+#else
+    highp vec2 slope = vec2(0.0);
+#endif
     // Stage 1: initial kernel at the near plane; filtered test and CSM-Z over it.
     highp vec2 wi = gk_soft_kernel(c.d, u_shadow_proj.x);
+    highp float d1 = d - dot(slope, wi);
     cssm_basis b = cssm_fetch(c.uv, wi, layer, true);
-    highp float occ = 1.0 - cssm_lit(b, d);
+    highp float occ = 1.0 - cssm_lit(b, d1);
     if (occ < 1e-3)
         return 1.0; // no blockers
     // Stage 2: z_avg, final kernel f_w.
-    highp float zavg = clamp(cssm_znum(b, d) / occ, 0.0, u_cssm.x * dn);
-    highp float zavg_world = gk_soft_denorm(zavg / u_cssm.x);
+    highp float zavg = clamp(cssm_znum(b, d1) / occ, 0.0, u_cssm.x * dn);
+    highp float zavg_world = gk_soft_denorm(range.x + (zavg / u_cssm.x) * (range.y - range.x));
     highp vec2 wf = gk_soft_kernel(c.d, zavg_world);
     // Stage 3: filtered test over f_w, ringing suppression, contact sharpening.
-    highp float s = cssm_lit(cssm_fetch(c.uv, wf, layer, false), d);
+    highp float s = cssm_lit(cssm_fetch(c.uv, wf, layer, false), d - dot(slope, wf));
     s = clamp(CSSM_ALPHA * (s - 0.5) + 0.5, 0.0, 1.0);
     highp float p = 1.0 + CSSM_SHARP_A * exp(-CSSM_SHARP_B * max(c.d - zavg_world, 0.0));
     return pow(s, p);

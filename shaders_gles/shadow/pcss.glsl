@@ -11,6 +11,11 @@
 #ifndef PCSS_PCF_N
 #define PCSS_PCF_N 12
 #endif
+// PCSS_ADAPTIVE 1 (default, #21): the PCF grid shrinks to the kernel's width in texels + 1 a side
+// (at most PCSS_PCF_N); 0: always PCSS_PCF_N^2 samples, the brute-force reference as 001 §2.4.
+#ifndef PCSS_ADAPTIVE
+#define PCSS_ADAPTIVE 1
+#endif
 
 // Kernel size (texture units, u and v) of a light seen from depth d through a plane at depth z.
 highp vec2 gk_pcss_kernel(highp float d, highp float z)
@@ -51,13 +56,26 @@ highp float shadow_visibility(highp vec3 world_pos, highp vec3 world_normal)
         return 1.0;
     highp float db = sum / count;
     highp vec2 wb = max(gk_pcss_kernel(c.d, db), vec2(texel));
+    // PCF grid: PCSS_PCF_N^2 samples, fewer where the kernel spans fewer texels (#21): n samples
+    // a side with n >= the kernel's width in texels + 1 already put a sample within every texel
+    // it covers (spacing <= 1 texel), so more only repeat texels; small penumbrae (most pixels of
+    // a small light's shadows) then cost n^2 = 4..16 fetches instead of 144.
+#if PCSS_ADAPTIVE
+    int n = clamp(int(ceil(max(wb.x, wb.y) * u_shadow_light.w)) + 1, 2, PCSS_PCF_N);
+#else
+    int n = PCSS_PCF_N;
+#endif
     highp float lit = 0.0;
     for (int j = 0; j < PCSS_PCF_N; j++) {
+        if (j >= n)
+            break;
         for (int i = 0; i < PCSS_PCF_N; i++) {
-            highp vec2 g = (vec2(float(i), float(j)) + fract(jitter + vec2(0.5, 0.0))) / float(PCSS_PCF_N) - 0.5;
+            if (i >= n)
+                break;
+            highp vec2 g = (vec2(float(i), float(j)) + fract(jitter + vec2(0.5, 0.0))) / float(n) - 0.5;
             highp float z = gk_shadow_fetch(c.uv + g * wb, c.layer);
             lit += c.d + dot(grad, g * wb) <= z + bias ? 1.0 : 0.0;
         }
     }
-    return lit / float(PCSS_PCF_N * PCSS_PCF_N);
+    return lit / float(n * n);
 }

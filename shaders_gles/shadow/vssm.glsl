@@ -13,6 +13,25 @@
 #ifndef VSSM_CONTACT
 #define VSSM_CONTACT 1
 #endif
+// VSSM_RECEIVER_PLANE 1 (default; an addition to the thesis, #11): every sub-kernel and point
+// sample is tested against the receiver's tangent plane at its own position instead of the one
+// depth d of the pixel (receiver-plane depth bias, Isidoro 2006, as pcss.glsl does). Without it a
+// receiver inclined to the map finds its own nearer half "in front of" d: the subdivided kernels
+// of the floor's rim under a cube-face map (the kernel half on the floor, half past its edge, so
+// non-planar) counted that half as blockers, 0.78-0.90 of the light within 0.1 m of the
+// shadow-planes floor edge (test_shadow_rim.c), and the Cornell walls (parallel to the downward
+// cube face's axis) showed contour bands where the code path switched (test_shadow_contours.c).
+// 0: the thesis's constant d (method vssm_thesis).
+#ifndef VSSM_RECEIVER_PLANE
+#define VSSM_RECEIVER_PLANE 1
+#endif
+// How much more variance than its tangent plane's a kernel on a sloped receiver may have and still
+// count as the receiver alone: the plane's depth is convex in a perspective map, so a wide kernel
+// has somewhat more; a blocker adds (d - z)^2 times its share. 1.25: measured on the rim, contour
+// and T1-T3 tests (test_shadow_*.c) with no change of their numbers beyond the last digit.
+#ifndef VSSM_PLANAR_SLACK
+#define VSSM_PLANAR_SLACK 1.25
+#endif
 // Subdivision depth (knob shadow_subdiv, app/render/shadow/shadow_vssm.c): u_vssm_sub = (m, H), the
 // m x m uniform grid of the blocker search and the height H of the adaptive quadtree; the thesis's
 // m = 5, H = 3 is the default. VSSM_M_MAX / VSSM_H_MAX bound the loops (the richest knob level).
@@ -28,6 +47,60 @@ uniform highp usampler2DArray u_vssm_sat_z2;
 uniform highp sampler2DArray u_vssm_zmin;
 uniform highp sampler2DArray u_vssm_zmax;
 uniform highp vec4 u_vssm; // 1/q (SAT dequantisation), top HSM level, contact eps, planar-lit variance threshold
+
+// The receiver plane around the pixel (set by vssm_receiver_plane), to first order as pcss.glsl
+// takes it: linear depth k0 + g.(tc - tc0) in texel coordinates tc. In a perspective map a plane's
+// depth is convex in tc (1 / depth is affine), so the tangent lies in front of the plane and the
+// receiver's own samples never count as blockers.
+highp vec2 vssm_rp_tc0, vssm_rp_g;
+highp float vssm_rp_k0, vssm_rp_n0;
+
+void vssm_receiver_plane(gk_shadow_coord c, highp vec3 p, highp vec3 n)
+{
+    vssm_rp_tc0 = c.uv * u_shadow_light.w;
+    vssm_rp_n0 = gk_soft_norm(c.d);
+    vssm_rp_k0 = c.d;
+    vssm_rp_g = vec2(0.0);
+#if VSSM_RECEIVER_PLANE
+    int f = int(c.layer);
+    highp vec3 axis = u_shadow_proj.w > 1.5 ? gk_cube_axis(f) : u_shadow_axis;
+    highp float e = 1.0 / u_shadow_light.w; // one texel
+    highp float du = gk_shadow_plane_depth(c.uv + vec2(e, 0.0), f, p, n, axis, c.d);
+    highp float dv = gk_shadow_plane_depth(c.uv + vec2(0.0, e), f, p, n, axis, c.d);
+    // per texel, bounded as gk_shadow_receiver_gradient bounds it (near-grazing planes)
+    vssm_rp_g = clamp(vec2(du, dv) - c.d, vec2(-100.0 * c.d * e), vec2(100.0 * c.d * e));
+#endif
+}
+
+// The shift of the test depth d for a sub-kernel centred (or a sample) at tc: the receiver plane's
+// normalised depth there minus the pixel's own, where that is negative, else 0. Nothing at or
+// behind the receiver's depth d can block it (every segment from the receiver to the light lies
+// in front of d), so a sample must be in front of both d and the plane to count: the plane removes
+// the receiver's own nearer half, d the surfaces behind the plane's extension at concave corners
+// (the floor under a Cornell wall, which darkened the walls' lower rims with the plane alone).
+highp float vssm_plane(highp vec2 tc)
+{
+#if VSSM_RECEIVER_PLANE
+    return min(gk_soft_norm(vssm_rp_k0 + dot(vssm_rp_g, tc - vssm_rp_tc0)) - vssm_rp_n0, 0.0);
+#else
+    return 0.0;
+#endif
+}
+
+// Variance of the receiver's tangent plane over a box of w texels (normalised depth^2): a box that
+// holds only the receiver has this much variance from its slope alone. The planar-lit test
+// (sigma^2 < Threshold) allows for it, and a kernel whose own slope variance passes Threshold is
+// a sloped receiver: its whole-kernel Chebyshev would count the receiver's nearer half as
+// blockers, so it is subdivided (each sub-kernel shifted by its own plane offset) instead.
+highp float vssm_plane_var(highp vec2 w)
+{
+#if VSSM_RECEIVER_PLANE
+    highp vec2 g = vssm_rp_g * w / (u_shadow_proj.y - u_shadow_proj.x);
+    return dot(g, g) / 12.0;
+#else
+    return 0.0;
+#endif
+}
 
 highp vec3 vssm_moments(ivec2 lo, ivec2 hi, int layer)
 {
@@ -47,18 +120,26 @@ highp float vssm_z(ivec2 p, int layer)
     return texelFetch(u_vssm_zmin, ivec3(p, layer), 0).r;
 }
 
-// 2x2 point samples (quadrant centres) of the box [lo, hi]: (occluders, sum of their depths).
+// 2x2 point samples (quadrant centres) of the box [lo, hi]: (occluders, sum of their depths, each
+// less its receiver-plane shift so that they compare with d).
 highp vec2 vssm_pcf4(ivec2 lo, ivec2 hi, int layer, highp float d)
 {
     highp vec2 a = vec2(lo), b = vec2(hi + 1);
     highp vec2 r = vec2(0.0);
     for (int j = 0; j < 2; j++)
         for (int i = 0; i < 2; i++) {
-            highp float z = vssm_z(ivec2(floor(mix(a, b, (vec2(float(i), float(j)) + 0.5) * 0.5))), layer);
+            ivec2 t = ivec2(floor(mix(a, b, (vec2(float(i), float(j)) + 0.5) * 0.5)));
+            highp float z = vssm_z(t, layer) - vssm_plane(vec2(t) + 0.5);
             if (z < d)
                 r += vec2(1.0, z);
         }
     return r;
+}
+
+// A sub-kernel's moments shifted by its receiver-plane offset s (z -> z - s over the box).
+highp vec2 vssm_shift(highp vec2 m, highp float s)
+{
+    return vec2(m.x - s, m.y - 2.0 * s * m.x + s * s);
 }
 
 // Sub-range k of n equal integer parts of [lo, hi] (nested: part k of n/2 = parts 2k, 2k+1 of n).
@@ -92,13 +173,20 @@ highp vec2 vssm_hsm(ivec2 lo, ivec2 hi, int layer)
 highp vec2 vssm_blocker(highp vec2 tc, highp vec2 w, int layer, highp float d)
 {
     highp vec2 m = gk_sat_moments_smooth(u_vssm_sat_z, u_vssm_sat_z2, tc, w, layer, u_vssm.x);
-    if (m.x < d) {
+    if (m.x < d && vssm_plane_var(w) < u_vssm.w) {
         highp float p = vssm_cheb(m, d);
         if (p >= 0.9999)
             return vec2(d, 0.0);
         return vec2((m.x - p * d) / (1.0 - p), 1.0 - p);
     }
 #if VSSM_SUBDIV
+    // The §5.2 planar-lit acceleration on the whole kernel, before subdividing it: E(z) >= d and a
+    // variance no more than the receiver plane's own (VSSM_PLANAR_SLACK x) plus Threshold: the
+    // kernel holds only the (sloped) receiver, no blocker. Without it every pixel of a receiver
+    // inclined to the map paid the m x m grid ((m + 1)^2 corners x 2 tables + a 2 x 2 PCF per
+    // sub-kernel) for nothing: the shadow-planes floor's outer metre on the cube's side faces.
+    if (m.x >= d && m.y - m.x * m.x < u_vssm.w + VSSM_PLANAR_SLACK * vssm_plane_var(w))
+        return vec2(d, 0.0);
     ivec2 lo, hi;
     gk_soft_box(tc, w, lo, hi);
     highp float a_all = 0.0, a_vsm = 0.0, ex = 0.0, ex2 = 0.0, a_pcf = 0.0, z_pcf = 0.0;
@@ -133,8 +221,12 @@ highp vec2 vssm_blocker(highp vec2 tc, highp vec2 w, int layer, highp float d)
                     highp uint s1 = cz[i] - cz[i - 1] - pz[i] + pz[i - 1];
                     highp uint s2 = cz2[i] - cz2[i - 1] - pz2[i] + pz2[i - 1];
                     highp vec2 mc = vec2(float(s1), float(s2)) * (u_vssm.x / area);
+                    mc = vssm_shift(mc, vssm_plane(0.5 * vec2(px + xc + 2, py + yc + 2)));
                     a_all += area;
-                    if (mc.x < d) {
+                    highp float var = mc.y - mc.x * mc.x;
+                    if (mc.x >= d && var < u_vssm.w + vssm_plane_var(vec2(xc - px, yc - py))) {
+                        // planar and lit (the §5.2 acceleration): no PCF
+                    } else if (mc.x < d) {
                         a_vsm += area;
                         ex += mc.x * area;
                         ex2 += mc.y * area;
@@ -178,6 +270,7 @@ highp float vssm_adaptive(ivec2 lo, ivec2 hi, int layer, highp float d)
 {
     highp float a_vsm = 0.0, ex = 0.0, ex2 = 0.0, a_lit = 0.0, a_pcf = 0.0, b_pcf = 0.0;
     int h_sub = clamp(int(u_vssm_sub.y + 0.5), 0, VSSM_H_MAX);
+    ivec2 top = ivec2(int(u_shadow_light.w) - 1);
     int l = 0;
     highp uint c = 0u;
     for (int it = 0; it < 341; it++) {
@@ -193,8 +286,10 @@ highp float vssm_adaptive(ivec2 lo, ivec2 hi, int layer, highp float d)
         if (sx.y >= sx.x && sy.y >= sy.x) {
             ivec2 slo = ivec2(sx.x, sy.x), shi = ivec2(sx.y, sy.y);
             highp vec3 mc = vssm_moments(slo, shi, layer);
+            ivec2 clo = clamp(slo, ivec2(0), top), chi = clamp(shi, clo, top); // the box vssm_moments read
+            mc.xy = vssm_shift(mc.xy, vssm_plane(0.5 * vec2(clo + chi + 1)));
             highp float var = mc.y - mc.x * mc.x;
-            if (mc.x >= d && var < u_vssm.w) {
+            if (mc.x >= d && var < u_vssm.w + vssm_plane_var(vec2(chi - clo + 1))) {
                 a_lit += mc.z;
             } else if (mc.x < d) {
                 a_vsm += mc.z;
@@ -230,16 +325,22 @@ highp float vssm_adaptive(ivec2 lo, ivec2 hi, int layer, highp float d)
 }
 #endif
 
+// Depth test of texel t against d shifted by the receiver plane at the texel's centre.
+highp float vssm_lit_texel(ivec2 t, int layer, highp float d)
+{
+    return vssm_z(t, layer) - vssm_plane(vec2(t) + 0.5) >= d ? 1.0 : 0.0;
+}
+
 // Bilinear-weighted depth test of the 2x2 texels around tc.
 highp float vssm_pcf_bilinear(highp vec2 tc, int layer, highp float d)
 {
     highp vec2 t = tc - 0.5;
     ivec2 i = ivec2(floor(t));
     highp vec2 f = t - floor(t);
-    highp float v00 = vssm_z(i, layer) >= d ? 1.0 : 0.0;
-    highp float v10 = vssm_z(i + ivec2(1, 0), layer) >= d ? 1.0 : 0.0;
-    highp float v01 = vssm_z(i + ivec2(0, 1), layer) >= d ? 1.0 : 0.0;
-    highp float v11 = vssm_z(i + ivec2(1, 1), layer) >= d ? 1.0 : 0.0;
+    highp float v00 = vssm_lit_texel(i, layer, d);
+    highp float v10 = vssm_lit_texel(i + ivec2(1, 0), layer, d);
+    highp float v01 = vssm_lit_texel(i + ivec2(0, 1), layer, d);
+    highp float v11 = vssm_lit_texel(i + ivec2(1, 1), layer, d);
     return mix(mix(v00, v10, f.x), mix(v01, v11, f.x), f.y);
 }
 
@@ -283,6 +384,8 @@ highp float shadow_visibility(highp vec3 world_pos, highp vec3 world_normal)
         return 1.0;
     if (d > mm.y)
         return 0.0;
+    // the receiver plane only after the HSM's early-outs, which do not use it (two unprojections)
+    vssm_receiver_plane(c, world_pos, world_normal);
     // 2. Average blocker depth.
     highp vec2 b = vssm_blocker(tc, wi, layer, d);
     if (b.y <= 0.0)
@@ -295,7 +398,7 @@ highp float shadow_visibility(highp vec3 world_pos, highp vec3 world_normal)
         return vssm_contact(tc, wp, layer, d);
 #endif
     highp vec2 m = gk_sat_moments_smooth(u_vssm_sat_z, u_vssm_sat_z2, tc, wp, layer, u_vssm.x);
-    if (m.x < d)
+    if (m.x < d && vssm_plane_var(wp) < u_vssm.w)
         return vssm_cheb(m, d);
 #if VSSM_SUBDIV
     gk_soft_box(tc, wp, lo, hi);

@@ -180,15 +180,18 @@ static void f2_cssm_ringing_suppressed(void **state)
     (void)raw;
     double vs, vr;
     int ds = f2_depth_sweep("cssm_sat", 0.01, &vs), dr = f2_depth_sweep("cssm_raw", 0.01, &vr);
-    /* Measured on the plateau: cssm_sat 0 extrema, max V 0.001; cssm_raw 2 extrema (a minimum of
-       0 at d - z ~ 1.55-2.3 m, then a ripple up to 0.054 at 3.05 m: exactly the K = 4 ripple that
-       dong-001.md §3.3 sizes alpha >= 1.12 for, 0.5 (1 - 1/1.12) = 0.054). Bounds: suppressed
-       monotone and below 0.01 (10x the fp16 read-out noise); raw rings, >= 1 extremum and a
-       ripple > 0.03 (0.6x the measured one). */
+    /* Measured on the plateau: cssm_sat 0 extrema, max V 0.000; cssm_raw 0 extrema, a ripple up to
+       0.054 (exactly the K = 4 ripple that dong-001.md §3.3 sizes alpha >= 1.12 for, 0.5 (1 -
+       1/1.12) = 0.054). Before #11 (depth over [near, far]) the raw ripple also had 2 local
+       extrema in this sweep; with each map layer's own depth range (cssm_range.comp) the same
+       0.3..3.3 m covers a longer stretch of the series, where the ripple decays monotonically
+       from its peak, so the extremum count no longer shows it; the plateau leak does. Bounds:
+       suppressed monotone and below 0.01 (10x the fp16 read-out noise); raw ripple > 0.03 (0.6x
+       the measured one). */
     assert_int_equal(ds, 0);
     assert_true(vs < 0.01);
-    assert_true(dr >= 1);
     assert_true(vr > 0.03);
+    (void)dr;
 }
 
 /* --- F3 ---------------------------------------------------------------------------------------- */
@@ -251,19 +254,21 @@ static void f3_contact_leak(void **state)
               craw = f3_measure("cssm_raw", NULL, band);
     assert_true(vssm.n > 30);
     /* Measured (103 umbra pixels within 0.1 m of the base): mean V vssm 0.0636, vssm_nocontact
-       0.0636, pcss 0.0250, cssm_sat 0.383, cssm_raw 0.399.
+       0.0636, pcss 0.0250, cssm_sat 0.031, cssm_raw 0.077 (before #11, with the depth over
+       [near, far]: cssm_sat 0.383, cssm_raw 0.399).
        - The contact fallback (|z_occ - d| < 0.01 r_sc = 7 cm) does not fire here: the blocker the
          map sees over this band is the cube's top, 1 m above the receiver, so vssm and
          vssm_nocontact are identical; the residual 0.064 is Chebyshev's bound over kernels that
          straddle the cube's silhouette. Asserted: the fallback never makes it worse.
-       - CSSM K = 4 leaks ~0.38 at contact, the thesis's "bright contact shadows" (F3: > 0.2 with
-         A = 0); the sharpening p = 1 + 30 exp(-10 (d - z_avg)) barely acts (-0.017) because
-         d - z_avg is ~1 m here, so exp(-10) ~ 0: the thesis's <= 0.05 with A = 30 is NOT reached.
+       - CSSM K = 4's contact leak came from the transition width: 0.064 of the normalised depth
+         past the shifted receiver was 0.7 m over [near, far]; over the layer's own depth range
+         it is a few centimetres, so the leak drops to 0.03 with the thesis's alpha = 1.12 and
+         sharpening (the sharpening itself barely acts: d - z_avg ~ 1 m, exp(-10) ~ 0).
        Bounds ~1.5x the measurements so regressions show. */
     assert_true(vssm.mean_v <= noc.mean_v + 0.005);
     assert_true(vssm.mean_v < 0.1);
     assert_true(pcss.mean_v < 0.04 && pcss.mean_v < vssm.mean_v);
-    assert_true(craw.mean_v > 0.2 && csat.mean_v < 0.5);
+    assert_true(craw.mean_v < 0.12 && csat.mean_v < 0.05);
     assert_true(csat.mean_v <= craw.mean_v + 0.005);
 }
 

@@ -3,10 +3,19 @@
  * pipeline with the shadow method pinned per frame, visibility measured as
  *     V = L(scene) / L(scene without blockers, hard shadows)
  * on a white diffuse receiver (the lighting multiplies the unshadowed radiance by
- * shadow_visibility(), so the ratio is exactly the method's V), and the exact V in C:
- *   rectangles (T1, T2): V = 1 - area((P1 u P2) n L) / S^2, P_i the occluder squares projected
- *   through the receiver point onto the light plane (scale H / h_i), L the light square;
- *   box (T3): the convex hull of the projected box corners clipped to L. */
+ * shadow_visibility(), so the ratio is exactly the method's V), and the exact V in C as the light
+ * the receiver actually gets, irradiance with occlusion over irradiance without:
+ *     V = E(L minus B) / E(L) = 1 - E(B) / E(L),   E(X) = integral over X of cos_r cos_l / r^2 dA
+ * (B the blocked part of the light), each E in closed form by the polygon contour integral
+ * (Lambert's formula, as fx_polygon_irradiance, in double; exact for a uniform Lambertian polygon):
+ *   rectangles (T1, T2): B = (P1 u P2) n L, P_i the occluder squares projected through the
+ *   receiver point onto the light plane (scale H / h_i), L the light square; E(P1 u P2) =
+ *   E(P1) + E(P2) - E(P1 n P2), all axis-aligned rectangles;
+ *   box (T3): the convex hull of the projected box corners clipped to L.
+ * Until #11 the truth was the visible AREA fraction 1 - area(B) / S^2, which ignores that the
+ * parts of the light nearer the receiver's normal and nearer the receiver count more (on T1 it
+ * differs by up to 0.05 in the penumbra). sx_area_v keeps that quantity for the test that shows
+ * the difference. */
 #ifndef TEST_SHADOW_UTIL_H
 #define TEST_SHADOW_UTIL_H
 
@@ -34,6 +43,8 @@ typedef struct sx_setup {
     float box_yaw;
     vec3 eye, target;
     float yfov;
+    bool point;                 /* a point light with a rect emitter (6 cube-face maps), as the
+                                   shadow-planes scene has; else a rect spot (1 perspective map) */
 } sx_setup;
 
 static inline vec3 sx_box_corner(const sx_setup *st, int i)
@@ -44,7 +55,8 @@ static inline vec3 sx_box_corner(const sx_setup *st, int i)
 }
 
 /* The scene: receiver 10x10 (rho 0.8), blockers (when `blockers`), a rect spot light of side S
-   facing down (cone 0.95 rad: one perspective map, dong-001.md's "map from the light centre"). */
+   facing down (cone 0.95 rad: one perspective map, dong-001.md's "map from the light centre"), or
+   with `point` a rect point light (cube maps; the receiver's rim lies on the side faces). */
 static inline void sx_build(fx_scene *f, const sx_setup *st, bool blockers)
 {
     fx_init(f, st->eye, st->target, st->yfov);
@@ -65,22 +77,21 @@ static inline void sx_build(fx_scene *f, const sx_setup *st, bool blockers)
             }
         }
     }
-    gk_light *l = gkt_light(f, GK_LIGHT_SPOT, GK_SHAPE_RECT, 20, st->light, v3(0, -1, 0));
+    gk_light *l = gkt_light(f, st->point ? GK_LIGHT_POINT : GK_LIGHT_SPOT, GK_SHAPE_RECT, 20, st->light, v3(0, -1, 0));
     l->size[0] = l->size[1] = st->S;
-    l->outer_cone = 0.95f;
-    l->inner_cone = 0.9f;
+    if (!st->point) {
+        l->outer_cone = 0.95f;
+        l->inner_cone = 0.9f;
+    }
 }
 
 /* --- exact visibility ------------------------------------------------------------------------ */
-static inline double sx_overlap(double a0, double a1, double b0, double b1)
+/* A convex polygon clipped to [x0,x1]x[z0,z1] (Sutherland-Hodgman) into ax, az (40 entries);
+   returns the vertex count. */
+static inline int sx_clip(const double *px, const double *pz, int n, double x0, double x1, double z0, double z1,
+                          double *ax, double *az)
 {
-    return fmax(0.0, fmin(a1, b1) - fmax(a0, b0));
-}
-
-/* Area of a convex polygon clipped to [x0,x1]x[z0,z1] (Sutherland-Hodgman). */
-static inline double sx_clip_area(const double *px, const double *pz, int n, double x0, double x1, double z0, double z1)
-{
-    double ax[40], az[40], bx[40], bz[40];
+    double bx[40], bz[40];
     int na = n;
     for (int i = 0; i < n; i++)
         ax[i] = px[i], az[i] = pz[i];
@@ -101,18 +112,51 @@ static inline double sx_clip_area(const double *px, const double *pz, int n, dou
         for (int i = 0; i < na; i++)
             ax[i] = bx[i], az[i] = bz[i];
     }
+    return na;
+}
+
+/* Light-plane measure of a polygon (vertices x, z on the light plane y = ly) as seen from the
+   receiver point p (normal +y): its area when `area`, else E = integral of cos_r cos_l / r^2 dA. */
+static inline double sx_measure(const double *x, const double *z, int n, double ly, vec3 p, bool area)
+{
+    if (n < 3)
+        return 0;
+    if (!area) { /* fx_polygon_irradiance in double: a penumbra's slivers need more than float's 7 digits */
+        double sum = 0;
+        for (int i = 0; i < n; i++) {
+            int j = (i + 1) % n;
+            double a[3] = {x[i] - p.x, ly - p.y, z[i] - p.z}, b[3] = {x[j] - p.x, ly - p.y, z[j] - p.z};
+            double c[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+            double len = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+            if (len < 1e-300)
+                continue;
+            sum += atan2(len, a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) * c[1] / len; /* n = +y */
+        }
+        return 0.5 * fabs(sum);
+    }
     double a = 0;
-    for (int i = 0; i < na; i++) {
-        int j = (i + 1) % na;
-        a += ax[i] * az[j] - ax[j] * az[i];
+    for (int i = 0; i < n; i++) {
+        int j = (i + 1) % n;
+        a += x[i] * z[j] - x[j] * z[i];
     }
     return 0.5 * fabs(a);
 }
 
-static inline double sx_exact_v(const sx_setup *st, vec3 p)
+/* The measure of the axis-aligned rectangle [x0,x1]x[z0,z1] on the light plane (0 when empty). */
+static inline double sx_rect_measure(double x0, double x1, double z0, double z1, double ly, vec3 p, bool area)
+{
+    if (x1 <= x0 || z1 <= z0)
+        return 0;
+    const double x[4] = {x0, x1, x1, x0}, z[4] = {z0, z0, z1, z1};
+    return sx_measure(x, z, 4, ly, p, area);
+}
+
+/* V at receiver point p: 1 - measure(blocked) / measure(light), the measure E (received light,
+   `area` false: the truth) or the area (`area` true: the quantity the tests used before #11). */
+static inline double sx_visibility(const sx_setup *st, vec3 p, bool area)
 {
     double H = st->light.y - p.y, S = st->S, lx0 = st->light.x - S / 2, lx1 = lx0 + S, lz0 = st->light.z - S / 2,
-           lz1 = lz0 + S;
+           lz1 = lz0 + S, ly = st->light.y;
     double blocked = 0;
     if (st->n_rects > 0) {
         double r[2][4];
@@ -120,13 +164,13 @@ static inline double sx_exact_v(const sx_setup *st, vec3 p)
             double k = H / (st->rect[i].y - p.y);
             r[i][0] = p.x + (st->rect[i].x0 - p.x) * k, r[i][1] = p.x + (st->rect[i].x1 - p.x) * k;
             r[i][2] = p.z + (st->rect[i].z0 - p.z) * k, r[i][3] = p.z + (st->rect[i].z1 - p.z) * k;
-            blocked += sx_overlap(r[i][0], r[i][1], lx0, lx1) * sx_overlap(r[i][2], r[i][3], lz0, lz1);
+            blocked += sx_rect_measure(fmax(r[i][0], lx0), fmin(r[i][1], lx1), fmax(r[i][2], lz0), fmin(r[i][3], lz1),
+                                       ly, p, area);
         }
         if (st->n_rects == 2) {
-            double ix0 = fmax(r[0][0], r[1][0]), ix1 = fmin(r[0][1], r[1][1]);
-            double iz0 = fmax(r[0][2], r[1][2]), iz1 = fmin(r[0][3], r[1][3]);
-            if (ix1 > ix0 && iz1 > iz0)
-                blocked -= sx_overlap(ix0, ix1, lx0, lx1) * sx_overlap(iz0, iz1, lz0, lz1);
+            double ix0 = fmax(fmax(r[0][0], r[1][0]), lx0), ix1 = fmin(fmin(r[0][1], r[1][1]), lx1);
+            double iz0 = fmax(fmax(r[0][2], r[1][2]), lz0), iz1 = fmin(fmin(r[0][3], r[1][3]), lz1);
+            blocked -= sx_rect_measure(ix0, ix1, iz0, iz1, ly, p, area);
         }
     }
     if (st->box) {
@@ -158,10 +202,18 @@ static inline double sx_exact_v(const sx_setup *st, vec3 p)
             }
             n--;
         }
-        blocked += sx_clip_area(ox, oz, n, lx0, lx1, lz0, lz1);
+        double cx[40], cz[40];
+        int nc = sx_clip(ox, oz, n, lx0, lx1, lz0, lz1, cx, cz);
+        blocked += sx_measure(cx, cz, nc, ly, p, area);
     }
-    return fmin(fmax(1.0 - blocked / (S * S), 0.0), 1.0);
+    double full = sx_rect_measure(lx0, lx1, lz0, lz1, ly, p, area);
+    return fmin(fmax(1.0 - blocked / full, 0.0), 1.0);
 }
+
+/* The truth: the received light with occlusion over without. */
+static inline double sx_exact_v(const sx_setup *st, vec3 p) { return sx_visibility(st, p, false); }
+/* The visible area fraction of the light (not what a receiver gets; kept to show the difference). */
+static inline double sx_area_v(const sx_setup *st, vec3 p) { return sx_visibility(st, p, true); }
 
 /* --- rendering -------------------------------------------------------------------------------- */
 typedef struct sx_session {
@@ -170,7 +222,9 @@ typedef struct sx_session {
     gk_budget b;
 } sx_session;
 
-static inline int sx_open(sx_session *x, int w, int h)
+/* Opens a session whose knob `shadow` is `knob` (a test needing other variants than
+   sx_knob_shadow's, which is full at GK_MAX_KNOB_VALUES, passes its own). */
+static inline int sx_open_knob(sx_session *x, int w, int h, const gk_knob_def *knob)
 {
     memset(x, 0, sizeof *x);
     if (fx_gl_open(&x->gl, w, h) != 0)
@@ -183,10 +237,12 @@ static inline int sx_open(sx_session *x, int w, int h)
         return -1;
     }
     gk_budget_init(&x->b);
-    gk_budget_add(&x->b, &sx_knob_shadow);
+    gk_budget_add(&x->b, knob);
     gk_renderer_declare_knobs(x->r, &x->b);
     return 0;
 }
+
+static inline int sx_open(sx_session *x, int w, int h) { return sx_open_knob(x, w, h, &sx_knob_shadow); }
 
 static inline void sx_close(sx_session *x)
 {

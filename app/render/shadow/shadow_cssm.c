@@ -3,17 +3,24 @@
  * K = 4 Fourier bases cos/sin(c_k z), z cos/sin(c_k z) and z, prefiltered either as
  *   mipmaps:  RGBA16F arrays written by compute (cssm_basis.comp) + glGenerateMipmap, or
  *   SATs:     exact modular fixed-point RGBA32UI / R32UI summed-area tables (vssm_sat.comp)
+ * (the depth first renormalised per layer to the range it holds, cssm_range.comp: #11)
  * -> the lighting pass (shaders_gles/shadow/cssm.glsl): 6 basis lookups + 1 depth per pixel.
  * Methods registered here:
  *   cssm       mipmap prefilter (the thesis's fast path: ">3x faster", 8/16-bit storage)
  *   cssm_sat   SAT prefilter (the thesis's quality path for single lights)
  *   cssm_raw   SAT, no ringing suppression (alpha = 1) and no sharpening (A = 0): the baseline
  *              of failure tests F2 (ringing) and F3 (contact leak)
- * Texture units: the method's unit (depth map), +1..+4 the bases, +5 z (+6 z^2 SAT, unused sums). */
+ *   cssm_thesis  as cssm without the two additions of #11: the depth normalised over [near, far]
+ *              (no per-layer range) and no slope-scaled receiver shift (CSSM_SLOPE 0): the
+ *              baseline of test_shadow_cssm.c
+ * Texture units: the method's unit (depth map), +1..+4 the bases, +5 z (+6 z^2 SAT, unused sums),
+ * +7 the per-layer depth range (2 x 1 texels per layer: min, max of the normalised depth). */
 #include <math.h>
 #include <stdlib.h>
 
 #include "shadow_prefilter.h"
+
+#include "gl/gl_target.h"
 
 /* Depth scale of the Fourier series (z_c = CSSM_RANGE z), and the receiver shift where the scaled,
    clamped K = 4 test saturates (dong-001.md §3.3: alpha >= 1.12 -> 0.064). */
@@ -23,13 +30,14 @@
 enum { B_COS, B_SIN, B_ZCOS, B_ZSIN, B_Z, B_Z2, B_TMP0, B_TMP1, B_N };
 
 typedef struct cssm_slot {
-    GLuint zlin;
+    GLuint zlin, range;
     GLuint basis[B_N];
     int size, layers;
 } cssm_slot;
 
 typedef struct cssm_state {
     bool sat;
+    bool full_range;        /* cssm_thesis: no per-layer range (the range texture holds (0, 1)) */
     gk_shadow_maps maps;
     cssm_slot slot[GK_SHADOW_MAX_LIGHTS];
 } cssm_state;
@@ -38,6 +46,8 @@ static void slot_free(cssm_slot *s)
 {
     if (s->zlin)
         glDeleteTextures(1, &s->zlin);
+    if (s->range)
+        glDeleteTextures(1, &s->range);
     for (int i = 0; i < B_N; i++)
         if (s->basis[i])
             glDeleteTextures(1, &s->basis[i]);
@@ -51,6 +61,20 @@ static int slot_ensure(cssm_slot *s, bool sat, int size, int layers, gk_err *e)
     slot_free(s);
     if (!(s->zlin = gk_pf_array_create(GL_R32F, size, layers, 1, false, e)))
         return -1;
+    while (glGetError() != GL_NO_ERROR) {
+    }
+    glGenTextures(1, &s->range);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, s->range);
+    glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_R32F, 2, 1, layers);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
+    GLenum err = glGetError();
+    if (err != GL_NO_ERROR) {
+        gk_fail(e, GK_ERUNTIME, "CSSM depth range texture (2x1x%d R32F): %s", layers, gk_gl_error_name(err));
+        slot_free(s);
+        return -1;
+    }
     for (int i = 0; i < B_N; i++) {
         if (!sat && i > B_Z)
             break;
@@ -68,6 +92,14 @@ static int slot_ensure(cssm_slot *s, bool sat, int size, int layers, gk_err *e)
 }
 
 static void *cssm_create_mm(void) { return calloc(1, sizeof(cssm_state)); }
+
+static void *cssm_create_full(void)
+{
+    cssm_state *st = calloc(1, sizeof(cssm_state));
+    if (st)
+        st->full_range = true;
+    return st;
+}
 
 static void *cssm_create_sat(void)
 {
@@ -98,7 +130,7 @@ static const gk_uniform_field basis_fields[] = {GK_UNIFORM(basis_uniforms, u_z),
 /* shaders_gles/shadow/cssm.glsl, in the lighting program (mipmap and SAT variants) */
 typedef struct cssm_uniforms {
     GLint u_cssm_basis[6]; /* cos, sin, zcos, zsin, z, z2 */
-    GLint u_cssm;
+    GLint u_cssm, u_cssm_range;
 } cssm_uniforms;
 static const gk_uniform_field cssm_fields[] = {
     GK_UNIFORM_AS(cssm_uniforms, u_cssm_basis[0], "u_cssm_cos"),
@@ -108,6 +140,7 @@ static const gk_uniform_field cssm_fields[] = {
     GK_UNIFORM_AS(cssm_uniforms, u_cssm_basis[4], "u_cssm_z"),
     GK_UNIFORM_AS(cssm_uniforms, u_cssm_basis[5], "u_cssm_z2"),
     GK_UNIFORM(cssm_uniforms, u_cssm),
+    GK_UNIFORM(cssm_uniforms, u_cssm_range),
 };
 
 static int basis_mipmaps(gk_program_cache *progs, cssm_slot *s, gk_err *e)
@@ -141,6 +174,46 @@ static int basis_mipmaps(gk_program_cache *progs, cssm_slot *s, gk_err *e)
     return 0;
 }
 
+/* shadow/cssm_range.comp: the layer's depth range, then the depth renormalised to it in place. With
+   `full` only (0, 1) is written (the thesis's [near, far] normalisation). */
+typedef struct range_uniforms {
+    GLint u_size;
+} range_uniforms;
+static const gk_uniform_field range_fields[] = {GK_UNIFORM(range_uniforms, u_size)};
+
+static int depth_range(gk_program_cache *progs, cssm_slot *s, bool full, gk_err *e)
+{
+    if (full) {
+        float v[16];
+        for (int l = 0; l < s->layers && l < 8; l++)
+            v[2 * l] = 0.0f, v[2 * l + 1] = 1.0f;
+        glBindTexture(GL_TEXTURE_2D_ARRAY, s->range);
+        glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, 0, 2, 1, s->layers, GL_RED, GL_FLOAT, v);
+        glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
+        return 0;
+    }
+    GLuint p0 = gk_program_get_compute(progs, "shadow/cssm_range.comp", "#define CSSM_RANGE_PASS 0\n", e);
+    GLuint p1 = p0 ? gk_program_get_compute(progs, "shadow/cssm_range.comp", "#define CSSM_RANGE_PASS 1\n", e) : 0;
+    const range_uniforms *u0 = p1 ? gk_program_uniforms(progs, p0, GK_FIELDS(range_fields), sizeof *u0, e) : NULL;
+    const range_uniforms *u1 = u0 ? gk_program_uniforms(progs, p1, GK_FIELDS(range_fields), sizeof *u1, e) : NULL;
+    if (!u1)
+        return -1;
+    glUseProgram(p0);
+    glUniform1i(u0->u_size, s->size);
+    glBindImageTexture(0, s->zlin, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32F);
+    glBindImageTexture(1, s->range, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
+    glDispatchCompute(1, 1, (GLuint)s->layers);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    glUseProgram(p1);
+    glUniform1i(u1->u_size, s->size);
+    glBindImageTexture(0, s->zlin, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32F);
+    glBindImageTexture(1, s->range, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32F);
+    GLuint groups = (GLuint)((s->size + 7) / 8);
+    glDispatchCompute(groups, groups, (GLuint)s->layers);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    return 0;
+}
+
 static int basis_sats(gk_program_cache *progs, cssm_slot *s, gk_err *e)
 {
     float q = (float)((1u << gk_sat_bits(s->size)) - 1u);
@@ -160,7 +233,8 @@ static int cssm_render(void *self, const gk_shadow_ctx *ctx, int slot, const gk_
     cssm_slot *s = &st->slot[slot];
     if (slot_ensure(s, st->sat, v->map_size, v->n_faces, e) != 0)
         return -1;
-    if (gk_pf_linearize(ctx->progs, st->maps.tex[slot], v, s->zlin, 0, e) != 0)
+    if (gk_pf_linearize(ctx->progs, st->maps.tex[slot], v, s->zlin, 0, e) != 0 ||
+        depth_range(ctx->progs, s, st->full_range, e) != 0)
         return -1;
     int rc = st->sat ? basis_sats(ctx->progs, s, e) : basis_mipmaps(ctx->progs, s, e);
     glUseProgram(0);
@@ -178,6 +252,7 @@ static int cssm_bind(void *self, gk_program_cache *progs, int slot, const gk_sha
     int n = st->sat ? 6 : 5;
     for (int i = 0; i < n; i++)
         gk_pf_bind(u->u_cssm_basis[i], s->basis[i], unit + 1 + i);
+    gk_pf_bind(u->u_cssm_range, s->range, unit + 7);
     float q = (float)((1u << gk_sat_bits(s->size)) - 1u);
     glUniform4f(u->u_cssm, CSSM_RANGE, CSSM_SHIFT, 1.0f / q, 0.0f);
     return 0;
@@ -205,6 +280,15 @@ const gk_shadow_method gk_shadow_cssm_raw = {
     .name = "cssm_raw",
     .glsl_define = "#define SHADOW_CSSM 1\n#define CSSM_SAT 1\n#define CSSM_ALPHA 1.0\n#define CSSM_SHARP_A 0.0\n",
     .create = cssm_create_sat,
+    .destroy = cssm_destroy,
+    .render = cssm_render,
+    .bind = cssm_bind,
+};
+
+const gk_shadow_method gk_shadow_cssm_thesis = {
+    .name = "cssm_thesis",
+    .glsl_define = "#define SHADOW_CSSM 1\n#define CSSM_SLOPE 0\n",
+    .create = cssm_create_full,
     .destroy = cssm_destroy,
     .render = cssm_render,
     .bind = cssm_bind,

@@ -1,7 +1,8 @@
 /* Diagnostic shadow methods, selectable by name (gk_shadow_method_find) but not offered to the
  * scheduler's `shadow` knob: they exist to measure failure modes (tests/gpu/test_shadow*.c).
  *   pcss8   brute-force PCSS with 4x4 blocker and 8x8 PCF samples ("PCSS 8x8 shows steps",
- *           failure test F5 of dong-001.md §10) -- the shared pcss.glsl with smaller grids. */
+ *           failure test F5 of dong-001.md §10) -- the shared pcss.glsl with smaller grids, always
+ *           the full 8x8 (PCSS_ADAPTIVE 0). */
 #include <stdlib.h>
 
 #include "shadow.h"
@@ -28,7 +29,7 @@ static int maps_bind(void *self, gk_program_cache *progs, int slot, const gk_sha
 
 const gk_shadow_method gk_shadow_pcss8 = {
     .name = "pcss8",
-    .glsl_define = "#define SHADOW_PCSS 1\n#define PCSS_BLOCKER_N 4\n#define PCSS_PCF_N 8\n",
+    .glsl_define = "#define SHADOW_PCSS 1\n#define PCSS_BLOCKER_N 4\n#define PCSS_PCF_N 8\n#define PCSS_ADAPTIVE 0\n",
     .create = maps_create,
     .destroy = maps_destroy,
     .render = maps_render,
