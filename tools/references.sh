@@ -68,12 +68,13 @@ spp_for() {
         furnace) echo 128 ;;
         caustic-ring-fog) echo 1024 ;;   # floors at 1024 spp: all 0.09, airlight 0.08, vcaustics 0.05, surfaces 0.05, multiple 0.14
         atrium) echo 512 ;;
+        glass-fog) echo 1024 ;;   # 64 spp renders the vcaustics term in 3.4 s (floor 0.18): 1024 spp ~1 min a term
         glass) echo 2048 ;;  # caustics: floor 0.0045 inside the caustic mask at 128 spp (15 s); 2048 for the indirect (0.20 at 512)
         *) echo 128 ;;
     esac
 }
 
-scenes=${*:-"cornell cornell-spot shadow-planes light-leak caustic-ring furnace atrium glass caustic-ring-fog"}
+scenes=${*:-"cornell cornell-spot shadow-planes light-leak caustic-ring furnace atrium glass caustic-ring-fog glass-fog"}
 mkdir -p "$OUT_DIR"
 csv=$OUT_DIR/noise.csv
 [ -f "$csv" ] || echo "file,spp,seed,rel_rmse_floor" >"$csv"

@@ -57,5 +57,6 @@ int gk_build_caustic_ring_fog(const char *dir, gk_err *e);
 int gk_build_atrium(const char *dir, gk_err *e);
 int gk_build_furnace(const char *dir, gk_err *e);
 int gk_build_glass(const char *dir, gk_err *e);
+int gk_build_glass_fog(const char *dir, gk_err *e);
 
 #endif
