@@ -18,14 +18,16 @@
 # Scenes with a participating medium (extras.gikiosk.medium) get, instead of the path-class variants,
 # the seed 001 ch. 8 image terms (`--terms`, app/ref/trace.h): SCENE-airlight.exr, SCENE-vcaustics.exr
 # (with its mask SCENE-vcaustics-mask.png and in/out-of-mask floors), SCENE-surfaces.exr and
-# SCENE-multiple.exr, beside SCENE.exr (all terms).
+# SCENE-multiple.exr, beside SCENE.exr (all terms), and SCENE-scaustics.exr (with its mask): the
+# surface caustics of one specular bounce inside (C), `--terms surfaces --paths caustics
+# --caustic-specular 1` (L S D E, attenuated), the ruler of volcaustics' surface caustics.
 #
 # usage: tools/references.sh BIN [SCENE...]      (default: every scene of the list below)
 #        tools/references.sh --bench BIN          (cornell, 1 vs 2 threads: samples/s, rays/s)
 # env:   SCENES_DIR (default config/scenes; built into a temp dir if it has no scenes),
 #        OUT_DIR (default tests/references), SIZE (default 160x120), SPP_SCALE (default 1),
 #        VARIANTS (default "all direct indirect caustics caustics1 1bounce": which images to render),
-#        TERMS (default "airlight vcaustics surfaces multiple": the images of scenes with a medium)
+#        TERMS (default "airlight vcaustics surfaces multiple scaustics": the images of scenes with a medium)
 set -eu
 
 bench=0
@@ -37,7 +39,7 @@ OUT_DIR=${OUT_DIR:-tests/references}
 SIZE=${SIZE:-160x120}
 SPP_SCALE=${SPP_SCALE:-1}
 VARIANTS=${VARIANTS:-all direct indirect caustics caustics1 1bounce}
-TERMS=${TERMS:-airlight vcaustics surfaces multiple}
+TERMS=${TERMS:-airlight vcaustics surfaces multiple scaustics}
 SEED=1
 
 if [ ! -f "$SCENES_DIR/cornell.gltf" ] && [ ! -f "$SCENES_DIR/cornell.glb" ]; then
@@ -107,6 +109,7 @@ for scene in $scenes; do
         paths=$variant bounces=unlimited specular=unlimited terms=all
         case $variant in
             airlight | vcaustics | surfaces | multiple) paths=all terms=$variant ;;
+            scaustics) paths=caustics terms=surfaces specular=1 ;;
             direct | indirect | caustics | caustics1 | 1bounce) [ "$medium" -eq 0 ] || continue ;;
         esac
         if [ "$variant" = caustics1 ]; then

@@ -7,7 +7,7 @@
 #include "gl/gl_target.h"
 #include "volcaustics.h"
 
-#define VC_KNOBS 6
+#define VC_KNOBS 7
 #define VC_MAX_LIGHTS 4     /* shaders_gles/volcaustics/airlight.frag; the caustic lights (knob vc_lights) */
 #define VC_P2_STEPS 64      /* march steps of a reflected ray through the light-view depth (raygen.comp) */
 /* March steps of a refracted ray through the back faces' depth, over the specular objects' bounding
@@ -44,6 +44,7 @@ typedef struct vc_state {
     float march_scale;       /* (A)'s resolution relative to the screen */
     unsigned terms;          /* GK_VC_TERM_* shown */
     int max_lights;          /* caustic lights at most (vc_lights) */
+    bool surface_on;         /* surface caustics under (C) (vc_surface) */
     /* scene */
     bool have_specular;
     vec3 spec_min, spec_max; /* bounds of the specular objects (world, at the scene's time) */
@@ -56,7 +57,7 @@ typedef struct vc_state {
     int n_cb;                /* caustic buffers allocated */
     int cb_res;
     /* (A) and (B) images */
-    gk_target air, caustic;
+    gk_target air, caustic, surface;   /* surface: the surface caustics' irradiance (vc_surface.c) */
     GLenum caustic_fmt;      /* RGBA32F where it can be blended, else RGBA16F (vc_method.c) */
     GLuint empty_vao;
 } vc_state;
@@ -70,9 +71,12 @@ void vc_free_light_buffers(vc_state *s);
 void vc_specular_bounds(vc_state *s, const gk_scene *sc);
 /* vc_lines.c: passes 3-5, the lines of caustic buffers 0..n-1 into the (B) image at screen resolution. */
 int vc_lines(vc_state *s, const gk_gi_frame *f, int n, gk_err *e);
+/* vc_surface.c: the rays' ends p2 of caustic buffers 0..n-1 splatted as photons into the surface
+   caustics' irradiance image (part of (C)). */
+int vc_surface_caustics(vc_state *s, const gk_gi_frame *f, int n, gk_err *e);
 /* vc_terms.c: (A) by the shadowed ray march, and the composite D = A + B + C into the HDR image. */
 int vc_airlight(vc_state *s, const gk_gi_frame *f, gk_err *e);
-int vc_composite(vc_state *s, const gk_gi_frame *f, bool have_lines, gk_err *e);
+int vc_composite(vc_state *s, const gk_gi_frame *f, bool have_lines, bool have_surface, gk_err *e);
 /* 1 / integral over [-r_f, r_f] of the seed's Gaussian filter (lines.frag), for r_f = 1. */
 double vc_filter_integral_unit(void);
 void vc_free_gpu(vc_state *s);
