@@ -201,7 +201,7 @@ static void shipped_table_has_every_knob_level(void **state)
        of the three new methods takes the better part of an hour on llvmpipe). Their knobs move by
        the scheduler's priors and step responses until the next full `make calibrate`. */
     static const char *const default_only_methods[] = {"radiosity", "lgv", "volcaustics"};
-    static const char *const default_only_scenes[] = {"glass", "caustic-ring-fog"};
+    static const char *const default_only_scenes[] = {"glass", "caustic-ring-fog", "glass-fog"};
     int checked = 0, default_only = 0;
     for (int i = 0; i < c.n; i++) {
         const gk_calib_row *d = &c.rows[i];
