@@ -44,6 +44,9 @@ fi
 if "$BIN" scenes | grep -q 'volcaustics'; then
     run volcaustics --scenes caustic-ring-fog,glass-fog --methods none,volcaustics --sweep 'vc_buffer=128,256,512,1024;vc_lights=1,2'
     run volcaustics-filter --scenes caustic-ring-fog,glass-fog --methods volcaustics --sweep 'vc_filter=0.1,0.5,1,2;vc_march=0.25,0.5,1'
+    # its multiple-scattering limitation: error against the full reference as albedo and density grow
+    echo "bench: volcaustics-multiple"
+    sh tools/volcaustics_multiple.sh "$BIN" "$OUT/volcaustics-multiple"
 fi
 # Choosing a method: per scene ONE chart with every method's default sweep against one ruler
 # (SCENE-1bounce.exr where it exists, else SCENE.exr), the Pareto front over all of them, each
