@@ -19,8 +19,9 @@
 # the seed 001 ch. 8 image terms (`--terms`, app/ref/trace.h): SCENE-airlight.exr, SCENE-vcaustics.exr
 # (with its mask SCENE-vcaustics-mask.png and in/out-of-mask floors), SCENE-surfaces.exr and
 # SCENE-multiple.exr, beside SCENE.exr (all terms), and SCENE-scaustics.exr (with its mask): the
-# surface caustics of one specular bounce inside (C), `--terms surfaces --paths caustics
-# --caustic-specular 1` (L S D E, attenuated), the ruler of volcaustics' surface caustics.
+# surface caustics inside (C) of the paths volcaustics follows, `--terms surfaces --paths caustics
+# --caustic-specular 1` (L S D E, attenuated; glass-fog: 2, L S S D E, two refractions), the ruler of
+# volcaustics' surface caustics.
 #
 # usage: tools/references.sh BIN [SCENE...]      (default: every scene of the list below)
 #        tools/references.sh --bench BIN          (cornell, 1 vs 2 threads: samples/s, rays/s)
@@ -109,7 +110,8 @@ for scene in $scenes; do
         paths=$variant bounces=unlimited specular=unlimited terms=all
         case $variant in
             airlight | vcaustics | surfaces | multiple) paths=all terms=$variant ;;
-            scaustics) paths=caustics terms=surfaces specular=1 ;;
+            # the specular vertices of the real-time method's paths: one mirror bounce, or glass's two refractions
+            scaustics) paths=caustics terms=surfaces specular=1; [ "$scene" != glass-fog ] || specular=2 ;;
             direct | indirect | caustics | caustics1 | 1bounce) [ "$medium" -eq 0 ] || continue ;;
         esac
         if [ "$variant" = caustics1 ]; then
