@@ -55,6 +55,16 @@ if "$BIN" scenes | grep -q 'lightmap'; then
     run lightmap --scenes cornell --methods lightmap --sweep 'lightmap_groups=77,154,308,616;lightmap_sync=async,lockstep'
     run lightmap-workers --scenes cornell-spot-anim --methods lightmap --sweep 'lightmap_workers=1,config;lightmap_groups=77,616'
 fi
+# Volume caustics in fog (seed 001 ch. 8) on the two fog scenes, beside none: the caustic buffer x
+# the caustic lights, then the filter support and the march resolution, each against the scene's full
+# reference (multiple scattering included: the model's missing share is in every point's error).
+if "$BIN" scenes | grep -q 'volcaustics'; then
+    run volcaustics --scenes caustic-ring-fog,glass-fog --methods none,volcaustics --sweep 'vc_buffer=128,256,512,1024;vc_lights=1,2'
+    run volcaustics-filter --scenes caustic-ring-fog,glass-fog --methods volcaustics --sweep 'vc_filter=0.1,0.5,1,2;vc_march=0.25,0.5,1'
+    # its multiple-scattering limitation: error against the full reference as albedo and density grow
+    echo "bench: volcaustics-multiple"
+    sh tools/volcaustics_multiple.sh "$BIN" "$OUT/volcaustics-multiple"
+fi
 # Choosing a method: per scene ONE chart with every method's default sweep against one ruler
 # (SCENE-1bounce.exr where it exists, else SCENE.exr), the Pareto front over all of them, each
 # point's spread (median to p95 of its frames) and the kiosk's automatic choice at 400 ms, 640x360

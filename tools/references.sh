@@ -18,14 +18,17 @@
 # Scenes with a participating medium (extras.gikiosk.medium) get, instead of the path-class variants,
 # the seed 001 ch. 8 image terms (`--terms`, app/ref/trace.h): SCENE-airlight.exr, SCENE-vcaustics.exr
 # (with its mask SCENE-vcaustics-mask.png and in/out-of-mask floors), SCENE-surfaces.exr and
-# SCENE-multiple.exr, beside SCENE.exr (all terms).
+# SCENE-multiple.exr, beside SCENE.exr (all terms), and SCENE-scaustics.exr (with its mask): the
+# surface caustics inside (C) of the paths volcaustics follows, `--terms surfaces --paths caustics
+# --caustic-specular 1` (L S D E, attenuated; glass-fog: 2, L S S D E, two refractions), the ruler of
+# volcaustics' surface caustics.
 #
 # usage: tools/references.sh BIN [SCENE...]      (default: every scene of the list below)
 #        tools/references.sh --bench BIN          (cornell, 1 vs 2 threads: samples/s, rays/s)
 # env:   SCENES_DIR (default config/scenes; built into a temp dir if it has no scenes),
 #        OUT_DIR (default tests/references), SIZE (default 160x120), SPP_SCALE (default 1),
 #        VARIANTS (default "all direct indirect caustics caustics1 1bounce": which images to render),
-#        TERMS (default "airlight vcaustics surfaces multiple": the images of scenes with a medium)
+#        TERMS (default "airlight vcaustics surfaces multiple scaustics": the images of scenes with a medium)
 set -eu
 
 bench=0
@@ -37,7 +40,7 @@ OUT_DIR=${OUT_DIR:-tests/references}
 SIZE=${SIZE:-160x120}
 SPP_SCALE=${SPP_SCALE:-1}
 VARIANTS=${VARIANTS:-all direct indirect caustics caustics1 1bounce}
-TERMS=${TERMS:-airlight vcaustics surfaces multiple}
+TERMS=${TERMS:-airlight vcaustics surfaces multiple scaustics}
 SEED=1
 
 if [ ! -f "$SCENES_DIR/cornell.gltf" ] && [ ! -f "$SCENES_DIR/cornell.glb" ]; then
@@ -69,12 +72,13 @@ spp_for() {
         caustic-ring-fog) echo 1024 ;;   # floors at 1024 spp: all 0.09, airlight 0.08, vcaustics 0.05, surfaces 0.05, multiple 0.14
         atrium) echo 512 ;;
         env-studio) echo 1024 ;;  # environment light only (no light node): floor measured below, noise.csv
+        glass-fog) echo 1024 ;;   # 64 spp renders the vcaustics term in 3.4 s (floor 0.18): 1024 spp ~1 min a term
         glass) echo 2048 ;;  # caustics: floor 0.0045 inside the caustic mask at 128 spp (15 s); 2048 for the indirect (0.20 at 512)
         *) echo 128 ;;
     esac
 }
 
-scenes=${*:-"cornell cornell-spot shadow-planes light-leak caustic-ring furnace atrium glass caustic-ring-fog env-studio"}
+scenes=${*:-"cornell cornell-spot shadow-planes light-leak caustic-ring furnace atrium glass caustic-ring-fog env-studio glass-fog"}
 mkdir -p "$OUT_DIR"
 csv=$OUT_DIR/noise.csv
 [ -f "$csv" ] || echo "file,spp,seed,rel_rmse_floor" >"$csv"
@@ -107,6 +111,8 @@ for scene in $scenes; do
         paths=$variant bounces=unlimited specular=unlimited terms=all
         case $variant in
             airlight | vcaustics | surfaces | multiple) paths=all terms=$variant ;;
+            # the specular vertices of the real-time method's paths: one mirror bounce, or glass's two refractions
+            scaustics) paths=caustics terms=surfaces specular=1; [ "$scene" != glass-fog ] || specular=2 ;;
             direct | indirect | caustics | caustics1 | 1bounce) [ "$medium" -eq 0 ] || continue ;;
         esac
         if [ "$variant" = caustics1 ]; then

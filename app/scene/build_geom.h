@@ -58,5 +58,6 @@ int gk_build_atrium(const char *dir, gk_err *e);
 int gk_build_furnace(const char *dir, gk_err *e);
 int gk_build_glass(const char *dir, gk_err *e);
 int gk_build_env_studio(const char *dir, gk_err *e);
+int gk_build_glass_fog(const char *dir, gk_err *e);
 
 #endif

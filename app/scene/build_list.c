@@ -14,5 +14,6 @@ const gk_scene_builder gk_scene_builders[] = {
     {.name = "glass", .build = gk_build_glass},
     {.name = "caustic-ring-fog", .build = gk_build_caustic_ring_fog},
     {.name = "env-studio", .build = gk_build_env_studio},
+    {.name = "glass-fog", .build = gk_build_glass_fog},
 };
 const int gk_n_scene_builders = (int)(sizeof gk_scene_builders / sizeof gk_scene_builders[0]);

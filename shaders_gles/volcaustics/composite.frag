@@ -2,7 +2,10 @@
 // VC_ATTENUATE (blend ZERO, SRC_COLOR: multiplies) gives term (C), the renderer's surfaces seen
 // through the medium, C x T(v, p) T(s, p), with s the first local light (exact for one light; with
 // several, their light paths are attenuated as the first one's); without it (blend ONE, ONE: adds)
-// the airlight term (A, bilinear from its reduced resolution) and the volume caustics (B).
+// the airlight term (A, bilinear from its reduced resolution), the volume caustics (B) and the
+// surface caustics of (C) (vc_surface.c: irradiance E from the light rays' ends, whose flux already
+// carries the light-side attenuation): (diffuse albedo / pi) E T(v, p), the diffuse albedo being the
+// G-buffer's base colour x (1 - metallic).
 // u_terms selects what is shown (vc_output: all, airlight, vcaustics, surfaces), so each term can be
 // measured against its reference term.
 // @variant VC_ATTENUATE
@@ -19,6 +22,9 @@ uniform vec3 u_eye;
 uniform vec3 u_light_pos;
 uniform int u_has_light;
 uniform int u_terms;          // bits: 1 airlight, 2 volume caustics, 4 surfaces
+uniform highp sampler2D u_surface;   // surface caustics' irradiance E (vc_surface.c)
+uniform highp sampler2D u_albedo;    // G-buffer: base colour, a = metallic
+uniform int u_has_surface;
 layout(location = 0) out vec4 o_col;
 void main()
 {
@@ -40,6 +46,15 @@ void main()
         sum += texture(u_airlight, v_uv).rgb;
     if ((u_terms & 2) != 0)
         sum += texelFetch(u_caustics, ivec2(gl_FragCoord.xy), 0).rgb;
+    if ((u_terms & 4) != 0 && u_has_surface == 1) {
+        float depth = texelFetch(u_depth, ivec2(gl_FragCoord.xy), 0).r;
+        if (depth < 1.0) {
+            vec4 c = u_inv_view_proj * vec4(vec3(v_uv, depth) * 2.0 - 1.0, 1.0);
+            vec4 alb = texelFetch(u_albedo, ivec2(gl_FragCoord.xy), 0);
+            vec3 e = texelFetch(u_surface, ivec2(gl_FragCoord.xy), 0).rgb;
+            sum += alb.rgb * (1.0 - alb.a) * (1.0 / 3.14159265) * e * vc_transmittance(u_eye, c.xyz / c.w);
+        }
+    }
     o_col = vec4(sum, 0.0);
 #endif
 }

@@ -1,7 +1,7 @@
 /* volcaustics passes 3-5 (research dong-001.md §6.3): every caustic-buffer texel's light ray as one
  * GL_LINES segment built in the vertex shader from gl_VertexID (no geometry shader), each fragment
- * adding the single scattering where the view ray crosses the line, into the (B) image (RGBA16F,
- * additive blending), culled behind the scene's surfaces (shaders_gles/volcaustics/lines.*). */
+ * adding the single scattering where the view ray crosses the line, into the (B) image (RGBA32F or
+ * RGBA16F, additive blending; every caustic light's lines into the same image), culled behind the scene's surfaces (shaders_gles/volcaustics/lines.*). */
 #include <math.h>
 
 #include "medium_uniforms.h"
@@ -42,7 +42,7 @@ static void bind_tex(int unit, GLuint tex, GLint loc)
     glUniform1i(loc, unit);
 }
 
-int vc_lines(vc_state *s, const gk_gi_frame *f, gk_err *e)
+int vc_lines(vc_state *s, const gk_gi_frame *f, int n, gk_err *e)
 {
     GLuint prog = gk_program_get(s->ctx.programs, "volcaustics/lines.vert", "volcaustics/lines.frag", NULL, e);
     const lines_uniforms *u =
@@ -60,9 +60,6 @@ int vc_lines(vc_state *s, const gk_gi_frame *f, gk_err *e)
     glBlendEquation(GL_FUNC_ADD);
     glBlendFunc(GL_ONE, GL_ONE);
     glUseProgram(prog);
-    bind_tex(0, s->cb_p1, u->u_p1);
-    bind_tex(1, s->cb_p2, u->u_p2);
-    bind_tex(2, s->cb_flux, u->u_flux);
     bind_tex(3, f->gbuf_depth, u->u_depth);
     glUniform1i(u->u_res, s->cb_res);
     glUniformMatrix4fv(u->u_view_proj, 1, GL_FALSE, f->view_proj.m);
@@ -80,7 +77,12 @@ int vc_lines(vc_state *s, const gk_gi_frame *f, gk_err *e)
     glUniform1f(u->u_filter_norm, (float)(1.0 / (vc_filter_integral_unit() * s->rf)));
     vc_set_medium(&u->med, f->scene);
     glBindVertexArray(s->empty_vao);
-    glDrawArrays(GL_LINES, 0, 2 * s->cb_res * s->cb_res);
+    for (int i = 0; i < n; i++) {   /* the lights' lines add into one image */
+        bind_tex(0, s->cb[i].p1, u->u_p1);
+        bind_tex(1, s->cb[i].p2, u->u_p2);
+        bind_tex(2, s->cb[i].flux, u->u_flux);
+        glDrawArrays(GL_LINES, 0, 2 * s->cb_res * s->cb_res);
+    }
     glBindVertexArray(0);
     glDisable(GL_BLEND);
     return 0;

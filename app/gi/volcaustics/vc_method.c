@@ -20,8 +20,16 @@
  *   vc_march: (A)'s resolution relative to the screen; its cost ~ pixels -> 1, 4, 16 (of a pass
  *     that is a small share at 1/4: taken as 1, 1.5, 3 of the method).
  *   vc_output: which terms are shown (all = D; airlight, vcaustics, surfaces: one term, for
- *     measuring each against its reference term); a switch, never moved by the scheduler. */
-enum { K_BUFFER, K_STEP, K_FILTER, K_MARCH, K_OUTPUT, K_COUNT };
+ *     measuring each against its reference term); a switch, never moved by the scheduler.
+ *   vc_lights: the caustic lights at most (the scene's first point/spot lights that frame its
+ *     specular objects; research §6.6 "# lights", 1-4). Each repeats passes 1-5 at the same
+ *     resolution, so ours grows linearly -> 1, 2, 3, 4 of the light and lines passes (the seed's
+ *     27, 46.5, 108, 345 ms are super-linear, unexplained there); in a scene with fewer lights
+ *     the measured cost stops growing and the online model learns it. Default: all four.
+ *   vc_surface: the surface caustics under (C), the caustic-buffer rays' ends splatted as photons
+ *     (vc_surface.c): off (C = the renderer's surfaces alone, as before) or splat (the seed's C);
+ *     a switch, so both can be measured. */
+enum { K_BUFFER, K_STEP, K_FILTER, K_MARCH, K_OUTPUT, K_LIGHTS, K_SURFACE, K_COUNT };
 _Static_assert(K_COUNT == VC_KNOBS, "vc_internal.h's VC_KNOBS counts the knobs");
 static const gk_knob_def knobs[K_COUNT] = {
     {.name = "vc_buffer", .owner = "volcaustics", .n_values = 4, .values = {"128", "256", "512", "1024"},
@@ -34,6 +42,10 @@ static const gk_knob_def knobs[K_COUNT] = {
      .cost = {1.0f, 1.5f, 3.0f}, .default_level = 1, .scales_pass = "gi.vc_airlight"},
     {.name = "vc_output", .owner = "volcaustics", .n_values = 4, .values = {"all", "airlight", "vcaustics", "surfaces"},
      .cost = {1.0f, 1.0f, 1.0f, 1.0f}, .default_level = 0, .fixed = true},
+    {.name = "vc_lights", .owner = "volcaustics", .n_values = 4, .values = {"1", "2", "3", "4"},
+     .cost = {1.0f, 2.0f, 3.0f, 4.0f}, .default_level = 3, .scales_pass = "gi.vc_lines"},
+    {.name = "vc_surface", .owner = "volcaustics", .n_values = 2, .values = {"off", "splat"},
+     .cost = {1.0f, 1.1f}, .default_level = 1, .fixed = true},
 };
 
 static void declare_knobs(gk_budget *b)
@@ -99,6 +111,9 @@ static void read_budget(vc_state *s, const gk_budget *b)
     static const unsigned shown[4] = {GK_VC_TERM_ALL, GK_VC_TERM_AIRLIGHT, GK_VC_TERM_VCAUSTICS, GK_VC_TERM_SURFACES};
     int out = gk_knob_level(b, &s->knob[K_OUTPUT], 0);
     s->terms = shown[out >= 0 && out < 4 ? out : 0];
+    s->max_lights = (int)gk_knob_number(b, &s->knob[K_LIGHTS], (float)VC_MAX_LIGHTS);
+    s->surface_on = gk_knob_level(b, &s->knob[K_SURFACE], 1) == 1;
+    s->max_lights = s->max_lights < 1 ? 1 : s->max_lights > VC_MAX_LIGHTS ? VC_MAX_LIGHTS : s->max_lights;
     s->st.buffer_res = s->buffer_res;
 }
 
@@ -118,6 +133,12 @@ static int ensure_images(vc_state *s, const gk_gi_frame *f, gk_err *e)
                              false, e))
             return -1;
     }
+    if (s->surface_on && (!s->surface.fbo || s->surface.width != f->width || s->surface.height != f->height)) {
+        gk_target_destroy(&s->surface);
+        if (gk_target_create(&s->surface, "volcaustics surface caustics", f->width, f->height, 1, &s->caustic_fmt,
+                             GL_NEAREST, false, e))
+            return -1;
+    }
     s->st.march_w = aw, s->st.march_h = ah;
     return 0;
 }
@@ -130,15 +151,25 @@ static int render(void *self, const gk_gi_frame *f, gk_err *e)
     read_budget(s, f->budget);
     if (ensure_images(s, f, e))
         return -1;
-    bool any = false;
+    int n_lines = 0;
     gk_pass_begin(f->pass, "vc_light");
-    int rc = (s->terms & GK_VC_TERM_VCAUSTICS) ? vc_light_rays(s, f, &any, e) : 0;
+    bool want_surface = s->surface_on && (s->terms & GK_VC_TERM_SURFACES);
+    int rc = (s->terms & GK_VC_TERM_VCAUSTICS) || want_surface ? vc_light_rays(s, f, &n_lines, e) : 0;
     gk_pass_end(f->pass);
     if (rc)
         return -1;
+    bool any = n_lines > 0 && (s->terms & GK_VC_TERM_VCAUSTICS);
     if (any) {
         gk_pass_begin(f->pass, "vc_lines");
-        rc = vc_lines(s, f, e);
+        rc = vc_lines(s, f, n_lines, e);
+        gk_pass_end(f->pass);
+        if (rc)
+            return -1;
+    }
+    bool surface = n_lines > 0 && want_surface;
+    if (surface) {
+        gk_pass_begin(f->pass, "vc_surface");
+        rc = vc_surface_caustics(s, f, n_lines, e);
         gk_pass_end(f->pass);
         if (rc)
             return -1;
@@ -149,7 +180,7 @@ static int render(void *self, const gk_gi_frame *f, gk_err *e)
     if (rc)
         return -1;
     gk_pass_begin(f->pass, "vc_composite");
-    rc = vc_composite(s, f, any, e);
+    rc = vc_composite(s, f, any, surface, e);
     gk_pass_end(f->pass);
     if (rc)
         return -1;
@@ -163,23 +194,19 @@ static long memory_bytes(const void *self)
 {
     const vc_state *s = self;
     long r2 = (long)s->cb_res * s->cb_res;
-    long b = r2 * (4 + 4 + 4) + r2 * (4 + 4);   /* light views: 2 RGBA8 + depth, RGBA8 + depth */
-    b += r2 * 16 * 3;                           /* caustic buffer: p1, p2, flux (RGBA32F) */
+    long b = r2 * (4 + 4 + 4) + 2 * r2 * (4 + 4); /* light views: 2 RGBA8 + depth, 2x (RGBA8 + depth) */
+    b += s->n_cb * r2 * 16 * 3;                   /* caustic buffers: p1, p2, flux (RGBA32F) per light */
     b += (long)s->air.width * s->air.height * 8 +
-         (long)s->caustic.width * s->caustic.height * (s->caustic_fmt == GL_RGBA32F ? 16 : 8);
+         ((long)s->caustic.width * s->caustic.height + (long)s->surface.width * s->surface.height) *
+             (s->caustic_fmt == GL_RGBA32F ? 16 : 8);
     return b;
 }
 
 void vc_free_gpu(vc_state *s)
 {
-    gk_target_destroy(&s->lv);
-    gk_target_destroy(&s->lv_nospec);
+    vc_free_light_buffers(s);
     gk_target_destroy(&s->air);
     gk_target_destroy(&s->caustic);
-    GLuint cb[3] = {s->cb_p1, s->cb_p2, s->cb_flux};
-    glDeleteTextures(3, cb);
-    s->cb_p1 = s->cb_p2 = s->cb_flux = 0;
-    s->cb_res = 0;
     glDeleteVertexArrays(1, &s->empty_vao);
     s->empty_vao = 0;
 }

@@ -1,8 +1,8 @@
 /* volcaustics terms (A) and (C) and the composite D = A + B + C (research dong-001.md §6.1, §6.3
  * passes 6-8): (A) by a shadowed ray march at the march resolution (shaders_gles/volcaustics/
  * airlight.frag) into an RGBA16F image, then two full-screen draws over the renderer's HDR image:
- * one multiplies it by the medium's transmittances (C), one adds A (bilinear) and B
- * (composite.frag). */
+ * one multiplies it by the medium's transmittances (C), one adds A (bilinear), B and the surface
+ * caustics of (C) (composite.frag). */
 #include <math.h>
 
 #include "medium_uniforms.h"
@@ -108,13 +108,15 @@ int vc_airlight(vc_state *s, const gk_gi_frame *f, gk_err *e)
 }
 
 typedef struct comp_uniforms {
-    GLint u_depth, u_airlight, u_caustics, u_inv_view_proj, u_eye, u_light_pos, u_has_light, u_terms;
+    GLint u_depth, u_airlight, u_caustics, u_inv_view_proj, u_eye, u_light_pos, u_has_light, u_terms, u_surface,
+        u_albedo, u_has_surface;
     vc_medium_uniforms med;
 } comp_uniforms;
 static const gk_uniform_field comp_fields[] = {
     GK_UNIFORM(comp_uniforms, u_depth), GK_UNIFORM(comp_uniforms, u_airlight), GK_UNIFORM(comp_uniforms, u_caustics),
     GK_UNIFORM(comp_uniforms, u_inv_view_proj), GK_UNIFORM(comp_uniforms, u_eye),
     GK_UNIFORM(comp_uniforms, u_light_pos), GK_UNIFORM(comp_uniforms, u_has_light), GK_UNIFORM(comp_uniforms, u_terms),
+    GK_UNIFORM(comp_uniforms, u_surface), GK_UNIFORM(comp_uniforms, u_albedo), GK_UNIFORM(comp_uniforms, u_has_surface),
     VC_MEDIUM_FIELDS(comp_uniforms, med),
 };
 
@@ -129,7 +131,8 @@ static bool first_local_light(const gk_gi_frame *f, vec3 *pos)
     return false;
 }
 
-static int composite_draw(vc_state *s, const gk_gi_frame *f, const char *defines, bool have_lines, gk_err *e)
+static int composite_draw(vc_state *s, const gk_gi_frame *f, const char *defines, bool have_lines, bool have_surface,
+                          gk_err *e)
 {
     GLuint prog = gk_program_get(s->ctx.programs, "common/fullscreen.vert", "volcaustics/composite.frag", defines, e);
     const comp_uniforms *u = prog ? gk_program_uniforms(s->ctx.programs, prog, GK_FIELDS(comp_fields), sizeof *u, e) : NULL;
@@ -139,6 +142,9 @@ static int composite_draw(vc_state *s, const gk_gi_frame *f, const char *defines
     bind_tex(0, f->gbuf_depth, u->u_depth);
     bind_tex(1, s->air.color[0], u->u_airlight);
     bind_tex(2, s->caustic.color[0], u->u_caustics);
+    bind_tex(3, have_surface ? s->surface.color[0] : 0, u->u_surface);
+    bind_tex(4, f->gbuf_albedo, u->u_albedo);
+    glUniform1i(u->u_has_surface, have_surface ? 1 : 0);
     glUniformMatrix4fv(u->u_inv_view_proj, 1, GL_FALSE, f->inv_view_proj.m);
     glUniform3f(u->u_eye, f->eye.x, f->eye.y, f->eye.z);
     vec3 lp = v3(0, 0, 0);
@@ -153,7 +159,7 @@ static int composite_draw(vc_state *s, const gk_gi_frame *f, const char *defines
     return 0;
 }
 
-int vc_composite(vc_state *s, const gk_gi_frame *f, bool have_lines, gk_err *e)
+int vc_composite(vc_state *s, const gk_gi_frame *f, bool have_lines, bool have_surface, gk_err *e)
 {
     glBindFramebuffer(GL_FRAMEBUFFER, f->hdr_fbo);
     const GLenum b0 = GL_COLOR_ATTACHMENT0;
@@ -163,10 +169,10 @@ int vc_composite(vc_state *s, const gk_gi_frame *f, bool have_lines, gk_err *e)
     glEnable(GL_BLEND);
     glBlendEquation(GL_FUNC_ADD);
     glBlendFunc(GL_ZERO, GL_SRC_COLOR);   /* C = HDR x T(v, p) T(s, p) */
-    if (composite_draw(s, f, "#define VC_ATTENUATE 1\n", have_lines, e))
+    if (composite_draw(s, f, "#define VC_ATTENUATE 1\n", have_lines, have_surface, e))
         return -1;
     glBlendFunc(GL_ONE, GL_ONE);          /* + A + B */
-    int rc = composite_draw(s, f, "#define VC_ADD 1\n", have_lines, e);
+    int rc = composite_draw(s, f, "#define VC_ADD 1\n", have_lines, have_surface, e);
     glDisable(GL_BLEND);
     return rc;
 }
