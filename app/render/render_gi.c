@@ -263,6 +263,7 @@ int gk_render_gi_run(gk_render_gi *g, gk_renderer *r, const char *method, const 
     f.gbuf_emission = gb->emission;
     f.gbuf_depth = gb->depth;
     f.gbuf_specular = gb->specular;
+    f.gbuf_geom_normal = gb->geom_normal;
     f.direct_tex = 0; /* the method adds into the same HDR target: reading it would be a feedback loop */
     f.hdr_fbo = r->hdr.fbo;
     f.n_lights = g->n_lights;

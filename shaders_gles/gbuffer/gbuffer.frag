@@ -1,7 +1,12 @@
 // G-buffer: RT0 RGBA8 (base colour, metallic), RT1 RGBA16F (world normal facing the viewer,
 // roughness), RT2 RGBA16F (emitted radiance in nits, a = 1 for unlit light proxies), RT3 RGBA8
 // (KHR_materials_specular: rgb = sqrt(c0), a = weight; sqrt so the usual c0 = 0.04 keeps 8-bit
-// precision, 51/255, within 2%); depth 32F.
+// precision, 51/255, within 2%); RT4 RGBA16F (the geometric normal: the interpolated vertex normal
+// before the normal map, facing the viewer; only with GK_GEOM_NORMAL_TARGET 1, which the renderer
+// defines when the driver has 5 draw buffers: an output location past GL_MAX_DRAW_BUFFERS fails to
+// link); depth 32F.
+// @variant GK_GEOM_NORMAL_TARGET=0
+// @variant GK_GEOM_NORMAL_TARGET=1
 precision highp float;
 in vec3 v_world;
 in vec3 v_normal;
@@ -25,6 +30,12 @@ layout(location = 0) out mediump vec4 o_albedo;
 layout(location = 1) out vec4 o_normal;
 layout(location = 2) out vec4 o_emission;
 layout(location = 3) out mediump vec4 o_specular;
+#ifndef GK_GEOM_NORMAL_TARGET
+#define GK_GEOM_NORMAL_TARGET 0
+#endif
+#if GK_GEOM_NORMAL_TARGET
+layout(location = 4) out vec4 o_geom_normal;
+#endif
 
 const int MAT_BASE_TEX = 1;
 const int MAT_MR_TEX = 2;
@@ -55,6 +66,7 @@ void main()
     if ((u_mat_flags & MAT_SPEC_COLOR_TEX) != 0)
         spec.rgb *= texture(u_spec_color_tex, v_uv).rgb;
     vec3 n = normalize(v_normal);
+    vec3 ng = dot(n, u_eye - v_world) < 0.0 ? -n : n;
     if ((u_mat_flags & MAT_NORMAL_TEX) != 0) {
         // glTF normalTexture: tangent-space normal, XY scaled; B = (N x T) w. The same frame and
         // order of operations as the reference tracer (app/ref/materials.c).
@@ -80,4 +92,7 @@ void main()
     o_normal = vec4(n, clamp(mr.y, 0.0, 1.0));
     o_emission = vec4(emits ? emissive : vec3(0.0), proxy ? 1.0 : 0.0);
     o_specular = vec4(sqrt(clamp(spec.rgb, 0.0, 1.0)), clamp(spec.a, 0.0, 1.0));
+#if GK_GEOM_NORMAL_TARGET
+    o_geom_normal = vec4(ng, 0.0);
+#endif
 }
