@@ -56,6 +56,13 @@ void main()
     for (int k = 0; k < MAX_CONES; k++) {
         if (k >= u_n_cones) break;
         vec3 d = normalize(T * u_cone_dir[k].x + N * u_cone_dir[k].y + B * u_cone_dir[k].z);
+        // Around a normal-mapped N a cone can point below the surface's own plane: that light is
+        // blocked by the surface itself (the tracer's BSDF is zero for wi below the geometric
+        // normal, app/ref/materials.c), so the cone gathers nothing and counts as occluded.
+        if (dot(d, Ng) <= 0.0) {
+            occ += u_cone_weight[k];
+            continue;
+        }
         float ao; int steps;
         vec4 c = trace_cone(apex, d, u_cone_aperture[k], u_max_dist, plane, ao, steps);
         D += u_cone_weight[k] * c.rgb;
