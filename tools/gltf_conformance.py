@@ -100,11 +100,11 @@ QUAD_UV = [(0.0, 1.0), (1.0, 1.0), (1.0, 0.0), (0.0, 0.0)]
 QUAD_IDX = [0, 1, 2, 0, 2, 3]
 
 
-def textured_quad(image):
+def textured_quad(image, uvs=QUAD_UV):
     """A 2 x 2 m quad with the checker as its base colour; `image` adds the image entry."""
     d = Doc()
     pos = d.accessor("fff", QUAD_POS, FLOAT, "VEC3", minmax=True, target=34962)
-    uv = d.accessor("ff", QUAD_UV, FLOAT, "VEC2", target=34962)
+    uv = d.accessor("ff", uvs, FLOAT, "VEC2", target=34962)
     idx = d.accessor("H", QUAD_IDX, USHORT, "SCALAR", target=34963)
     d.j["images"] = [image(d)]
     d.j["textures"] = [{"source": 0}]
@@ -235,6 +235,18 @@ def main():
         d.j["materials"][0] = {"name": "tilted", "normalTexture": {"index": 0},
                                "pbrMetallicRoughness": {"metallicFactor": 0.0}}
         d.write_glb(name)
+
+    # Samplers (glTF 5.26): the checker on a quad whose UVs run from -1 to 2 (three periods each
+    # way), wrapS CLAMP_TO_EDGE, wrapT MIRRORED_REPEAT, NEAREST filtering: every texel a sharp
+    # square, the edge texels stretched along u, the rows mirrored along v. And a sampler with a
+    # wrap mode glTF does not have: refused naming the sampler and the key.
+    wide_uv = [(3.0 * u - 1.0, 3.0 * v - 1.0) for u, v in QUAD_UV]
+    d = textured_quad(lambda d: {"bufferView": d.view(CHECKER), "mimeType": "image/png"}, wide_uv)
+    d.j["samplers"] = [{"wrapS": 33071, "wrapT": 33648, "magFilter": 9728, "minFilter": 9728}]
+    d.j["textures"][0]["sampler"] = 0
+    d.write_glb("sampler-wrap")
+    d.j["samplers"][0]["wrapS"] = 10241
+    d.write_glb("sampler-bad-wrap")
 
     # Extensions: one required that gikiosk does not read (Draco), refused by name.
     d = Doc()

@@ -65,6 +65,7 @@ static void print_gltf_use(const gk_scene_gltf_use *u)
         {u->sparse_accessors, "sparse accessors"},
         {u->quantized_accessors, "quantized accessors"},
         {u->strips_fans, "strips/fans converted to triangles"},
+        {u->samplers, "textures with a non-default sampler"},
     };
     for (size_t i = 0; i < sizeof counts / sizeof counts[0]; i++)
         if (counts[i].n)

@@ -9,9 +9,23 @@
 static float lum3(vec3 c) { return gk_luminance(c.x, c.y, c.z); }
 static float clamp01(float x) { return x < 0.0f ? 0.0f : (x > 1.0f ? 1.0f : x); }
 
-/* Bilinear filtering with repeat wrapping: what the GLES renderer's textures do (GL_LINEAR, no
- * mipmaps, GL_REPEAT: app/render/scene_gpu.c), so both renderers see the same colour at every
- * point; texel centres lie at (i + 0.5) / size. RGBA into out, white without a texture. */
+/* A texel index under a glTF wrap mode (GL's rules, ES 3.2 §8.14.2): repeat takes i mod n, clamp
+ * the nearest edge texel, mirror reflects every other period (-1 -> 0, n -> n - 1). */
+static int wrap_texel(int i, int n, enum gk_wrap mode)
+{
+    if (mode == GK_WRAP_CLAMP)
+        return i < 0 ? 0 : (i >= n ? n - 1 : i);
+    if (mode == GK_WRAP_MIRROR) {
+        int m = (i % (2 * n) + 2 * n) % (2 * n);
+        return m < n ? m : 2 * n - 1 - m;
+    }
+    return (i % n + n) % n;
+}
+
+/* The texture's glTF sampler as the GLES renderer's textures do it (app/render/scene_gpu.c: no
+ * mipmaps, GL_NEAREST or GL_LINEAR, GL_REPEAT, GL_CLAMP_TO_EDGE or GL_MIRRORED_REPEAT), so both
+ * renderers see the same colour at every point; texel centres lie at (i + 0.5) / size. RGBA into
+ * out, white without a texture. */
 static void tex_bilinear(const gk_ref_scene *rs, int tex, float u, float v, float out[4])
 {
     if (tex < 0 || tex >= rs->n_textures || !rs->textures[tex].rgba) {
@@ -19,15 +33,30 @@ static void tex_bilinear(const gk_ref_scene *rs, int tex, float u, float v, floa
         return;
     }
     const gk_texture *t = &rs->textures[tex];
-    float x = (u - floorf(u)) * (float)t->width - 0.5f, y = (v - floorf(v)) * (float)t->height - 0.5f;
-    float fx = floorf(x), fy = floorf(y), wx = x - fx, wy = y - fy;
-    int x0 = (int)fx, y0 = (int)fy;
+    /* far outside [0, 1] only the period matters; keeps the int conversion in range (mirror: 2) */
+    if (t->wrap_s != GK_WRAP_CLAMP && fabsf(u) > 1e4f)
+        u -= 2.0f * floorf(u / 2.0f);
+    if (t->wrap_t != GK_WRAP_CLAMP && fabsf(v) > 1e4f)
+        v -= 2.0f * floorf(v / 2.0f);
+    u = fmaxf(fminf(u, 1e4f), -1e4f);
+    v = fmaxf(fminf(v, 1e4f), -1e4f);
     for (int c = 0; c < 4; c++)
         out[c] = 0.0f;
+    if (t->nearest) {
+        int xi = wrap_texel((int)floorf(u * (float)t->width), t->width, t->wrap_s);
+        int yj = wrap_texel((int)floorf(v * (float)t->height), t->height, t->wrap_t);
+        const float *p = &t->rgba[4 * ((size_t)yj * (size_t)t->width + (size_t)xi)];
+        for (int c = 0; c < 4; c++)
+            out[c] = p[c];
+        return;
+    }
+    float x = u * (float)t->width - 0.5f, y = v * (float)t->height - 0.5f;
+    float fx = floorf(x), fy = floorf(y), wx = x - fx, wy = y - fy;
+    int x0 = (int)fx, y0 = (int)fy;
     for (int j = 0; j < 2; j++)
         for (int i = 0; i < 2; i++) {
-            int xi = ((x0 + i) % t->width + t->width) % t->width;
-            int yj = ((y0 + j) % t->height + t->height) % t->height;
+            int xi = wrap_texel(x0 + i, t->width, t->wrap_s);
+            int yj = wrap_texel(y0 + j, t->height, t->wrap_t);
             float w = (i ? wx : 1.0f - wx) * (j ? wy : 1.0f - wy);
             const float *p = &t->rgba[4 * ((size_t)yj * (size_t)t->width + (size_t)xi)];
             for (int c = 0; c < 4; c++)

@@ -56,17 +56,21 @@ int gk_scene_gpu_upload(gk_scene_gpu *g, const gk_scene *s, gk_err *e)
     glBindBuffer(GL_ARRAY_BUFFER, 0);
     /* Textures: linear float RGBA from the loader, kept as RGBA16F (filterable in GLES 3.0 core).
        No mipmaps: generating them needs a renderable RGBA16F, and the path tracer samples
-       bilinearly without them, so the two renderers see the same texels. */
+       without them (materials.c), so the two renderers see the same texels. */
     g->n_textures = s->n_textures;
     for (int i = 0; i < s->n_textures; i++) {
         const gk_texture *t = &s->textures[i];
         glGenTextures(1, &g->tex[i]);
         glBindTexture(GL_TEXTURE_2D, g->tex[i]);
         glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA16F, t->width, t->height, 0, GL_RGBA, GL_FLOAT, t->rgba);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+        /* the glTF sampler (gk_texture): one filter for both directions, as the tracer samples */
+        static const GLint wrap[] = {[GK_WRAP_REPEAT] = GL_REPEAT, [GK_WRAP_CLAMP] = GL_CLAMP_TO_EDGE,
+                                     [GK_WRAP_MIRROR] = GL_MIRRORED_REPEAT};
+        GLint filter = t->nearest ? GL_NEAREST : GL_LINEAR;
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, wrap[t->wrap_s]);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, wrap[t->wrap_t]);
     }
     const float white[4] = {1, 1, 1, 1};
     glGenTextures(1, &g->white_tex);

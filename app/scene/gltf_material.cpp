@@ -102,6 +102,46 @@ bool read_glass(Loader &L, const tinygltf::Material &src, int mi, double *transm
     return true;
 }
 
+// The texture's sampler (glTF §5.26): wrapS/wrapT REPEAT (10497, the default), CLAMP_TO_EDGE
+// (33071) or MIRRORED_REPEAT (33648); magFilter NEAREST (9728) gives nearest texels, LINEAR (9729)
+// or none bilinear. minFilter's mipmap modes are read as their base filter (no mipmaps here), so it
+// is only validated. Any other value is refused naming the sampler and the key.
+bool read_sampler(Loader &L, const Model &m, int ti, gk_texture *t)
+{
+    int si = m.textures[(size_t)ti].sampler;
+    if (si < 0)
+        return true;
+    if ((size_t)si >= m.samplers.size())
+        return L.fail("texture %d: sampler %d does not exist", ti, si);
+    const tinygltf::Sampler &smp = m.samplers[(size_t)si];
+    struct { const char *key; int value; enum gk_wrap *out; } wraps[] = {
+        {"wrapS", smp.wrapS, &t->wrap_s}, {"wrapT", smp.wrapT, &t->wrap_t}};
+    for (auto &w : wraps) {
+        if (w.value == TINYGLTF_TEXTURE_WRAP_REPEAT)
+            *w.out = GK_WRAP_REPEAT;
+        else if (w.value == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE)
+            *w.out = GK_WRAP_CLAMP;
+        else if (w.value == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT)
+            *w.out = GK_WRAP_MIRROR;
+        else
+            return L.fail("sampler %d: %s %d is not REPEAT (10497), CLAMP_TO_EDGE (33071) or MIRRORED_REPEAT (33648)",
+                          si, w.key, w.value);
+    }
+    if (smp.magFilter != -1 && smp.magFilter != TINYGLTF_TEXTURE_FILTER_NEAREST &&
+        smp.magFilter != TINYGLTF_TEXTURE_FILTER_LINEAR)
+        return L.fail("sampler %d: magFilter %d is not NEAREST (9728) or LINEAR (9729)", si, smp.magFilter);
+    static const int min_ok[] = {-1, 9728, 9729, 9984, 9985, 9986, 9987};
+    bool ok = false;
+    for (int v : min_ok)
+        ok = ok || smp.minFilter == v;
+    if (!ok)
+        return L.fail("sampler %d: minFilter %d is not a glTF filter (9728, 9729, 9984 to 9987)", si, smp.minFilter);
+    t->nearest = smp.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
+    if (t->nearest || t->wrap_s != GK_WRAP_REPEAT || t->wrap_t != GK_WRAP_REPEAT)
+        L.use.samplers++;
+    return true;
+}
+
 } // namespace
 
 bool read_materials(Loader &L, const Model &m, gk_scene *s, std::vector<int> &tex_usage)
@@ -190,6 +230,8 @@ bool read_textures(Loader &L, const Model &m, gk_scene *s)
             return L.fail("texture %zu: image %d does not exist", i, src);
         const tinygltf::Image &img = m.images[(size_t)src];
         gk_texture *t = &s->textures[i];
+        if (!read_sampler(L, m, (int)i, t))
+            return false;
         copy_name(t->mime, sizeof t->mime, img.mimeType);
         if (img.uri.empty()) { // embedded: its bytes were kept by the image callback (gltf_load.cpp)
             if (img.image.empty())

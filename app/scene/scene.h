@@ -29,6 +29,9 @@
 enum gk_light_type { GK_LIGHT_POINT, GK_LIGHT_SPOT, GK_LIGHT_DIRECTIONAL };
 enum gk_light_shape { GK_SHAPE_POINT, GK_SHAPE_SPHERE, GK_SHAPE_DISC, GK_SHAPE_RECT };
 
+/* glTF sampler wrap modes; 0 (the zeroed default) is glTF's default, REPEAT. */
+enum gk_wrap { GK_WRAP_REPEAT = 0, GK_WRAP_CLAMP, GK_WRAP_MIRROR };
+
 typedef struct gk_texture {
     char uri[256];    /* the image file, relative to the scene's folder; "" for an embedded image */
     unsigned char *embedded;   /* encoded bytes of an image inside the file (GLB chunk or data: uri), */
@@ -36,6 +39,11 @@ typedef struct gk_texture {
     char mime[32];             /* the image's mimeType, "" when not given */
     int width, height;
     float *rgba;      /* width*height*4 floats, linear (sRGB decoded for colour textures) */
+    /* The glTF sampler: wrapS, wrapT, and one filter for magnification and minification alike
+       (neither renderer has mipmaps, and the tracer no footprint to tell the two apart): NEAREST
+       when magFilter is NEAREST, else bilinear. Both renderers sample the same way. */
+    enum gk_wrap wrap_s, wrap_t;
+    bool nearest;
 } gk_texture;
 
 typedef struct gk_material {
@@ -150,6 +158,7 @@ typedef struct gk_scene_gltf_use {
     int not_drawn;             /* points and lines primitives */
     int orthographic_cameras;  /* loaded, never the view */
     int skins;                 /* nodes drawn at their node transform (no skinning) */
+    int samplers;              /* textures whose sampler is not REPEAT + bilinear (read, gk_texture) */
 } gk_scene_gltf_use;
 /* A homogeneous participating medium filling the scene (or an axis-aligned box of it), given in the
  * scene's extras (DESIGN §4):

@@ -34,13 +34,19 @@ expect_exit 2 "a required extension gikiosk does not read exits 2" "$GIKIOSK" sc
 stderr_has "requires-draco.gltf: requires extension 'KHR_draco_mesh_compression'" "naming the file and the extension"
 expect_exit 2 "a KTX2 image exits 2" "$GIKIOSK" scenes --check $DIR/texture-ktx2.glb
 stderr_has "texture-ktx2.glb: texture 0 .*KHR_texture_basisu" "naming the file, the texture and the extension"
+expect_exit 0 "scenes --check on a texture with a sampler" "$GIKIOSK" scenes --check $DIR/sampler-wrap.glb
+check "it reports the sampler" grep -q "^gltf reads: .*1 textures with a non-default sampler" "$TMP/stdout"
+expect_exit 2 "a wrap mode glTF does not have exits 2" "$GIKIOSK" scenes --check $DIR/sampler-bad-wrap.glb
+stderr_has "sampler-bad-wrap.glb: sampler 0: wrapS 10241" "naming the file, the sampler and the key"
 expect_exit 2 "integer positions without KHR_mesh_quantization exit 2" "$GIKIOSK" scenes --check $DIR/quantized-undeclared.gltf
 stderr_has "quantized-undeclared.gltf: accessor 0 .*UNSIGNED_SHORT.*KHR_mesh_quantization" "naming the accessor and the extension"
 
 # Models whose material comes from more than factors, each rendered by every method that applies
 # and by the reference tracer: the checker texture in a GLB lit by the studio, the same checker as
 # an emissive texture (drawn flat white before), vertex colours lit by the studio, and a normal
-# map tilting a white quad toward +u and toward +v (generated tangents). The budgets the scheduler
+# map tilting a white quad toward +u and toward +v (generated tangents), and the checker clamped
+# along u and mirrored along v with nearest texels (sampler-wrap: 0.0907 against the tracer's own
+# 0.127, the residual 0.012). The budgets the scheduler
 # would trade (render scale, shadow filter and map size) are pinned: on a loaded machine it halves
 # the render scale, and the comparison is of materials, not of the scheduler. The normal maps run
 # at shadow_map=2048 and with vct: with the mapped normal in place of the geometric one (the
@@ -49,7 +55,7 @@ stderr_has "quantized-undeclared.gltf: accessor 0 .*UNSIGNED_SHORT.*KHR_mesh_qua
 # 2.15 on normal-map-v); with it, 0.9999 and 1.0009 (none and vct alike). Two
 # references (seeds 1 and 2) measure the tracer's own noise, so the renderer's error is judged
 # against it rather than against a fixed number.
-for sc in ${CONFORMANCE_SCENES:-texture-glb emissive-texture vertex-colors normal-map normal-map-v}; do
+for sc in ${CONFORMANCE_SCENES:-texture-glb emissive-texture vertex-colors normal-map normal-map-v sampler-wrap}; do
     "$GIKIOSK" reference --scenes-dir $DIR --scene $sc --size 160x120 --spp 512 --out "$TMP/$sc-ref1.exr" 2>/dev/null
     "$GIKIOSK" reference --scenes-dir $DIR --scene $sc --size 160x120 --spp 512 --seed 2 --out "$TMP/$sc-ref2.exr" 2>/dev/null
     "$GIKIOSK" compare "$TMP/$sc-ref1.exr" "$TMP/$sc-ref2.exr" --json >"$TMP/noise.json"

@@ -11,6 +11,8 @@
 #include <string.h>
 
 #include "core/tonemap.h"
+#include "ref/materials.h"
+#include "ref/ref_scene.h"
 #include "scene/scene.h"
 
 static gk_scene *load(const char *name)
@@ -257,6 +259,47 @@ static void normal_maps_get_tangents(void **state)
     gk_scene_free(s);
 }
 
+/* glTF samplers (sampler-wrap.glb: wrapS CLAMP_TO_EDGE, wrapT MIRRORED_REPEAT, NEAREST) are read,
+ * and the tracer looks texels up as GL's rules say (ES 3.2 8.14.2), at UVs where REPEAT or bilinear
+ * filtering would give another texel; the GLES side is compared with the tracer in
+ * tests/e2e/gltf_conformance.sh. The checker's rows: v in [0, 0.5) red, green; [0.5, 1) blue, white. */
+static void samplers_wrap_and_filter_as_declared(void **state)
+{
+    (void)state;
+    gk_scene *s = load("sampler-wrap.glb");
+    gk_texture t = s->textures[0];
+    assert_int_equal(t.wrap_s, GK_WRAP_CLAMP);
+    assert_int_equal(t.wrap_t, GK_WRAP_MIRROR);
+    assert_true(t.nearest);
+    assert_int_equal(s->gltf.samplers, 1);
+    gk_ref_scene rs = {.textures = &t, .n_textures = 1};
+    gk_ref_tri tri = {.uv = {{0, 0}, {1, 0}, {0, 1}}}; /* uv = (b1, b2) */
+    const struct { float u, v, rgb[3]; const char *why; } at[] = {
+        {0.25f, 0.25f, {1, 0, 0}, "inside: red"},
+        {-0.25f, 0.25f, {1, 0, 0}, "clamped to column 0 (REPEAT: column 1, green)"},
+        {1.25f, 0.25f, {0, 1, 0}, "clamped to column 1 (REPEAT: column 0, red)"},
+        {0.25f, 1.25f, {0, 0, 1}, "mirrored to row 1 (REPEAT: row 0, red)"},
+        {0.25f, -0.25f, {1, 0, 0}, "mirrored to row 0 (REPEAT: row 1, blue)"},
+        {0.25f, 2.25f, {1, 0, 0}, "two periods on: row 0 again"},
+        {0.45f, 0.25f, {1, 0, 0}, "nearest texel (bilinear: 0.6 red + 0.4 green)"},
+    };
+    for (size_t i = 0; i < sizeof at / sizeof at[0]; i++) {
+        vec3 c = gk_tri_texture_rgb(&rs, &tri, 0, at[i].u, at[i].v);
+        if (fabsf(c.x - at[i].rgb[0]) > 1e-6f || fabsf(c.y - at[i].rgb[1]) > 1e-6f || fabsf(c.z - at[i].rgb[2]) > 1e-6f)
+            fail_msg("uv (%g, %g): got (%g, %g, %g), wanted %s", at[i].u, at[i].v, c.x, c.y, c.z, at[i].why);
+    }
+    /* bilinear with the same wraps: texel centres at (i + 0.5) / 2, clamp at the edge */
+    t.nearest = false;
+    vec3 c = gk_tri_texture_rgb(&rs, &tri, 0, 0.45f, 0.25f);
+    assert_float_equal(c.x, 0.6f, 1e-5f);
+    assert_float_equal(c.y, 0.4f, 1e-5f);
+    c = gk_tri_texture_rgb(&rs, &tri, 0, -0.5f, 0.25f);
+    assert_float_equal(c.x, 1.0f, 1e-6f);
+    assert_float_equal(c.y, 0.0f, 1e-6f);
+    gk_scene_free(s);
+    expect_refused("sampler-bad-wrap.glb", "sampler 0: wrapS 10241");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -270,6 +313,7 @@ int main(void)
         cmocka_unit_test(a_file_without_lights_gets_the_default_studio),
         cmocka_unit_test(metalness_comes_from_the_texture),
         cmocka_unit_test(normal_maps_get_tangents),
+        cmocka_unit_test(samplers_wrap_and_filter_as_declared),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
