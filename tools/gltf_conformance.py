@@ -9,6 +9,7 @@ Every file draws in the z = 0 plane facing +z unless it says otherwise, and has 
 default studio lights it) and no camera (the default camera frames it) unless it says otherwise."""
 import base64
 import json
+import math
 import os
 import struct
 import zlib
@@ -191,7 +192,7 @@ def main():
                      {"name": "sun", "rotation": [0, 0, 0, 1],
                       "extensions": {"KHR_lights_punctual": {"light": 0}}}]
     d.j["scenes"][0]["nodes"] += [1, 2, 3]
-    d.j["extensionsUsed"] = ["KHR_lights_punctual", "KHR_texture_transform"]
+    d.j["extensionsUsed"] = ["KHR_lights_punctual", "KHR_materials_clearcoat"]
     d.j["extensions"] = {"KHR_lights_punctual": {"lights": [{"type": "directional", "intensity": 2.0}]}}
     d.write_gltf("cameras")
 
@@ -247,6 +248,28 @@ def main():
     d.write_glb("sampler-wrap")
     d.j["samplers"][0]["wrapS"] = 10241
     d.write_glb("sampler-bad-wrap")
+
+    # KHR_texture_transform on the base colour: offset (0.5, 1), rotation pi/2, scale (2, 1), so
+    # uv' = (v + 0.5, 1 - 2u): the checker turned a quarter, stretched and shifted.
+    d = textured_quad(lambda d: {"bufferView": d.view(CHECKER), "mimeType": "image/png"})
+    d.j["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["extensions"] = {
+        "KHR_texture_transform": {"offset": [0.5, 1.0], "rotation": math.pi / 2, "scale": [2.0, 1.0]}}
+    d.j["extensionsUsed"] = ["KHR_texture_transform"]
+    d.write_glb("texture-transform")
+    # TEXCOORD_1: the base colour reads the second set (texCoord 1, the checker's own UVs) while
+    # TEXCOORD_0 is (0, 0) everywhere (one red texel): a renderer reading set 0 draws it all red.
+    d = Doc()
+    pos = d.accessor("fff", QUAD_POS, FLOAT, "VEC3", minmax=True, target=34962)
+    uv0 = d.accessor("ff", [(0.0, 0.0)] * 4, FLOAT, "VEC2", target=34962)
+    uv1 = d.accessor("ff", QUAD_UV, FLOAT, "VEC2", target=34962)
+    idx = d.accessor("H", QUAD_IDX, USHORT, "SCALAR", target=34963)
+    d.j["images"] = [{"bufferView": d.view(CHECKER), "mimeType": "image/png"}]
+    d.j["textures"] = [{"source": 0}]
+    d.j["materials"] = [{"name": "second-set", "pbrMetallicRoughness": {
+        "baseColorTexture": {"index": 0, "texCoord": 1}, "metallicFactor": 0.0, "roughnessFactor": 1.0}}]
+    d.mesh_node([{"attributes": {"POSITION": pos, "TEXCOORD_0": uv0, "TEXCOORD_1": uv1}, "indices": idx,
+                  "material": 0}], "quad")
+    d.write_glb("texcoord1")
 
     # Extensions: one required that gikiosk does not read (Draco), refused by name.
     d = Doc()

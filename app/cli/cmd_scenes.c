@@ -66,6 +66,8 @@ static void print_gltf_use(const gk_scene_gltf_use *u)
         {u->quantized_accessors, "quantized accessors"},
         {u->strips_fans, "strips/fans converted to triangles"},
         {u->samplers, "textures with a non-default sampler"},
+        {u->texture_transforms, "texture transforms"},
+        {u->second_uv_slots, "textures on TEXCOORD_1"},
     };
     for (size_t i = 0; i < sizeof counts / sizeof counts[0]; i++)
         if (counts[i].n)

@@ -45,6 +45,11 @@ static int add_mesh_triangles(gk_ref_scene *rs, const gk_scene *s, const gk_node
                 t->uv[k][0] = m->uvs[2 * vi];
                 t->uv[k][1] = m->uvs[2 * vi + 1];
             }
+            const float *uv1 = m->uvs1 ? m->uvs1 : m->uvs;
+            if (uv1) {
+                t->uv1[k][0] = uv1[2 * vi];
+                t->uv1[k][1] = uv1[2 * vi + 1];
+            }
             for (int c = 0; c < 4; c++)
                 t->color[k][c] = m->colors ? m->colors[4 * vi + (uint32_t)c] : 1.0f;
             if (m->tangents) {

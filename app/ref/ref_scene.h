@@ -40,6 +40,7 @@ typedef struct gk_ref_light {
 typedef struct gk_ref_tri {
     vec3 p[3], n[3];
     float uv[3][2];
+    float uv1[3][2];   /* TEXCOORD_1 per corner; TEXCOORD_0's without one (as the G-buffer binds it) */
     float color[3][4]; /* COLOR_0 per corner, white without one */
     float tangent[3][4]; /* world-space tangent xyz + handedness w per corner; zero without one */
     vec3 ng;           /* unit geometric normal (front face by winding) */

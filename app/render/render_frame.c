@@ -112,6 +112,8 @@ static const gk_uniform_field gbuffer_fields[] = {
     GK_UNIFORM_AS(gbuffer_uniforms, draw.u_emissive_tex, "u_emissive_tex"),
     GK_UNIFORM_AS(gbuffer_uniforms, draw.u_normal_tex, "u_normal_tex"),
     GK_UNIFORM_AS(gbuffer_uniforms, draw.u_normal_scale, "u_normal_scale"),
+    GK_UNIFORM_AS(gbuffer_uniforms, draw.u_tex_xf, "u_tex_xf"),
+    GK_UNIFORM_AS(gbuffer_uniforms, draw.u_tex_uv1, "u_tex_uv1"),
 };
 
 /* direct/emission.frag */

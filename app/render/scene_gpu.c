@@ -29,8 +29,9 @@ int gk_scene_gpu_upload(gk_scene_gpu *g, const gk_scene *s, gk_err *e)
     for (int i = 0; i < s->n_meshes; i++) {
         const gk_mesh *m = &s->meshes[i];
         glBindVertexArray(g->vao[i]);
-        const float *data[GK_MESH_ATTRIBS] = {m->positions, m->normals, m->uvs, m->colors, m->tangents};
-        const int comps[GK_MESH_ATTRIBS] = {3, 3, 2, 4, 4};
+        const float *data[GK_MESH_ATTRIBS] = {m->positions, m->normals, m->uvs, m->colors, m->tangents,
+                                              m->uvs1 ? m->uvs1 : m->uvs};
+        const int comps[GK_MESH_ATTRIBS] = {3, 3, 2, 4, 4, 2};
         for (int a = 0; a < GK_MESH_ATTRIBS; a++) {
             if (!data[a]) { /* a constant attribute: no colour is white */
                 glDisableVertexAttribArray((GLuint)a);
@@ -161,6 +162,18 @@ static void set_material(const gk_scene_gpu *g, const gk_scene *s, const gk_draw
     glUniform4f(u->u_specular, k * m->specular_color[0], k * m->specular_color[1], k * m->specular_color[2],
                 m->specular);
     glUniform2f(u->u_glass, m->ior, m->transmission);
+    _Static_assert(GK_TEX_SLOTS == 6, "gbuffer.frag declares u_tex_xf[12]: two rows per slot");
+    float xf[GK_TEX_SLOTS * 6];
+    int uv1 = 0;
+    for (int k = 0; k < GK_TEX_SLOTS; k++) {
+        static const float identity[6] = {1, 0, 0, 0, 1, 0};
+        const gk_tex_uv *t = &m->tex_uv[k];
+        memcpy(&xf[6 * k], t->transformed ? t->m : identity, sizeof identity);
+        if (t->texcoord == 1)
+            uv1 |= 1 << k;
+    }
+    glUniform3fv(u->u_tex_xf, 2 * GK_TEX_SLOTS, xf);
+    glUniform1i(u->u_tex_uv1, uv1);
 }
 
 void gk_draw_uniforms_lookup(GLuint prog, gk_draw_uniforms *u)
@@ -180,6 +193,8 @@ void gk_draw_uniforms_lookup(GLuint prog, gk_draw_uniforms *u)
     u->u_normal_tex = glGetUniformLocation(prog, "u_normal_tex");
     u->u_normal_scale = glGetUniformLocation(prog, "u_normal_scale");
     u->u_glass = glGetUniformLocation(prog, "u_glass");
+    u->u_tex_xf = glGetUniformLocation(prog, "u_tex_xf");
+    u->u_tex_uv1 = glGetUniformLocation(prog, "u_tex_uv1");
 }
 
 void gk_scene_gpu_draw(const gk_scene_gpu *g, const gk_scene *s, const gk_draw_uniforms *u, int flags)

@@ -11,11 +11,11 @@
 #include "gl/gl.h"
 #include "gl/gl_program.h"
 
-#define GK_MESH_ATTRIBS 5      /* vertex attributes per mesh, locations 0..4 */
+#define GK_MESH_ATTRIBS 6      /* vertex attributes per mesh, locations 0..5 */
 
 typedef struct gk_scene_gpu {
     int n_meshes;
-    GLuint *vao, *vbo, *ibo;   /* vbo: GK_MESH_ATTRIBS per mesh (pos, normal, uv, colour, tangent) */
+    GLuint *vao, *vbo, *ibo;   /* vbo: GK_MESH_ATTRIBS per mesh (pos, normal, uv, colour, tangent, uv1: TEXCOORD_1, or TEXCOORD_0 again without one) */
     GLsizei *index_count;
     int n_textures;
     GLuint *tex;
@@ -57,6 +57,10 @@ typedef struct gk_draw_uniforms {
     GLint u_emissive_tex;                                                 /* unit 4 */
     GLint u_normal_tex, u_normal_scale;                                   /* unit 5 */
     GLint u_glass;             /* (ior, transmission): KHR_materials_ior / _transmission (render_glass.c) */
+    /* Each texture slot's UVs (gk_tex_uv): u_tex_xf vec3[2 * GK_TEX_SLOTS], rows of its 2x3
+       KHR_texture_transform matrix (identity without one); u_tex_uv1 int, bit k set when slot k
+       reads TEXCOORD_1 (attribute 5). Slots in enum gk_tex_slot's order. */
+    GLint u_tex_xf, u_tex_uv1;
 } gk_draw_uniforms;
 
 /* Draws every node's meshes (after gk_scene_evaluate) with the bound program: sets u_model and

@@ -11,6 +11,68 @@ namespace gkgltf {
 
 namespace {
 
+// A number array of n finite numbers at key of obj (absent: keep out).
+bool read_numbers(const Value *obj, const char *key, int n, float *out)
+{
+    const Value *a = member(obj, key);
+    if (!a)
+        return true;
+    if (!a->IsArray() || (int)a->ArrayLen() != n)
+        return false;
+    for (int k = 0; k < n; k++) {
+        const Value &x = a->Get(k);
+        double v = x.IsNumber() ? x.GetNumberAsDouble() : NAN;
+        if (!std::isfinite(v))
+            return false;
+        out[k] = (float)v;
+    }
+    return true;
+}
+
+// Where a texture slot reads its UVs (gk_tex_uv): texCoord 0 or 1 (glTF's textureInfo.texCoord) and
+// KHR_texture_transform (offset, rotation, scale, and its own texCoord, which overrides). A set
+// past TEXCOORD_1 or a malformed transform is refused naming the material and the slot.
+bool read_tex_uv(Loader &L, int mi, const char *slot, int texcoord, const Value *transform, gk_tex_uv *out)
+{
+    *out = gk_tex_uv{};
+    if (transform) {
+        float offset[2] = {0, 0}, scale[2] = {1, 1}, rotation = 0;
+        const Value *rot = member(transform, "rotation");
+        double r = rot ? (rot->IsNumber() ? rot->GetNumberAsDouble() : NAN) : 0.0;
+        if (!transform->IsObject() || !read_numbers(transform, "offset", 2, offset) ||
+            !read_numbers(transform, "scale", 2, scale) || !std::isfinite(r))
+            return L.fail("material %d: %s texture: KHR_texture_transform needs offset [2 numbers], rotation (a "
+                          "number) and scale [2 numbers], all finite",
+                          mi, slot);
+        rotation = (float)r;
+        const Value *tc = member(transform, "texCoord");
+        if (tc) {
+            if (!tc->IsInt())
+                return L.fail("material %d: %s texture: KHR_texture_transform texCoord must be an integer", mi, slot);
+            texcoord = tc->Get<int>();
+        }
+        float c = cosf(rotation), sn = sinf(rotation);
+        const float m[6] = {c * scale[0], sn * scale[1], offset[0], -sn * scale[0], c * scale[1], offset[1]};
+        memcpy(out->m, m, sizeof m);
+        out->transformed = true;
+        L.use.texture_transforms++;
+    }
+    if (texcoord < 0 || texcoord > 1)
+        return L.fail("material %d: %s texture reads TEXCOORD_%d: only TEXCOORD_0 and TEXCOORD_1 are read", mi, slot,
+                      texcoord);
+    out->texcoord = texcoord;
+    if (texcoord == 1)
+        L.use.second_uv_slots++;
+    return true;
+}
+
+// The KHR_texture_transform object of a textureInfo's extensions, or null.
+const Value *texture_transform(const tinygltf::ExtensionMap &ext)
+{
+    auto it = ext.find("KHR_texture_transform");
+    return it == ext.end() ? nullptr : &it->second;
+}
+
 // KHR_materials_specular (brdf_spec.md): specularFactor (in [0, 1], default 1), specularColorFactor
 // (3 numbers >= 0, default 1), specularTexture (A: weight, data) and specularColorTexture (RGB,
 // sRGB colour). A malformed value is refused with the material named, never guessed.
@@ -45,9 +107,10 @@ bool read_specular(Loader &L, const tinygltf::Material &src, int mi, gk_material
             return L.fail("material %d ('%s'): specularColorFactor must be 3 finite numbers >= 0", mi,
                           src.name.c_str());
     }
-    struct { const char *key, *slot; int flag; int *out; } texs[] = {
-        {"specularTexture", "specular", GK_TEX_USED_AS_DATA, &d->specular_tex},
-        {"specularColorTexture", "specular colour", GK_TEX_USED_AS_COLOR, &d->specular_color_tex},
+    struct { const char *key, *slot; int flag; int *out; gk_tex_uv *uv; } texs[] = {
+        {"specularTexture", "specular", GK_TEX_USED_AS_DATA, &d->specular_tex, &d->tex_uv[GK_SLOT_SPECULAR]},
+        {"specularColorTexture", "specular colour", GK_TEX_USED_AS_COLOR, &d->specular_color_tex,
+         &d->tex_uv[GK_SLOT_SPECULAR_COLOR]},
     };
     for (auto &t : texs) {
         const Value *info = member(ext, t.key);
@@ -57,6 +120,12 @@ bool read_specular(Loader &L, const tinygltf::Material &src, int mi, gk_material
         if (!index || !index->IsInt() || index->Get<int>() < 0)
             return L.fail("material %d ('%s'): %s needs an index >= 0", mi, src.name.c_str(), t.key);
         if (!tex_ref(index->Get<int>(), t.flag, mi, t.slot, t.out))
+            return false;
+        const Value *tc = member(info, "texCoord");
+        const Value *exts = member(info, "extensions");
+        if (tc && !tc->IsInt())
+            return L.fail("material %d ('%s'): %s texCoord must be an integer", mi, src.name.c_str(), t.key);
+        if (!read_tex_uv(L, mi, t.slot, tc ? tc->Get<int>() : 0, member(exts, "KHR_texture_transform"), t.uv))
             return false;
     }
     return true;
@@ -194,6 +263,18 @@ bool read_materials(Loader &L, const Model &m, gk_scene *s, std::vector<int> &te
             !tex_ref(src.emissiveTexture.index, GK_TEX_USED_AS_COLOR, mi, "emissive", &d->emissive_tex) ||
             !tex_ref(src.normalTexture.index, GK_TEX_USED_AS_DATA, mi, "normal", &d->normal_tex))
             return false;
+        const struct { const char *slot; int texcoord; const tinygltf::ExtensionMap *ext; enum gk_tex_slot k; } uvs[] = {
+            {"base colour", pbr.baseColorTexture.texCoord, &pbr.baseColorTexture.extensions, GK_SLOT_BASE},
+            {"metallic-roughness", pbr.metallicRoughnessTexture.texCoord, &pbr.metallicRoughnessTexture.extensions,
+             GK_SLOT_MR},
+            {"emissive", src.emissiveTexture.texCoord, &src.emissiveTexture.extensions, GK_SLOT_EMISSIVE},
+            {"normal", src.normalTexture.texCoord, &src.normalTexture.extensions, GK_SLOT_NORMAL},
+        };
+        const int slot_tex[] = {d->base_color_tex, d->metallic_roughness_tex, d->emissive_tex, d->normal_tex};
+        for (size_t k = 0; k < sizeof uvs / sizeof uvs[0]; k++)
+            if (slot_tex[k] >= 0 && !read_tex_uv(L, mi, uvs[k].slot, uvs[k].texcoord, texture_transform(*uvs[k].ext),
+                                                 &d->tex_uv[uvs[k].k]))
+                return false;
         double strength = 1.0, transmission = 0.0, ior = 1.5;
         if (!read_number_ext(L, src, mi, "KHR_materials_emissive_strength", "emissiveStrength", 0.0, HUGE_VAL,
                              "a finite number >= 0", &strength) ||

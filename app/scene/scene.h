@@ -46,6 +46,35 @@ typedef struct gk_texture {
     bool nearest;
 } gk_texture;
 
+/* The texture slots of a material, for gk_material.tex_uv. */
+enum gk_tex_slot {
+    GK_SLOT_BASE, GK_SLOT_MR, GK_SLOT_EMISSIVE, GK_SLOT_NORMAL, GK_SLOT_SPECULAR, GK_SLOT_SPECULAR_COLOR,
+    GK_TEX_SLOTS
+};
+
+/* Where one texture slot reads its UVs: TEXCOORD_<texcoord> (0 or 1; glTF textureInfo.texCoord,
+ * or KHR_texture_transform's override), then, when transformed, KHR_texture_transform's
+ * uv' = T(offset) R(rotation) S(scale) uv as the row-major 2x3 matrix m:
+ *   [ cos(r) sx   sin(r) sy   ox ]
+ *   [-sin(r) sx   cos(r) sy   oy ]   (the extension's matrices multiplied out). */
+typedef struct gk_tex_uv {
+    int texcoord;
+    bool transformed;
+    float m[6];
+} gk_tex_uv;
+
+/* uv' of slot `xf` (identity when not transformed). Both renderers apply the same (the G-buffer
+ * shader its own copy: shaders_gles/gbuffer/gbuffer.frag). */
+static inline void gk_tex_uv_apply(const gk_tex_uv *xf, float u, float v, float *out_u, float *out_v)
+{
+    if (!xf->transformed) {
+        *out_u = u, *out_v = v;
+        return;
+    }
+    *out_u = xf->m[0] * u + xf->m[1] * v + xf->m[2];
+    *out_v = xf->m[3] * u + xf->m[4] * v + xf->m[5];
+}
+
 typedef struct gk_material {
     char name[64];
     float base_color[4];      /* linear RGBA factor */
@@ -71,12 +100,14 @@ typedef struct gk_material {
     int specular_color_tex;   /* RGB = F0 colour, -1 if none */
     bool double_sided;
     bool light_proxy;         /* see the header comment */
+    gk_tex_uv tex_uv[GK_TEX_SLOTS]; /* each slot's UV set and KHR_texture_transform (zeroed: set 0, none) */
 } gk_material;
 
 typedef struct gk_mesh {       /* one glTF primitive, triangles only, in object space */
     float *positions;          /* n_vertices * 3 */
     float *normals;            /* n_vertices * 3 (generated flat if the file has none) */
     float *uvs;                /* n_vertices * 2, or NULL */
+    float *uvs1;               /* TEXCOORD_1, n_vertices * 2, or NULL (a slot reading set 1 then reads set 0) */
     float *colors;             /* COLOR_0, n_vertices * 4 linear RGBA (RGB files get A = 1), or NULL */
     float *tangents;           /* TANGENT xyz + handedness w, n_vertices * 4; generated (tangents.c)
                                   when a normal-mapped mesh has none, else NULL */
@@ -159,6 +190,8 @@ typedef struct gk_scene_gltf_use {
     int orthographic_cameras;  /* loaded, never the view */
     int skins;                 /* nodes drawn at their node transform (no skinning) */
     int samplers;              /* textures whose sampler is not REPEAT + bilinear (read, gk_texture) */
+    int texture_transforms;    /* texture slots with KHR_texture_transform */
+    int second_uv_slots;       /* texture slots that read TEXCOORD_1 */
 } gk_scene_gltf_use;
 /* A homogeneous participating medium filling the scene (or an axis-aligned box of it), given in the
  * scene's extras (DESIGN §4):

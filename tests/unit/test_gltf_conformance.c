@@ -175,7 +175,7 @@ static void orthographic_cameras_load_and_are_passed_over(void **state)
     assert_false(s->default_lighting);
     assert_int_equal(s->n_lights, 1);
     /* an optional extension that is not read is named, and the file loads */
-    assert_string_equal(s->gltf.extensions_ignored, "KHR_texture_transform");
+    assert_string_equal(s->gltf.extensions_ignored, "KHR_materials_clearcoat");
     gk_scene_free(s);
 }
 
@@ -284,20 +284,69 @@ static void samplers_wrap_and_filter_as_declared(void **state)
         {0.45f, 0.25f, {1, 0, 0}, "nearest texel (bilinear: 0.6 red + 0.4 green)"},
     };
     for (size_t i = 0; i < sizeof at / sizeof at[0]; i++) {
-        vec3 c = gk_tri_texture_rgb(&rs, &tri, 0, at[i].u, at[i].v);
+        vec3 c = gk_tri_texture_rgb(&rs, &tri, 0, NULL, at[i].u, at[i].v);
         if (fabsf(c.x - at[i].rgb[0]) > 1e-6f || fabsf(c.y - at[i].rgb[1]) > 1e-6f || fabsf(c.z - at[i].rgb[2]) > 1e-6f)
             fail_msg("uv (%g, %g): got (%g, %g, %g), wanted %s", at[i].u, at[i].v, c.x, c.y, c.z, at[i].why);
     }
     /* bilinear with the same wraps: texel centres at (i + 0.5) / 2, clamp at the edge */
     t.nearest = false;
-    vec3 c = gk_tri_texture_rgb(&rs, &tri, 0, 0.45f, 0.25f);
+    vec3 c = gk_tri_texture_rgb(&rs, &tri, 0, NULL, 0.45f, 0.25f);
     assert_float_equal(c.x, 0.6f, 1e-5f);
     assert_float_equal(c.y, 0.4f, 1e-5f);
-    c = gk_tri_texture_rgb(&rs, &tri, 0, -0.5f, 0.25f);
+    c = gk_tri_texture_rgb(&rs, &tri, 0, NULL, -0.5f, 0.25f);
     assert_float_equal(c.x, 1.0f, 1e-6f);
     assert_float_equal(c.y, 0.0f, 1e-6f);
     gk_scene_free(s);
     expect_refused("sampler-bad-wrap.glb", "sampler 0: wrapS 10241");
+}
+
+/* KHR_texture_transform (texture-transform.glb: offset (0.5, 1), rotation pi/2, scale (2, 1) on the
+ * base colour) gives the matrix uv' = (v + 0.5, 1 - 2u), and the tracer's base colour follows it; a
+ * slot on TEXCOORD_1 (texcoord1.glb, whose TEXCOORD_0 is (0, 0) everywhere, one red texel) reads
+ * the second set. Nearest-free points: texel centres, where bilinear filtering gives the texel. */
+static void texture_transform_and_second_uv_set(void **state)
+{
+    (void)state;
+    gk_scene *s = load("texture-transform.glb");
+    const gk_tex_uv *xf = &s->materials[0].tex_uv[GK_SLOT_BASE];
+    assert_true(xf->transformed);
+    assert_int_equal(xf->texcoord, 0);
+    const float want[6] = {0, 1, 0.5f, -2, 0, 1};
+    for (int k = 0; k < 6; k++)
+        assert_float_equal(xf->m[k], want[k], 1e-6f);
+    assert_false(s->materials[0].tex_uv[GK_SLOT_MR].transformed);
+    assert_int_equal(s->gltf.texture_transforms, 1);
+    assert_string_equal(s->gltf.extensions_read, "KHR_texture_transform");
+    gk_ref_scene rs = {.textures = s->textures, .n_textures = s->n_textures};
+    gk_ref_tri tri = {.uv = {{0, 0}, {1, 0}, {0, 1}}}; /* uv = (b1, b2) */
+    /* uv (0.125, 0.25) -> (0.75, 0.75): white (untransformed: red); (0.375, 0.25) -> (0.75, 0.25):
+       green; (0.125, -0.25) -> (0.25, 0.75): blue; (0.375, -0.25) -> (0.25, 0.25): red. */
+    const struct { float u, v, rgb[3]; } at[] = {
+        {0.125f, 0.25f, {1, 1, 1}}, {0.375f, 0.25f, {0, 1, 0}}, {0.125f, -0.25f, {0, 0, 1}}, {0.375f, -0.25f, {1, 0, 0}}};
+    for (size_t i = 0; i < sizeof at / sizeof at[0]; i++) {
+        vec3 c = gk_tri_texture_rgb(&rs, &tri, 0, xf, at[i].u, at[i].v);
+        if (fabsf(c.x - at[i].rgb[0]) > 1e-5f || fabsf(c.y - at[i].rgb[1]) > 1e-5f || fabsf(c.z - at[i].rgb[2]) > 1e-5f)
+            fail_msg("uv (%g, %g): got (%g, %g, %g)", at[i].u, at[i].v, c.x, c.y, c.z);
+    }
+    gk_scene_free(s);
+
+    s = load("texcoord1.glb");
+    assert_int_equal(s->materials[0].tex_uv[GK_SLOT_BASE].texcoord, 1);
+    assert_false(s->materials[0].tex_uv[GK_SLOT_BASE].transformed);
+    assert_int_equal(s->gltf.second_uv_slots, 1);
+    const gk_mesh *m = &s->meshes[0];
+    assert_non_null(m->uvs1);
+    assert_float_equal(m->uvs[0], 0.0f, 0.0f);
+    /* the quad's vertex 2 is at (1, 1) with UV (1, 0) in set 1 */
+    assert_float_equal(m->uvs1[2 * 2], 1.0f, 1e-6f);
+    assert_float_equal(m->uvs1[2 * 2 + 1], 0.0f, 1e-6f);
+    rs = (gk_ref_scene){.textures = s->textures, .n_textures = s->n_textures};
+    gk_ref_tri tri1 = {.uv = {{0, 0}, {0, 0}, {0, 0}}, .uv1 = {{0, 0}, {1, 0}, {0, 1}}};
+    vec3 c = gk_tri_texture_rgb(&rs, &tri1, 0, &s->materials[0].tex_uv[GK_SLOT_BASE], 0.75f, 0.75f);
+    assert_float_equal(c.x, 1.0f, 1e-5f); /* (0.75, 0.75) of set 1: white; set 0 would give red */
+    assert_float_equal(c.y, 1.0f, 1e-5f);
+    assert_float_equal(c.z, 1.0f, 1e-5f);
+    gk_scene_free(s);
 }
 
 int main(void)
@@ -314,6 +363,7 @@ int main(void)
         cmocka_unit_test(metalness_comes_from_the_texture),
         cmocka_unit_test(normal_maps_get_tangents),
         cmocka_unit_test(samplers_wrap_and_filter_as_declared),
+        cmocka_unit_test(texture_transform_and_second_uv_set),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
