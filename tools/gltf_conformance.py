@@ -29,6 +29,18 @@ def png_rgb(width, height, pixels):
             chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b""))
 
 
+def png_rgba(width, height, pixels):
+    """A minimal 8-bit RGBA PNG (no filter), pixels as rows of (r, g, b, a) tuples."""
+    raw = b"".join(b"\x00" + bytes(c for px in row for c in px) for row in pixels)
+
+    def chunk(kind, data):
+        body = kind + data
+        return struct.pack(">I", len(data)) + body + struct.pack(">I", zlib.crc32(body) & 0xFFFFFFFF)
+
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 6, 0, 0, 0)) +
+            chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b""))
+
+
 # The checker every textured file uses: top row red, green; bottom row blue, white.
 CHECKER = png_rgb(2, 2, [[(255, 0, 0), (0, 255, 0)], [(0, 0, 255), (255, 255, 255)]])
 
@@ -270,6 +282,24 @@ def main():
     d.mesh_node([{"attributes": {"POSITION": pos, "TEXCOORD_0": uv0, "TEXCOORD_1": uv1}, "indices": idx,
                   "material": 0}], "quad")
     d.write_glb("texcoord1")
+
+    # alphaMode MASK: a white quad whose 2 x 2 texture is opaque on one diagonal (alpha 255: top
+    # left, bottom right) and clear on the other (alpha 0), cutoff 0.5, held 0.5 m in front of a grey
+    # 3 x 3 m wall: the camera sees the wall through the holes, and the studio's key light casts a
+    # shadow with holes on it. The same with alphaMode OPAQUE is the control (no holes).
+    holes = png_rgba(2, 2, [[(255, 255, 255, 255), (255, 255, 255, 0)], [(255, 255, 255, 0), (255, 255, 255, 255)]])
+    for name, mode in (("alpha-mask", "MASK"), ("alpha-opaque", "OPAQUE")):
+        d = textured_quad(lambda d: {"bufferView": d.view(holes), "mimeType": "image/png"})
+        d.j["nodes"][0]["translation"] = [0.0, 0.0, 0.5]
+        d.j["materials"][0]["alphaMode"] = mode
+        if mode == "MASK":
+            d.j["materials"][0]["alphaCutoff"] = 0.5
+        wall = d.accessor("fff", [(3 * x, 3 * y, z) for x, y, z in QUAD_POS], FLOAT, "VEC3", minmax=True)
+        widx = d.accessor("H", QUAD_IDX, USHORT, "SCALAR")
+        d.j["materials"].append({"name": "wall", "pbrMetallicRoughness": {
+            "baseColorFactor": [0.5, 0.5, 0.5, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0}})
+        d.mesh_node([{"attributes": {"POSITION": wall}, "indices": widx, "material": 1}], "wall")
+        d.write_glb(name)
 
     # Extensions: one required that gikiosk does not read (Draco), refused by name.
     d = Doc()

@@ -68,6 +68,7 @@ static void print_gltf_use(const gk_scene_gltf_use *u)
         {u->samplers, "textures with a non-default sampler"},
         {u->texture_transforms, "texture transforms"},
         {u->second_uv_slots, "textures on TEXCOORD_1"},
+        {u->alpha_masked, "alpha-masked materials"},
     };
     for (size_t i = 0; i < sizeof counts / sizeof counts[0]; i++)
         if (counts[i].n)
@@ -79,6 +80,7 @@ static void print_gltf_use(const gk_scene_gltf_use *u)
         {u->not_drawn, "points/lines primitives not drawn"},
         {u->orthographic_cameras, "orthographic cameras never used as the view"},
         {u->skins, "skins drawn unskinned"},
+        {u->alpha_blended, "alpha-blended materials drawn opaque"},
     };
     for (size_t i = 0; i < sizeof skips / sizeof skips[0]; i++)
         if (skips[i].n) {

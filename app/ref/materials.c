@@ -99,6 +99,21 @@ vec3 gk_tri_texture_rgb(const gk_ref_scene *rs, const gk_ref_tri *t, int tex, co
     return tex_sample(rs, tex, u, v);
 }
 
+bool gk_tri_alpha_accept(const void *ctx, uint32_t tri, float b1, float b2)
+{
+    const gk_ref_scene *rs = ctx;
+    const gk_ref_tri *t = &rs->tris[tri];
+    const gk_material *m = &rs->materials[t->material];
+    float b0 = 1.0f - b1 - b2;
+    float a = m->base_color[3] * (b0 * t->color[0][3] + b1 * t->color[1][3] + b2 * t->color[2][3]);
+    if (m->base_color_tex >= 0) {
+        float u, v;
+        slot_uv(t, &m->tex_uv[GK_SLOT_BASE], b1, b2, &u, &v);
+        a *= tex_alpha(rs, m->base_color_tex, u, v);
+    }
+    return a >= m->alpha_cutoff;
+}
+
 void gk_surface_init(gk_surface *sf, const gk_ref_scene *rs, const gk_ref_tri *t, float b1, float b2)
 {
     const gk_material *m = &rs->materials[t->material];

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "core/tonemap.h"
+#include "materials.h"
 #include "sample.h"
 
 static float lum3(vec3 c) { return gk_luminance(c.x, c.y, c.z); }
@@ -292,6 +293,22 @@ int gk_ref_scene_build(gk_ref_scene *rs, const gk_scene *s, mat4 view, mat4 proj
     free(verts);
     if (rc)
         goto fail;
+    /* glTF alphaMode MASK: the BVH asks the material's alpha at every hit on such a triangle */
+    bool any_mask = false;
+    for (uint32_t i = 0; i < rs->n_tris && !any_mask; i++)
+        any_mask = rs->materials[rs->tris[i].material].alpha_mask;
+    if (any_mask) {
+        rs->alpha_tested = calloc(rs->n_tris, 1);
+        if (!rs->alpha_tested) {
+            gk_fail(e, GK_ERUNTIME, "reference: out of memory flattening the scene");
+            goto fail;
+        }
+        for (uint32_t i = 0; i < rs->n_tris; i++)
+            rs->alpha_tested[i] = rs->materials[rs->tris[i].material].alpha_mask;
+        rs->bvh.tested = rs->alpha_tested;
+        rs->bvh.accept = gk_tri_alpha_accept;
+        rs->bvh.accept_ctx = rs;
+    }
 
     /* Camera: the inverse view's columns are the camera's axes; the projection's diagonal gives
        the image plane's half extents (symmetric perspective, as gk_scene_camera makes). */
@@ -313,6 +330,8 @@ fail:
 void gk_ref_scene_free(gk_ref_scene *rs)
 {
     gk_bvh_free(&rs->bvh);
+    free(rs->alpha_tested);
+    rs->alpha_tested = NULL;
     free(rs->tris);
     free(rs->lights);
     free(rs->light_cdf);

@@ -53,6 +53,7 @@ typedef struct gk_ref_scene {
     gk_ref_tri *tris;
     uint32_t n_tris;
     gk_bvh bvh;
+    uint8_t *alpha_tested;  /* per triangle: its material is alpha-masked (the BVH's any-hit test), or NULL */
     const gk_material *materials; int n_materials; /* borrowed from the gk_scene */
     const gk_texture *textures; int n_textures;
     gk_ref_light *lights; int n_lights;

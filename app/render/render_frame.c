@@ -114,6 +114,7 @@ static const gk_uniform_field gbuffer_fields[] = {
     GK_UNIFORM_AS(gbuffer_uniforms, draw.u_normal_scale, "u_normal_scale"),
     GK_UNIFORM_AS(gbuffer_uniforms, draw.u_tex_xf, "u_tex_xf"),
     GK_UNIFORM_AS(gbuffer_uniforms, draw.u_tex_uv1, "u_tex_uv1"),
+    GK_UNIFORM_AS(gbuffer_uniforms, draw.u_alpha_cutoff, "u_alpha_cutoff"),
 };
 
 /* direct/emission.frag */

@@ -121,7 +121,8 @@ typedef struct light_map_uniforms {
     gk_draw_uniforms draw;
 } light_map_uniforms;
 static const gk_uniform_field light_map_fields[] = {GK_UNIFORM(light_map_uniforms, u_viewproj),
-                                                    GK_UNIFORM_AS(light_map_uniforms, draw.u_model, "u_model")};
+                                                    GK_UNIFORM_AS(light_map_uniforms, draw.u_model, "u_model"),
+                                                    GK_ALPHA_MASK_FIELDS(light_map_uniforms, draw)};
 
 /* What gk_gi_frame.draw_scene sets in a method's program (gi.h) */
 static const gk_uniform_field draw_scene_fields[] = {
@@ -176,7 +177,7 @@ static int render_light_maps(gk_render_gi *g, gk_renderer *r, gk_err *e)
         glClear(GL_DEPTH_BUFFER_BIT);
         glUseProgram(prog);
         glUniformMatrix4fv(u->u_viewproj, 1, GL_FALSE, L->shadow_view_proj.m);
-        gk_scene_gpu_draw(&r->gpu, s, &u->draw, GK_DRAW_SKIP_PROXIES);
+        gk_scene_gpu_draw(&r->gpu, s, &u->draw, GK_DRAW_MATERIALS | GK_DRAW_SKIP_PROXIES);
     }
     glDisable(GL_DEPTH_TEST);
     g->maps_generation = r->scene_generation;

@@ -140,6 +140,8 @@ static void set_material(const gk_scene_gpu *g, const gk_scene *s, const gk_draw
         flags |= GK_MAT_LIGHT_PROXY;
     if (m->double_sided)
         flags |= GK_MAT_DOUBLE_SIDED;
+    if (m->alpha_mask)
+        flags |= GK_MAT_ALPHA_MASK;
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, base);
     glActiveTexture(GL_TEXTURE1);
@@ -174,6 +176,7 @@ static void set_material(const gk_scene_gpu *g, const gk_scene *s, const gk_draw
     }
     glUniform3fv(u->u_tex_xf, 2 * GK_TEX_SLOTS, xf);
     glUniform1i(u->u_tex_uv1, uv1);
+    glUniform1f(u->u_alpha_cutoff, m->alpha_cutoff);
 }
 
 void gk_draw_uniforms_lookup(GLuint prog, gk_draw_uniforms *u)
@@ -195,6 +198,7 @@ void gk_draw_uniforms_lookup(GLuint prog, gk_draw_uniforms *u)
     u->u_glass = glGetUniformLocation(prog, "u_glass");
     u->u_tex_xf = glGetUniformLocation(prog, "u_tex_xf");
     u->u_tex_uv1 = glGetUniformLocation(prog, "u_tex_uv1");
+    u->u_alpha_cutoff = glGetUniformLocation(prog, "u_alpha_cutoff");
 }
 
 void gk_scene_gpu_draw(const gk_scene_gpu *g, const gk_scene *s, const gk_draw_uniforms *u, int flags)

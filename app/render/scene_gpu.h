@@ -42,6 +42,7 @@ enum {
     GK_MAT_SPEC_COLOR_TEX = 32, /* KHR_materials_specular specularColorTexture (RGB) */
     GK_MAT_EMISSIVE_TEX = 64,   /* emissiveTexture (RGB) times u_emissive */
     GK_MAT_NORMAL_TEX = 128,    /* normalTexture, tangent space, XY scaled by u_normal_scale */
+    GK_MAT_ALPHA_MASK = 256,    /* alphaMode MASK: discard where base colour alpha < u_alpha_cutoff */
 };
 
 /* The uniforms gk_scene_gpu_draw sets, by location (-1: the program has no such uniform). A pass
@@ -61,7 +62,16 @@ typedef struct gk_draw_uniforms {
        KHR_texture_transform matrix (identity without one); u_tex_uv1 int, bit k set when slot k
        reads TEXCOORD_1 (attribute 5). Slots in enum gk_tex_slot's order. */
     GLint u_tex_xf, u_tex_uv1;
+    GLint u_alpha_cutoff;      /* alphaMode MASK's alphaCutoff (GK_MAT_ALPHA_MASK) */
 } gk_draw_uniforms;
+
+/* The uniforms a depth-only pass lists so that alpha-masked materials cut their holes in it too
+ * (shadow/depth.frag, drawn with GK_DRAW_MATERIALS). */
+#define GK_ALPHA_MASK_FIELDS(type, member)                                                                             \
+    GK_UNIFORM_AS(type, member.u_mat_flags, "u_mat_flags"), GK_UNIFORM_AS(type, member.u_base_color, "u_base_color"), \
+        GK_UNIFORM_AS(type, member.u_base_tex, "u_base_tex"),                                                        \
+        GK_UNIFORM_AS(type, member.u_alpha_cutoff, "u_alpha_cutoff"),                                                \
+        GK_UNIFORM_AS(type, member.u_tex_xf, "u_tex_xf"), GK_UNIFORM_AS(type, member.u_tex_uv1, "u_tex_uv1")
 
 /* Draws every node's meshes (after gk_scene_evaluate) with the bound program: sets u_model and
  * u_normal_matrix per node; textures on units 0 (base colour), 1 (metallic-roughness), 2 (specular)

@@ -275,6 +275,19 @@ bool read_materials(Loader &L, const Model &m, gk_scene *s, std::vector<int> &te
             if (slot_tex[k] >= 0 && !read_tex_uv(L, mi, uvs[k].slot, uvs[k].texcoord, texture_transform(*uvs[k].ext),
                                                  &d->tex_uv[uvs[k].k]))
                 return false;
+        // alphaMode (glTF 3.9.4): OPAQUE (default), MASK with alphaCutoff (default 0.5, >= 0), BLEND.
+        if (src.alphaMode == "MASK") {
+            if (!std::isfinite(src.alphaCutoff) || src.alphaCutoff < 0)
+                return L.fail("material %d ('%s'): alphaCutoff must be a finite number >= 0", mi, src.name.c_str());
+            d->alpha_mask = true;
+            d->alpha_cutoff = (float)src.alphaCutoff;
+            L.use.alpha_masked++;
+        } else if (src.alphaMode == "BLEND") {
+            L.use.alpha_blended++;
+        } else if (!src.alphaMode.empty() && src.alphaMode != "OPAQUE") {
+            return L.fail("material %d ('%s'): alphaMode '%s' is not OPAQUE, MASK or BLEND", mi, src.name.c_str(),
+                          src.alphaMode.c_str());
+        }
         double strength = 1.0, transmission = 0.0, ior = 1.5;
         if (!read_number_ext(L, src, mi, "KHR_materials_emissive_strength", "emissiveStrength", 0.0, HUGE_VAL,
                              "a finite number >= 0", &strength) ||

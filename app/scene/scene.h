@@ -101,6 +101,11 @@ typedef struct gk_material {
     bool double_sided;
     bool light_proxy;         /* see the header comment */
     gk_tex_uv tex_uv[GK_TEX_SLOTS]; /* each slot's UV set and KHR_texture_transform (zeroed: set 0, none) */
+    /* glTF alphaMode MASK: a surface point whose alpha (base colour factor x texture x COLOR_0, A) is
+       below alpha_cutoff is not there, for the camera, the shadow maps and the tracer's rays alike.
+       OPAQUE and BLEND leave it false (BLEND is drawn opaque: README). */
+    bool alpha_mask;
+    float alpha_cutoff;       /* glTF alphaCutoff, 0.5 by default */
 } gk_material;
 
 typedef struct gk_mesh {       /* one glTF primitive, triangles only, in object space */
@@ -192,6 +197,8 @@ typedef struct gk_scene_gltf_use {
     int samplers;              /* textures whose sampler is not REPEAT + bilinear (read, gk_texture) */
     int texture_transforms;    /* texture slots with KHR_texture_transform */
     int second_uv_slots;       /* texture slots that read TEXCOORD_1 */
+    int alpha_masked;          /* materials with alphaMode MASK (read) */
+    int alpha_blended;         /* materials with alphaMode BLEND (drawn opaque) */
 } gk_scene_gltf_use;
 /* A homogeneous participating medium filling the scene (or an axis-aligned box of it), given in the
  * scene's extras (DESIGN §4):

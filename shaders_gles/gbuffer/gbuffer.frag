@@ -57,6 +57,8 @@ const int MAT_SPEC_TEX = 16;
 const int MAT_SPEC_COLOR_TEX = 32;
 const int MAT_EMISSIVE_TEX = 64;
 const int MAT_NORMAL_TEX = 128;
+const int MAT_ALPHA_MASK = 256;
+uniform float u_alpha_cutoff;
 
 void main()
 {
@@ -64,6 +66,10 @@ void main()
     vec4 base = u_base_color * v_color;
     if ((u_mat_flags & MAT_BASE_TEX) != 0)
         base *= texture(u_base_tex, slot_uv(SLOT_BASE));
+    // glTF alphaMode MASK: below the cutoff the surface is not there (shadow/depth.frag cuts the
+    // same holes in the shadow maps, the tracer's any-hit test in its rays).
+    if ((u_mat_flags & MAT_ALPHA_MASK) != 0 && base.a < u_alpha_cutoff)
+        discard;
     vec3 emissive = u_emissive;
     if ((u_mat_flags & MAT_EMISSIVE_TEX) != 0)
         emissive *= texture(u_emissive_tex, slot_uv(SLOT_EMISSIVE)).rgb;

@@ -349,6 +349,42 @@ static void texture_transform_and_second_uv_set(void **state)
     gk_scene_free(s);
 }
 
+/* alphaMode MASK (alpha-mask.glb: the quad at z = 0.5 opaque at its top-left and bottom-right
+ * texels, clear at the other two, cutoff 0.5, in front of a wall at z = 0): rays through the clear
+ * texels' centres pass the quad and stop at the wall, rays through the opaque ones stop at the quad,
+ * for closest-hit and shadow (any-hit) queries alike. */
+static void alpha_mask_lets_rays_through_the_holes(void **state)
+{
+    (void)state;
+    gk_scene *s = load("alpha-mask.glb");
+    assert_true(s->materials[0].alpha_mask);
+    assert_float_equal(s->materials[0].alpha_cutoff, 0.5f, 0.0f);
+    assert_false(s->materials[1].alpha_mask);
+    assert_int_equal(s->gltf.alpha_masked, 1);
+    gk_scene_evaluate(s, 0.0f);
+    gk_ref_scene rs;
+    gk_err e = {0};
+    mat4 id = m4_identity();
+    assert_int_equal(gk_ref_scene_build(&rs, s, id, id, v3(0, 0, 0), 1, 1, &e), 0);
+    assert_non_null(rs.bvh.tested);
+    /* texel (i, j) of the quad at x = -0.5 + i, y = 0.5 - j (uv (0, 0) at the top left, (-1, 1)) */
+    const struct { float x, y; bool opaque; } at[] = {{-0.5f, 0.5f, true}, {0.5f, 0.5f, false},
+                                                       {-0.5f, -0.5f, false}, {0.5f, -0.5f, true}};
+    for (size_t i = 0; i < sizeof at / sizeof at[0]; i++) {
+        gk_bvh_hit h;
+        vec3 o = v3(at[i].x, at[i].y, 2.0f), d = v3(0, 0, -1);
+        assert_true(gk_bvh_intersect(&rs.bvh, o, d, 0.0f, 10.0f, &h));
+        float z = 2.0f - h.t;
+        if (fabsf(z - (at[i].opaque ? 0.5f : 0.0f)) > 1e-4f)
+            fail_msg("ray at (%g, %g) stopped at z %g, wanted the %s", at[i].x, at[i].y, z, at[i].opaque ? "quad" : "wall");
+        /* a shadow ray from between quad and wall up to the light side */
+        bool blocked = gk_bvh_occluded(&rs.bvh, v3(at[i].x, at[i].y, 0.25f), v3(0, 0, 1), 0.0f, 10.0f);
+        assert_int_equal(blocked, at[i].opaque);
+    }
+    gk_ref_scene_free(&rs);
+    gk_scene_free(s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -364,6 +400,7 @@ int main(void)
         cmocka_unit_test(normal_maps_get_tangents),
         cmocka_unit_test(samplers_wrap_and_filter_as_declared),
         cmocka_unit_test(texture_transform_and_second_uv_set),
+        cmocka_unit_test(alpha_mask_lets_rays_through_the_holes),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -43,7 +43,8 @@ typedef struct depth_uniforms {
     gk_draw_uniforms draw;
 } depth_uniforms;
 static const gk_uniform_field depth_fields[] = {GK_UNIFORM(depth_uniforms, u_viewproj),
-                                                GK_UNIFORM_AS(depth_uniforms, draw.u_model, "u_model")};
+                                                GK_UNIFORM_AS(depth_uniforms, draw.u_model, "u_model"),
+                                                GK_ALPHA_MASK_FIELDS(depth_uniforms, draw)};
 
 /* shaders_gles/shadow/common.glsl, in the lighting program */
 typedef struct maps_uniforms {
@@ -94,7 +95,8 @@ static int render_maps(gk_shadow_maps *m, const gk_shadow_ctx *ctx, int slot, co
         }
         glClear(GL_DEPTH_BUFFER_BIT);
         glUniformMatrix4fv(u->u_viewproj, 1, GL_FALSE, v->viewproj[f].m);
-        gk_scene_gpu_draw(ctx->gpu, ctx->scene, &u->draw, GK_DRAW_SKIP_PROXIES);
+        /* with materials: alpha-masked ones discard their cut-outs (shadow/depth.frag) */
+        gk_scene_gpu_draw(ctx->gpu, ctx->scene, &u->draw, GK_DRAW_MATERIALS | GK_DRAW_SKIP_PROXIES);
     }
     glDisable(GL_POLYGON_OFFSET_FILL);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
