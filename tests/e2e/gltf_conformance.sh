@@ -53,9 +53,7 @@ stderr_has "quantized-undeclared.gltf: accessor 0 .*UNSIGNED_SHORT.*KHR_mesh_qua
 # map tilting a white quad toward +u and toward +v (generated tangents), and the checker clamped
 # along u and mirrored along v with nearest texels (sampler-wrap: 0.0907 against the tracer's own
 # 0.127, the residual 0.012), the checker through KHR_texture_transform (0.0720 against 0.101) and
-# read through TEXCOORD_1 (0.0735 against 0.103; through set 0 it is one red texel), and a quad
-# cut by alphaMode MASK in front of a wall, its holes and its holed shadow (0.119, mean 0.989, at
-# 256 spp; the tracer's any-hit test against the G-buffer's and shadow maps' discard). The budgets the scheduler
+# read through TEXCOORD_1 (0.0735 against 0.103; through set 0 it is one red texel). The budgets the scheduler
 # would trade (render scale, shadow filter and map size) are pinned: on a loaded machine it halves
 # the render scale, and the comparison is of materials, not of the scheduler. The normal maps run
 # at shadow_map=2048 and with vct: with the mapped normal in place of the geometric one (the
@@ -64,7 +62,7 @@ stderr_has "quantized-undeclared.gltf: accessor 0 .*UNSIGNED_SHORT.*KHR_mesh_qua
 # 2.15 on normal-map-v); with it, 0.9999 and 1.0009 (none and vct alike). Two
 # references (seeds 1 and 2) measure the tracer's own noise, so the renderer's error is judged
 # against it rather than against a fixed number.
-for sc in ${CONFORMANCE_SCENES:-texture-glb emissive-texture vertex-colors normal-map normal-map-v sampler-wrap texture-transform texcoord1 alpha-mask}; do
+for sc in ${CONFORMANCE_SCENES:-texture-glb emissive-texture vertex-colors normal-map normal-map-v sampler-wrap texture-transform texcoord1}; do
     "$GIKIOSK" reference --scenes-dir $DIR --scene $sc --size 160x120 --spp 512 --out "$TMP/$sc-ref1.exr" 2>/dev/null
     "$GIKIOSK" reference --scenes-dir $DIR --scene $sc --size 160x120 --spp 512 --seed 2 --out "$TMP/$sc-ref2.exr" 2>/dev/null
     "$GIKIOSK" compare "$TMP/$sc-ref1.exr" "$TMP/$sc-ref2.exr" --json >"$TMP/noise.json"
@@ -97,14 +95,40 @@ for sc in ${CONFORMANCE_SCENES:-texture-glb emissive-texture vertex-colors norma
     done
 done
 
-# The mask's holes change the picture: the tracer's alpha-mask against its alpha-opaque control
-# (the same file, alphaMode OPAQUE) differs by far more than its noise (measured rel_rmse 0.48 at
-# 256 spp, the noise about 0.1), so agreeing with the reference above is about the holes.
-"$GIKIOSK" reference --scenes-dir $DIR --scene alpha-opaque --size 160x120 --spp 512 --out "$TMP/alpha-opaque-ref1.exr" 2>/dev/null
+# alphaMode MASK: a quad cut by its texture's alpha in front of a wall (alpha-mask.glb), against
+# the same file with alphaMode OPAQUE (alpha-opaque.glb), direct light only (method none): the
+# G-buffer's and the shadow maps' discard against the tracer's any-hit test. Two planes and a
+# shadow have more edges than the lone quads above: the opaque control's own error against the
+# tracer is 0.107 (mean 0.984), over the 0.06 residual of the loop above, so the masked file is
+# held to its control: the mask may add no error (measured 0.095 against the control's 0.107).
+# The GI methods' own scene passes see the cut-outs as solid (README; vct 0.30 against 0.108).
+for sc in alpha-mask alpha-opaque; do
+    "$GIKIOSK" reference --scenes-dir $DIR --scene $sc --size 160x120 --spp 512 --out "$TMP/$sc-ref1.exr" 2>/dev/null
+    "$GIKIOSK" run --platform mock --scenes-dir $DIR --scene $sc --method none --frames 12 --size 160x120 \
+        --budget render_scale=1,shadow=pcss,shadow_map=1024 --capture "$TMP/$sc-none" --hdr >/dev/null 2>&1
+    exr=$(ls "$TMP/$sc-none"/*.exr 2>/dev/null | tail -1)
+    check "$sc: renders" test -n "$exr"
+    cp "$exr" "$TMP/$sc-gpu.exr" 2>/dev/null
+    "$GIKIOSK" compare "$TMP/$sc-ref1.exr" "$TMP/$sc-gpu.exr" --json >"$TMP/$sc.json"
+    ratio=$(json_field mean_ratio "$TMP/$sc.json")
+    echo "# $sc none: rel_rmse $(json_field rel_rmse "$TMP/$sc.json") vs the reference, mean_ratio $ratio"
+    check "$sc: lit like the reference (mean ratio $ratio in [0.97, 1.03])" \
+        awk -v r="$ratio" 'BEGIN { exit !(r >= 0.97 && r <= 1.03) }'
+done
+em=$(json_field rel_rmse "$TMP/alpha-mask.json")
+eo=$(json_field rel_rmse "$TMP/alpha-opaque.json")
+check "the mask adds no error against the tracer (rel_rmse $em, the opaque control $eo)" \
+    awk -v m="$em" -v o="$eo" 'BEGIN { exit !(m <= 1.05 * o) }'
+# The holes are in both pictures: each renderer's masked image differs from its opaque control by
+# far more than the tracer's noise (measured 0.48 for the tracer; its noise about 0.1).
 "$GIKIOSK" compare "$TMP/alpha-opaque-ref1.exr" "$TMP/alpha-mask-ref1.exr" --json >"$TMP/am.json"
 am=$(json_field rel_rmse "$TMP/am.json")
-check "the mask cuts holes the opaque control does not have (rel_rmse $am, measured 0.48)" \
+check "the tracer cuts holes the opaque control does not have (rel_rmse $am, measured 0.48)" \
     awk -v r="$am" 'BEGIN { exit !(r > 0.3) }'
+"$GIKIOSK" compare "$TMP/alpha-opaque-gpu.exr" "$TMP/alpha-mask-gpu.exr" --json >"$TMP/amg.json"
+amg=$(json_field rel_rmse "$TMP/amg.json")
+check "the G-buffer and shadow maps cut them too (rel_rmse $amg)" \
+    awk -v r="$amg" 'BEGIN { exit !(r > 0.3) }'
 
 # The normal maps change the picture (tilted toward +u the quad faces the key light more, toward
 # +v less), so agreeing with the reference above is about the map, not about a flat quad.
