@@ -301,6 +301,20 @@ def main():
         d.mesh_node([{"attributes": {"POSITION": wall}, "indices": widx, "material": 1}], "wall")
         d.write_glb(name)
 
+    # alphaMode BLEND: loaded and drawn opaque (counted in `gltf skips:`); refusals: a texture on
+    # TEXCOORD_2, a transform whose scale is not two numbers, an alphaMode glTF does not have.
+    for name, change in (
+            ("alpha-blend", lambda m: m.update(alphaMode="BLEND")),
+            ("texcoord2", lambda m: m["pbrMetallicRoughness"]["baseColorTexture"].update(texCoord=2)),
+            ("texture-transform-bad", lambda m: m["pbrMetallicRoughness"]["baseColorTexture"].update(
+                extensions={"KHR_texture_transform": {"scale": [2.0]}})),
+            ("alpha-bad-mode", lambda m: m.update(alphaMode="CUTOUT"))):
+        d = textured_quad(lambda d: {"bufferView": d.view(CHECKER), "mimeType": "image/png"})
+        change(d.j["materials"][0])
+        if name == "texture-transform-bad":
+            d.j["extensionsUsed"] = ["KHR_texture_transform"]
+        d.write_glb(name)
+
     # Extensions: one required that gikiosk does not read (Draco), refused by name.
     d = Doc()
     pos = d.accessor("fff", [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0)], FLOAT, "VEC3", minmax=True)

@@ -40,6 +40,10 @@ expect_exit 0 "scenes --check on a texture on TEXCOORD_1" "$GIKIOSK" scenes --ch
 check "it counts the slot on the second set" grep -q "^gltf reads: .*1 textures on TEXCOORD_1" "$TMP/stdout"
 expect_exit 0 "scenes --check on alphaMode MASK" "$GIKIOSK" scenes --check $DIR/alpha-mask.glb
 check "it counts the masked material" grep -q "^gltf reads: .*1 alpha-masked materials" "$TMP/stdout"
+expect_exit 0 "scenes --check on alphaMode BLEND" "$GIKIOSK" scenes --check $DIR/alpha-blend.glb
+check "it says the material is drawn opaque" grep -q "^gltf skips: *1 alpha-blended materials drawn opaque" "$TMP/stdout"
+expect_exit 2 "a texture on TEXCOORD_2 exits 2" "$GIKIOSK" scenes --check $DIR/texcoord2.glb
+stderr_has "texcoord2.glb: material 0: base colour texture reads TEXCOORD_2" "naming the file, material, slot and set"
 expect_exit 0 "scenes --check on a texture with a sampler" "$GIKIOSK" scenes --check $DIR/sampler-wrap.glb
 check "it reports the sampler" grep -q "^gltf reads: .*1 textures with a non-default sampler" "$TMP/stdout"
 expect_exit 2 "a wrap mode glTF does not have exits 2" "$GIKIOSK" scenes --check $DIR/sampler-bad-wrap.glb

@@ -347,6 +347,8 @@ static void texture_transform_and_second_uv_set(void **state)
     assert_float_equal(c.y, 1.0f, 1e-5f);
     assert_float_equal(c.z, 1.0f, 1e-5f);
     gk_scene_free(s);
+    expect_refused("texcoord2.glb", "material 0: base colour texture reads TEXCOORD_2");
+    expect_refused("texture-transform-bad.glb", "material 0: base colour texture: KHR_texture_transform needs");
 }
 
 /* alphaMode MASK (alpha-mask.glb: the quad at z = 0.5 opaque at its top-left and bottom-right
@@ -383,6 +385,12 @@ static void alpha_mask_lets_rays_through_the_holes(void **state)
     }
     gk_ref_scene_free(&rs);
     gk_scene_free(s);
+    /* BLEND is loaded and drawn opaque, counted; a mode glTF does not have is refused */
+    s = load("alpha-blend.glb");
+    assert_false(s->materials[0].alpha_mask);
+    assert_int_equal(s->gltf.alpha_blended, 1);
+    gk_scene_free(s);
+    expect_refused("alpha-bad-mode.glb", "material 0 ('checker'): alphaMode 'CUTOUT' is not OPAQUE, MASK or BLEND");
 }
 
 int main(void)
