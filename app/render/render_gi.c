@@ -140,7 +140,7 @@ static int render_light_maps(gk_render_gi *g, gk_renderer *r, gk_err *e)
     bool dynamic = s->features.has_animation;
     if (g->maps_generation == r->scene_generation && !dynamic)
         return 0;
-    GLuint prog = gk_program_get(r->progs, "shadow/depth.vert", "shadow/depth.frag", NULL, e);
+    GLuint prog = gk_program_get(r->progs, "shadow/depth.vert", "shadow/depth.frag", gk_scene_gpu_depth_defines(s), e);
     const light_map_uniforms *u = prog ? gk_program_uniforms(r->progs, prog, GK_FIELDS(light_map_fields), sizeof *u, e) : NULL;
     if (!u)
         return -1;
@@ -177,7 +177,7 @@ static int render_light_maps(gk_render_gi *g, gk_renderer *r, gk_err *e)
         glClear(GL_DEPTH_BUFFER_BIT);
         glUseProgram(prog);
         glUniformMatrix4fv(u->u_viewproj, 1, GL_FALSE, L->shadow_view_proj.m);
-        gk_scene_gpu_draw(&r->gpu, s, &u->draw, GK_DRAW_MATERIALS | GK_DRAW_SKIP_PROXIES);
+        gk_scene_gpu_draw(&r->gpu, s, &u->draw, gk_scene_gpu_depth_flags(s) | GK_DRAW_SKIP_PROXIES);
     }
     glDisable(GL_DEPTH_TEST);
     g->maps_generation = r->scene_generation;

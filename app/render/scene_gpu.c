@@ -238,3 +238,21 @@ void gk_scene_gpu_draw(const gk_scene_gpu *g, const gk_scene *s, const gk_draw_u
     }
     glBindVertexArray(0);
 }
+
+static bool any_alpha_mask(const gk_scene *s)
+{
+    for (int i = 0; i < s->n_materials; i++)
+        if (s->materials[i].alpha_mask)
+            return true;
+    return false;
+}
+
+const char *gk_scene_gpu_depth_defines(const gk_scene *s)
+{
+    return any_alpha_mask(s) ? "#define GK_ALPHA_MASK 1\n" : NULL;
+}
+
+int gk_scene_gpu_depth_flags(const gk_scene *s)
+{
+    return any_alpha_mask(s) ? GK_DRAW_MATERIALS : 0;
+}

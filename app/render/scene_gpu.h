@@ -73,6 +73,11 @@ typedef struct gk_draw_uniforms {
         GK_UNIFORM_AS(type, member.u_alpha_cutoff, "u_alpha_cutoff"),                                                \
         GK_UNIFORM_AS(type, member.u_tex_xf, "u_tex_xf"), GK_UNIFORM_AS(type, member.u_tex_uv1, "u_tex_uv1")
 
+/* shadow/depth.{vert,frag}'s defines for scene s and the draw flags that go with them: alpha
+ * masking (GK_ALPHA_MASK 1, drawn with GK_DRAW_MATERIALS) only when a material of s is masked. */
+const char *gk_scene_gpu_depth_defines(const gk_scene *s);
+int gk_scene_gpu_depth_flags(const gk_scene *s);
+
 /* Draws every node's meshes (after gk_scene_evaluate) with the bound program: sets u_model and
  * u_normal_matrix per node; textures on units 0 (base colour), 1 (metallic-roughness), 2 (specular)
  * and 3 (specular colour). */

@@ -64,7 +64,8 @@ static int render_maps(gk_shadow_maps *m, const gk_shadow_ctx *ctx, int slot, co
         return gk_fail(e, GK_ERUNTIME, "shadow slot %d out of range", slot);
     if (ensure_texture(m, slot, v->map_size, v->n_faces, e) != 0)
         return -1;
-    GLuint prog = gk_program_get(ctx->progs, "shadow/depth.vert", "shadow/depth.frag", NULL, e);
+    GLuint prog = gk_program_get(ctx->progs, "shadow/depth.vert", "shadow/depth.frag",
+                                 gk_scene_gpu_depth_defines(ctx->scene), e);
     const depth_uniforms *u = prog ? gk_program_uniforms(ctx->progs, prog, GK_FIELDS(depth_fields), sizeof *u, e) : NULL;
     if (!u)
         return -1;
@@ -95,8 +96,8 @@ static int render_maps(gk_shadow_maps *m, const gk_shadow_ctx *ctx, int slot, co
         }
         glClear(GL_DEPTH_BUFFER_BIT);
         glUniformMatrix4fv(u->u_viewproj, 1, GL_FALSE, v->viewproj[f].m);
-        /* with materials: alpha-masked ones discard their cut-outs (shadow/depth.frag) */
-        gk_scene_gpu_draw(ctx->gpu, ctx->scene, &u->draw, GK_DRAW_MATERIALS | GK_DRAW_SKIP_PROXIES);
+        /* with materials when some are alpha-masked: they discard their cut-outs (shadow/depth.frag) */
+        gk_scene_gpu_draw(ctx->gpu, ctx->scene, &u->draw, gk_scene_gpu_depth_flags(ctx->scene) | GK_DRAW_SKIP_PROXIES);
     }
     glDisable(GL_POLYGON_OFFSET_FILL);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
