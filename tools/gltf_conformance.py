@@ -9,6 +9,7 @@ Every file draws in the z = 0 plane facing +z unless it says otherwise, and has 
 default studio lights it) and no camera (the default camera frames it) unless it says otherwise."""
 import base64
 import json
+import math
 import os
 import struct
 import zlib
@@ -25,6 +26,18 @@ def png_rgb(width, height, pixels):
         return struct.pack(">I", len(data)) + body + struct.pack(">I", zlib.crc32(body) & 0xFFFFFFFF)
 
     return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0)) +
+            chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b""))
+
+
+def png_rgba(width, height, pixels):
+    """A minimal 8-bit RGBA PNG (no filter), pixels as rows of (r, g, b, a) tuples."""
+    raw = b"".join(b"\x00" + bytes(c for px in row for c in px) for row in pixels)
+
+    def chunk(kind, data):
+        body = kind + data
+        return struct.pack(">I", len(data)) + body + struct.pack(">I", zlib.crc32(body) & 0xFFFFFFFF)
+
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 6, 0, 0, 0)) +
             chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b""))
 
 
@@ -100,11 +113,11 @@ QUAD_UV = [(0.0, 1.0), (1.0, 1.0), (1.0, 0.0), (0.0, 0.0)]
 QUAD_IDX = [0, 1, 2, 0, 2, 3]
 
 
-def textured_quad(image):
+def textured_quad(image, uvs=QUAD_UV):
     """A 2 x 2 m quad with the checker as its base colour; `image` adds the image entry."""
     d = Doc()
     pos = d.accessor("fff", QUAD_POS, FLOAT, "VEC3", minmax=True, target=34962)
-    uv = d.accessor("ff", QUAD_UV, FLOAT, "VEC2", target=34962)
+    uv = d.accessor("ff", uvs, FLOAT, "VEC2", target=34962)
     idx = d.accessor("H", QUAD_IDX, USHORT, "SCALAR", target=34963)
     d.j["images"] = [image(d)]
     d.j["textures"] = [{"source": 0}]
@@ -191,7 +204,7 @@ def main():
                      {"name": "sun", "rotation": [0, 0, 0, 1],
                       "extensions": {"KHR_lights_punctual": {"light": 0}}}]
     d.j["scenes"][0]["nodes"] += [1, 2, 3]
-    d.j["extensionsUsed"] = ["KHR_lights_punctual", "KHR_texture_transform"]
+    d.j["extensionsUsed"] = ["KHR_lights_punctual", "KHR_materials_clearcoat"]
     d.j["extensions"] = {"KHR_lights_punctual": {"lights": [{"type": "directional", "intensity": 2.0}]}}
     d.write_gltf("cameras")
 
@@ -234,6 +247,72 @@ def main():
         d = textured_quad(lambda d: {"bufferView": d.view(tilt), "mimeType": "image/png"})
         d.j["materials"][0] = {"name": "tilted", "normalTexture": {"index": 0},
                                "pbrMetallicRoughness": {"metallicFactor": 0.0}}
+        d.write_glb(name)
+
+    # Samplers (glTF 5.26): the checker on a quad whose UVs run from -1 to 2 (three periods each
+    # way), wrapS CLAMP_TO_EDGE, wrapT MIRRORED_REPEAT, NEAREST filtering: every texel a sharp
+    # square, the edge texels stretched along u, the rows mirrored along v. And a sampler with a
+    # wrap mode glTF does not have: refused naming the sampler and the key.
+    wide_uv = [(3.0 * u - 1.0, 3.0 * v - 1.0) for u, v in QUAD_UV]
+    d = textured_quad(lambda d: {"bufferView": d.view(CHECKER), "mimeType": "image/png"}, wide_uv)
+    d.j["samplers"] = [{"wrapS": 33071, "wrapT": 33648, "magFilter": 9728, "minFilter": 9728}]
+    d.j["textures"][0]["sampler"] = 0
+    d.write_glb("sampler-wrap")
+    d.j["samplers"][0]["wrapS"] = 10241
+    d.write_glb("sampler-bad-wrap")
+
+    # KHR_texture_transform on the base colour: offset (0.5, 1), rotation pi/2, scale (2, 1), so
+    # uv' = (v + 0.5, 1 - 2u): the checker turned a quarter, stretched and shifted.
+    d = textured_quad(lambda d: {"bufferView": d.view(CHECKER), "mimeType": "image/png"})
+    d.j["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["extensions"] = {
+        "KHR_texture_transform": {"offset": [0.5, 1.0], "rotation": math.pi / 2, "scale": [2.0, 1.0]}}
+    d.j["extensionsUsed"] = ["KHR_texture_transform"]
+    d.write_glb("texture-transform")
+    # TEXCOORD_1: the base colour reads the second set (texCoord 1, the checker's own UVs) while
+    # TEXCOORD_0 is (0, 0) everywhere (one red texel): a renderer reading set 0 draws it all red.
+    d = Doc()
+    pos = d.accessor("fff", QUAD_POS, FLOAT, "VEC3", minmax=True, target=34962)
+    uv0 = d.accessor("ff", [(0.0, 0.0)] * 4, FLOAT, "VEC2", target=34962)
+    uv1 = d.accessor("ff", QUAD_UV, FLOAT, "VEC2", target=34962)
+    idx = d.accessor("H", QUAD_IDX, USHORT, "SCALAR", target=34963)
+    d.j["images"] = [{"bufferView": d.view(CHECKER), "mimeType": "image/png"}]
+    d.j["textures"] = [{"source": 0}]
+    d.j["materials"] = [{"name": "second-set", "pbrMetallicRoughness": {
+        "baseColorTexture": {"index": 0, "texCoord": 1}, "metallicFactor": 0.0, "roughnessFactor": 1.0}}]
+    d.mesh_node([{"attributes": {"POSITION": pos, "TEXCOORD_0": uv0, "TEXCOORD_1": uv1}, "indices": idx,
+                  "material": 0}], "quad")
+    d.write_glb("texcoord1")
+
+    # alphaMode MASK: a white quad whose 2 x 2 texture is opaque on one diagonal (alpha 255: top
+    # left, bottom right) and clear on the other (alpha 0), cutoff 0.5, held 0.5 m in front of a grey
+    # 3 x 3 m wall: the camera sees the wall through the holes, and the studio's key light casts a
+    # shadow with holes on it. The same with alphaMode OPAQUE is the control (no holes).
+    holes = png_rgba(2, 2, [[(255, 255, 255, 255), (255, 255, 255, 0)], [(255, 255, 255, 0), (255, 255, 255, 255)]])
+    for name, mode in (("alpha-mask", "MASK"), ("alpha-opaque", "OPAQUE")):
+        d = textured_quad(lambda d: {"bufferView": d.view(holes), "mimeType": "image/png"})
+        d.j["nodes"][0]["translation"] = [0.0, 0.0, 0.5]
+        d.j["materials"][0]["alphaMode"] = mode
+        if mode == "MASK":
+            d.j["materials"][0]["alphaCutoff"] = 0.5
+        wall = d.accessor("fff", [(3 * x, 3 * y, z) for x, y, z in QUAD_POS], FLOAT, "VEC3", minmax=True)
+        widx = d.accessor("H", QUAD_IDX, USHORT, "SCALAR")
+        d.j["materials"].append({"name": "wall", "pbrMetallicRoughness": {
+            "baseColorFactor": [0.5, 0.5, 0.5, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0}})
+        d.mesh_node([{"attributes": {"POSITION": wall}, "indices": widx, "material": 1}], "wall")
+        d.write_glb(name)
+
+    # alphaMode BLEND: loaded and drawn opaque (counted in `gltf skips:`); refusals: a texture on
+    # TEXCOORD_2, a transform whose scale is not two numbers, an alphaMode glTF does not have.
+    for name, change in (
+            ("alpha-blend", lambda m: m.update(alphaMode="BLEND")),
+            ("texcoord2", lambda m: m["pbrMetallicRoughness"]["baseColorTexture"].update(texCoord=2)),
+            ("texture-transform-bad", lambda m: m["pbrMetallicRoughness"]["baseColorTexture"].update(
+                extensions={"KHR_texture_transform": {"scale": [2.0]}})),
+            ("alpha-bad-mode", lambda m: m.update(alphaMode="CUTOUT"))):
+        d = textured_quad(lambda d: {"bufferView": d.view(CHECKER), "mimeType": "image/png"})
+        change(d.j["materials"][0])
+        if name == "texture-transform-bad":
+            d.j["extensionsUsed"] = ["KHR_texture_transform"]
         d.write_glb(name)
 
     # Extensions: one required that gikiosk does not read (Draco), refused by name.

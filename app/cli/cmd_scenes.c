@@ -93,6 +93,10 @@ static void print_gltf_use(const gk_scene_gltf_use *u)
         {u->sparse_accessors, "sparse accessors"},
         {u->quantized_accessors, "quantized accessors"},
         {u->strips_fans, "strips/fans converted to triangles"},
+        {u->samplers, "textures with a non-default sampler"},
+        {u->texture_transforms, "texture transforms"},
+        {u->second_uv_slots, "textures on TEXCOORD_1"},
+        {u->alpha_masked, "alpha-masked materials"},
     };
     for (size_t i = 0; i < sizeof counts / sizeof counts[0]; i++)
         if (counts[i].n)
@@ -104,6 +108,7 @@ static void print_gltf_use(const gk_scene_gltf_use *u)
         {u->not_drawn, "points/lines primitives not drawn"},
         {u->orthographic_cameras, "orthographic cameras never used as the view"},
         {u->skins, "skins drawn unskinned"},
+        {u->alpha_blended, "alpha-blended materials drawn opaque"},
     };
     for (size_t i = 0; i < sizeof skips / sizeof skips[0]; i++)
         if (skips[i].n) {

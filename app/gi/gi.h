@@ -65,12 +65,16 @@ typedef struct gk_gi_frame {
        gbuf_normal   RGBA16F: world normal xyz (unit), w = ROUGHNESS;
        gbuf_emission RGBA16F: emitted radiance rgb (nits);
        gbuf_specular RGBA8: KHR_materials_specular, rgb = sqrt(c0) (the dielectric F0 colour,
-                     brdf_spec.md), a = SPECULAR WEIGHT (0: pure Lambert). */
+                     brdf_spec.md), a = SPECULAR WEIGHT (0: pure Lambert);
+       gbuf_geom_normal RGBA16F: xyz = the GEOMETRIC normal (before the normal map), facing the
+                     viewer; 0 when the driver has no 5th draw buffer or a test leaves it out: then
+                     gbuf_normal stands in (gk_gbuffer_bind_geom_normal). */
     unsigned gbuf_depth;
     unsigned gbuf_normal;
     unsigned gbuf_albedo;
     unsigned gbuf_emission;
     unsigned gbuf_specular;
+    unsigned gbuf_geom_normal;
     unsigned direct_tex;         /* RGBA16F: direct light (linear, before exposure) */
     unsigned hdr_fbo;            /* FBO whose colour attachment 0 is the HDR image the method adds to
                                     (additive blending is the method's job: glBlendFunc(ONE, ONE)) */
@@ -111,7 +115,8 @@ const gk_gi_method *gk_gi_find(const char *name);
 static inline gk_gbuffer_view gk_gi_gbuffer(const gk_gi_frame *f)
 {
     return (gk_gbuffer_view){.albedo = f->gbuf_albedo, .normal = f->gbuf_normal, .emission = f->gbuf_emission,
-                             .depth = f->gbuf_depth, .specular = f->gbuf_specular, .width = f->width, .height = f->height, .view = f->view,
+                             .depth = f->gbuf_depth, .specular = f->gbuf_specular,
+                             .geom_normal = f->gbuf_geom_normal, .width = f->width, .height = f->height, .view = f->view,
                              .proj = f->proj, .view_proj = f->view_proj, .inv_view_proj = f->inv_view_proj,
                              .eye = f->eye};
 }

@@ -16,3 +16,11 @@ void gk_gbuffer_bind(const gk_gbuffer_view *g, const gk_gbuffer_uniforms *u, int
     glUniform3f(u->u_eye, g->eye.x, g->eye.y, g->eye.z);
     glUniform2f(u->u_viewport, (float)g->width, (float)g->height);
 }
+
+void gk_gbuffer_bind_geom_normal(const gk_gbuffer_view *g, GLint location, int unit, GLuint sampler)
+{
+    glActiveTexture(GL_TEXTURE0 + (GLenum)unit);
+    glBindTexture(GL_TEXTURE_2D, g->geom_normal ? g->geom_normal : g->normal);
+    glBindSampler((GLuint)unit, sampler);
+    glUniform1i(location, unit);
+}

@@ -33,9 +33,12 @@ typedef struct gk_gbuffer_uniforms {
  * the pass context (pass.h) lends it to every pass. Layout: depth DEPTH_COMPONENT32F window depth
  * of proj (world = inv_view_proj * (uv, depth)*2-1); albedo RGBA8 (rgb base colour, a metallic);
  * normal RGBA16F (xyz world normal, w roughness); emission RGBA16F (emitted radiance, nits);
- * specular RGBA8 (KHR_materials_specular: rgb sqrt(c0), the dielectric F0 colour; a weight). */
+ * specular RGBA8 (KHR_materials_specular: rgb sqrt(c0), the dielectric F0 colour; a weight);
+ * geom_normal RGBA16F (xyz = the surface's unit normal before its normal map, facing the viewer:
+ * the same encoding as normal's xyz, so either texture reads the same), 0 when the driver has fewer than 5 draw buffers: then the shading normal stands in. */
 typedef struct gk_gbuffer_view {
     GLuint albedo, normal, emission, depth, specular;
+    GLuint geom_normal;
     int width, height;                 /* internal render size (after render_scale) */
     mat4 view, proj, view_proj, inv_view_proj;
     vec3 eye;
@@ -48,5 +51,12 @@ typedef struct gk_gbuffer_view {
  * textures' own filtering) and sets the sampler, matrix, eye and viewport uniforms of the current
  * program. Leaves GL_TEXTURE0 + first_unit + 4 active. */
 void gk_gbuffer_bind(const gk_gbuffer_view *g, const gk_gbuffer_uniforms *u, int first_unit, GLuint sampler);
+
+/* Binds the geometric normal (gbuffer.glsl's u_gb_geom_normal, read by gb_geom_normal) on `unit`
+ * for the passes that need the surface's own plane rather than the normal-mapped one (the shadow
+ * receiver offset, vct's cone apex): the shading normal when the G-buffer has no 5th target (the
+ * two then coincide except on normal-mapped materials). Not part of gk_gbuffer_bind, so the
+ * texture units every other pass uses stay where they were. */
+void gk_gbuffer_bind_geom_normal(const gk_gbuffer_view *g, GLint location, int unit, GLuint sampler);
 
 #endif

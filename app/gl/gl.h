@@ -16,6 +16,7 @@ typedef struct gk_gl_caps {
     bool float_linear;         /* OES_texture_float_linear */
     bool timer_query;          /* EXT_disjoint_timer_query */
     bool debug_labels;         /* KHR_debug (3.2 core) */
+    int max_draw_buffers;      /* GL_MAX_DRAW_BUFFERS (GLES 3.1 guarantees 4): the G-buffer's 5th target needs 5 */
 } gk_gl_caps;
 
 void gk_gl_caps_query(gk_gl_caps *caps, int gles_version);

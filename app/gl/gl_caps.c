@@ -30,4 +30,8 @@ void gk_gl_caps_query(gk_gl_caps *caps, int gles_version)
     caps->float_linear = gk_gl_has_extension("GL_OES_texture_float_linear");
     caps->timer_query = gk_gl_has_extension("GL_EXT_disjoint_timer_query");
     caps->debug_labels = caps->gles >= 32;
+    GLint draw_buffers = 4, attachments = 4;
+    glGetIntegerv(GL_MAX_DRAW_BUFFERS, &draw_buffers);
+    glGetIntegerv(GL_MAX_COLOR_ATTACHMENTS, &attachments);
+    caps->max_draw_buffers = draw_buffers < attachments ? draw_buffers : attachments;
 }

@@ -5,7 +5,7 @@
 #include "base/err.h"
 #include "gl.h"
 
-#define GK_TARGET_MAX_COLOR 4
+#define GK_TARGET_MAX_COLOR 5
 
 typedef struct gk_target {
     GLuint fbo;

@@ -248,6 +248,8 @@ static bool traverse(const gk_bvh *b, vec3 o, vec3 d, float tmin, float tmax, bo
             for (uint32_t i = n->offset; i < n->offset + n->count; i++) {
                 float t, u, v;
                 if (hit_tri(b, i, o, d, tmin, best, &t, &u, &v)) {
+                    if (b->tested && b->tested[b->prim[i]] && !b->accept(b->accept_ctx, b->prim[i], u, v))
+                        continue;
                     found = true;
                     if (any)
                         return true;

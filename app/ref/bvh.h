@@ -23,6 +23,12 @@ typedef struct gk_bvh {
     uint32_t n_tris;
     uint32_t *prim;    /* leaf order -> caller's triangle index */
     vec3 *v0, *e1, *e2; /* per leaf-ordered triangle: vertex 0 and the two edges */
+    /* Optional any-hit test, set by the caller after gk_bvh_build: a triangle whose flag in
+       `tested` (by caller's index) is set counts as hit only where accept(accept_ctx, tri, u, v)
+       says so: alpha-masked materials' cut-outs let every ray through. NULL: every hit counts. */
+    const uint8_t *tested;
+    bool (*accept)(const void *ctx, uint32_t tri, float u, float v);
+    const void *accept_ctx;
 } gk_bvh;
 
 typedef struct gk_bvh_hit {

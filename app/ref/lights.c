@@ -289,7 +289,7 @@ vec3 gk_tri_emission(const gk_ref_scene *rs, const gk_ref_tri *t, float b1, floa
         return v3(0, 0, 0); /* seen from the back */
     /* emissiveFactor x emissiveTexture; the emitter CDF weighs triangles by the factor alone,
        still unbiased (the texture only makes some picks worth less). */
-    return v3_mul(v3(m->emissive[0], m->emissive[1], m->emissive[2]), gk_tri_texture_rgb(rs, t, m->emissive_tex, b1, b2));
+    return v3_mul(v3(m->emissive[0], m->emissive[1], m->emissive[2]), gk_tri_texture_rgb(rs, t, m->emissive_tex, &m->tex_uv[GK_SLOT_EMISSIVE], b1, b2));
 }
 
 vec3 gk_sky_emission(const gk_ref_scene *rs, vec3 d, int *light)
@@ -415,7 +415,7 @@ bool gk_light_photon_of(const gk_ref_scene *rs, int li, float pl, const float u[
         *o = v3_add(x, v3_scale(n, eps));
         *d = cosine_about(n, u3r, u4);
         vec3 le = v3_mul(v3(m->emissive[0], m->emissive[1], m->emissive[2]),
-                         gk_tri_texture_rgb(rs, tr, m->emissive_tex, b1, b2));
+                         gk_tri_texture_rgb(rs, tr, m->emissive_tex, &m->tex_uv[GK_SLOT_EMISSIVE], b1, b2));
         *flux = v3_scale(le, tr->area * GK_PI * sides / (pt * pl));
         return true;
     }

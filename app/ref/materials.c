@@ -9,9 +9,23 @@
 static float lum3(vec3 c) { return gk_luminance(c.x, c.y, c.z); }
 static float clamp01(float x) { return x < 0.0f ? 0.0f : (x > 1.0f ? 1.0f : x); }
 
-/* Bilinear filtering with repeat wrapping: what the GLES renderer's textures do (GL_LINEAR, no
- * mipmaps, GL_REPEAT: app/render/scene_gpu.c), so both renderers see the same colour at every
- * point; texel centres lie at (i + 0.5) / size. RGBA into out, white without a texture. */
+/* A texel index under a glTF wrap mode (GL's rules, ES 3.2 §8.14.2): repeat takes i mod n, clamp
+ * the nearest edge texel, mirror reflects every other period (-1 -> 0, n -> n - 1). */
+static int wrap_texel(int i, int n, enum gk_wrap mode)
+{
+    if (mode == GK_WRAP_CLAMP)
+        return i < 0 ? 0 : (i >= n ? n - 1 : i);
+    if (mode == GK_WRAP_MIRROR) {
+        int m = (i % (2 * n) + 2 * n) % (2 * n);
+        return m < n ? m : 2 * n - 1 - m;
+    }
+    return (i % n + n) % n;
+}
+
+/* The texture's glTF sampler as the GLES renderer's textures do it (app/render/scene_gpu.c: no
+ * mipmaps, GL_NEAREST or GL_LINEAR, GL_REPEAT, GL_CLAMP_TO_EDGE or GL_MIRRORED_REPEAT), so both
+ * renderers see the same colour at every point; texel centres lie at (i + 0.5) / size. RGBA into
+ * out, white without a texture. */
 static void tex_bilinear(const gk_ref_scene *rs, int tex, float u, float v, float out[4])
 {
     if (tex < 0 || tex >= rs->n_textures || !rs->textures[tex].rgba) {
@@ -19,15 +33,30 @@ static void tex_bilinear(const gk_ref_scene *rs, int tex, float u, float v, floa
         return;
     }
     const gk_texture *t = &rs->textures[tex];
-    float x = (u - floorf(u)) * (float)t->width - 0.5f, y = (v - floorf(v)) * (float)t->height - 0.5f;
-    float fx = floorf(x), fy = floorf(y), wx = x - fx, wy = y - fy;
-    int x0 = (int)fx, y0 = (int)fy;
+    /* far outside [0, 1] only the period matters; keeps the int conversion in range (mirror: 2) */
+    if (t->wrap_s != GK_WRAP_CLAMP && fabsf(u) > 1e4f)
+        u -= 2.0f * floorf(u / 2.0f);
+    if (t->wrap_t != GK_WRAP_CLAMP && fabsf(v) > 1e4f)
+        v -= 2.0f * floorf(v / 2.0f);
+    u = fmaxf(fminf(u, 1e4f), -1e4f);
+    v = fmaxf(fminf(v, 1e4f), -1e4f);
     for (int c = 0; c < 4; c++)
         out[c] = 0.0f;
+    if (t->nearest) {
+        int xi = wrap_texel((int)floorf(u * (float)t->width), t->width, t->wrap_s);
+        int yj = wrap_texel((int)floorf(v * (float)t->height), t->height, t->wrap_t);
+        const float *p = &t->rgba[4 * ((size_t)yj * (size_t)t->width + (size_t)xi)];
+        for (int c = 0; c < 4; c++)
+            out[c] = p[c];
+        return;
+    }
+    float x = u * (float)t->width - 0.5f, y = v * (float)t->height - 0.5f;
+    float fx = floorf(x), fy = floorf(y), wx = x - fx, wy = y - fy;
+    int x0 = (int)fx, y0 = (int)fy;
     for (int j = 0; j < 2; j++)
         for (int i = 0; i < 2; i++) {
-            int xi = ((x0 + i) % t->width + t->width) % t->width;
-            int yj = ((y0 + j) % t->height + t->height) % t->height;
+            int xi = wrap_texel(x0 + i, t->width, t->wrap_s);
+            int yj = wrap_texel(y0 + j, t->height, t->wrap_t);
             float w = (i ? wx : 1.0f - wx) * (j ? wy : 1.0f - wy);
             const float *p = &t->rgba[4 * ((size_t)yj * (size_t)t->width + (size_t)xi)];
             for (int c = 0; c < 4; c++)
@@ -49,20 +78,46 @@ static float tex_alpha(const gk_ref_scene *rs, int tex, float u, float v)
     return p[3];
 }
 
-vec3 gk_tri_texture_rgb(const gk_ref_scene *rs, const gk_ref_tri *t, int tex, float b1, float b2)
+/* The UV a texture slot reads at barycentrics (b1, b2): its set (TEXCOORD_0 or _1), then its
+ * KHR_texture_transform (gk_tex_uv); set 0 untransformed when xf is NULL. */
+static void slot_uv(const gk_ref_tri *t, const gk_tex_uv *xf, float b1, float b2, float *u, float *v)
 {
     float b0 = 1.0f - b1 - b2;
-    float u = b0 * t->uv[0][0] + b1 * t->uv[1][0] + b2 * t->uv[2][0];
-    float v = b0 * t->uv[0][1] + b1 * t->uv[1][1] + b2 * t->uv[2][1];
+    const float(*uv)[2] = xf && xf->texcoord == 1 ? t->uv1 : t->uv;
+    float u0 = b0 * uv[0][0] + b1 * uv[1][0] + b2 * uv[2][0];
+    float v0 = b0 * uv[0][1] + b1 * uv[1][1] + b2 * uv[2][1];
+    if (xf)
+        gk_tex_uv_apply(xf, u0, v0, u, v);
+    else
+        *u = u0, *v = v0;
+}
+
+vec3 gk_tri_texture_rgb(const gk_ref_scene *rs, const gk_ref_tri *t, int tex, const gk_tex_uv *xf, float b1, float b2)
+{
+    float u, v;
+    slot_uv(t, xf, b1, b2, &u, &v);
     return tex_sample(rs, tex, u, v);
+}
+
+bool gk_tri_alpha_accept(const void *ctx, uint32_t tri, float b1, float b2)
+{
+    const gk_ref_scene *rs = ctx;
+    const gk_ref_tri *t = &rs->tris[tri];
+    const gk_material *m = &rs->materials[t->material];
+    float b0 = 1.0f - b1 - b2;
+    float a = m->base_color[3] * (b0 * t->color[0][3] + b1 * t->color[1][3] + b2 * t->color[2][3]);
+    if (m->base_color_tex >= 0) {
+        float u, v;
+        slot_uv(t, &m->tex_uv[GK_SLOT_BASE], b1, b2, &u, &v);
+        a *= tex_alpha(rs, m->base_color_tex, u, v);
+    }
+    return a >= m->alpha_cutoff;
 }
 
 void gk_surface_init(gk_surface *sf, const gk_ref_scene *rs, const gk_ref_tri *t, float b1, float b2)
 {
     const gk_material *m = &rs->materials[t->material];
     float b0 = 1.0f - b1 - b2;
-    float u = b0 * t->uv[0][0] + b1 * t->uv[1][0] + b2 * t->uv[2][0];
-    float v = b0 * t->uv[0][1] + b1 * t->uv[1][1] + b2 * t->uv[2][1];
     sf->base = v3(m->base_color[0], m->base_color[1], m->base_color[2]);
     /* glTF: base colour = factor x texture x vertex colour (COLOR_0), as the G-buffer does. */
     for (int c = 0; c < 3; c++)
@@ -70,9 +125,9 @@ void gk_surface_init(gk_surface *sf, const gk_ref_scene *rs, const gk_ref_tri *t
     sf->metallic = m->metallic;
     sf->roughness = m->roughness;
     if (m->base_color_tex >= 0)
-        sf->base = v3_mul(sf->base, tex_sample(rs, m->base_color_tex, u, v));
+        sf->base = v3_mul(sf->base, gk_tri_texture_rgb(rs, t, m->base_color_tex, &m->tex_uv[GK_SLOT_BASE], b1, b2));
     if (m->metallic_roughness_tex >= 0) {
-        vec3 mr = tex_sample(rs, m->metallic_roughness_tex, u, v);
+        vec3 mr = gk_tri_texture_rgb(rs, t, m->metallic_roughness_tex, &m->tex_uv[GK_SLOT_MR], b1, b2);
         sf->roughness *= mr.y;
         sf->metallic *= mr.z;
     }
@@ -84,9 +139,11 @@ void gk_surface_init(gk_surface *sf, const gk_ref_scene *rs, const gk_ref_tri *t
     /* ior 1 is index-matched glass (no bending, no reflection); only the extension's 0 falls back. */
     sf->ior = m->ior >= 1.0f ? m->ior : 1.5f;
     /* KHR_materials_specular with KHR_materials_ior: the dielectric lobe's weight and F0 colour. */
-    sf->spec_weight = fmaxf(m->specular, 0.0f) * tex_alpha(rs, m->specular_tex, u, v);
+    float su, sv;
+    slot_uv(t, &m->tex_uv[GK_SLOT_SPECULAR], b1, b2, &su, &sv);
+    sf->spec_weight = fmaxf(m->specular, 0.0f) * tex_alpha(rs, m->specular_tex, su, sv);
     vec3 spec_color = v3_mul(v3(m->specular_color[0], m->specular_color[1], m->specular_color[2]),
-                             tex_sample(rs, m->specular_color_tex, u, v));
+                             gk_tri_texture_rgb(rs, t, m->specular_color_tex, &m->tex_uv[GK_SLOT_SPECULAR_COLOR], b1, b2));
     float r_ior = (m->ior - 1.0f) / (m->ior + 1.0f);
     vec3 c0 = v3_scale(spec_color, r_ior * r_ior);
     sf->c0 = v3(fminf(c0.x, 1.0f), fminf(c0.y, 1.0f), fminf(c0.z, 1.0f));
@@ -109,7 +166,7 @@ void gk_surface_init(gk_surface *sf, const gk_ref_scene *rs, const gk_ref_tri *t
     if (m->normal_tex >= 0) {
         /* glTF normalTexture, the same frame as the G-buffer (shaders_gles/gbuffer/gbuffer.frag):
            tangent-space normal, XY scaled, T made orthogonal to N, B = (N x T) w. */
-        vec3 mt = v3_sub(v3_scale(gk_tri_texture_rgb(rs, t, m->normal_tex, b1, b2), 2.0f), v3(1, 1, 1));
+        vec3 mt = v3_sub(v3_scale(gk_tri_texture_rgb(rs, t, m->normal_tex, &m->tex_uv[GK_SLOT_NORMAL], b1, b2), 2.0f), v3(1, 1, 1));
         mt.x *= m->normal_scale, mt.y *= m->normal_scale;
         vec3 tg = v3(0, 0, 0);
         float w = b0 * t->tangent[0][3] + b1 * t->tangent[1][3] + b2 * t->tangent[2][3];

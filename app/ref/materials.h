@@ -38,8 +38,14 @@ typedef struct gk_bsdf_sample {
     bool delta;
 } gk_bsdf_sample;
 
-/* Texture `tex` (bilinear, repeat; white when -1) at barycentrics (b1, b2) of triangle t. */
-vec3 gk_tri_texture_rgb(const gk_ref_scene *rs, const gk_ref_tri *t, int tex, float b1, float b2);
+/* Texture `tex` (its glTF sampler; white when -1) at barycentrics (b1, b2) of triangle t, through
+ * the slot's UV set and KHR_texture_transform xf (NULL: TEXCOORD_0 as is). */
+/* The BVH's any-hit test (gk_bvh.accept, ctx the gk_ref_scene): true where triangle tri of an
+ * alpha-masked material is there, its alpha (base colour factor x texture x COLOR_0) at barycentrics
+ * (u, v) at least the cutoff, as the G-buffer's discard and the shadow maps' decide. */
+bool gk_tri_alpha_accept(const void *ctx, uint32_t tri, float u, float v);
+
+vec3 gk_tri_texture_rgb(const gk_ref_scene *rs, const gk_ref_tri *t, int tex, const gk_tex_uv *xf, float b1, float b2);
 void gk_surface_init(gk_surface *sf, const gk_ref_scene *rs, const gk_ref_tri *t, float b1, float b2);
 
 /* True when the surface has a non-delta part (light sampling and camera connections apply). */

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "core/tonemap.h"
+#include "materials.h"
 #include "sample.h"
 
 static float lum3(vec3 c) { return gk_luminance(c.x, c.y, c.z); }
@@ -44,6 +45,11 @@ static int add_mesh_triangles(gk_ref_scene *rs, const gk_scene *s, const gk_node
             if (m->uvs) {
                 t->uv[k][0] = m->uvs[2 * vi];
                 t->uv[k][1] = m->uvs[2 * vi + 1];
+            }
+            const float *uv1 = m->uvs1 ? m->uvs1 : m->uvs;
+            if (uv1) {
+                t->uv1[k][0] = uv1[2 * vi];
+                t->uv1[k][1] = uv1[2 * vi + 1];
             }
             for (int c = 0; c < 4; c++)
                 t->color[k][c] = m->colors ? m->colors[4 * vi + (uint32_t)c] : 1.0f;
@@ -299,6 +305,22 @@ int gk_ref_scene_build(gk_ref_scene *rs, const gk_scene *s, mat4 view, mat4 proj
     free(verts);
     if (rc)
         goto fail;
+    /* glTF alphaMode MASK: the BVH asks the material's alpha at every hit on such a triangle */
+    bool any_mask = false;
+    for (uint32_t i = 0; i < rs->n_tris && !any_mask; i++)
+        any_mask = rs->materials[rs->tris[i].material].alpha_mask;
+    if (any_mask) {
+        rs->alpha_tested = calloc(rs->n_tris, 1);
+        if (!rs->alpha_tested) {
+            gk_fail(e, GK_ERUNTIME, "reference: out of memory flattening the scene");
+            goto fail;
+        }
+        for (uint32_t i = 0; i < rs->n_tris; i++)
+            rs->alpha_tested[i] = rs->materials[rs->tris[i].material].alpha_mask;
+        rs->bvh.tested = rs->alpha_tested;
+        rs->bvh.accept = gk_tri_alpha_accept;
+        rs->bvh.accept_ctx = rs;
+    }
 
     /* Camera: the inverse view's columns are the camera's axes; the projection's diagonal gives
        the image plane's half extents (symmetric perspective, as gk_scene_camera makes). */
@@ -320,6 +342,8 @@ fail:
 void gk_ref_scene_free(gk_ref_scene *rs)
 {
     gk_bvh_free(&rs->bvh);
+    free(rs->alpha_tested);
+    rs->alpha_tested = NULL;
     free(rs->tris);
     free(rs->lights);
     free(rs->light_cdf);

@@ -42,6 +42,7 @@ typedef struct gk_ref_light {
 typedef struct gk_ref_tri {
     vec3 p[3], n[3];
     float uv[3][2];
+    float uv1[3][2];   /* TEXCOORD_1 per corner; TEXCOORD_0's without one (as the G-buffer binds it) */
     float color[3][4]; /* COLOR_0 per corner, white without one */
     float tangent[3][4]; /* world-space tangent xyz + handedness w per corner; zero without one */
     vec3 ng;           /* unit geometric normal (front face by winding) */
@@ -54,6 +55,7 @@ typedef struct gk_ref_scene {
     gk_ref_tri *tris;
     uint32_t n_tris;
     gk_bvh bvh;
+    uint8_t *alpha_tested;  /* per triangle: its material is alpha-masked (the BVH's any-hit test), or NULL */
     const gk_material *materials; int n_materials; /* borrowed from the gk_scene */
     const gk_texture *textures; int n_textures;
     gk_ref_light *lights; int n_lights;

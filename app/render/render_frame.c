@@ -22,8 +22,9 @@ static int ensure_targets(gk_renderer *r, int w, int h, gk_err *e)
     gk_target_destroy(&r->gbuf);
     gk_target_destroy(&r->hdr);
     gk_target_destroy(&r->glass);
-    const GLenum gfmt[4] = {GL_RGBA8, GL_RGBA16F, GL_RGBA16F, GL_RGBA8};
-    if (gk_target_create(&r->gbuf, "gbuffer", w, h, 4, gfmt, GL_NEAREST, true, e) != 0)
+    const GLenum gfmt[5] = {GL_RGBA8, GL_RGBA16F, GL_RGBA16F, GL_RGBA8, GL_RGBA16F};
+    if (gk_target_create(&r->gbuf, "gbuffer", w, h, gk_render_geom_normal_target(r) ? 5 : 4, gfmt, GL_NEAREST, true,
+                         e) != 0)
         return -1;
     const GLenum hfmt[1] = {GL_RGBA16F};
     if (gk_target_create(&r->hdr, "hdr", w, h, 1, hfmt, GL_LINEAR, false, e) != 0)
@@ -133,6 +134,9 @@ static const gk_uniform_field gbuffer_fields[] = {
     GK_UNIFORM_AS(gbuffer_uniforms, draw.u_emissive_tex, "u_emissive_tex"),
     GK_UNIFORM_AS(gbuffer_uniforms, draw.u_normal_tex, "u_normal_tex"),
     GK_UNIFORM_AS(gbuffer_uniforms, draw.u_normal_scale, "u_normal_scale"),
+    GK_UNIFORM_AS(gbuffer_uniforms, draw.u_tex_xf, "u_tex_xf"),
+    GK_UNIFORM_AS(gbuffer_uniforms, draw.u_tex_uv1, "u_tex_uv1"),
+    GK_UNIFORM_AS(gbuffer_uniforms, draw.u_alpha_cutoff, "u_alpha_cutoff"),
 };
 
 /* direct/emission.frag */
@@ -145,11 +149,13 @@ static const gk_uniform_field emission_fields[] = {GK_GBUFFER_FIELDS(emission_un
    resolved by its bind) */
 typedef struct light_uniforms {
     gk_gbuffer_uniforms gb;
+    GLint u_gb_geom_normal;
     GLint u_light_pos, u_light_dir, u_light_u, u_light_v, u_light_color, u_light_range, u_light_cone,
         u_light_radius, u_light_size, u_ltc;
 } light_uniforms;
 static const gk_uniform_field light_fields[] = {
     GK_GBUFFER_FIELDS(light_uniforms, gb),
+    GK_UNIFORM(light_uniforms, u_gb_geom_normal),
     GK_UNIFORM(light_uniforms, u_light_pos),
     GK_UNIFORM(light_uniforms, u_light_dir),
     GK_UNIFORM(light_uniforms, u_light_u),
@@ -171,7 +177,7 @@ static const gk_uniform_field compose_fields[] = {GK_UNIFORM(compose_uniforms, u
 
 static int pass_gbuffer(gk_renderer *r, const mat4 *viewproj, vec3 eye, gk_err *e)
 {
-    GLuint prog = gk_program_get(r->progs, "gbuffer/gbuffer.vert", "gbuffer/gbuffer.frag", NULL, e);
+    GLuint prog = gk_program_get(r->progs, "gbuffer/gbuffer.vert", "gbuffer/gbuffer.frag", gk_render_gbuffer_defines(r), e);
     if (!prog)
         return -1;
     const gbuffer_uniforms *u = gk_program_uniforms(r->progs, prog, GK_FIELDS(gbuffer_fields), sizeof *u, e);
@@ -189,6 +195,8 @@ static int pass_gbuffer(gk_renderer *r, const mat4 *viewproj, vec3 eye, gk_err *
     glClearBufferfv(GL_COLOR, 1, zero);
     glClearBufferfv(GL_COLOR, 2, zero);
     glClearBufferfv(GL_COLOR, 3, zero);
+    if (r->gbuf.n_color > 4)
+        glClearBufferfv(GL_COLOR, 4, zero);
     glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
     glClear(GL_DEPTH_BUFFER_BIT);
     glUseProgram(prog);
@@ -248,6 +256,7 @@ static int pass_direct(gk_renderer *r, const gk_frame_knobs *fk, const frame_lig
         }
         glUseProgram(prog);
         gk_gbuffer_bind(gbuf, &lu->gb, UNIT_ALBEDO, 0);
+        gk_gbuffer_bind_geom_normal(gbuf, lu->u_gb_geom_normal, UNIT_GEOM_NORMAL, 0);
         vec3 pos, dir, u, v;
         gk_scene_light_frame(s, fl[i].node, &pos, &dir, &u, &v);
         set_light_uniforms(lu, l, pos, dir, u, v);
@@ -381,6 +390,7 @@ int gk_renderer_draw(gk_renderer *r, const gk_frame_params *fp, unsigned target_
     gk_gbuffer_view gb = {
         .albedo = r->gbuf.color[0], .normal = r->gbuf.color[1], .emission = r->gbuf.color[2],
         .depth = r->gbuf.depth, .specular = r->gbuf.color[3], .width = r->render_w, .height = r->render_h,
+        .geom_normal = r->gbuf.n_color > 4 ? r->gbuf.color[4] : 0,
     };
     gk_scene_camera(s, (float)r->opts.width / (float)r->opts.height, &gb.view, &gb.proj, &gb.eye);
     gb.view_proj = m4_mul(gb.proj, gb.view);

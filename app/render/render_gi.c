@@ -121,7 +121,8 @@ typedef struct light_map_uniforms {
     gk_draw_uniforms draw;
 } light_map_uniforms;
 static const gk_uniform_field light_map_fields[] = {GK_UNIFORM(light_map_uniforms, u_viewproj),
-                                                    GK_UNIFORM_AS(light_map_uniforms, draw.u_model, "u_model")};
+                                                    GK_UNIFORM_AS(light_map_uniforms, draw.u_model, "u_model"),
+                                                    GK_ALPHA_MASK_FIELDS(light_map_uniforms, draw)};
 
 /* What gk_gi_frame.draw_scene sets in a method's program (gi.h) */
 static const gk_uniform_field draw_scene_fields[] = {
@@ -139,7 +140,7 @@ static int render_light_maps(gk_render_gi *g, gk_renderer *r, gk_err *e)
     bool dynamic = s->features.has_animation;
     if (g->maps_generation == r->scene_generation && !dynamic)
         return 0;
-    GLuint prog = gk_program_get(r->progs, "shadow/depth.vert", "shadow/depth.frag", NULL, e);
+    GLuint prog = gk_program_get(r->progs, "shadow/depth.vert", "shadow/depth.frag", gk_scene_gpu_depth_defines(s), e);
     const light_map_uniforms *u = prog ? gk_program_uniforms(r->progs, prog, GK_FIELDS(light_map_fields), sizeof *u, e) : NULL;
     if (!u)
         return -1;
@@ -176,7 +177,7 @@ static int render_light_maps(gk_render_gi *g, gk_renderer *r, gk_err *e)
         glClear(GL_DEPTH_BUFFER_BIT);
         glUseProgram(prog);
         glUniformMatrix4fv(u->u_viewproj, 1, GL_FALSE, L->shadow_view_proj.m);
-        gk_scene_gpu_draw(&r->gpu, s, &u->draw, GK_DRAW_SKIP_PROXIES);
+        gk_scene_gpu_draw(&r->gpu, s, &u->draw, gk_scene_gpu_depth_flags(s) | GK_DRAW_SKIP_PROXIES);
     }
     glDisable(GL_DEPTH_TEST);
     g->maps_generation = r->scene_generation;
@@ -264,6 +265,7 @@ int gk_render_gi_run(gk_render_gi *g, gk_renderer *r, const char *method, const 
     f.gbuf_emission = gb->emission;
     f.gbuf_depth = gb->depth;
     f.gbuf_specular = gb->specular;
+    f.gbuf_geom_normal = gb->geom_normal;
     f.direct_tex = 0; /* the method adds into the same HDR target: reading it would be a feedback loop */
     f.hdr_fbo = r->hdr.fbo;
     f.n_lights = g->n_lights;

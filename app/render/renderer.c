@@ -71,8 +71,12 @@ gk_renderer *gk_renderer_create(const gk_render_opts *opts, gk_err *e)
         {"common/fullscreen.vert", "compose/compose.frag"},
         {"shadow/depth.vert", "shadow/depth.frag"},
     };
+    if (!gk_render_geom_normal_target(r))
+        gk_log("renderer: %d draw buffers, the G-buffer needs 5 for the geometric normal: normal-mapped "
+                    "surfaces offset shadows and start vct's cones along the mapped normal",
+                    r->caps.max_draw_buffers);
     for (size_t i = 0; i < sizeof vf / sizeof vf[0]; i++)
-        if (!gk_program_get(r->progs, vf[i][0], vf[i][1], NULL, e)) {
+        if (!gk_program_get(r->progs, vf[i][0], vf[i][1], i == 0 ? gk_render_gbuffer_defines(r) : NULL, e)) {
             gk_renderer_destroy(r);
             return NULL;
         }

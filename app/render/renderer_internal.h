@@ -15,6 +15,7 @@
 
 /* Texture units of the lighting passes. */
 enum { UNIT_ALBEDO = 0, UNIT_NORMAL = 1, UNIT_EMISSION = 2, UNIT_DEPTH = 3, UNIT_SPECULAR = 4, UNIT_SHADOW = 5,
+       UNIT_GEOM_NORMAL = 14, /* after every shadow method's (CSSM, the most, ends at 5 + 8) */
        UNIT_LTC = 15 /* the last unit GLES 3.1 guarantees a fragment shader: after every shadow method's */ };
 
 /* The renderer's knobs, read each frame through handles (no names in the frame loop). */
@@ -78,7 +79,8 @@ struct gk_renderer {
     bool have_gpu;
 
     gk_target gbuf;             /* RT0 albedo+metallic RGBA8, RT1 normal+roughness RGBA16F, RT2 emission RGBA16F,
-                                   RT3 specular (sqrt c0, weight) RGBA8, depth 32F */
+                                   RT3 specular (sqrt c0, weight) RGBA8, RT4 geometric normal RGBA16F when the
+                                   driver has 5 draw buffers (gk_render_geom_normal_target), depth 32F */
     gk_target hdr;              /* RGBA16F scene radiance at render scale */
     gk_target glass;            /* RGBA16F: hdr (or the GI blend) with the glass drawn over it (render_glass.c) */
     int render_w, render_h;     /* render size (output * render_scale) */
@@ -123,5 +125,15 @@ void gk_render_fullscreen(gk_renderer *r);
 
 /* Compose pass into fbo (w x h): tonemapped, or linear when linear_out. */
 int gk_render_compose(gk_renderer *r, GLuint fbo, int w, int h, bool linear_out, gk_err *e);
+
+/* The G-buffer's 5th target, the geometric normal, needs 5 draw buffers (GLES 3.1 guarantees 4;
+ * llvmpipe, Mali Bifrost and later, Adreno have 8). Without them the shading normal stands in (the
+ * normal-map defects of README "Your own glTF models" come back, logged once at start). */
+static inline bool gk_render_geom_normal_target(const gk_renderer *r) { return r->caps.max_draw_buffers >= 5; }
+/* The defines gbuffer/gbuffer.frag is compiled with. */
+static inline const char *gk_render_gbuffer_defines(const gk_renderer *r)
+{
+    return gk_render_geom_normal_target(r) ? "#define GK_GEOM_NORMAL_TARGET 1\n" : "#define GK_GEOM_NORMAL_TARGET 0\n";
+}
 
 #endif

@@ -29,8 +29,9 @@ int gk_scene_gpu_upload(gk_scene_gpu *g, const gk_scene *s, gk_err *e)
     for (int i = 0; i < s->n_meshes; i++) {
         const gk_mesh *m = &s->meshes[i];
         glBindVertexArray(g->vao[i]);
-        const float *data[GK_MESH_ATTRIBS] = {m->positions, m->normals, m->uvs, m->colors, m->tangents};
-        const int comps[GK_MESH_ATTRIBS] = {3, 3, 2, 4, 4};
+        const float *data[GK_MESH_ATTRIBS] = {m->positions, m->normals, m->uvs, m->colors, m->tangents,
+                                              m->uvs1 ? m->uvs1 : m->uvs};
+        const int comps[GK_MESH_ATTRIBS] = {3, 3, 2, 4, 4, 2};
         for (int a = 0; a < GK_MESH_ATTRIBS; a++) {
             if (!data[a]) { /* a constant attribute: no colour is white */
                 glDisableVertexAttribArray((GLuint)a);
@@ -56,17 +57,21 @@ int gk_scene_gpu_upload(gk_scene_gpu *g, const gk_scene *s, gk_err *e)
     glBindBuffer(GL_ARRAY_BUFFER, 0);
     /* Textures: linear float RGBA from the loader, kept as RGBA16F (filterable in GLES 3.0 core).
        No mipmaps: generating them needs a renderable RGBA16F, and the path tracer samples
-       bilinearly without them, so the two renderers see the same texels. */
+       without them (materials.c), so the two renderers see the same texels. */
     g->n_textures = s->n_textures;
     for (int i = 0; i < s->n_textures; i++) {
         const gk_texture *t = &s->textures[i];
         glGenTextures(1, &g->tex[i]);
         glBindTexture(GL_TEXTURE_2D, g->tex[i]);
         glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA16F, t->width, t->height, 0, GL_RGBA, GL_FLOAT, t->rgba);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+        /* the glTF sampler (gk_texture): one filter for both directions, as the tracer samples */
+        static const GLint wrap[] = {[GK_WRAP_REPEAT] = GL_REPEAT, [GK_WRAP_CLAMP] = GL_CLAMP_TO_EDGE,
+                                     [GK_WRAP_MIRROR] = GL_MIRRORED_REPEAT};
+        GLint filter = t->nearest ? GL_NEAREST : GL_LINEAR;
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, wrap[t->wrap_s]);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, wrap[t->wrap_t]);
     }
     const float white[4] = {1, 1, 1, 1};
     glGenTextures(1, &g->white_tex);
@@ -135,6 +140,8 @@ static void set_material(const gk_scene_gpu *g, const gk_scene *s, const gk_draw
         flags |= GK_MAT_LIGHT_PROXY;
     if (m->double_sided)
         flags |= GK_MAT_DOUBLE_SIDED;
+    if (m->alpha_mask)
+        flags |= GK_MAT_ALPHA_MASK;
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, base);
     glActiveTexture(GL_TEXTURE1);
@@ -157,6 +164,19 @@ static void set_material(const gk_scene_gpu *g, const gk_scene *s, const gk_draw
     glUniform4f(u->u_specular, k * m->specular_color[0], k * m->specular_color[1], k * m->specular_color[2],
                 m->specular);
     glUniform2f(u->u_glass, m->ior, m->transmission);
+    _Static_assert(GK_TEX_SLOTS == 6, "gbuffer.frag declares u_tex_xf[12]: two rows per slot");
+    float xf[GK_TEX_SLOTS * 6];
+    int uv1 = 0;
+    for (int k = 0; k < GK_TEX_SLOTS; k++) {
+        static const float identity[6] = {1, 0, 0, 0, 1, 0};
+        const gk_tex_uv *t = &m->tex_uv[k];
+        memcpy(&xf[6 * k], t->transformed ? t->m : identity, sizeof identity);
+        if (t->texcoord == 1)
+            uv1 |= 1 << k;
+    }
+    glUniform3fv(u->u_tex_xf, 2 * GK_TEX_SLOTS, xf);
+    glUniform1i(u->u_tex_uv1, uv1);
+    glUniform1f(u->u_alpha_cutoff, m->alpha_cutoff);
 }
 
 void gk_draw_uniforms_lookup(GLuint prog, gk_draw_uniforms *u)
@@ -176,6 +196,9 @@ void gk_draw_uniforms_lookup(GLuint prog, gk_draw_uniforms *u)
     u->u_normal_tex = glGetUniformLocation(prog, "u_normal_tex");
     u->u_normal_scale = glGetUniformLocation(prog, "u_normal_scale");
     u->u_glass = glGetUniformLocation(prog, "u_glass");
+    u->u_tex_xf = glGetUniformLocation(prog, "u_tex_xf");
+    u->u_tex_uv1 = glGetUniformLocation(prog, "u_tex_uv1");
+    u->u_alpha_cutoff = glGetUniformLocation(prog, "u_alpha_cutoff");
 }
 
 void gk_scene_gpu_draw(const gk_scene_gpu *g, const gk_scene *s, const gk_draw_uniforms *u, int flags)
@@ -214,4 +237,22 @@ void gk_scene_gpu_draw(const gk_scene_gpu *g, const gk_scene *s, const gk_draw_u
         }
     }
     glBindVertexArray(0);
+}
+
+static bool any_alpha_mask(const gk_scene *s)
+{
+    for (int i = 0; i < s->n_materials; i++)
+        if (s->materials[i].alpha_mask)
+            return true;
+    return false;
+}
+
+const char *gk_scene_gpu_depth_defines(const gk_scene *s)
+{
+    return any_alpha_mask(s) ? "#define GK_ALPHA_MASK 1\n" : NULL;
+}
+
+int gk_scene_gpu_depth_flags(const gk_scene *s)
+{
+    return any_alpha_mask(s) ? GK_DRAW_MATERIALS : 0;
 }

@@ -11,11 +11,11 @@
 #include "gl/gl.h"
 #include "gl/gl_program.h"
 
-#define GK_MESH_ATTRIBS 5      /* vertex attributes per mesh, locations 0..4 */
+#define GK_MESH_ATTRIBS 6      /* vertex attributes per mesh, locations 0..5 */
 
 typedef struct gk_scene_gpu {
     int n_meshes;
-    GLuint *vao, *vbo, *ibo;   /* vbo: GK_MESH_ATTRIBS per mesh (pos, normal, uv, colour, tangent) */
+    GLuint *vao, *vbo, *ibo;   /* vbo: GK_MESH_ATTRIBS per mesh (pos, normal, uv, colour, tangent, uv1: TEXCOORD_1, or TEXCOORD_0 again without one) */
     GLsizei *index_count;
     int n_textures;
     GLuint *tex;
@@ -42,6 +42,7 @@ enum {
     GK_MAT_SPEC_COLOR_TEX = 32, /* KHR_materials_specular specularColorTexture (RGB) */
     GK_MAT_EMISSIVE_TEX = 64,   /* emissiveTexture (RGB) times u_emissive */
     GK_MAT_NORMAL_TEX = 128,    /* normalTexture, tangent space, XY scaled by u_normal_scale */
+    GK_MAT_ALPHA_MASK = 256,    /* alphaMode MASK: discard where base colour alpha < u_alpha_cutoff */
 };
 
 /* The uniforms gk_scene_gpu_draw sets, by location (-1: the program has no such uniform). A pass
@@ -57,7 +58,25 @@ typedef struct gk_draw_uniforms {
     GLint u_emissive_tex;                                                 /* unit 4 */
     GLint u_normal_tex, u_normal_scale;                                   /* unit 5 */
     GLint u_glass;             /* (ior, transmission): KHR_materials_ior / _transmission (render_glass.c) */
+    /* Each texture slot's UVs (gk_tex_uv): u_tex_xf vec3[2 * GK_TEX_SLOTS], rows of its 2x3
+       KHR_texture_transform matrix (identity without one); u_tex_uv1 int, bit k set when slot k
+       reads TEXCOORD_1 (attribute 5). Slots in enum gk_tex_slot's order. */
+    GLint u_tex_xf, u_tex_uv1;
+    GLint u_alpha_cutoff;      /* alphaMode MASK's alphaCutoff (GK_MAT_ALPHA_MASK) */
 } gk_draw_uniforms;
+
+/* The uniforms a depth-only pass lists so that alpha-masked materials cut their holes in it too
+ * (shadow/depth.frag, drawn with GK_DRAW_MATERIALS). */
+#define GK_ALPHA_MASK_FIELDS(type, member)                                                                             \
+    GK_UNIFORM_AS(type, member.u_mat_flags, "u_mat_flags"), GK_UNIFORM_AS(type, member.u_base_color, "u_base_color"), \
+        GK_UNIFORM_AS(type, member.u_base_tex, "u_base_tex"),                                                        \
+        GK_UNIFORM_AS(type, member.u_alpha_cutoff, "u_alpha_cutoff"),                                                \
+        GK_UNIFORM_AS(type, member.u_tex_xf, "u_tex_xf"), GK_UNIFORM_AS(type, member.u_tex_uv1, "u_tex_uv1")
+
+/* shadow/depth.{vert,frag}'s defines for scene s and the draw flags that go with them: alpha
+ * masking (GK_ALPHA_MASK 1, drawn with GK_DRAW_MATERIALS) only when a material of s is masked. */
+const char *gk_scene_gpu_depth_defines(const gk_scene *s);
+int gk_scene_gpu_depth_flags(const gk_scene *s);
 
 /* Draws every node's meshes (after gk_scene_evaluate) with the bound program: sets u_model and
  * u_normal_matrix per node; textures on units 0 (base colour), 1 (metallic-roughness), 2 (specular)

@@ -160,7 +160,8 @@ gk_scene *convert(Loader &L, const Model &m, const char *base_dir)
 // name, and any other one a file merely uses is logged by name (its effect is not shown).
 const char *const kSupportedExtensions[] = {"KHR_lights_punctual",        "KHR_materials_emissive_strength",
                                             "KHR_materials_transmission", "KHR_materials_ior",
-                                            "KHR_materials_specular",     "KHR_mesh_quantization"};
+                                            "KHR_materials_specular",     "KHR_mesh_quantization",
+                                            "KHR_texture_transform"};
 
 bool extension_supported(const std::string &name)
 {

@@ -11,6 +11,68 @@ namespace gkgltf {
 
 namespace {
 
+// A number array of n finite numbers at key of obj (absent: keep out).
+bool read_numbers(const Value *obj, const char *key, int n, float *out)
+{
+    const Value *a = member(obj, key);
+    if (!a)
+        return true;
+    if (!a->IsArray() || (int)a->ArrayLen() != n)
+        return false;
+    for (int k = 0; k < n; k++) {
+        const Value &x = a->Get(k);
+        double v = x.IsNumber() ? x.GetNumberAsDouble() : NAN;
+        if (!std::isfinite(v))
+            return false;
+        out[k] = (float)v;
+    }
+    return true;
+}
+
+// Where a texture slot reads its UVs (gk_tex_uv): texCoord 0 or 1 (glTF's textureInfo.texCoord) and
+// KHR_texture_transform (offset, rotation, scale, and its own texCoord, which overrides). A set
+// past TEXCOORD_1 or a malformed transform is refused naming the material and the slot.
+bool read_tex_uv(Loader &L, int mi, const char *slot, int texcoord, const Value *transform, gk_tex_uv *out)
+{
+    *out = gk_tex_uv{};
+    if (transform) {
+        float offset[2] = {0, 0}, scale[2] = {1, 1}, rotation = 0;
+        const Value *rot = member(transform, "rotation");
+        double r = rot ? (rot->IsNumber() ? rot->GetNumberAsDouble() : NAN) : 0.0;
+        if (!transform->IsObject() || !read_numbers(transform, "offset", 2, offset) ||
+            !read_numbers(transform, "scale", 2, scale) || !std::isfinite(r))
+            return L.fail("material %d: %s texture: KHR_texture_transform needs offset [2 numbers], rotation (a "
+                          "number) and scale [2 numbers], all finite",
+                          mi, slot);
+        rotation = (float)r;
+        const Value *tc = member(transform, "texCoord");
+        if (tc) {
+            if (!tc->IsInt())
+                return L.fail("material %d: %s texture: KHR_texture_transform texCoord must be an integer", mi, slot);
+            texcoord = tc->Get<int>();
+        }
+        float c = cosf(rotation), sn = sinf(rotation);
+        const float m[6] = {c * scale[0], sn * scale[1], offset[0], -sn * scale[0], c * scale[1], offset[1]};
+        memcpy(out->m, m, sizeof m);
+        out->transformed = true;
+        L.use.texture_transforms++;
+    }
+    if (texcoord < 0 || texcoord > 1)
+        return L.fail("material %d: %s texture reads TEXCOORD_%d: only TEXCOORD_0 and TEXCOORD_1 are read", mi, slot,
+                      texcoord);
+    out->texcoord = texcoord;
+    if (texcoord == 1)
+        L.use.second_uv_slots++;
+    return true;
+}
+
+// The KHR_texture_transform object of a textureInfo's extensions, or null.
+const Value *texture_transform(const tinygltf::ExtensionMap &ext)
+{
+    auto it = ext.find("KHR_texture_transform");
+    return it == ext.end() ? nullptr : &it->second;
+}
+
 // KHR_materials_specular (brdf_spec.md): specularFactor (in [0, 1], default 1), specularColorFactor
 // (3 numbers >= 0, default 1), specularTexture (A: weight, data) and specularColorTexture (RGB,
 // sRGB colour). A malformed value is refused with the material named, never guessed.
@@ -45,9 +107,10 @@ bool read_specular(Loader &L, const tinygltf::Material &src, int mi, gk_material
             return L.fail("material %d ('%s'): specularColorFactor must be 3 finite numbers >= 0", mi,
                           src.name.c_str());
     }
-    struct { const char *key, *slot; int flag; int *out; } texs[] = {
-        {"specularTexture", "specular", GK_TEX_USED_AS_DATA, &d->specular_tex},
-        {"specularColorTexture", "specular colour", GK_TEX_USED_AS_COLOR, &d->specular_color_tex},
+    struct { const char *key, *slot; int flag; int *out; gk_tex_uv *uv; } texs[] = {
+        {"specularTexture", "specular", GK_TEX_USED_AS_DATA, &d->specular_tex, &d->tex_uv[GK_SLOT_SPECULAR]},
+        {"specularColorTexture", "specular colour", GK_TEX_USED_AS_COLOR, &d->specular_color_tex,
+         &d->tex_uv[GK_SLOT_SPECULAR_COLOR]},
     };
     for (auto &t : texs) {
         const Value *info = member(ext, t.key);
@@ -57,6 +120,12 @@ bool read_specular(Loader &L, const tinygltf::Material &src, int mi, gk_material
         if (!index || !index->IsInt() || index->Get<int>() < 0)
             return L.fail("material %d ('%s'): %s needs an index >= 0", mi, src.name.c_str(), t.key);
         if (!tex_ref(index->Get<int>(), t.flag, mi, t.slot, t.out))
+            return false;
+        const Value *tc = member(info, "texCoord");
+        const Value *exts = member(info, "extensions");
+        if (tc && !tc->IsInt())
+            return L.fail("material %d ('%s'): %s texCoord must be an integer", mi, src.name.c_str(), t.key);
+        if (!read_tex_uv(L, mi, t.slot, tc ? tc->Get<int>() : 0, member(exts, "KHR_texture_transform"), t.uv))
             return false;
     }
     return true;
@@ -99,6 +168,46 @@ bool read_glass(Loader &L, const tinygltf::Material &src, int mi, double *transm
     if (it != src.extensions.end() && member(&it->second, "transmissionTexture"))
         gk_log("%s: material %d ('%s'): transmissionTexture is ignored (transmissionFactor only)", L.path, mi,
                src.name.c_str());
+    return true;
+}
+
+// The texture's sampler (glTF §5.26): wrapS/wrapT REPEAT (10497, the default), CLAMP_TO_EDGE
+// (33071) or MIRRORED_REPEAT (33648); magFilter NEAREST (9728) gives nearest texels, LINEAR (9729)
+// or none bilinear. minFilter's mipmap modes are read as their base filter (no mipmaps here), so it
+// is only validated. Any other value is refused naming the sampler and the key.
+bool read_sampler(Loader &L, const Model &m, int ti, gk_texture *t)
+{
+    int si = m.textures[(size_t)ti].sampler;
+    if (si < 0)
+        return true;
+    if ((size_t)si >= m.samplers.size())
+        return L.fail("texture %d: sampler %d does not exist", ti, si);
+    const tinygltf::Sampler &smp = m.samplers[(size_t)si];
+    struct { const char *key; int value; enum gk_wrap *out; } wraps[] = {
+        {"wrapS", smp.wrapS, &t->wrap_s}, {"wrapT", smp.wrapT, &t->wrap_t}};
+    for (auto &w : wraps) {
+        if (w.value == TINYGLTF_TEXTURE_WRAP_REPEAT)
+            *w.out = GK_WRAP_REPEAT;
+        else if (w.value == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE)
+            *w.out = GK_WRAP_CLAMP;
+        else if (w.value == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT)
+            *w.out = GK_WRAP_MIRROR;
+        else
+            return L.fail("sampler %d: %s %d is not REPEAT (10497), CLAMP_TO_EDGE (33071) or MIRRORED_REPEAT (33648)",
+                          si, w.key, w.value);
+    }
+    if (smp.magFilter != -1 && smp.magFilter != TINYGLTF_TEXTURE_FILTER_NEAREST &&
+        smp.magFilter != TINYGLTF_TEXTURE_FILTER_LINEAR)
+        return L.fail("sampler %d: magFilter %d is not NEAREST (9728) or LINEAR (9729)", si, smp.magFilter);
+    static const int min_ok[] = {-1, 9728, 9729, 9984, 9985, 9986, 9987};
+    bool ok = false;
+    for (int v : min_ok)
+        ok = ok || smp.minFilter == v;
+    if (!ok)
+        return L.fail("sampler %d: minFilter %d is not a glTF filter (9728, 9729, 9984 to 9987)", si, smp.minFilter);
+    t->nearest = smp.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
+    if (t->nearest || t->wrap_s != GK_WRAP_REPEAT || t->wrap_t != GK_WRAP_REPEAT)
+        L.use.samplers++;
     return true;
 }
 
@@ -154,6 +263,31 @@ bool read_materials(Loader &L, const Model &m, gk_scene *s, std::vector<int> &te
             !tex_ref(src.emissiveTexture.index, GK_TEX_USED_AS_COLOR, mi, "emissive", &d->emissive_tex) ||
             !tex_ref(src.normalTexture.index, GK_TEX_USED_AS_DATA, mi, "normal", &d->normal_tex))
             return false;
+        const struct { const char *slot; int texcoord; const tinygltf::ExtensionMap *ext; enum gk_tex_slot k; } uvs[] = {
+            {"base colour", pbr.baseColorTexture.texCoord, &pbr.baseColorTexture.extensions, GK_SLOT_BASE},
+            {"metallic-roughness", pbr.metallicRoughnessTexture.texCoord, &pbr.metallicRoughnessTexture.extensions,
+             GK_SLOT_MR},
+            {"emissive", src.emissiveTexture.texCoord, &src.emissiveTexture.extensions, GK_SLOT_EMISSIVE},
+            {"normal", src.normalTexture.texCoord, &src.normalTexture.extensions, GK_SLOT_NORMAL},
+        };
+        const int slot_tex[] = {d->base_color_tex, d->metallic_roughness_tex, d->emissive_tex, d->normal_tex};
+        for (size_t k = 0; k < sizeof uvs / sizeof uvs[0]; k++)
+            if (slot_tex[k] >= 0 && !read_tex_uv(L, mi, uvs[k].slot, uvs[k].texcoord, texture_transform(*uvs[k].ext),
+                                                 &d->tex_uv[uvs[k].k]))
+                return false;
+        // alphaMode (glTF 3.9.4): OPAQUE (default), MASK with alphaCutoff (default 0.5, >= 0), BLEND.
+        if (src.alphaMode == "MASK") {
+            if (!std::isfinite(src.alphaCutoff) || src.alphaCutoff < 0)
+                return L.fail("material %d ('%s'): alphaCutoff must be a finite number >= 0", mi, src.name.c_str());
+            d->alpha_mask = true;
+            d->alpha_cutoff = (float)src.alphaCutoff;
+            L.use.alpha_masked++;
+        } else if (src.alphaMode == "BLEND") {
+            L.use.alpha_blended++;
+        } else if (!src.alphaMode.empty() && src.alphaMode != "OPAQUE") {
+            return L.fail("material %d ('%s'): alphaMode '%s' is not OPAQUE, MASK or BLEND", mi, src.name.c_str(),
+                          src.alphaMode.c_str());
+        }
         double strength = 1.0, transmission = 0.0, ior = 1.5;
         if (!read_number_ext(L, src, mi, "KHR_materials_emissive_strength", "emissiveStrength", 0.0, HUGE_VAL,
                              "a finite number >= 0", &strength) ||
@@ -190,6 +324,8 @@ bool read_textures(Loader &L, const Model &m, gk_scene *s)
             return L.fail("texture %zu: image %d does not exist", i, src);
         const tinygltf::Image &img = m.images[(size_t)src];
         gk_texture *t = &s->textures[i];
+        if (!read_sampler(L, m, (int)i, t))
+            return false;
         copy_name(t->mime, sizeof t->mime, img.mimeType);
         if (img.uri.empty()) { // embedded: its bytes were kept by the image callback (gltf_load.cpp)
             if (img.image.empty())

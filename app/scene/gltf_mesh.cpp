@@ -113,6 +113,16 @@ bool read_primitive(Loader &L, const Model &m, int mi, int pi, const tinygltf::P
         if (nu != nv)
             return L.fail("mesh %d ('%s'): TEXCOORD_0 has %zu elements, POSITION %zu", mi, mname.c_str(), nu, nv);
     }
+    int uv1 = attr("TEXCOORD_1");
+    if (uv1 >= 0) { // the second UV set, for texture slots whose texCoord is 1
+        size_t nu = 0;
+        snprintf(what, sizeof what, "mesh %d TEXCOORD_1", mi);
+        out->uvs1 = read_floats(L, m, uv1, what, TINYGLTF_TYPE_VEC2, uv_ints, &nu);
+        if (!out->uvs1)
+            return false;
+        if (nu != nv)
+            return L.fail("mesh %d ('%s'): TEXCOORD_1 has %zu elements, POSITION %zu", mi, mname.c_str(), nu, nv);
+    }
     int col = attr("COLOR_0");
     if (col >= 0) {
         // Vertex colours (§3.7.2.1): VEC3 or VEC4, float or normalized unsigned byte/short,

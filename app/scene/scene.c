@@ -19,7 +19,7 @@ void gk_scene_free(gk_scene *s)
     for (int i = 0; i < s->n_meshes; i++) {
         free(s->meshes[i].positions);
         free(s->meshes[i].normals);
-        free(s->meshes[i].uvs), free(s->meshes[i].colors), free(s->meshes[i].tangents);
+        free(s->meshes[i].uvs), free(s->meshes[i].uvs1), free(s->meshes[i].colors), free(s->meshes[i].tangents);
         free(s->meshes[i].indices);
     }
     for (int i = 0; i < s->n_textures; i++) {

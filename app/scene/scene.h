@@ -29,6 +29,9 @@
 enum gk_light_type { GK_LIGHT_POINT, GK_LIGHT_SPOT, GK_LIGHT_DIRECTIONAL };
 enum gk_light_shape { GK_SHAPE_POINT, GK_SHAPE_SPHERE, GK_SHAPE_DISC, GK_SHAPE_RECT };
 
+/* glTF sampler wrap modes; 0 (the zeroed default) is glTF's default, REPEAT. */
+enum gk_wrap { GK_WRAP_REPEAT = 0, GK_WRAP_CLAMP, GK_WRAP_MIRROR };
+
 typedef struct gk_texture {
     char uri[256];    /* the image file, relative to the scene's folder; "" for an embedded image */
     unsigned char *embedded;   /* encoded bytes of an image inside the file (GLB chunk or data: uri), */
@@ -36,7 +39,41 @@ typedef struct gk_texture {
     char mime[32];             /* the image's mimeType, "" when not given */
     int width, height;
     float *rgba;      /* width*height*4 floats, linear (sRGB decoded for colour textures) */
+    /* The glTF sampler: wrapS, wrapT, and one filter for magnification and minification alike
+       (neither renderer has mipmaps, and the tracer no footprint to tell the two apart): NEAREST
+       when magFilter is NEAREST, else bilinear. Both renderers sample the same way. */
+    enum gk_wrap wrap_s, wrap_t;
+    bool nearest;
 } gk_texture;
+
+/* The texture slots of a material, for gk_material.tex_uv. */
+enum gk_tex_slot {
+    GK_SLOT_BASE, GK_SLOT_MR, GK_SLOT_EMISSIVE, GK_SLOT_NORMAL, GK_SLOT_SPECULAR, GK_SLOT_SPECULAR_COLOR,
+    GK_TEX_SLOTS
+};
+
+/* Where one texture slot reads its UVs: TEXCOORD_<texcoord> (0 or 1; glTF textureInfo.texCoord,
+ * or KHR_texture_transform's override), then, when transformed, KHR_texture_transform's
+ * uv' = T(offset) R(rotation) S(scale) uv as the row-major 2x3 matrix m:
+ *   [ cos(r) sx   sin(r) sy   ox ]
+ *   [-sin(r) sx   cos(r) sy   oy ]   (the extension's matrices multiplied out). */
+typedef struct gk_tex_uv {
+    int texcoord;
+    bool transformed;
+    float m[6];
+} gk_tex_uv;
+
+/* uv' of slot `xf` (identity when not transformed). Both renderers apply the same (the G-buffer
+ * shader its own copy: shaders_gles/gbuffer/gbuffer.frag). */
+static inline void gk_tex_uv_apply(const gk_tex_uv *xf, float u, float v, float *out_u, float *out_v)
+{
+    if (!xf->transformed) {
+        *out_u = u, *out_v = v;
+        return;
+    }
+    *out_u = xf->m[0] * u + xf->m[1] * v + xf->m[2];
+    *out_v = xf->m[3] * u + xf->m[4] * v + xf->m[5];
+}
 
 typedef struct gk_material {
     char name[64];
@@ -63,12 +100,19 @@ typedef struct gk_material {
     int specular_color_tex;   /* RGB = F0 colour, -1 if none */
     bool double_sided;
     bool light_proxy;         /* see the header comment */
+    gk_tex_uv tex_uv[GK_TEX_SLOTS]; /* each slot's UV set and KHR_texture_transform (zeroed: set 0, none) */
+    /* glTF alphaMode MASK: a surface point whose alpha (base colour factor x texture x COLOR_0, A) is
+       below alpha_cutoff is not there, for the camera, the shadow maps and the tracer's rays alike.
+       OPAQUE and BLEND leave it false (BLEND is drawn opaque: README). */
+    bool alpha_mask;
+    float alpha_cutoff;       /* glTF alphaCutoff, 0.5 by default */
 } gk_material;
 
 typedef struct gk_mesh {       /* one glTF primitive, triangles only, in object space */
     float *positions;          /* n_vertices * 3 */
     float *normals;            /* n_vertices * 3 (generated flat if the file has none) */
     float *uvs;                /* n_vertices * 2, or NULL */
+    float *uvs1;               /* TEXCOORD_1, n_vertices * 2, or NULL (a slot reading set 1 then reads set 0) */
     float *colors;             /* COLOR_0, n_vertices * 4 linear RGBA (RGB files get A = 1), or NULL */
     float *tangents;           /* TANGENT xyz + handedness w, n_vertices * 4; generated (tangents.c)
                                   when a normal-mapped mesh has none, else NULL */
@@ -153,6 +197,11 @@ typedef struct gk_scene_gltf_use {
     int not_drawn;             /* points and lines primitives */
     int orthographic_cameras;  /* loaded, never the view */
     int skins;                 /* nodes drawn at their node transform (no skinning) */
+    int samplers;              /* textures whose sampler is not REPEAT + bilinear (read, gk_texture) */
+    int texture_transforms;    /* texture slots with KHR_texture_transform */
+    int second_uv_slots;       /* texture slots that read TEXCOORD_1 */
+    int alpha_masked;          /* materials with alphaMode MASK (read) */
+    int alpha_blended;         /* materials with alphaMode BLEND (drawn opaque) */
 } gk_scene_gltf_use;
 /* A homogeneous participating medium filling the scene (or an axis-aligned box of it), given in the
  * scene's extras (DESIGN §4):

@@ -38,7 +38,8 @@ void gk_scene_derive_features(gk_scene *s);
  * s->default_lighting; else does nothing. */
 int gk_scene_add_default_studio(gk_scene *s, gk_err *e);
 /* Generates m->tangents (tangents.c) when the mesh has UVs and none; 0, or -1 out of memory. */
-int gk_mesh_generate_tangents(gk_mesh *m);
+/* Tangents from the UV set the normal map reads (uvs: the mesh's TEXCOORD_0 or _1). */
+int gk_mesh_generate_tangents(gk_mesh *m, const float *uvs);
 
 #ifdef __cplusplus
 }

@@ -12,9 +12,9 @@
 
 #include "scene_internal.h"
 
-int gk_mesh_generate_tangents(gk_mesh *m)
+int gk_mesh_generate_tangents(gk_mesh *m, const float *uvs)
 {
-    if (!m->uvs || m->tangents)
+    if (!uvs || m->tangents)
         return 0;
     size_t nv = m->n_vertices;
     float *tan = calloc((nv ? nv : 1) * 4, sizeof(float));
@@ -26,7 +26,7 @@ int gk_mesh_generate_tangents(gk_mesh *m)
     for (uint32_t t = 0; t < m->n_triangles; t++) {
         const uint32_t *i = &m->indices[3 * (size_t)t];
         const float *p0 = &m->positions[3 * i[0]], *p1 = &m->positions[3 * i[1]], *p2 = &m->positions[3 * i[2]];
-        const float *w0 = &m->uvs[2 * i[0]], *w1 = &m->uvs[2 * i[1]], *w2 = &m->uvs[2 * i[2]];
+        const float *w0 = &uvs[2 * i[0]], *w1 = &uvs[2 * i[1]], *w2 = &uvs[2 * i[2]];
         float e1[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
         float e2[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
         float du1 = w1[0] - w0[0], dv1 = w1[1] - w0[1], du2 = w2[0] - w0[0], dv2 = w2[1] - w0[1];

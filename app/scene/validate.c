@@ -38,10 +38,11 @@ static int flat_normals(gk_mesh *m)
     float *pos = malloc((nv ? nv : 1) * 3 * sizeof(float));
     float *nrm = malloc((nv ? nv : 1) * 3 * sizeof(float));
     float *uv = m->uvs ? malloc((nv ? nv : 1) * 2 * sizeof(float)) : NULL;
+    float *uv1 = m->uvs1 ? malloc((nv ? nv : 1) * 2 * sizeof(float)) : NULL;
     float *col = m->colors ? malloc((nv ? nv : 1) * 4 * sizeof(float)) : NULL;
     float *tan = m->tangents ? malloc((nv ? nv : 1) * 4 * sizeof(float)) : NULL;
-    if (!pos || !nrm || (m->uvs && !uv) || (m->colors && !col) || (m->tangents && !tan)) {
-        free(pos), free(nrm), free(uv), free(col), free(tan);
+    if (!pos || !nrm || (m->uvs && !uv) || (m->uvs1 && !uv1) || (m->colors && !col) || (m->tangents && !tan)) {
+        free(pos), free(nrm), free(uv), free(uv1), free(col), free(tan);
         return -1;
     }
     for (uint32_t t = 0; t < m->n_triangles; t++) {
@@ -54,6 +55,8 @@ static int flat_normals(gk_mesh *m)
             nrm[3 * o] = n.x, nrm[3 * o + 1] = n.y, nrm[3 * o + 2] = n.z;
             if (uv)
                 memcpy(uv + 2 * o, m->uvs + 2 * (size_t)tri[k], 2 * sizeof(float));
+            if (uv1)
+                memcpy(uv1 + 2 * o, m->uvs1 + 2 * (size_t)tri[k], 2 * sizeof(float));
             if (col)
                 memcpy(col + 4 * o, m->colors + 4 * (size_t)tri[k], 4 * sizeof(float));
             if (tan)
@@ -61,8 +64,8 @@ static int flat_normals(gk_mesh *m)
             tri[k] = (uint32_t)o;
         }
     }
-    free(m->positions), free(m->uvs), free(m->colors), free(m->tangents);
-    m->positions = pos, m->normals = nrm, m->uvs = uv, m->colors = col, m->tangents = tan;
+    free(m->positions), free(m->uvs), free(m->uvs1), free(m->colors), free(m->tangents);
+    m->positions = pos, m->normals = nrm, m->uvs = uv, m->uvs1 = uv1, m->colors = col, m->tangents = tan;
     m->n_vertices = (uint32_t)nv;
     return 0;
 }
@@ -77,6 +80,8 @@ int gk_scene_validate_meshes(gk_scene *s, gk_err *e)
             return gk_fail(e, GK_EINPUT, "%s: mesh %d: NORMAL has NaN or infinite values", s->path, mi);
         if (m->uvs && !all_finite(m->uvs, (size_t)m->n_vertices * 2))
             return gk_fail(e, GK_EINPUT, "%s: mesh %d: TEXCOORD_0 has NaN or infinite values", s->path, mi);
+        if (m->uvs1 && !all_finite(m->uvs1, (size_t)m->n_vertices * 2))
+            return gk_fail(e, GK_EINPUT, "%s: mesh %d: TEXCOORD_1 has NaN or infinite values", s->path, mi);
         if (m->colors && !all_finite(m->colors, (size_t)m->n_vertices * 4))
             return gk_fail(e, GK_EINPUT, "%s: mesh %d: COLOR_0 has NaN or infinite values", s->path, mi);
         if (m->tangents && !all_finite(m->tangents, (size_t)m->n_vertices * 4))
@@ -106,7 +111,8 @@ int gk_scene_validate_meshes(gk_scene *s, gk_err *e)
         }
         /* A normal map needs a tangent frame: generated when the file gives none. */
         const gk_material *mat = m->material >= 0 && m->material < s->n_materials ? &s->materials[m->material] : NULL;
-        if (mat && mat->normal_tex >= 0 && !m->tangents && gk_mesh_generate_tangents(m) != 0)
+        const float *normal_uvs = mat && mat->tex_uv[GK_SLOT_NORMAL].texcoord == 1 && m->uvs1 ? m->uvs1 : m->uvs;
+        if (mat && mat->normal_tex >= 0 && !m->tangents && gk_mesh_generate_tangents(m, normal_uvs) != 0)
             return gk_fail(e, GK_ERUNTIME, "%s: mesh %d: out of memory", s->path, mi);
         if (m->tangents) /* unit xyz, w exactly +-1 (glTF); a file's zero tangent stays zero */
             for (uint32_t v = 0; v < m->n_vertices; v++) {

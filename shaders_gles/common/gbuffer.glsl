@@ -79,3 +79,13 @@ gk_surface gk_read_surface(ivec2 px)
     s.unlit = gb_background(depth) || gb_emission(px).a > 0.5;
     return s;
 }
+
+// The geometric normal (the interpolated vertex normal, before the normal map), facing the viewer
+// like gb_normal. A pass that reads it declares GB_GEOM_NORMAL before including this file and binds
+// u_gb_geom_normal with gk_gbuffer_bind_geom_normal (the shading normal's texture when the driver
+// has no 5th draw buffer). Used where the surface's own plane matters: the shadow receiver offset
+// and receiver plane, vct's cone apex and clip plane.
+#ifdef GB_GEOM_NORMAL
+uniform highp sampler2D u_gb_geom_normal;
+highp vec3 gb_geom_normal(ivec2 px) { return normalize(texelFetch(u_gb_geom_normal, px, 0).xyz); }
+#endif

@@ -17,6 +17,7 @@
 // @variant GK_LIGHT_KIND=3 SHADOW_CSSM CSSM_SLOPE=0
 precision highp float;
 precision highp int;
+#define GB_GEOM_NORMAL 1
 #include "common/brdf.glsl"
 #include "common/gbuffer.glsl"
 #include "common/lights.glsl"
@@ -33,6 +34,8 @@ void main()
     vec3 radiance = gk_light_radiance(s);
     if (max(radiance.r, max(radiance.g, radiance.b)) <= 0.0)
         discard;
-    radiance *= shadow_visibility(s.p, s.n);
+    // The receiver offset and plane are the surface's own (the geometric normal): along a normal
+    // map's tilted normal the receiver sinks behind its own depth in the map and shadows itself.
+    radiance *= shadow_visibility(s.p, gb_geom_normal(px));
     o_color = vec4(radiance, 1.0);
 }

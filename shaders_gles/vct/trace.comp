@@ -6,6 +6,7 @@
 // Output u_out_diffuse: rgb = D = sum_k w_k L_k  (w_k from the C side: calibrated w_k = W_k / pi with
 // W_k = cos(theta_k) pi sin^2(alpha_k) rescaled to sum 1, or the thesis code's 1 / 0.607), a = AO =
 // clamp(1 - sum_k w_k ao_k, 0, 1).  u_out_spec: rgb = L_spec, the radiance seen by the glossy cone.
+#define GB_GEOM_NORMAL 1
 #include "vct/common.glsl"
 #include "vct/cone_lib.glsl"
 #include "vct/sparse.glsl"
@@ -42,15 +43,26 @@ void main()
     vec3 up = abs(N.y) < 0.99 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
     vec3 T = normalize(cross(up, N));
     vec3 B = cross(N, T);
+    // The apex leaves the surface along its geometric normal and the clip plane is the surface's
+    // own: along a normal map's tilted normal the apex stays inside the surface's own voxels and
+    // every cone gathers them. The cones themselves are spread around the shading normal N.
+    vec3 Ng = gb_geom_normal(px);
     vec3 pu = (P - u_grid_origin) / u_grid_size;      // voxel space
-    vec3 apex = pu + N * (u_apex_offset / u_res_f);
-    vec4 plane = vec4(N, -dot(N, pu));                 // the receiver's tangent plane, voxel space
+    vec3 apex = pu + Ng * (u_apex_offset / u_res_f);
+    vec4 plane = vec4(Ng, -dot(Ng, pu));               // the receiver's tangent plane, voxel space
     vec3 D = vec3(0.0);
     float occ = 0.0;
     int total = 0;
     for (int k = 0; k < MAX_CONES; k++) {
         if (k >= u_n_cones) break;
         vec3 d = normalize(T * u_cone_dir[k].x + N * u_cone_dir[k].y + B * u_cone_dir[k].z);
+        // Around a normal-mapped N a cone can point below the surface's own plane: that light is
+        // blocked by the surface itself (the tracer's BSDF is zero for wi below the geometric
+        // normal, app/ref/materials.c), so the cone gathers nothing and counts as occluded.
+        if (dot(d, Ng) <= 0.0) {
+            occ += u_cone_weight[k];
+            continue;
+        }
         float ao; int steps;
         vec4 c = trace_cone(apex, d, u_cone_aperture[k], u_max_dist, plane, ao, steps);
         D += u_cone_weight[k] * c.rgb;

@@ -11,6 +11,8 @@
 #include <string.h>
 
 #include "core/tonemap.h"
+#include "ref/materials.h"
+#include "ref/ref_scene.h"
 #include "scene/scene.h"
 
 static gk_scene *load(const char *name)
@@ -173,7 +175,7 @@ static void orthographic_cameras_load_and_are_passed_over(void **state)
     assert_false(s->default_lighting);
     assert_int_equal(s->n_lights, 1);
     /* an optional extension that is not read is named, and the file loads */
-    assert_string_equal(s->gltf.extensions_ignored, "KHR_texture_transform");
+    assert_string_equal(s->gltf.extensions_ignored, "KHR_materials_clearcoat");
     gk_scene_free(s);
 }
 
@@ -263,6 +265,140 @@ static void normal_maps_get_tangents(void **state)
     gk_scene_free(s);
 }
 
+/* glTF samplers (sampler-wrap.glb: wrapS CLAMP_TO_EDGE, wrapT MIRRORED_REPEAT, NEAREST) are read,
+ * and the tracer looks texels up as GL's rules say (ES 3.2 8.14.2), at UVs where REPEAT or bilinear
+ * filtering would give another texel; the GLES side is compared with the tracer in
+ * tests/e2e/gltf_conformance.sh. The checker's rows: v in [0, 0.5) red, green; [0.5, 1) blue, white. */
+static void samplers_wrap_and_filter_as_declared(void **state)
+{
+    (void)state;
+    gk_scene *s = load("sampler-wrap.glb");
+    gk_texture t = s->textures[0];
+    assert_int_equal(t.wrap_s, GK_WRAP_CLAMP);
+    assert_int_equal(t.wrap_t, GK_WRAP_MIRROR);
+    assert_true(t.nearest);
+    assert_int_equal(s->gltf.samplers, 1);
+    gk_ref_scene rs = {.textures = &t, .n_textures = 1};
+    gk_ref_tri tri = {.uv = {{0, 0}, {1, 0}, {0, 1}}}; /* uv = (b1, b2) */
+    const struct { float u, v, rgb[3]; const char *why; } at[] = {
+        {0.25f, 0.25f, {1, 0, 0}, "inside: red"},
+        {-0.25f, 0.25f, {1, 0, 0}, "clamped to column 0 (REPEAT: column 1, green)"},
+        {1.25f, 0.25f, {0, 1, 0}, "clamped to column 1 (REPEAT: column 0, red)"},
+        {0.25f, 1.25f, {0, 0, 1}, "mirrored to row 1 (REPEAT: row 0, red)"},
+        {0.25f, -0.25f, {1, 0, 0}, "mirrored to row 0 (REPEAT: row 1, blue)"},
+        {0.25f, 2.25f, {1, 0, 0}, "two periods on: row 0 again"},
+        {0.45f, 0.25f, {1, 0, 0}, "nearest texel (bilinear: 0.6 red + 0.4 green)"},
+    };
+    for (size_t i = 0; i < sizeof at / sizeof at[0]; i++) {
+        vec3 c = gk_tri_texture_rgb(&rs, &tri, 0, NULL, at[i].u, at[i].v);
+        if (fabsf(c.x - at[i].rgb[0]) > 1e-6f || fabsf(c.y - at[i].rgb[1]) > 1e-6f || fabsf(c.z - at[i].rgb[2]) > 1e-6f)
+            fail_msg("uv (%g, %g): got (%g, %g, %g), wanted %s", at[i].u, at[i].v, c.x, c.y, c.z, at[i].why);
+    }
+    /* bilinear with the same wraps: texel centres at (i + 0.5) / 2, clamp at the edge */
+    t.nearest = false;
+    vec3 c = gk_tri_texture_rgb(&rs, &tri, 0, NULL, 0.45f, 0.25f);
+    assert_float_equal(c.x, 0.6f, 1e-5f);
+    assert_float_equal(c.y, 0.4f, 1e-5f);
+    c = gk_tri_texture_rgb(&rs, &tri, 0, NULL, -0.5f, 0.25f);
+    assert_float_equal(c.x, 1.0f, 1e-6f);
+    assert_float_equal(c.y, 0.0f, 1e-6f);
+    gk_scene_free(s);
+    expect_refused("sampler-bad-wrap.glb", "sampler 0: wrapS 10241");
+}
+
+/* KHR_texture_transform (texture-transform.glb: offset (0.5, 1), rotation pi/2, scale (2, 1) on the
+ * base colour) gives the matrix uv' = (v + 0.5, 1 - 2u), and the tracer's base colour follows it; a
+ * slot on TEXCOORD_1 (texcoord1.glb, whose TEXCOORD_0 is (0, 0) everywhere, one red texel) reads
+ * the second set. Nearest-free points: texel centres, where bilinear filtering gives the texel. */
+static void texture_transform_and_second_uv_set(void **state)
+{
+    (void)state;
+    gk_scene *s = load("texture-transform.glb");
+    const gk_tex_uv *xf = &s->materials[0].tex_uv[GK_SLOT_BASE];
+    assert_true(xf->transformed);
+    assert_int_equal(xf->texcoord, 0);
+    const float want[6] = {0, 1, 0.5f, -2, 0, 1};
+    for (int k = 0; k < 6; k++)
+        assert_float_equal(xf->m[k], want[k], 1e-6f);
+    assert_false(s->materials[0].tex_uv[GK_SLOT_MR].transformed);
+    assert_int_equal(s->gltf.texture_transforms, 1);
+    assert_string_equal(s->gltf.extensions_read, "KHR_texture_transform");
+    gk_ref_scene rs = {.textures = s->textures, .n_textures = s->n_textures};
+    gk_ref_tri tri = {.uv = {{0, 0}, {1, 0}, {0, 1}}}; /* uv = (b1, b2) */
+    /* uv (0.125, 0.25) -> (0.75, 0.75): white (untransformed: red); (0.375, 0.25) -> (0.75, 0.25):
+       green; (0.125, -0.25) -> (0.25, 0.75): blue; (0.375, -0.25) -> (0.25, 0.25): red. */
+    const struct { float u, v, rgb[3]; } at[] = {
+        {0.125f, 0.25f, {1, 1, 1}}, {0.375f, 0.25f, {0, 1, 0}}, {0.125f, -0.25f, {0, 0, 1}}, {0.375f, -0.25f, {1, 0, 0}}};
+    for (size_t i = 0; i < sizeof at / sizeof at[0]; i++) {
+        vec3 c = gk_tri_texture_rgb(&rs, &tri, 0, xf, at[i].u, at[i].v);
+        if (fabsf(c.x - at[i].rgb[0]) > 1e-5f || fabsf(c.y - at[i].rgb[1]) > 1e-5f || fabsf(c.z - at[i].rgb[2]) > 1e-5f)
+            fail_msg("uv (%g, %g): got (%g, %g, %g)", at[i].u, at[i].v, c.x, c.y, c.z);
+    }
+    gk_scene_free(s);
+
+    s = load("texcoord1.glb");
+    assert_int_equal(s->materials[0].tex_uv[GK_SLOT_BASE].texcoord, 1);
+    assert_false(s->materials[0].tex_uv[GK_SLOT_BASE].transformed);
+    assert_int_equal(s->gltf.second_uv_slots, 1);
+    const gk_mesh *m = &s->meshes[0];
+    assert_non_null(m->uvs1);
+    assert_float_equal(m->uvs[0], 0.0f, 0.0f);
+    /* the quad's vertex 2 is at (1, 1) with UV (1, 0) in set 1 */
+    assert_float_equal(m->uvs1[2 * 2], 1.0f, 1e-6f);
+    assert_float_equal(m->uvs1[2 * 2 + 1], 0.0f, 1e-6f);
+    rs = (gk_ref_scene){.textures = s->textures, .n_textures = s->n_textures};
+    gk_ref_tri tri1 = {.uv = {{0, 0}, {0, 0}, {0, 0}}, .uv1 = {{0, 0}, {1, 0}, {0, 1}}};
+    vec3 c = gk_tri_texture_rgb(&rs, &tri1, 0, &s->materials[0].tex_uv[GK_SLOT_BASE], 0.75f, 0.75f);
+    assert_float_equal(c.x, 1.0f, 1e-5f); /* (0.75, 0.75) of set 1: white; set 0 would give red */
+    assert_float_equal(c.y, 1.0f, 1e-5f);
+    assert_float_equal(c.z, 1.0f, 1e-5f);
+    gk_scene_free(s);
+    expect_refused("texcoord2.glb", "material 0: base colour texture reads TEXCOORD_2");
+    expect_refused("texture-transform-bad.glb", "material 0: base colour texture: KHR_texture_transform needs");
+}
+
+/* alphaMode MASK (alpha-mask.glb: the quad at z = 0.5 opaque at its top-left and bottom-right
+ * texels, clear at the other two, cutoff 0.5, in front of a wall at z = 0): rays through the clear
+ * texels' centres pass the quad and stop at the wall, rays through the opaque ones stop at the quad,
+ * for closest-hit and shadow (any-hit) queries alike. */
+static void alpha_mask_lets_rays_through_the_holes(void **state)
+{
+    (void)state;
+    gk_scene *s = load("alpha-mask.glb");
+    assert_true(s->materials[0].alpha_mask);
+    assert_float_equal(s->materials[0].alpha_cutoff, 0.5f, 0.0f);
+    assert_false(s->materials[1].alpha_mask);
+    assert_int_equal(s->gltf.alpha_masked, 1);
+    gk_scene_evaluate(s, 0.0f);
+    gk_ref_scene rs;
+    gk_err e = {0};
+    mat4 id = m4_identity();
+    assert_int_equal(gk_ref_scene_build(&rs, s, id, id, v3(0, 0, 0), 1, 1, &e), 0);
+    assert_non_null(rs.bvh.tested);
+    /* texel (i, j) of the quad at x = -0.5 + i, y = 0.5 - j (uv (0, 0) at the top left, (-1, 1)) */
+    const struct { float x, y; bool opaque; } at[] = {{-0.5f, 0.5f, true}, {0.5f, 0.5f, false},
+                                                       {-0.5f, -0.5f, false}, {0.5f, -0.5f, true}};
+    for (size_t i = 0; i < sizeof at / sizeof at[0]; i++) {
+        gk_bvh_hit h;
+        vec3 o = v3(at[i].x, at[i].y, 2.0f), d = v3(0, 0, -1);
+        assert_true(gk_bvh_intersect(&rs.bvh, o, d, 0.0f, 10.0f, &h));
+        float z = 2.0f - h.t;
+        if (fabsf(z - (at[i].opaque ? 0.5f : 0.0f)) > 1e-4f)
+            fail_msg("ray at (%g, %g) stopped at z %g, wanted the %s", at[i].x, at[i].y, z, at[i].opaque ? "quad" : "wall");
+        /* a shadow ray from between quad and wall up to the light side */
+        bool blocked = gk_bvh_occluded(&rs.bvh, v3(at[i].x, at[i].y, 0.25f), v3(0, 0, 1), 0.0f, 10.0f);
+        assert_int_equal(blocked, at[i].opaque);
+    }
+    gk_ref_scene_free(&rs);
+    gk_scene_free(s);
+    /* BLEND is loaded and drawn opaque, counted; a mode glTF does not have is refused */
+    s = load("alpha-blend.glb");
+    assert_false(s->materials[0].alpha_mask);
+    assert_int_equal(s->gltf.alpha_blended, 1);
+    gk_scene_free(s);
+    expect_refused("alpha-bad-mode.glb", "material 0 ('checker'): alphaMode 'CUTOUT' is not OPAQUE, MASK or BLEND");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -276,6 +412,9 @@ int main(void)
         cmocka_unit_test(a_file_without_lights_gets_the_default_studio),
         cmocka_unit_test(metalness_comes_from_the_texture),
         cmocka_unit_test(normal_maps_get_tangents),
+        cmocka_unit_test(samplers_wrap_and_filter_as_declared),
+        cmocka_unit_test(texture_transform_and_second_uv_set),
+        cmocka_unit_test(alpha_mask_lets_rays_through_the_holes),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

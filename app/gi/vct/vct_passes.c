@@ -78,12 +78,14 @@ static const gk_uniform_field mip_fields[] = {GK_UNIFORM(mip_uniforms, u_res), G
 /* vct/trace.comp */
 typedef struct trace_uniforms {
     gk_gbuffer_uniforms g;
+    GLint u_gb_geom_normal;
     GLint u_vox0, u_voxp[3], u_voxp_l0[3], u_dir_levels;
     GLint u_low_size, u_block, u_res, u_res_f, u_grid_origin, u_grid_size, u_step_mul, u_ao_lambda, u_max_dist,
         u_apex_offset, u_footprint_clamp, u_spec_aperture, u_n_cones, u_cone_dir, u_cone_aperture, u_cone_weight;
 } trace_uniforms;
 static const gk_uniform_field trace_fields[] = {
     GK_GBUFFER_FIELDS(trace_uniforms, g),
+    GK_UNIFORM(trace_uniforms, u_gb_geom_normal),
     GK_UNIFORM(trace_uniforms, u_vox0),
     GK_UNIFORM_AS(trace_uniforms, u_voxp[0], "u_voxp0"),
     GK_UNIFORM_AS(trace_uniforms, u_voxp[1], "u_voxp1"),
@@ -398,6 +400,8 @@ int vct_pass_trace(gk_vct *v, const gk_gi_frame *f, const vct_budget *b, gk_err 
         }
     glUniform1f(u->u_dir_levels, (float)(v->levels - 1));
     bind_gbuffer(&u->g, f, 7, v->nearest_sampler);
+    gk_gbuffer_view gb = gk_gi_gbuffer(f);
+    gk_gbuffer_bind_geom_normal(&gb, u->u_gb_geom_normal, 7 + GK_GBUFFER_UNITS, v->nearest_sampler);
     glUniform2i(u->u_low_size, v->trace_w, v->trace_h);
     int block = (int)lroundf(1.0f / b->trace_scale);
     glUniform1i(u->u_block, block < 1 ? 1 : block);
@@ -425,7 +429,7 @@ int vct_pass_trace(gk_vct *v, const gk_gi_frame *f, const vct_budget *b, gk_err 
     glBindImageTexture(1, v->trace_spec, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glDispatchCompute((GLuint)groups(v->trace_w, 8), (GLuint)groups(v->trace_h, 8), 1);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-    unbind_units(7 + GK_GBUFFER_UNITS);
+    unbind_units(7 + GK_GBUFFER_UNITS + 1);
     v->stats.trace_runs++;
     return 0;
 }

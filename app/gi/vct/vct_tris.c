@@ -54,13 +54,16 @@ static void emit_tri(const gk_scene *s, const gk_node *node, const gk_mesh *m, u
         out[k * 4 + 1] = w.y;
         out[k * 4 + 2] = w.z;
         out[k * 4 + 3] = 1.0f;
-        if (m->uvs) {
-            uc += m->uvs[idx * 2] / 3.0f;
-            vc += m->uvs[idx * 2 + 1] / 3.0f;
+        const float *set = mat && mat->tex_uv[GK_SLOT_BASE].texcoord == 1 && m->uvs1 ? m->uvs1 : m->uvs;
+        if (set) {
+            uc += set[idx * 2] / 3.0f;
+            vc += set[idx * 2 + 1] / 3.0f;
         }
     }
-    if (mat && mat->base_color_tex >= 0 && mat->base_color_tex < s->n_textures && m->uvs)
+    if (mat && mat->base_color_tex >= 0 && mat->base_color_tex < s->n_textures && m->uvs) {
+        gk_tex_uv_apply(&mat->tex_uv[GK_SLOT_BASE], uc, vc, &uc, &vc);
         alb = v3_mul(alb, tex_sample(&s->textures[mat->base_color_tex], uc, vc));
+    }
     if (mat)
         alb = v3_scale(alb, diffuse_share(mat));
     float *a = out + 12, *em = out + 16;

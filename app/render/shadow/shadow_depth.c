@@ -43,7 +43,8 @@ typedef struct depth_uniforms {
     gk_draw_uniforms draw;
 } depth_uniforms;
 static const gk_uniform_field depth_fields[] = {GK_UNIFORM(depth_uniforms, u_viewproj),
-                                                GK_UNIFORM_AS(depth_uniforms, draw.u_model, "u_model")};
+                                                GK_UNIFORM_AS(depth_uniforms, draw.u_model, "u_model"),
+                                                GK_ALPHA_MASK_FIELDS(depth_uniforms, draw)};
 
 /* shaders_gles/shadow/common.glsl, in the lighting program */
 typedef struct maps_uniforms {
@@ -63,7 +64,8 @@ static int render_maps(gk_shadow_maps *m, const gk_shadow_ctx *ctx, int slot, co
         return gk_fail(e, GK_ERUNTIME, "shadow slot %d out of range", slot);
     if (ensure_texture(m, slot, v->map_size, v->n_faces, e) != 0)
         return -1;
-    GLuint prog = gk_program_get(ctx->progs, "shadow/depth.vert", "shadow/depth.frag", NULL, e);
+    GLuint prog = gk_program_get(ctx->progs, "shadow/depth.vert", "shadow/depth.frag",
+                                 gk_scene_gpu_depth_defines(ctx->scene), e);
     const depth_uniforms *u = prog ? gk_program_uniforms(ctx->progs, prog, GK_FIELDS(depth_fields), sizeof *u, e) : NULL;
     if (!u)
         return -1;
@@ -94,7 +96,8 @@ static int render_maps(gk_shadow_maps *m, const gk_shadow_ctx *ctx, int slot, co
         }
         glClear(GL_DEPTH_BUFFER_BIT);
         glUniformMatrix4fv(u->u_viewproj, 1, GL_FALSE, v->viewproj[f].m);
-        gk_scene_gpu_draw(ctx->gpu, ctx->scene, &u->draw, GK_DRAW_SKIP_PROXIES);
+        /* with materials when some are alpha-masked: they discard their cut-outs (shadow/depth.frag) */
+        gk_scene_gpu_draw(ctx->gpu, ctx->scene, &u->draw, gk_scene_gpu_depth_flags(ctx->scene) | GK_DRAW_SKIP_PROXIES);
     }
     glDisable(GL_POLYGON_OFFSET_FILL);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
