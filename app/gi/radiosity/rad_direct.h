@@ -17,5 +17,9 @@
 /* E (RGB, lux) at leaves [first, first + count) of t into out (3 floats a leaf, indexed by leaf),
  * `samples` samples per area light (1 for delta lights), deterministic per leaf. */
 void rad_direct_irradiance(const gk_ref_scene *rs, const rad_tree *t, int samples, int first, int count, float *out);
+/* The same without light `skip` of rs (-1: none): the environment light (rs->env_light) when it
+   comes through the empty bins instead (rad_env.h). */
+void rad_direct_irradiance_except(const gk_ref_scene *rs, const rad_tree *t, int samples, int skip, int first,
+                                  int count, float *out);
 
 #endif
