@@ -134,6 +134,8 @@ static void test_incremental_links_equal_full(void **state)
         assert_memory_equal(full.offset, g.links.offset, sizeof *full.offset * ((size_t)full.n_leaves + 1));
         assert_memory_equal(full.target, g.links.target, sizeof *full.target * full.offset[full.n_leaves]);
         assert_memory_equal(full.weight, g.links.weight, sizeof *full.weight * full.offset[full.n_leaves]);
+        /* the empty bins, where the environment comes in (rad_env.h), too */
+        assert_memory_equal(full.empty, g.links.empty, sizeof *full.empty * (size_t)full.n_leaves * (size_t)full.empty_words);
         assert_int_equal(g.links.pairs_linked + g.links.pairs_cached, pairs_total);
         printf("# step %d: %ld leaf links, identical to the full build; %ld of %ld root pairs linked (%.1f%%)\n",
                step, g.links.leaf_links, g.links.pairs_linked, pairs_total,

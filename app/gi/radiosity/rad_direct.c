@@ -11,6 +11,12 @@ static bool is_delta(enum gk_ref_light_kind k) { return k == GK_REF_POINT || k =
 
 void rad_direct_irradiance(const gk_ref_scene *rs, const rad_tree *t, int samples, int first, int count, float *out)
 {
+    rad_direct_irradiance_except(rs, t, samples, -1, first, count, out);
+}
+
+void rad_direct_irradiance_except(const gk_ref_scene *rs, const rad_tree *t, int samples, int skip, int first,
+                                  int count, float *out)
+{
     for (int i = first; i < first + count; i++) {
         vec3 n = t->nrm[i], x = t->pos[i];
         /* off the surface as the tracer offsets its shadow rays' origins (1e-4 of the scene) */
@@ -21,7 +27,7 @@ void rad_direct_irradiance(const gk_ref_scene *rs, const rad_tree *t, int sample
         gk_rng_seed(&rng, 0x7261646975ull, (uint64_t)i, 0, 0);
         for (int li = 0; li < rs->n_lights; li++) {
             const gk_ref_light *L = &rs->lights[li];
-            if (L->kind == GK_REF_MESH)
+            if (L->kind == GK_REF_MESH || li == skip)
                 continue; /* emissive surfaces: geometry, through the links */
             int k = is_delta(L->kind) ? 1 : samples;
             vec3 sum = v3(0, 0, 0);

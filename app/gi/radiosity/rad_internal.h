@@ -6,7 +6,7 @@
 #include "gl/gl_program.h"
 #include "radiosity.h"
 
-#define RAD_KNOBS 6
+#define RAD_KNOBS 7
 #define RAD_MAX_VERTS 60000     /* ~2x the richest tessellation of our scenes: a dropped-in scene
                                    too large for it shows direct light only, with a log line */
 #define RAD_DIRECT_SAMPLES 64   /* per area light and surfel: the direct light's noise (1/8) only

@@ -24,6 +24,20 @@ int rad_cube_bin(vec3 d, int n)
     return (face * n + iv) * n + iu;
 }
 
+vec3 rad_bin_direction(int bin, int n, float s, float t)
+{
+    int iu = bin % n, iv = (bin / n) % n, face = bin / (n * n);
+    float u = 2.0f * ((float)iu + s) / (float)n - 1.0f, v = 2.0f * ((float)iv + t) / (float)n - 1.0f;
+    float m = face & 1 ? -1.0f : 1.0f; /* faces +x, -x, +y, -y, +z, -z: the major axis' sign */
+    vec3 d;
+    switch (face >> 1) {
+    case 0: d = v3(m, u, v); break;
+    case 1: d = v3(u, m, v); break;
+    default: d = v3(u, v, m); break;
+    }
+    return v3_norm(d);
+}
+
 float rad_bin_solid_angle(int bin, int n)
 {
     int iu = bin % n, iv = (bin / n) % n;
@@ -137,10 +151,13 @@ static int descend(builder *b, int node, const int32_t *in_t, const float *in_l,
     int first, nc = rad_tree_children(t, node, &first);
     if (nc == 0) {
         vec3 x = t->pos[node], n = t->nrm[node];
+        uint64_t *empty = b->L->empty + (size_t)node * (size_t)b->L->empty_words;
         for (int k = 0; k < b->bins; k++) {
             int32_t y = eff_t[k];
-            if (y < 0)
+            if (y < 0) {
+                empty[k >> 6] |= (uint64_t)1 << (k & 63);
                 continue;
+            }
             vec3 d = v3_sub(t->pos[y], x);
             float r2 = v3_dot(d, d);
             float w = 0.0f;
@@ -236,9 +253,12 @@ int rad_links_update(rad_links *L, const rad_tree *t, int n_face, rad_weight wei
     int32_t *eff_t = malloc(sizeof *eff_t * (size_t)b.bins * (RAD_MAX_LEVELS + 1));
     float *eff_l = malloc(sizeof *eff_l * (size_t)b.bins * (RAD_MAX_LEVELS + 1));
     L->offset = calloc((size_t)t->n_leaves + 1, sizeof *L->offset);
+    L->empty_words = (b.bins + 63) / 64;
+    /* +1: a tree without leaves still gets a valid pointer */
+    L->empty = calloc((size_t)t->n_leaves * (size_t)L->empty_words + 1, sizeof *L->empty);
     lists out = {0};
     int rc = -1;
-    if (!b.target || !b.len || !b.omega || !eff_t || !eff_l || !L->offset)
+    if (!b.target || !b.len || !b.omega || !eff_t || !eff_l || !L->offset || !L->empty)
         goto done;
     L->bin_bytes = (long)(cells * 8);
     memset(b.target, 0xFF, sizeof *b.target * cells);
@@ -279,6 +299,6 @@ done:
 
 void rad_links_free(rad_links *L)
 {
-    free(L->offset), free(L->target), free(L->weight);
+    free(L->offset), free(L->target), free(L->weight), free(L->empty);
     memset(L, 0, sizeof *L);
 }

@@ -48,6 +48,12 @@ typedef struct rad_links {
     uint32_t *offset;          /* n_leaves + 1: leaf i's links are [offset[i], offset[i + 1]) */
     uint32_t *target;          /* node gathered from */
     float *weight;             /* irradiance per unit radiance of the target (see above) */
+    /* Per leaf, its bins that hold no link after push-down, one bit a bin (bit k of word k / 64 of the
+       leaf's empty_words words): the directions that escape the scene, where the seed's empty bins
+       gather the environment (rad_env.h). A bin holding an occluder (a back face, weight 0) is not
+       empty. */
+    uint64_t *empty;
+    int empty_words;           /* ceil(6 N² / 64) */
     /* what the passes did (for the tests and the HUD) */
     long created;              /* bin entries stored by link() (a displaced one counts again) */
     long displaced;            /* stored, then replaced by a shorter link in the same bin */
@@ -87,5 +93,13 @@ void rad_links_free(rad_links *L);
  * and a bin's solid angle at its texel centre. */
 int rad_cube_bin(vec3 d, int n_face);
 float rad_bin_solid_angle(int bin, int n_face);
+/* The unit direction through a point (s, t) in [0, 1]² of bin `bin` ((0.5, 0.5): its texel centre),
+   the inverse of rad_cube_bin. */
+vec3 rad_bin_direction(int bin, int n_face, float s, float t);
+/* Whether bin k of leaf i is empty (see rad_links.empty). */
+static inline int rad_leaf_bin_empty(const rad_links *L, int leaf, int k)
+{
+    return (int)((L->empty[(size_t)leaf * (size_t)L->empty_words + (size_t)(k >> 6)] >> (k & 63)) & 1u);
+}
 
 #endif

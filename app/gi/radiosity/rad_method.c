@@ -29,8 +29,12 @@
  *                      (async): on the render thread only the link upload follows it, and on a
  *                      scene without moving meshes it changes nothing. Flat priors: the scheduler
  *                      expects no saving from it, so it is the last knob it steps down (it still
- *                      can: a knob believed free is dropped once every other is at its floor) */
-enum { K_BINS, K_BOUNCES, K_TESS, K_WEIGHT, K_SYNC, K_LINK_EVERY, K_COUNT };
+ *                      can: a knob believed free is dropped once every other is at its floor)
+ *   radiosity_env:     where a scene has an environment, how its light reaches the surfels (rad_env.h):
+ *                      bins (the seed: the leaves' empty bins gather the bin's mean radiance), rest
+ *                      (ours: the same, scaled to what the links leave of the hemisphere) or rays
+ *                      (ours: shadow rays towards the map like every other light); a variant switch */
+enum { K_BINS, K_BOUNCES, K_TESS, K_WEIGHT, K_SYNC, K_LINK_EVERY, K_ENV, K_COUNT };
 _Static_assert(K_COUNT == RAD_KNOBS, "rad_internal.h's RAD_KNOBS counts the knobs");
 static const gk_knob_def knobs[K_COUNT] = {
     {.name = "radiosity_bins", .owner = "radiosity", .n_values = 3, .values = {"8", "12", "16"},
@@ -45,6 +49,8 @@ static const gk_knob_def knobs[K_COUNT] = {
      .cost = {1.0f, 1.0f}, .default_level = 0, .fixed = true},
     {.name = "radiosity_link_every", .owner = "radiosity", .n_values = 3, .values = {"4", "2", "1"},
      .cost = {1.0f, 1.0f, 1.0f}, .default_level = 2},
+    {.name = "radiosity_env", .owner = "radiosity", .n_values = 3, .values = {"bins", "rest", "rays"},
+     .cost = {1.0f, 1.0f, 1.0f}, .default_level = 0, .fixed = true},
 };
 
 
@@ -157,6 +163,9 @@ static int render(void *self, const gk_gi_frame *f, gk_err *e)
                                         (int)gk_knob_number(b, &s->knob[K_BINS], 12.0f),
                                         (rad_weight)gk_knob_level(b, &s->knob[K_WEIGHT], 0));
     set.link_every = (int)gk_knob_number(b, &s->knob[K_LINK_EVERY], 1.0f);
+    static const rad_env_mode env_modes[] = {RAD_ENV_BINS, RAD_ENV_REST, RAD_ENV_RAYS}; /* the knob's levels */
+    int env_level = gk_knob_level(b, &s->knob[K_ENV], 0);
+    set.env = env_modes[env_level >= 0 && env_level < 3 ? env_level : 0];
     bool lockstep = gk_knob_level(b, &s->knob[K_SYNC], 0) == 1;
     /* the render thread's share of the CPU work: hand over the frame's node matrices, (lockstep:
        wait), upload the newest publication if there is one */

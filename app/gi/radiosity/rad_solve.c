@@ -88,6 +88,7 @@ int rad_geometry_clone(rad_geometry *d, const rad_geometry *g)
     d->links.offset = dup_array(L->offset, (size_t)L->n_leaves + 1, sizeof *L->offset, &fail);
     d->links.target = dup_array(L->target, nl, sizeof *L->target, &fail);
     d->links.weight = dup_array(L->weight, nl, sizeof *L->weight, &fail);
+    d->links.empty = dup_array(L->empty, (size_t)L->n_leaves * (size_t)L->empty_words, sizeof *L->empty, &fail);
     d->albedo = dup_array(g->albedo, 3 * nv, sizeof *g->albedo, &fail);
     d->emission = dup_array(g->emission, 3 * nv, sizeof *g->emission, &fail);
     if (fail) {

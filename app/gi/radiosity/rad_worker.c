@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "rad_direct.h"
+#include "rad_env.h"
 
 struct rad_worker {
     pthread_t thread;
@@ -31,6 +32,9 @@ struct rad_worker {
     uint64_t links_seq;
     int moved_since_links;     /* ticks that moved meshes since the last link build */
     float *e_direct, *work_b0;
+    float *env_bins;           /* the environment's mean radiance per bin at env_bins_n (rad_env.h) */
+    float *e_env;              /* 3 per leaf: what the empty bins gather */
+    int env_bins_n;
 
     /* published (under mu) */
     rad_geometry *pub_geo;
@@ -93,6 +97,21 @@ static int refit(rad_worker *w, const mat4 *worlds, const rad_settings *set, boo
     return 0;
 }
 
+/* w->e_direct: the direct irradiance at the leaves, the environment's through the empty bins
+   (RAD_ENV_BINS, the seed; RAD_ENV_REST) or by shadow rays with the other lights (RAD_ENV_RAYS). */
+static void direct_light(rad_worker *w, const rad_settings *set)
+{
+    const rad_geometry *g = w->geo;
+    int nl = g->tree.n_leaves;
+    bool bins = set->env != RAD_ENV_RAYS && w->rs.env_light >= 0 && w->env_bins_n == g->n_face;
+    rad_direct_irradiance_except(&w->rs, &g->tree, set->samples, bins ? w->rs.env_light : -1, 0, nl, w->e_direct);
+    if (!bins)
+        return;
+    rad_env_irradiance(&g->tree, &g->links, w->env_bins, set->env == RAD_ENV_REST, w->e_env);
+    for (int i = 0; i < 3 * nl; i++)
+        w->e_direct[i] += w->e_env[i];
+}
+
 static void tick(rad_worker *w, const mat4 *worlds, const rad_settings *set, bool redo)
 {
     int n = w->view.n_nodes;
@@ -132,6 +151,25 @@ static void tick(rad_worker *w, const mat4 *worlds, const rad_settings *set, boo
             fail(w, "radiosity: out of memory");
             return;
         }
+        float *ee = realloc(w->e_env, sizeof *ee * (3 * nl + 1));
+        if (ee)
+            w->e_env = ee;
+        if (ee && w->env_bins_n != set->n_face) {
+            /* the environment's bin means, once per scene and bin resolution */
+            float *eb = realloc(w->env_bins, sizeof *eb * 3 * 6 * (size_t)set->n_face * (size_t)set->n_face);
+            if (eb) {
+                rad_env_bin_radiance(&w->view.environment, set->n_face, RAD_ENV_SUBSAMPLES, eb);
+                w->env_bins = eb, w->env_bins_n = set->n_face;
+            } else
+                ee = NULL; /* w->e_env is freed with the worker */
+        }
+        if (!ee) {
+            free(ed), free(b0);
+            rad_geometry_free(g);
+            free(g);
+            fail(w, "radiosity: out of memory");
+            return;
+        }
         free(w->e_direct), free(w->work_b0);
         w->e_direct = ed, w->work_b0 = b0;
         old = w->geo;
@@ -154,9 +192,10 @@ static void tick(rad_worker *w, const mat4 *worlds, const rad_settings *set, boo
         if (refit(w, worlds, set, redo, &old))
             return;
     }
-    if (!old && !moved && !redo && w->direct_valid && w->direct_set.samples == set->samples)
+    if (!old && !moved && !redo && w->direct_valid && w->direct_set.samples == set->samples &&
+        w->direct_set.env == set->env)
         return; /* nothing new to publish */
-    rad_direct_irradiance(&w->rs, &w->geo->tree, set->samples, 0, w->geo->tree.n_leaves, w->e_direct);
+    direct_light(w, set);
     rad_initial_radiance(w->geo, w->e_direct, w->work_b0);
     w->direct_valid = true;
     w->direct_set = *set;
@@ -262,7 +301,7 @@ void rad_worker_destroy(rad_worker *w)
     if (w->geo)
         rad_geometry_free(w->geo), free(w->geo);
     rad_link_cache_free(&w->cache);
-    free(w->e_direct), free(w->work_b0), free(w->pub_b0);
+    free(w->e_direct), free(w->work_b0), free(w->pub_b0), free(w->env_bins), free(w->e_env);
     free(w->nodes), free(w->req_worlds), free(w->built_worlds);
     free(w);
 }

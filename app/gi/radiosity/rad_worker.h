@@ -14,12 +14,20 @@
 
 #include "rad_solve.h"
 
+/* Where the environment's light at the surfels comes from (rad_env.h). */
+typedef enum rad_env_mode {
+    RAD_ENV_BINS,          /* the seed: the leaves' empty bins gather the bin's mean radiance */
+    RAD_ENV_RAYS,          /* ours: shadow rays towards the map, as for every other light (rad_direct.h) */
+    RAD_ENV_REST           /* ours: the empty bins scaled to what the links leave of the hemisphere */
+} rad_env_mode;
+
 typedef struct rad_settings {
     float edge;            /* target edge length (world units) */
     int n_face;            /* bins: 6 x n_face² */
     rad_weight weight;
     int samples;           /* direct-light samples per area light and surfel */
     int max_verts;
+    rad_env_mode env;      /* the environment's light at the surfels (no effect without one) */
     int link_every;        /* while meshes move: links rebuilt every link_every-th tick that moved
                               them (the link update rate); the other ticks refit the hierarchy and
                               keep the last links (their targets and weights) */
