@@ -10,6 +10,12 @@
 // neighbouring invocations read neighbouring texels, as a screen of cones does. The sum is stored
 // so the compiler keeps every fetch; the loop's own count goes to u_counted (one atomic add per
 // invocation, negligible beside the fetches), which the host compares with fetches × invocations.
+// @variant TEX3D
+// @variant TEX3D FORMAT_RGBA8
+// @variant TEX2D
+// @variant TEX2D NEAREST
+// @variant IMAGE3D
+// @variant IMAGE3D FORMAT_RGBA8
 precision highp float;
 precision highp int;
 layout(local_size_x = 64) in;
