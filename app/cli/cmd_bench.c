@@ -74,7 +74,8 @@ static int bench_roofline(const gk_bench_opts *o)
     desc.kind = GK_PLATFORM_MOCK;
     desc.width = 64;
     desc.height = 64;
-    gk_platform *p = gk_platform_open(&desc, &e);
+    /* the folder first: a bad --out fails before seconds of measuring */
+    gk_platform *p = gk_bench_make_dir(o->out_dir, &e) == 0 ? gk_platform_open(&desc, &e) : NULL;
     if (!p) {
         fprintf(stderr, "gikiosk bench: %s\n", e.msg);
         return e.code ? e.code : 1;
@@ -85,9 +86,7 @@ static int bench_roofline(const gk_bench_opts *o)
     gk_roofline_result res[GK_ROOFLINE_MAX_CASES];
     int n = programs ? gk_roofline_measure(programs, &ro, res, GK_ROOFLINE_MAX_CASES, &e)
                      : gk_fail(&e, GK_ERUNTIME, "roofline: no program cache");
-    int rc = n < 0 ? -1 : gk_bench_make_dir(o->out_dir, &e);
-    if (rc == 0)
-        rc = gk_roofline_write_csv(res, n, csv, &e);
+    int rc = n < 0 ? -1 : gk_roofline_write_csv(res, n, csv, &e);
     if (rc == 0)
         for (int i = 0; i < n; i++)
             gk_log("bench: roofline %-24s %8.1f M fetches/s (%.0f fetches in %.2f ms; counted %llu of %.0f)",

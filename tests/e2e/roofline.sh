@@ -24,4 +24,7 @@ check "roofline.csv: the log prints the CSV's rates" \
            sed -n 's/.*roofline \\([a-z0-9_]*\\) *\\([0-9.]*\\) M fetches.*/\\1 \\2/p' '$TMP/r.log' >'$TMP/log_rates' &&
            cmp -s '$TMP/csv_rates' '$TMP/log_rates'"
 expect_exit 2 "bench --roofline without --out" "$GIKIOSK" bench --roofline
+: >"$TMP/a-file"
+expect_exit 1 "bench --roofline into a folder that cannot be made" sh -c "'$GIKIOSK' bench --roofline --out '$TMP/a-file/r' 2>'$TMP/bad.log'"
+check "the error names the folder" grep -q "cannot create $TMP/a-file" "$TMP/bad.log"
 finish
