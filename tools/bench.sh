@@ -14,6 +14,10 @@ run() { # name, then bench options
     # shellcheck disable=SC2086
     "$BIN" bench "$@" $ARGS --out "$OUT/$name"
 }
+# The machine's fetch limits (the roofline): fetches per second per kind of fetch the methods do,
+# the denominator of each pass's efficiency.
+echo "bench: roofline"
+"$BIN" bench --roofline --out "$OUT"
 # Direct light and soft shadows: shadow method x shadow-map size (renderer core).
 run shadows --scenes shadow-planes,cornell --methods none
 # Voxel cone tracing: each knob one at a time, on the scenes of its issue.

@@ -115,6 +115,8 @@ void gk_bench_mark_choice(gk_bench_result *r, const struct gk_calibration *c, do
 
 /* Runs everything and writes the outputs. Allocates the result (free()). */
 int gk_bench_run(const gk_bench_opts *o, gk_bench_result **out, gk_err *e);
+/* mkdir -p: 0, or -1 with GK_ERUNTIME naming the directory. */
+int gk_bench_make_dir(const char *path, gk_err *e);
 int gk_bench_write_csv(const gk_bench_result *r, const char *path, gk_err *e);
 /* Writes DIR/speed-accuracy-SCENE.{dat,gp,png,svg}, and for a scene with a caustic mask also
  * DIR/speed-caustic-SCENE.{...} (the error inside the mask); without gnuplot logs and skips the images. */

@@ -334,7 +334,7 @@ static int bench_scene(bench_run *b, const char *name, gk_err *e)
 }
 
 /* mkdir -p */
-static int make_dir(const char *path, gk_err *e)
+int gk_bench_make_dir(const char *path, gk_err *e)
 {
     char buf[1024];
     snprintf(buf, sizeof buf, "%s", path);
@@ -379,7 +379,7 @@ int gk_bench_run(const gk_bench_opts *o, gk_bench_result **out, gk_err *e)
     }
     char captures[1024];
     snprintf(captures, sizeof captures, "%s/captures", o->out_dir);
-    if (make_dir(o->out_dir, e) < 0 || make_dir(captures, e) < 0) {
+    if (gk_bench_make_dir(o->out_dir, e) < 0 || gk_bench_make_dir(captures, e) < 0) {
         free(b.r);
         return -1;
     }

@@ -6,6 +6,9 @@
 #include "cli/commands.h"
 #include "base/log.h"
 #include "bench/bench.h"
+#include "bench/roofline.h"
+#include "gl/gl.h"
+#include "platform/platform.h"
 #include "scene/scene.h"
 
 static void usage(FILE *f)
@@ -15,6 +18,7 @@ static void usage(FILE *f)
           "                     [--references DIR] [--budget KNOB=VALUE[,KNOB=VALUE...]]\n"
           "                     [--gles 3.1|3.2] [--shader-dir DIR] [--rebuild-gi]\n"
           "                     [--target-ms MS] [--target-size WxH] [--one-ruler] --out DIR\n"
+          "       gikiosk bench --roofline [--shader-dir DIR] [--gles 3.1|3.2] --out DIR\n"
           "\n"
           "Renders every configuration offscreen (mock platform), measures the frame time (median and p95\n"
           "over --frames frames after --warmup untimed ones) and the error against the path-traced\n"
@@ -35,7 +39,11 @@ static void usage(FILE *f)
           "its automatic levels.\n"
           "--rebuild-gi: the GI methods redo every frame what they otherwise keep between frames of a\n"
           "static scene (vct: voxelize, inject, mips) and shadow maps are re-rendered: the cost of a\n"
-          "moving light or object, pass by pass.\n",
+          "moving light or object, pass by pass.\n"
+          "--roofline: instead of the sweep, this machine's fetch limits: a compute shader does a known\n"
+          "number of fetches per invocation -- trilinear 3D (rgba8, rgba16f: the voxel volumes), 2D\n"
+          "(rgba8, rgba16f trilinear; rgba32f nearest: a summed-area table), 3D imageLoad -- timed as\n"
+          "the bench times frames; DIR/roofline.csv gets fetches per second per kind (median of 5).\n",
           f);
 }
 
@@ -55,9 +63,50 @@ static int parse_count(const char *s, int lo, int hi, int *out)
     return 0;
 }
 
+/* --roofline: the fetch limits on a small offscreen context of the mock platform. */
+static int bench_roofline(const gk_bench_opts *o)
+{
+    gk_err e = {0};
+    char csv[1100];
+    snprintf(csv, sizeof csv, "%s/roofline.csv", o->out_dir);
+    gk_platform_desc desc;
+    gk_platform_desc_defaults(&desc);
+    desc.kind = GK_PLATFORM_MOCK;
+    desc.width = 64;
+    desc.height = 64;
+    /* the folder first: a bad --out fails before seconds of measuring */
+    gk_platform *p = gk_bench_make_dir(o->out_dir, &e) == 0 ? gk_platform_open(&desc, &e) : NULL;
+    if (!p) {
+        fprintf(stderr, "gikiosk bench: %s\n", e.msg);
+        return e.code ? e.code : 1;
+    }
+    gk_program_cache *programs = gk_program_cache_create(o->shader_dir, o->gles_version);
+    gk_roofline_opts ro;
+    gk_roofline_opts_defaults(&ro);
+    gk_roofline_result res[GK_ROOFLINE_MAX_CASES];
+    int n = programs ? gk_roofline_measure(programs, &ro, res, GK_ROOFLINE_MAX_CASES, &e)
+                     : gk_fail(&e, GK_ERUNTIME, "roofline: no program cache");
+    int rc = n < 0 ? -1 : gk_roofline_write_csv(res, n, csv, &e);
+    if (rc == 0)
+        for (int i = 0; i < n; i++)
+            gk_log("bench: roofline %-24s %8.1f M fetches/s (%.0f fetches in %.2f ms; counted %llu of %.0f)",
+                   res[i].name, res[i].fetches_per_s * 1e-6, res[i].fetches, res[i].median_ms,
+                   (unsigned long long)res[i].counted, res[i].fetches * ro.reps);
+    if (programs)
+        gk_program_cache_destroy(programs);
+    gk_platform_close(p);
+    if (rc < 0) {
+        fprintf(stderr, "gikiosk bench: %s\n", e.msg);
+        return e.code ? e.code : 1;
+    }
+    gk_log("bench: roofline, %s", csv);
+    return 0;
+}
+
 int gk_cmd_bench(int argc, char **argv)
 {
     gk_bench_opts o;
+    bool roofline = false;
     memset(&o, 0, sizeof o);
     o.frames = 5;
     o.warmup = 2;
@@ -75,6 +124,10 @@ int gk_cmd_bench(int argc, char **argv)
         }
         if (!strcmp(a, "--rebuild-gi")) {
             o.rebuild_gi = true;
+            continue;
+        }
+        if (!strcmp(a, "--roofline")) {
+            roofline = true;
             continue;
         }
         if (!strcmp(a, "--one-ruler")) {
@@ -138,6 +191,8 @@ int gk_cmd_bench(int argc, char **argv)
         usage(stderr);
         return 2;
     }
+    if (roofline)
+        return bench_roofline(&o);
     gk_err e = {0};
     gk_bench_result *r = NULL;
     if (gk_bench_run(&o, &r, &e) < 0) {

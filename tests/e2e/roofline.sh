@@ -1,0 +1,30 @@
+#!/bin/sh
+# `gikiosk bench --roofline` as `make bench` runs it: roofline.csv with one row per kind of fetch,
+# each rate equal to its fetches over its time (recomputed here), the shader's own count of the
+# fetches it did equal to what was asked (from the log), and a missing --out is bad usage.
+. tests/e2e/lib.sh
+export EGL_PLATFORM=surfaceless
+
+expect_exit 0 "bench --roofline" sh -c "'$GIKIOSK' bench --roofline --out '$TMP/r' 2>'$TMP/r.log'"
+CSV=$TMP/r/roofline.csv
+check "roofline.csv header" sh -c "head -1 '$CSV' | grep -qx 'name,format,size,fetches,median_ms,fetches_per_s'"
+for kind in tex3d_rgba8_trilinear tex3d_rgba16f_trilinear tex2d_rgba8_trilinear tex2d_rgba16f_trilinear \
+    tex2d_rgba32f_nearest image3d_rgba8_load image3d_rgba16f_load; do
+    check "roofline.csv: a row for $kind" grep -q "^$kind," "$CSV"
+done
+check "roofline.csv: seven kinds" [ "$(wc -l <"$CSV")" -eq 8 ]
+# the rate is fetches / time: recomputed from the row's own columns (within the %.6g print)
+check "roofline.csv: fetches_per_s = fetches / median_ms, positive" \
+    sh -c "awk -F, 'NR > 1 { r = \$4 / (\$5 * 1e-3); if (!(\$6 > 0) || (\$6 - r) > 1e-4 * r || (r - \$6) > 1e-4 * r) bad = 1 } END { exit bad }' '$CSV'"
+# 64^3 invocations x 64 fetches per dispatch, 5 timed dispatches: the shader counted each one
+check "the shader counted 5 x 64^3 x 64 fetches per kind" \
+    sh -c "[ \"\$(grep -c 'counted 83886080 of 83886080)' '$TMP/r.log')\" -eq 7 ]"
+check "roofline.csv: the log prints the CSV's rates" \
+    sh -c "awk -F, 'NR > 1 { printf \"%s %.1f\\n\", \$1, \$6 * 1e-6 }' '$CSV' >'$TMP/csv_rates' &&
+           sed -n 's/.*roofline \\([a-z0-9_]*\\) *\\([0-9.]*\\) M fetches.*/\\1 \\2/p' '$TMP/r.log' >'$TMP/log_rates' &&
+           cmp -s '$TMP/csv_rates' '$TMP/log_rates'"
+expect_exit 2 "bench --roofline without --out" "$GIKIOSK" bench --roofline
+: >"$TMP/a-file"
+expect_exit 1 "bench --roofline into a folder that cannot be made" sh -c "'$GIKIOSK' bench --roofline --out '$TMP/a-file/r' 2>'$TMP/bad.log'"
+check "the error names the folder" grep -q "cannot create $TMP/a-file" "$TMP/bad.log"
+finish
