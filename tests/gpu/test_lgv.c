@@ -510,12 +510,57 @@ static void energy_constant_in_n_and_c0(void **state)
     }
 }
 
+/* Seed Fig. 9, the LGV-size trade-off: the indirect light (the LGV's eq. 7 lookup, no caustic) against
+   glass-indirect.exr per lgv_size, at 1M photons (4 frames of 262144 averaged: the photon noise well
+   below the grid's error). The time side is the bench's (tools/bench.sh, sweep lgv). */
+static void lgv_size_tradeoff(void **state)
+{
+    (void)state;
+    static const char *const sizes[3] = {"16", "32", "48"};
+    double err[3], ratio[3];
+    for (int i = 0; i < 3; i++) {
+        char budget[96];
+        snprintf(budget, sizeof budget, "lgv_photons=262144,lgv_size=%s", sizes[i]);
+        assert_int_equal(open_scene(&H, load("glass")), 0);
+        static float sum[W * HH * 4];
+        memset(sum, 0, sizeof sum);
+        for (int f = 0; f < 4; f++) {
+            frame(budget, GK_LGV_PART_LGV, 0);
+            for (int k = 0; k < W * HH * 4; k++)
+                sum[k] += 0.25f * H.img[k];
+        }
+        memcpy(H.img, sum, sizeof sum);
+        const gk_lgv_stats *st = gk_lgv_get_stats(H.self);
+        printf("# lgv_size=%s: dims %dx%dx%d, cell %.4f m; last frame: %u ray segments, %u injected, %u escaped\n", sizes[i],
+               st->dims[0], st->dims[1], st->dims[2], st->cell, st->rays, st->injected, st->escaped);
+        ruler r;
+        measure("tests/references/glass-indirect.exr", NULL, &r);
+        err[i] = r.rel_all, ratio[i] = r.energy;
+        close_scene(&H);
+    }
+    printf("# glass indirect (LGV, no gathering iterations) vs glass-indirect.exr: rel. RMSE %.3f / %.3f / %.3f at "
+           "16 / 32 / 48 cells; energy ratio %.3f / %.3f / %.3f\n",
+           err[0], err[1], err[2], ratio[0], ratio[1], ratio[2]);
+    /* Measured (llvmpipe, 4 x 262144 photons): rel. RMSE 0.795 / 0.833 / 0.859, energy 0.540 / 0.515 /
+       0.503. Fig. 9's trend (error falling as the grid grows) is NOT reproduced: without gathering
+       iterations eq. 7 is a density estimate over one cell, whose photon noise grows as the cells
+       shrink faster than its blur falls at this photon count. The energy is about half the
+       reference's at every size (cornell-indirect.exr likewise, 0.514 at 1M photons, 16 cells;
+       with at most 2 surface events 0.286): a loss at every bounce, not yet found (README).
+       Bounds: the measurements + 0.03 (rel. RMSE) and the energy's independence of the grid
+       size, within 8% (the density estimate's normalisation k does not depend on l). */
+    assert_true(err[0] < 0.83 && err[1] < 0.86 && err[2] < 0.89);
+    for (int i = 0; i < 3; i++)
+        assert_true(fabs(ratio[i] / ratio[1] - 1.0) < 0.08);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(tracer_against_exact_rays),
         cmocka_unit_test(caustic_against_reference),
         cmocka_unit_test(energy_constant_in_n_and_c0),
+        cmocka_unit_test(lgv_size_tradeoff),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }
