@@ -543,15 +543,16 @@ static void lgv_size_tradeoff(void **state)
     printf("# glass indirect (LGV, no gathering iterations) vs glass-indirect.exr: rel. RMSE %.3f / %.3f / %.3f at "
            "16 / 32 / 48 cells; energy ratio %.3f / %.3f / %.3f\n",
            err[0], err[1], err[2], ratio[0], ratio[1], ratio[2]);
-    /* Measured (llvmpipe, 4 x 262144 photons): rel. RMSE 0.795 / 0.833 / 0.859, energy 0.540 / 0.515 /
-       0.503. Fig. 9's trend (error falling as the grid grows) is NOT reproduced: without gathering
+    /* Measured (llvmpipe, 4 x 262144 photons): rel. RMSE 0.749 / 0.794 / 0.825, energy 0.580 / 0.555 /
+       0.541 (0.540 / 0.515 / 0.503 before hits just outside the grid went to its boundary cells).
+       Fig. 9's trend (error falling as the grid grows) is NOT reproduced: without gathering
        iterations eq. 7 is a density estimate over one cell, whose photon noise grows as the cells
-       shrink faster than its blur falls at this photon count. The energy is about half the
-       reference's at every size (cornell-indirect.exr likewise, 0.514 at 1M photons, 16 cells;
-       with at most 2 surface events 0.286): a loss at every bounce, not yet found (README).
-       Bounds: the measurements + 0.03 (rel. RMSE) and the energy's independence of the grid
-       size, within 8% (the density estimate's normalisation k does not depend on l). */
-    assert_true(err[0] < 0.83 && err[1] < 0.86 && err[2] < 0.89);
+       shrink faster than its blur falls at this photon count. The energy is still short of the
+       reference's at every size (cornell-indirect.exr likewise: 0.514 at 1M photons, 16 cells,
+       before the boundary fix; with at most 2 surface events 0.286): a loss at every bounce, not
+       all found (README). Bounds: the measurements + 0.03 (rel. RMSE) and the energy's
+       independence of the grid size, within 8% (the normalisation k does not depend on l). */
+    assert_true(err[0] < 0.78 && err[1] < 0.83 && err[2] < 0.86);
     for (int i = 0; i < 3; i++)
         assert_true(fabs(ratio[i] / ratio[1] - 1.0) < 0.08);
 }
@@ -594,9 +595,9 @@ static void temporal_noise_and_determinism(void **state)
         }
     printf("# glass, LGV at 65536 photons, 8 frames with new photons: mean relative temporal std %.4f over %d pixels; "
            "the same frame twice identical: %s\n", sum / n, n, same ? "yes" : "no");
-    /* Measured (llvmpipe): 0.315 over 14715 pixels (eq. 7 without gathering iterations is a one-cell
+    /* Measured (llvmpipe): 0.303 over 14619 pixels (eq. 7 without gathering iterations is a one-cell
        density estimate: ~0.3 relative flicker at the default photons, the seed's "temporal
-       discontinuity"); identical twice. Bound: the measurement + 0.035. */
+       discontinuity"); identical twice. Bound: the measurement + 0.04. */
     assert_true(same);
     assert_true(sum / n < 0.35);
 }
