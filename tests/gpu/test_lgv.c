@@ -268,6 +268,7 @@ static int make_rays(const exact *x, vec3 lamp, int n, float *rays)
 typedef struct pass_through {
     double rate;        /* beyond the first true surface (or no hit where there is one) */
     double early;       /* before it (a surface that is not there) */
+    double lost;        /* no hit at all where there is one (the photon leaves the scene) */
     double median_err;  /* hit position error, m */
 } pass_through;
 
@@ -280,7 +281,7 @@ static int cmp_float(const void *a, const void *b)
 /* tol: a hit counts as right within this distance along the ray of the exact one. */
 static void compare_rays(const exact *x, const float *rays, const float *hits, int n, float tol, pass_through *out)
 {
-    int beyond = 0, early = 0, valid = 0;
+    int beyond = 0, early = 0, valid = 0, lost = 0;
     float *err = malloc(sizeof(float) * (size_t)n);
     for (int i = 0; i < n; i++) {
         vec3 o = v3(rays[6 * i], rays[6 * i + 1], rays[6 * i + 2]), d = v3(rays[6 * i + 3], rays[6 * i + 4], rays[6 * i + 5]);
@@ -289,7 +290,7 @@ static void compare_rays(const exact *x, const float *rays, const float *hits, i
             continue; /* leaves the scene: nothing to pass through */
         vec3 pe = v3_add(o, v3_scale(d, hit.t));
         if (hits[4 * i + 3] < 0.5f) {
-            beyond++;
+            beyond++, lost++;
             err[valid++] = 1e9f;
             continue;
         }
@@ -304,6 +305,7 @@ static void compare_rays(const exact *x, const float *rays, const float *hits, i
     qsort(err, (size_t)valid, sizeof(float), cmp_float);
     out->rate = (double)beyond / valid;
     out->early = (double)early / valid;
+    out->lost = (double)lost / valid;
     out->median_err = err[valid / 2];
     free(err);
 }
@@ -331,8 +333,9 @@ static void tracer_on(const char *name, double bound_angle)
         compare_rays(&x, rays, hits, n, tol, &pt[mode]);
     }
     printf("# %s, 27 maps of 64^2, %d rays, tolerance %.3f m: pass-through %.4f angle partition / %.4f planar ITP; "
-           "early hits %.4f / %.4f; median hit error %.4f / %.4f m\n",
-           name, n, tol, pt[0].rate, pt[1].rate, pt[0].early, pt[1].early, pt[0].median_err, pt[1].median_err);
+           "early hits %.4f / %.4f; no hit at all %.4f / %.4f; median hit error %.4f / %.4f m\n",
+           name, n, tol, pt[0].rate, pt[1].rate, pt[0].early, pt[1].early, pt[0].lost, pt[1].lost, pt[0].median_err,
+           pt[1].median_err);
     assert_true(pt[0].rate <= bound_angle);
     assert_true(pt[0].rate < pt[1].rate); /* the seed's claim (Fig. 4): fewer pass-through errors */
     free(rays), free(hits);
@@ -344,11 +347,12 @@ static void tracer_on(const char *name, double bound_angle)
 static void tracer_against_exact_rays(void **state)
 {
     (void)state;
-    /* Measured on llvmpipe (deterministic rays and maps): glass 0.1235 angle partition / 0.2155
-       planar, caustic-ring 0.2145 / 0.2904 (its 2 cm mirror wall covers few texels of maps metres
-       away: B.5 item 1). Bounds: the measurement plus ~0.03. */
+    /* Measured on llvmpipe (deterministic rays and maps): glass 0.1062 angle partition / 0.2119
+       planar, caustic-ring 0.1372 / 0.2814 (its 2 cm mirror wall covers few texels of maps metres
+       away: B.5 item 1); before the second march on the photon's own map (tracer.glsl) 0.1235 /
+       0.2155 and 0.2145 / 0.2904. Bounds: the measurement plus ~0.03-0.04. */
     tracer_on("glass", 0.15);
-    tracer_on("caustic-ring", 0.25);
+    tracer_on("caustic-ring", 0.17);
 }
 
 /* ---- the caustic against the path-traced reference (issue: energy in the mask within 15%) ---- */
@@ -439,19 +443,20 @@ static void caustic_against_reference(void **state)
         caustic_on("glass", "lgv_photons=262144,lgv_map_res=128", &g, &ga);
         caustic_on("caustic-ring", "lgv_photons=262144,lgv_map_res=128,lgv_maps=64", &c, &ca);
     }
-    /* Measured (llvmpipe, 0.26M photons, 27 maps of 64^2, SSLGV 256 wide): glass 0.674 in the mask,
-       1646 of 1739 caustic photons accepted (0.947; the rest land off screen); before the acceptance
+    /* Measured (llvmpipe, 0.26M photons, 27 maps of 64^2, SSLGV 256 wide): glass 0.709 in the mask,
+       1760 of 1868 caustic photons accepted (0.942; the rest land off screen); before the acceptance
        fixes (x_p at the photon's own screen position, hits on the map's surface, h at least the
-       map's texel footprint) 0.189 with 524 accepted. caustic-ring 0.484 (1794 of its 3221 caustic
+       map's texel footprint) 0.189 with 524 accepted. caustic-ring 0.555 (most of its caustic
        photons land off screen at the references' view). The issue's target, within 15% of the
        reference, is NOT met: glass's 30-pixel mask is the focus of the refractor map's 64^2
        normals, blurred out of the mask; caustic-ring's concave ring needs several mirror bounces
-       on a 2 cm wall few texels of maps metres away see (B.5 item 1: pass-through 0.21).
-       Richer maps do not help (map_res 128: glass 0.590; caustic-ring with 64 maps 0.374).
-       Bounds: the measurements +- 0.05, so the acceptance fixes cannot silently regress. */
-    assert_true(g.energy > 0.62 && g.energy < 0.73);
+       on a 2 cm wall few texels of maps metres away see (B.5 item 1: pass-through 0.14).
+       Richer maps do not help (before the second march: map_res 128 gave glass 0.590,
+       caustic-ring with 64 maps 0.374). Bounds: the measurements +- 0.05, so the acceptance
+       fixes cannot silently regress. */
+    assert_true(g.energy > 0.66 && g.energy < 0.76);
     assert_true(ga > 0.92);
-    assert_true(c.energy > 0.43 && c.energy < 0.54);
+    assert_true(c.energy > 0.50 && c.energy < 0.61);
 }
 
 static double mean_luminance(void)
@@ -543,16 +548,16 @@ static void lgv_size_tradeoff(void **state)
     printf("# glass indirect (LGV, no gathering iterations) vs glass-indirect.exr: rel. RMSE %.3f / %.3f / %.3f at "
            "16 / 32 / 48 cells; energy ratio %.3f / %.3f / %.3f\n",
            err[0], err[1], err[2], ratio[0], ratio[1], ratio[2]);
-    /* Measured (llvmpipe, 4 x 262144 photons): rel. RMSE 0.749 / 0.794 / 0.825, energy 0.580 / 0.555 /
-       0.541 (0.540 / 0.515 / 0.503 before hits just outside the grid went to its boundary cells).
-       Fig. 9's trend (error falling as the grid grows) is NOT reproduced: without gathering
-       iterations eq. 7 is a density estimate over one cell, whose photon noise grows as the cells
-       shrink faster than its blur falls at this photon count. The energy is still short of the
-       reference's at every size (cornell-indirect.exr likewise: 0.514 at 1M photons, 16 cells,
-       before the boundary fix; with at most 2 surface events 0.286): a loss at every bounce, not
-       all found (README). Bounds: the measurements + 0.03 (rel. RMSE) and the energy's
-       independence of the grid size, within 8% (the normalisation k does not depend on l). */
-    assert_true(err[0] < 0.78 && err[1] < 0.83 && err[2] < 0.86);
+    /* Measured (llvmpipe, 4 x 262144 photons): rel. RMSE 0.716 / 0.763 / 0.796, energy 0.621 / 0.594 /
+       0.580 (0.540 / 0.515 / 0.503 before hits just outside the grid went to its boundary cells and
+       the tracer's second march). Fig. 9's trend (error falling as the grid grows) is NOT
+       reproduced: without gathering iterations eq. 7 is a density estimate over one cell, whose
+       photon noise grows as the cells shrink faster than its blur falls at this photon count. The
+       energy is still short of the reference's at every size: photons the tracer loses (no hit
+       for 9.9% of photon-like rays that meet a surface, every bounce) and what else the README
+       lists. Bounds: the measurements + 0.03 (rel. RMSE) and the energy's independence of the
+       grid size, within 8% (the normalisation k does not depend on l). */
+    assert_true(err[0] < 0.75 && err[1] < 0.80 && err[2] < 0.83);
     for (int i = 0; i < 3; i++)
         assert_true(fabs(ratio[i] / ratio[1] - 1.0) < 0.08);
 }
@@ -595,11 +600,11 @@ static void temporal_noise_and_determinism(void **state)
         }
     printf("# glass, LGV at 65536 photons, 8 frames with new photons: mean relative temporal std %.4f over %d pixels; "
            "the same frame twice identical: %s\n", sum / n, n, same ? "yes" : "no");
-    /* Measured (llvmpipe): 0.303 over 14619 pixels (eq. 7 without gathering iterations is a one-cell
+    /* Measured (llvmpipe): 0.293 over 14734 pixels (eq. 7 without gathering iterations is a one-cell
        density estimate: ~0.3 relative flicker at the default photons, the seed's "temporal
        discontinuity"); identical twice. Bound: the measurement + 0.04. */
     assert_true(same);
-    assert_true(sum / n < 0.35);
+    assert_true(sum / n < 0.33);
 }
 
 int main(void)
