@@ -69,6 +69,13 @@ if "$BIN" scenes | grep -q 'volcaustics'; then
     echo "bench: volcaustics-multiple"
     sh tools/volcaustics_multiple.sh "$BIN" "$OUT/volcaustics-multiple"
 fi
+# Photon tracing against distance cube-maps with SH grids (seed 002): the LGV-size trade-off of its
+# Fig. 9 (16³/32³/48³) on glass against glass.exr (lgv's indirect error alone is in
+# tests/gpu/test_lgv.c: the bench measures the whole image); the lgv_gather pass's time is the grid's.
+# lgv beside the other methods is on the `methods` run's charts below.
+if "$BIN" scenes | grep -q 'lgv'; then
+    run lgv --scenes glass --methods lgv --sweep 'lgv_size=16,32,48'
+fi
 # Choosing a method: per scene ONE chart with every method's default sweep against one ruler
 # (SCENE-1bounce.exr where it exists, else SCENE.exr), the Pareto front over all of them, each
 # point's spread (median to p95 of its frames) and the kiosk's automatic choice at 400 ms, 640x360

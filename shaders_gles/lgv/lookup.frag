@@ -22,6 +22,32 @@ uniform vec2 u_tan_half;      // tan of the camera's half field of view, x and y
 uniform vec3 u_forward;       // camera forward (unit)
 uniform int u_parts;          // 1 LGV, 2 SSLGV, 3 both
 out vec4 o_color;
+
+// The SSLGV over this pixel's footprint. Finer than the image (lgv_sslgv wider than the view), the
+// SSLGV texels the pixel covers, weighted by their overlap (a box filter: every SSLGV texel's
+// energy reaches the image, whatever the diffusion left sparse; a bilinear tap would read 2x2 of
+// them and skip the rest: the caustic's image energy then varied 6% with C0). Coarser, bilinear.
+vec3 ss_sample(ivec2 px, vec4 yn)
+{
+    vec2 img = vec2(textureSize(u_gb_depth, 0));
+    vec2 ratio = u_ss_size / img;
+    if (ratio.x <= 1.0 && ratio.y <= 1.0)
+        return vec3(max(dot(texture(u_ss_r, v_uv), yn), 0.0), max(dot(texture(u_ss_g, v_uv), yn), 0.0),
+                    max(dot(texture(u_ss_b, v_uv), yn), 0.0));
+    vec2 a = vec2(px) * ratio, b = a + ratio; // the footprint in SSLGV texels
+    vec3 sum = vec3(0.0);
+    float wsum = 0.0;
+    for (int y = int(floor(a.y)); y < int(ceil(b.y)); y++)
+        for (int x = int(floor(a.x)); x < int(ceil(b.x)); x++) {
+            vec2 lo = max(a, vec2(x, y)), hi = min(b, vec2(x + 1, y + 1));
+            float w = max(hi.x - lo.x, 0.0) * max(hi.y - lo.y, 0.0);
+            ivec2 t = min(ivec2(x, y), ivec2(u_ss_size) - 1);
+            sum += w * vec3(dot(texelFetch(u_ss_r, t, 0), yn), dot(texelFetch(u_ss_g, t, 0), yn),
+                            dot(texelFetch(u_ss_b, t, 0), yn));
+            wsum += w;
+        }
+    return max(sum / max(wsum, 1e-12), vec3(0.0));
+}
 void main()
 {
     ivec2 px = ivec2(gl_FragCoord.xy);
@@ -43,9 +69,7 @@ void main()
         float z = dot(-v, u_forward);
         float area = abs((2.0 * u_tan_half.x / u_ss_size.x) * (2.0 * u_tan_half.y / u_ss_size.y) * z * z * z /
                          max(dot(v, n), 1e-6));
-        vec3 e = vec3(max(dot(texture(u_ss_r, v_uv), yn), 0.0), max(dot(texture(u_ss_g, v_uv), yn), 0.0),
-                      max(dot(texture(u_ss_b, v_uv), yn), 0.0));
-        c += 4.0 * e / max(area, 1e-12);
+        c += 4.0 * ss_sample(px, yn) / max(area, 1e-12);
     }
     o_color = vec4(c, 1.0);
 }

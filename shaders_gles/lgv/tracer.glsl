@@ -212,5 +212,15 @@ highp float lgv_trace(highp vec3 x, highp vec3 r, out int map)
     map = lgv_nearest_map(x + d0 * r, 0, u_n_maps);
     highp float start = 2.0 * length(x - centre[map].xyz) * 2.0 / float(u_res) + 1e-4;
     highp float d = lgv_secant(map, x, r, d0, start, exit_d);
+    if (d < 0.0 && map != m1) {
+        // The ITP's map saw nothing in front of the ray before the bounds (the surface it meets is
+        // hidden from that map, or too few of its texels cover it): march again on the photon's
+        // own map, still at most two maps per ray. Without it 11.6% of glass's photon-like rays
+        // that meet a surface left the scene (test_lgv: "no hit at all").
+        highp float start1 = 2.0 * length(x - centre[m1].xyz) * 2.0 / float(u_res) + 1e-4;
+        d = lgv_secant(m1, x, r, 2.0 * start1, start1, exit_d);
+        if (d >= 0.0)
+            map = m1;
+    }
     return d;
 }

@@ -4,6 +4,11 @@
  *             rays, photon-like (from the lamp, and cosine bounces off the surfaces the lamp's rays
  *             meet): pass-through rate (the tracer's hit lies beyond the first true surface, or it
  *             finds none), for the seed's angle-partition ITP and for the planar ITP (Fig. 4);
+ *   caustic   the SSLGV's caustic against glass-caustics.exr / caustic-ring-caustics.exr inside their
+ *             masks (energy, rel. RMSE) and the share of caustic photons the SSLGV accepts;
+ *   item 13   the energy (LGV and SSLGV) constant as the photon count N and C0 vary;
+ *   Fig. 9    the indirect light's error against glass-indirect.exr per LGV size;
+ *   item 6    the LGV's temporal noise with new photons every frame; the same photons twice: identical;
  * (The other B.5 tests are not written yet: see the README's lgv section.)
  * Bounds come from the measurements printed with each test (see the comments there). */
 #include <setjmp.h>
@@ -16,6 +21,9 @@
 #include <string.h>
 
 #include "common/gl_fixture.h"
+#include "core/tonemap.h"
+#include "io/image_io.h"
+#include "metrics/metrics.h"
 #include "gi/lgv/lgv.h"
 #include "gl/gl_program.h"
 #include "gl/gl_target.h"
@@ -43,6 +51,7 @@ typedef struct harness {
 } harness;
 
 static harness H;
+static float C0 = 1.0f; /* the SSLGV's C0 of the next frames (item 13 varies it) */
 
 static int draw_scene(void *ctx, unsigned prog, gk_err *e)
 {
@@ -126,7 +135,7 @@ static void frame(const char *list, int parts, unsigned seed)
         fail_msg("budget: %s", e.msg);
     gk_lgv_debug d;
     gk_lgv_default_debug(&d);
-    d.parts = parts, d.seed = seed;
+    d.parts = parts, d.seed = seed, d.c0 = C0;
     gk_lgv_set_debug(H.self, &d);
     gk_gi_frame f = {0};
     f.scene = H.scene, f.width = W, f.height = HH, f.scene_changed = false;
@@ -259,6 +268,7 @@ static int make_rays(const exact *x, vec3 lamp, int n, float *rays)
 typedef struct pass_through {
     double rate;        /* beyond the first true surface (or no hit where there is one) */
     double early;       /* before it (a surface that is not there) */
+    double lost;        /* no hit at all where there is one (the photon leaves the scene) */
     double median_err;  /* hit position error, m */
 } pass_through;
 
@@ -271,7 +281,7 @@ static int cmp_float(const void *a, const void *b)
 /* tol: a hit counts as right within this distance along the ray of the exact one. */
 static void compare_rays(const exact *x, const float *rays, const float *hits, int n, float tol, pass_through *out)
 {
-    int beyond = 0, early = 0, valid = 0;
+    int beyond = 0, early = 0, valid = 0, lost = 0;
     float *err = malloc(sizeof(float) * (size_t)n);
     for (int i = 0; i < n; i++) {
         vec3 o = v3(rays[6 * i], rays[6 * i + 1], rays[6 * i + 2]), d = v3(rays[6 * i + 3], rays[6 * i + 4], rays[6 * i + 5]);
@@ -280,7 +290,7 @@ static void compare_rays(const exact *x, const float *rays, const float *hits, i
             continue; /* leaves the scene: nothing to pass through */
         vec3 pe = v3_add(o, v3_scale(d, hit.t));
         if (hits[4 * i + 3] < 0.5f) {
-            beyond++;
+            beyond++, lost++;
             err[valid++] = 1e9f;
             continue;
         }
@@ -295,6 +305,7 @@ static void compare_rays(const exact *x, const float *rays, const float *hits, i
     qsort(err, (size_t)valid, sizeof(float), cmp_float);
     out->rate = (double)beyond / valid;
     out->early = (double)early / valid;
+    out->lost = (double)lost / valid;
     out->median_err = err[valid / 2];
     free(err);
 }
@@ -322,8 +333,9 @@ static void tracer_on(const char *name, double bound_angle)
         compare_rays(&x, rays, hits, n, tol, &pt[mode]);
     }
     printf("# %s, 27 maps of 64^2, %d rays, tolerance %.3f m: pass-through %.4f angle partition / %.4f planar ITP; "
-           "early hits %.4f / %.4f; median hit error %.4f / %.4f m\n",
-           name, n, tol, pt[0].rate, pt[1].rate, pt[0].early, pt[1].early, pt[0].median_err, pt[1].median_err);
+           "early hits %.4f / %.4f; no hit at all %.4f / %.4f; median hit error %.4f / %.4f m\n",
+           name, n, tol, pt[0].rate, pt[1].rate, pt[0].early, pt[1].early, pt[0].lost, pt[1].lost, pt[0].median_err,
+           pt[1].median_err);
     assert_true(pt[0].rate <= bound_angle);
     assert_true(pt[0].rate < pt[1].rate); /* the seed's claim (Fig. 4): fewer pass-through errors */
     free(rays), free(hits);
@@ -335,17 +347,274 @@ static void tracer_on(const char *name, double bound_angle)
 static void tracer_against_exact_rays(void **state)
 {
     (void)state;
-    /* Measured on llvmpipe (deterministic rays and maps): glass 0.1235 angle partition / 0.2155
-       planar, caustic-ring 0.2145 / 0.2904 (its 2 cm mirror wall covers few texels of maps metres
-       away: B.5 item 1). Bounds: the measurement plus ~0.03. */
+    /* Measured on llvmpipe (deterministic rays and maps): glass 0.1062 angle partition / 0.2119
+       planar, caustic-ring 0.1372 / 0.2814 (its 2 cm mirror wall covers few texels of maps metres
+       away: B.5 item 1); before the second march on the photon's own map (tracer.glsl) 0.1235 /
+       0.2155 and 0.2145 / 0.2904. Bounds: the measurement plus ~0.03-0.04. */
     tracer_on("glass", 0.15);
-    tracer_on("caustic-ring", 0.25);
+    tracer_on("caustic-ring", 0.17);
+}
+
+/* ---- the caustic against the path-traced reference (issue: energy in the mask within 15%) ---- */
+
+typedef struct ruler {
+    double energy;  /* sum of luminance inside the reference's mask, lgv / reference */
+    double rel_in;  /* rel. RMSE inside the mask */
+    double rel_all; /* rel. RMSE over the whole image */
+} ruler;
+
+/* H.img (bottom row first) as an image (top row first), like the references. */
+static void as_image(gk_image *out)
+{
+    assert_int_equal(gk_image_alloc(out, W, HH, 3), 0);
+    for (int y = 0; y < HH; y++)
+        for (int x = 0; x < W; x++)
+            for (int c = 0; c < 3; c++)
+                out->pixels[((HH - 1 - y) * W + x) * 3 + c] = H.img[(y * W + x) * 4 + c];
+}
+
+/* Compares what the last frame added against ref_path inside mask_path (NULL: energy over the image). */
+static void measure(const char *ref_path, const char *mask_path, ruler *r)
+{
+    gk_err e = {0};
+    gk_image ref = {0}, mimg = {0}, ours = {0};
+    assert_int_equal(gk_image_read(ref_path, &ref, &e), 0);
+    assert_int_equal(ref.width, W);
+    as_image(&ours);
+    const char *dump = getenv("GK_LGV_DUMP"); /* a folder: what was measured, for looking at */
+    if (dump) {
+        char path[512];
+        const char *base = strrchr(ref_path, '/');
+        snprintf(path, sizeof path, "%s/lgv-%s", dump, base ? base + 1 : ref_path);
+        gk_image_write_float(path, &ours, NULL, &e);
+    }
+    unsigned char *mask = NULL;
+    if (mask_path) {
+        assert_int_equal(gk_image_read(mask_path, &mimg, &e), 0);
+        mask = gk_mask_from_image(&mimg);
+        assert_non_null(mask);
+    }
+    double eo = 0, er = 0;
+    for (int i = 0; i < W * HH; i++)
+        if (!mask || mask[i]) {
+            const float *o = &ours.pixels[i * 3], *f = &ref.pixels[i * ref.channels];
+            eo += gk_luminance(o[0], o[1], o[2]), er += gk_luminance(f[0], f[1], f[2]);
+        }
+    r->energy = eo / er;
+    gk_metrics m;
+    double exposure = gk_metrics_auto_exposure(&ref);
+    r->rel_in = 0;
+    if (mask) {
+        assert_int_equal(gk_metrics_compute_masked(&ref, &ours, exposure, mask, &m, &e), 0);
+        r->rel_in = m.rel_rmse;
+    }
+    assert_int_equal(gk_metrics_compute(&ref, &ours, exposure, &m, &e), 0);
+    r->rel_all = m.rel_rmse;
+    free(mask);
+    gk_image_free(&ref);
+    gk_image_free(&mimg);
+    gk_image_free(&ours);
+}
+
+static void caustic_on(const char *name, const char *budget, ruler *r, double *accepted)
+{
+    char ref[128], mask[128];
+    snprintf(ref, sizeof ref, "tests/references/%s-caustics.exr", name);
+    snprintf(mask, sizeof mask, "tests/references/%s-caustics-mask.png", name);
+    assert_int_equal(open_scene(&H, load(name)), 0);
+    frame(budget, GK_LGV_PART_SSLGV, 0);
+    measure(ref, mask, r);
+    const gk_lgv_stats *st = gk_lgv_get_stats(H.self);
+    *accepted = (double)st->sslgv_accepted / (double)st->caustic;
+    printf("# %s caustic (SSLGV) [%s]: energy in the mask %.3f, rel. RMSE inside %.3f, whole image %.3f; "
+           "%u caustic photons, %u accepted (%.3f)\n",
+           name, budget, r->energy, r->rel_in, r->rel_all, st->caustic, st->sslgv_accepted, *accepted);
+    close_scene(&H);
+}
+
+static void caustic_against_reference(void **state)
+{
+    (void)state;
+    ruler g, c;
+    double ga, ca;
+    caustic_on("glass", "lgv_photons=262144", &g, &ga);
+    caustic_on("caustic-ring", "lgv_photons=262144", &c, &ca);
+    if (getenv("GK_LGV_EXPLORE")) { /* the richer maps, for the README's numbers */
+        caustic_on("glass", "lgv_photons=262144,lgv_map_res=128", &g, &ga);
+        caustic_on("caustic-ring", "lgv_photons=262144,lgv_map_res=128,lgv_maps=64", &c, &ca);
+    }
+    /* Measured (llvmpipe, 0.26M photons, 27 maps of 64^2, SSLGV 256 wide): glass 0.709 in the mask,
+       1760 of 1868 caustic photons accepted (0.942; the rest land off screen); before the acceptance
+       fixes (x_p at the photon's own screen position, hits on the map's surface, h at least the
+       map's texel footprint) 0.189 with 524 accepted. caustic-ring 0.555 (most of its caustic
+       photons land off screen at the references' view). The issue's target, within 15% of the
+       reference, is NOT met: glass's 30-pixel mask is the focus of the refractor map's 64^2
+       normals, blurred out of the mask; caustic-ring's concave ring needs several mirror bounces
+       on a 2 cm wall few texels of maps metres away see (B.5 item 1: pass-through 0.14).
+       Richer maps do not help (before the second march: map_res 128 gave glass 0.590,
+       caustic-ring with 64 maps 0.374). Bounds: the measurements +- 0.05, so the acceptance
+       fixes cannot silently regress. */
+    assert_true(g.energy > 0.66 && g.energy < 0.76);
+    assert_true(ga > 0.92);
+    assert_true(c.energy > 0.50 && c.energy < 0.61);
+}
+
+static double mean_luminance(void)
+{
+    double sum = 0;
+    for (int i = 0; i < W * HH; i++)
+        sum += gk_luminance(H.img[4 * i], H.img[4 * i + 1], H.img[4 * i + 2]);
+    return sum / (W * HH);
+}
+
+/* Mean luminance of what lgv adds over `frames` frames of a fresh method on glass (frame 0's photon
+   hash keys first: the same photons for the same N, whatever ran before). */
+static double mean_over(const char *budget, int parts, int frames, unsigned *accepted)
+{
+    assert_int_equal(open_scene(&H, load("glass")), 0);
+    double sum = 0;
+    *accepted = 0;
+    for (int f = 0; f < frames; f++) {
+        frame(budget, parts, 0);
+        sum += mean_luminance();
+        *accepted += gk_lgv_get_stats(H.self)->sslgv_accepted;
+    }
+    close_scene(&H);
+    return sum / frames;
+}
+
+/* B.5 item 13: the energy does not depend on N (eq. 4's errata fixed: k instead of A C0^2 / 4N)
+   nor on C0 (it only sets the SSLGV's acceptance radius h and the reach of its diffusion). N is
+   varied at the same total of 1M photons (16, 4, 1 frames), so each estimate has ~7,000 caustic
+   photons (Poisson noise ~1.2%) and ~0.5M LGV injections; C0 on the same photons (1M). */
+static void energy_constant_in_n_and_c0(void **state)
+{
+    (void)state;
+    static const char *const counts[3] = {"lgv_photons=65536", "lgv_photons=262144", "lgv_photons=1048576"};
+    static const int frames[3] = {16, 4, 1};
+    static const float c0s[3] = {0.5f, 1.0f, 2.0f};
+    double lgv[3], ssn[3], ssc[3];
+    unsigned acc[3], dummy;
+    for (int i = 0; i < 3; i++) {
+        lgv[i] = mean_over(counts[i], GK_LGV_PART_LGV, frames[i], &dummy);
+        ssn[i] = mean_over(counts[i], GK_LGV_PART_SSLGV, frames[i], &dummy);
+    }
+    for (int i = 0; i < 3; i++) {
+        C0 = c0s[i];
+        ssc[i] = mean_over("lgv_photons=1048576", GK_LGV_PART_SSLGV, 1, &acc[i]);
+    }
+    C0 = 1.0f;
+    printf("# glass, mean indirect (LGV) at N = 65536 / 262144 / 1048576: %.5f / %.5f / %.5f (ratios %.4f %.4f)\n",
+           lgv[0], lgv[1], lgv[2], lgv[0] / lgv[1], lgv[2] / lgv[1]);
+    printf("# glass, mean caustic (SSLGV) at N = 65536 / 262144 / 1048576: %.5f / %.5f / %.5f (ratios %.4f %.4f)\n",
+           ssn[0], ssn[1], ssn[2], ssn[0] / ssn[1], ssn[2] / ssn[1]);
+    printf("# glass, mean caustic (SSLGV) at C0 = 0.5 / 1 / 2: %.5f / %.5f / %.5f (ratios %.4f %.4f); accepted %u / %u / %u\n",
+           ssc[0], ssc[1], ssc[2], ssc[0] / ssc[1], ssc[2] / ssc[1], acc[0], acc[1], acc[2]);
+    for (int i = 0; i < 3; i += 2) { /* the issue's tolerance, against 262144 photons and C0 = 1 */
+        assert_true(fabs(lgv[i] / lgv[1] - 1.0) <= 0.02);
+        assert_true(fabs(ssn[i] / ssn[1] - 1.0) <= 0.02);
+        assert_true(fabs(ssc[i] / ssc[1] - 1.0) <= 0.02);
+    }
+}
+
+/* Seed Fig. 9, the LGV-size trade-off: the indirect light (the LGV's eq. 7 lookup, no caustic) against
+   glass-indirect.exr per lgv_size, at 1M photons (4 frames of 262144 averaged: the photon noise well
+   below the grid's error). The time side is the bench's (tools/bench.sh, sweep lgv). */
+static void lgv_size_tradeoff(void **state)
+{
+    (void)state;
+    static const char *const sizes[3] = {"16", "32", "48"};
+    double err[3], ratio[3];
+    for (int i = 0; i < 3; i++) {
+        char budget[96];
+        snprintf(budget, sizeof budget, "lgv_photons=262144,lgv_size=%s", sizes[i]);
+        assert_int_equal(open_scene(&H, load("glass")), 0);
+        static float sum[W * HH * 4];
+        memset(sum, 0, sizeof sum);
+        for (int f = 0; f < 4; f++) {
+            frame(budget, GK_LGV_PART_LGV, 0);
+            for (int k = 0; k < W * HH * 4; k++)
+                sum[k] += 0.25f * H.img[k];
+        }
+        memcpy(H.img, sum, sizeof sum);
+        const gk_lgv_stats *st = gk_lgv_get_stats(H.self);
+        printf("# lgv_size=%s: dims %dx%dx%d, cell %.4f m; last frame: %u ray segments, %u injected, %u escaped\n", sizes[i],
+               st->dims[0], st->dims[1], st->dims[2], st->cell, st->rays, st->injected, st->escaped);
+        ruler r;
+        measure("tests/references/glass-indirect.exr", NULL, &r);
+        err[i] = r.rel_all, ratio[i] = r.energy;
+        close_scene(&H);
+    }
+    printf("# glass indirect (LGV, no gathering iterations) vs glass-indirect.exr: rel. RMSE %.3f / %.3f / %.3f at "
+           "16 / 32 / 48 cells; energy ratio %.3f / %.3f / %.3f\n",
+           err[0], err[1], err[2], ratio[0], ratio[1], ratio[2]);
+    /* Measured (llvmpipe, 4 x 262144 photons): rel. RMSE 0.716 / 0.763 / 0.796, energy 0.621 / 0.594 /
+       0.580 (0.540 / 0.515 / 0.503 before hits just outside the grid went to its boundary cells and
+       the tracer's second march). Fig. 9's trend (error falling as the grid grows) is NOT
+       reproduced: without gathering iterations eq. 7 is a density estimate over one cell, whose
+       photon noise grows as the cells shrink faster than its blur falls at this photon count. The
+       energy is still short of the reference's at every size: photons the tracer loses (no hit
+       for 9.9% of photon-like rays that meet a surface, every bounce) and what else the README
+       lists. Bounds: the measurements + 0.03 (rel. RMSE) and the energy's independence of the
+       grid size, within 8% (the normalisation k does not depend on l). */
+    assert_true(err[0] < 0.75 && err[1] < 0.80 && err[2] < 0.83);
+    for (int i = 0; i < 3; i++)
+        assert_true(fabs(ratio[i] / ratio[1] - 1.0) < 0.08);
+}
+
+/* B.5 item 6, temporal discontinuity: a static scene at the default 65536 photons, a new photon
+   hash key every frame (the method's own frame index): the per-pixel temporal standard deviation of
+   the indirect light (LGV) over 8 frames, relative to its mean, over the pixels the LGV lights
+   (mean above 1% of the brightest pixel's). And the fixed-point injection's determinism: the same
+   frame rendered twice by two fresh instances is identical, bit for bit. */
+static void temporal_noise_and_determinism(void **state)
+{
+    (void)state;
+    enum { FRAMES = 8 };
+    static float m1[W * HH], m2[W * HH], first[W * HH * 4];
+    memset(m1, 0, sizeof m1), memset(m2, 0, sizeof m2);
+    assert_int_equal(open_scene(&H, load("glass")), 0);
+    for (int f = 0; f < FRAMES; f++) {
+        frame(NULL, GK_LGV_PART_LGV, 0);
+        if (f == 0)
+            memcpy(first, H.img, sizeof first);
+        for (int i = 0; i < W * HH; i++) {
+            float l = gk_luminance(H.img[4 * i], H.img[4 * i + 1], H.img[4 * i + 2]);
+            m1[i] += l / FRAMES, m2[i] += l * l / FRAMES;
+        }
+    }
+    close_scene(&H);
+    assert_int_equal(open_scene(&H, load("glass")), 0);
+    frame(NULL, GK_LGV_PART_LGV, 0);
+    int same = memcmp(first, H.img, sizeof first) == 0;
+    close_scene(&H);
+    float peak = 0;
+    for (int i = 0; i < W * HH; i++)
+        peak = fmaxf(peak, m1[i]);
+    double sum = 0;
+    int n = 0;
+    for (int i = 0; i < W * HH; i++)
+        if (m1[i] > 0.01f * peak) {
+            sum += sqrt(fmax(m2[i] - m1[i] * m1[i], 0.0)) / m1[i];
+            n++;
+        }
+    printf("# glass, LGV at 65536 photons, 8 frames with new photons: mean relative temporal std %.4f over %d pixels; "
+           "the same frame twice identical: %s\n", sum / n, n, same ? "yes" : "no");
+    /* Measured (llvmpipe): 0.293 over 14734 pixels (eq. 7 without gathering iterations is a one-cell
+       density estimate: ~0.3 relative flicker at the default photons, the seed's "temporal
+       discontinuity"); identical twice. Bound: the measurement + 0.04. */
+    assert_true(same);
+    assert_true(sum / n < 0.33);
 }
 
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(tracer_against_exact_rays),
+        cmocka_unit_test(caustic_against_reference),
+        cmocka_unit_test(energy_constant_in_n_and_c0),
+        cmocka_unit_test(lgv_size_tradeoff),
+        cmocka_unit_test(temporal_noise_and_determinism),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -17,6 +17,8 @@ typedef struct gk_lgv_debug {
     int parts;         /* GK_LGV_PART_*: what the lookup adds (tests measure them apart) */
     int itp_mode;      /* GK_LGV_ITP_ANGLE (the seed) or GK_LGV_ITP_PLANAR (Fig. 4's comparison) */
     unsigned seed;     /* added to the frame index in the photons' hash keys */
+    float c0;          /* the SSLGV's bandwidth factor C0 of h = C0 sqrt(A / N) (default LGV_C0) */
+    bool snap_hits;    /* diffuse hits moved onto the surface the map's texel holds (default; false: the secant's point) */
 } gk_lgv_debug;
 
 typedef struct gk_lgv_stats {

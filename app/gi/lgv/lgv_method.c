@@ -53,6 +53,8 @@ void gk_lgv_default_debug(gk_lgv_debug *d)
     memset(d, 0, sizeof *d);
     d->parts = GK_LGV_PART_ALL;
     d->itp_mode = GK_LGV_ITP_ANGLE;
+    d->snap_hits = true;
+    d->c0 = LGV_C0;
 }
 
 static void *create(const gk_gi_context *ctx, gk_err *e)

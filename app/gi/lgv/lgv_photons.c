@@ -54,7 +54,7 @@ static const gk_uniform_field tracer_fields[] = {
 /* lgv/trace.comp's own */
 typedef struct trace_uniforms {
     GLint u_probe, u_photons, u_first, u_frame, u_light_kind, u_light_pos, u_light_dir, u_light_u, u_light_v, u_cone,
-        u_power, u_bounces, u_grid_min, u_cell, u_dims, u_inject_scale, u_fixed, u_caustic_cap;
+        u_power, u_bounces, u_grid_min, u_cell, u_dims, u_inject_scale, u_fixed, u_caustic_cap, u_snap;
 } trace_uniforms;
 static const gk_uniform_field trace_fields[] = {
     GK_UNIFORM(trace_uniforms, u_probe),       GK_UNIFORM(trace_uniforms, u_photons),
@@ -66,6 +66,7 @@ static const gk_uniform_field trace_fields[] = {
     GK_UNIFORM(trace_uniforms, u_grid_min),    GK_UNIFORM(trace_uniforms, u_cell),
     GK_UNIFORM(trace_uniforms, u_dims),        GK_UNIFORM(trace_uniforms, u_inject_scale),
     GK_UNIFORM(trace_uniforms, u_fixed),       GK_UNIFORM(trace_uniforms, u_caustic_cap),
+    GK_UNIFORM(trace_uniforms, u_snap),
 };
 
 int lgv_bind_tracer(lgv_state *s, GLuint prog, gk_err *e)
@@ -202,6 +203,7 @@ int lgv_trace_photons(lgv_state *s, const gk_gi_frame *f, gk_err *e)
     glUniform1f(u->u_inject_scale, LGV_INJECT_SCALE);
     glUniform1f(u->u_fixed, s->fixed_scale);
     glUniform1i(u->u_caustic_cap, cap);
+    glUniform1i(u->u_snap, s->dbg.snap_hits ? 1 : 0);
     unsigned first = 0;
     int left = s->photons;
     for (int i = 0; i < n; i++) {

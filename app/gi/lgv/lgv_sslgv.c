@@ -81,7 +81,7 @@ int lgv_sslgv(lgv_state *s, const gk_gi_frame *f, gk_err *e)
         glUnmapBuffer(GL_SHADER_STORAGE_BUFFER);
     }
     /* h = C0 sqrt(A / (p N)): A the scene's surface area, N the photons cast, p = 1 */
-    s->h = LGV_C0 * sqrtf(s->area / (float)(s->photons > 0 ? s->photons : 1));
+    s->h = s->dbg.c0 * sqrtf(s->area / (float)(s->photons > 0 ? s->photons : 1));
     glUseProgram(inj);
     bind_depth(f, iu->u_gb_depth, 0, f->gbuf_depth);
     bind_depth(f, iu->u_gb_normal, 1, f->gbuf_normal);
