@@ -125,16 +125,24 @@ em=$(json_field rel_rmse "$TMP/alpha-mask.json")
 eo=$(json_field rel_rmse "$TMP/alpha-opaque.json")
 check "the mask adds no error against the tracer (rel_rmse $em, the opaque control $eo)" \
     awk -v m="$em" -v o="$eo" 'BEGIN { exit !(m <= 1.05 * o) }'
-# The holes are in both pictures: each renderer's masked image differs from its opaque control by
-# far more than the tracer's noise (measured 0.48 for the tracer; its noise about 0.1).
+# The holes are in both pictures: the tracer's masked image differs from its opaque control by
+# far more than the tracer's own noise (the control against itself at another seed, measured here),
+# and the rasterizer's masked-vs-opaque difference is the tracer's (the same holes, the same wall
+# seen through them). Under the default studio (environment + key light, since h-env; 0.48 under the
+# former three directional lights) measured: tracer 0.164, its noise 0.029, rasterizer 0.157.
+# Bounds: the tracer's difference over 3x its noise; the rasterizer's within 25% of the tracer's.
+"$GIKIOSK" reference --scenes-dir $DIR --scene alpha-opaque --size 160x120 --spp 512 --seed 2 \
+    --out "$TMP/alpha-opaque-ref2.exr" 2>/dev/null
+"$GIKIOSK" compare "$TMP/alpha-opaque-ref1.exr" "$TMP/alpha-opaque-ref2.exr" --json >"$TMP/an.json"
+an=$(json_field rel_rmse "$TMP/an.json")
 "$GIKIOSK" compare "$TMP/alpha-opaque-ref1.exr" "$TMP/alpha-mask-ref1.exr" --json >"$TMP/am.json"
 am=$(json_field rel_rmse "$TMP/am.json")
-check "the tracer cuts holes the opaque control does not have (rel_rmse $am, measured 0.48)" \
-    awk -v r="$am" 'BEGIN { exit !(r > 0.3) }'
+check "the tracer cuts holes the opaque control does not have (rel_rmse $am, over 3x its noise $an)" \
+    awk -v r="$am" -v n="$an" 'BEGIN { exit !(r != "" && n != "" && r > 3 * n) }'
 "$GIKIOSK" compare "$TMP/alpha-opaque-gpu.exr" "$TMP/alpha-mask-gpu.exr" --json >"$TMP/amg.json"
 amg=$(json_field rel_rmse "$TMP/amg.json")
-check "the G-buffer and shadow maps cut them too (rel_rmse $amg)" \
-    awk -v r="$amg" 'BEGIN { exit !(r > 0.3) }'
+check "the G-buffer and shadow maps cut the same holes (rel_rmse $amg, the tracer's $am within 25%)" \
+    awk -v r="$amg" -v t="$am" 'BEGIN { exit !(r != "" && t != "" && r >= 0.75 * t && r <= 1.25 * t) }'
 
 # The normal maps change the picture (tilted toward +u the quad faces the key light more, toward
 # +v less), so agreeing with the reference above is about the map, not about a flat quad (which
