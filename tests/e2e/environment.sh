@@ -69,9 +69,11 @@ check "the tracer lights env-studio by its environment (mean ratio $(json_field 
 # (the lights shadowed by cssm_env, render_env.c; with #11's slope-scaled CSSM they lost their
 # contact shadows: 16 lights 0.104 / 1.049; the thesis's CSSM 0.099 / 1.031)
 # The residual ambient is unshadowed (no sky occlusion under the objects): most of what is left at
-# 32. Bounds: every N within 0.13 and its mean within 6%; 32 lights at least 0.01 better than 4
+# 32. Bounds: each N's rel_rmse its measured value + 12% (4: 0.099, 16: 0.080, 32: 0.074; the
+# slope-scaled CSSM's 0.104 at 16 fails), its mean ratio in [0.97, 1.04] (the residual ambient
+# only adds light; 1.049 with the slope-scaled CSSM fails); 32 lights at least 0.01 better than 4
 # (measured 0.022; the render is deterministic, the margin is for another Mesa).
-for n in 4 32; do
+for n in 4 16 32; do
     "$GIKIOSK" run --platform mock --scenes-dir "$D" --scene env-studio --method none --frames 2 --size 160x120 \
         --budget render_scale=1,shadow=pcss,shadow_map=1024,shadow_subdiv=3,env_lights=$n \
         --capture "$TMP/n$n" --hdr >/dev/null 2>&1
@@ -82,8 +84,9 @@ for n in 4 32; do
     eval "err$n=$(json_field rel_rmse "$TMP/n$n.json")"
     ratio=$(json_field mean_ratio "$TMP/n$n.json")
     echo "# env_lights=$n: rel_rmse $(eval echo \$err$n), mean_ratio $ratio"
-    check "env_lights=$n: rel_rmse within 0.13" awk -v e="$(eval echo \$err$n)" 'BEGIN { exit !(e <= 0.13) }'
-    check "env_lights=$n: mean ratio $ratio within 6%" awk -v r="$ratio" 'BEGIN { exit !(r >= 0.94 && r <= 1.06) }'
+    case $n in 4) bound=0.099 ;; 16) bound=0.080 ;; *) bound=0.074 ;; esac
+    check "env_lights=$n: rel_rmse $(eval echo \$err$n) within $bound" awk -v e="$(eval echo \$err$n)" -v b=$bound 'BEGIN { exit !(e != "" && e <= b) }'
+    check "env_lights=$n: mean ratio $ratio in [0.97, 1.04]" awk -v r="$ratio" 'BEGIN { exit !(r != "" && r >= 0.97 && r <= 1.04) }'
 done
 check "32 lights are more accurate than 4 ($err32 vs $err4)" awk -v a="$err32" -v b="$err4" 'BEGIN { exit !(a <= b - 0.01) }'
 # A uniform environment (L = 0.5 x intensity 2 = 1 nit) over a Lambertian quad (specularFactor 0,
