@@ -196,39 +196,15 @@ static void shipped_table_has_every_knob_level(void **state)
        once every method's knobs passed 32 */
     assert_true(b.n < GK_MAX_KNOBS);
     assert_true(gk_budget_find(&b, "lightmap_sync") >= 0);
-    /* Default rows only, named here so it cannot spread unnoticed: the methods and scenes that
-       joined this stop were calibrated with SWEEP=render_scale=1 (tools/calibrate.sh; the full sweep
-       of the three new methods takes the better part of an hour on llvmpipe). Their knobs move by
-       the scheduler's priors and step responses until the next full `make calibrate`. */
-    static const char *const default_only_methods[] = {"radiosity", "lgv", "volcaustics"};
-    static const char *const default_only_scenes[] = {"glass", "caustic-ring-fog", "env-studio", "glass-fog"};
-    /* Knobs added after the last full calibration, named so the list cannot grow unnoticed:
-       env_lights (the environment's split, render_env.h) changes nothing on scenes without an
-       environment; its rows come with the next full `make calibrate`. */
-    static const char *const default_only_knobs[] = {"env_lights"};
-    int checked = 0, default_only = 0;
+    int checked = 0;
     for (int i = 0; i < c.n; i++) {
         const gk_calib_row *d = &c.rows[i];
         if (d->knob[0])
             continue;
-        bool skip = false;
-        for (size_t k = 0; k < sizeof default_only_methods / sizeof *default_only_methods; k++)
-            skip = skip || strcmp(d->method, default_only_methods[k]) == 0;
-        for (size_t k = 0; k < sizeof default_only_scenes / sizeof *default_only_scenes; k++)
-            skip = skip || strcmp(d->scene, default_only_scenes[k]) == 0;
-        if (skip) {
-            default_only++;
-            continue;
-        }
         for (int k = 0; k < b.n; k++) {
             const gk_knob_def *def = b.def[k];
             const char *owner = def->owner ? def->owner : "";
             if (def->fixed || (strcmp(owner, "render") != 0 && strcmp(owner, d->method) != 0))
-                continue;
-            bool knob_default_only = false;
-            for (size_t q = 0; q < sizeof default_only_knobs / sizeof *default_only_knobs; q++)
-                knob_default_only = knob_default_only || strcmp(def->name, default_only_knobs[q]) == 0;
-            if (knob_default_only)
                 continue;
             int top = def->auto_max_level > 0 ? def->auto_max_level : def->n_values - 1;
             for (int l = 0; l <= top; l++) {
@@ -242,7 +218,7 @@ static void shipped_table_has_every_knob_level(void **state)
             }
         }
     }
-    print_message("# %d knob-level rows checked; %d default-only rows (named above)\n", checked, default_only);
+    print_message("# %d knob-level rows checked\n", checked);
     assert_true(checked > 100);
     gk_calibration_free(&c);
 }
