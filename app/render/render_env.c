@@ -18,8 +18,8 @@ bool gk_render_env_light_on(const gk_scene *s, int li, int env_lights)
     return li - s->environment.env_light_first < gk_render_env_lights_drawn(s, env_lights);
 }
 
-/* CSSM at 256² as the thesis shadows its environment lights, with the per-layer depth range but
-   without the slope-scaled shift (shadow_cssm.c says why, with the measurement) */
+/* CSSM at 256² as the thesis shadows its environment lights, with the per-layer depth range and the
+   slope-scaled shift capped at 5 cm (shadow_cssm.c says why, with the measurement) */
 const gk_shadow_method *gk_render_env_shadow_method(void)
 {
     return gk_shadow_method_find("cssm_env");

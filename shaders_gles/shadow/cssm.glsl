@@ -32,6 +32,17 @@
 #ifndef CSSM_SLOPE
 #define CSSM_SLOPE 1
 #endif
+// CSSM_SLOPE_MAX (metres; default: none): the slope-scaled shift is at most this far. The
+// environment's lights (cssm_env, 0.05) need it: a sky patch tens of degrees across has kernels up
+// to a quarter of the map, and the shift over them outgrew the objects' contact shadows (the search
+// found no blocker and returned lit). Measured at env_lights 16, 160x120 (method none; env-studio
+// against env-studio-direct.exr, sampler-wrap.glb's lone quad against the tracer, whose own noise is
+// 0.038): no cap 0.104 / 0.029, 0.1 m 0.080 / 0.050, 0.05 m 0.076 / 0.057, 0.02 m 0.074 / 0.062,
+// no shift at all 0.071 / 0.070 -- the cap trades the studio's contact shadows against the quad
+// shadowing itself under grazing sky lights; 0.05 m keeps both within their tests.
+#ifndef CSSM_SLOPE_MAX
+#define CSSM_SLOPE_MAX 1e6
+#endif
 const highp vec4 CSSM_CK = 3.14159265358979 * vec4(1.0, 3.0, 5.0, 7.0);
 uniform highp vec4 u_cssm; // depth scale (z_c = x * z), receiver shift, SAT 1/q, unused
 // Per layer the (min, max) of the normalised depth the map holds (cssm_range.comp): the bases were
@@ -164,9 +175,11 @@ highp float shadow_visibility(highp vec3 world_pos, highp vec3 world_normal)
 #else
     highp vec2 slope = vec2(0.0);
 #endif
+    // CSSM_SLOPE_MAX in z_c units
+    highp float shift_max = CSSM_SLOPE_MAX * u_cssm.x / ((u_shadow_proj.y - u_shadow_proj.x) * (range.y - range.x));
     // Stage 1: initial kernel at the near plane; filtered test and CSM-Z over it.
     highp vec2 wi = gk_soft_kernel(c.d, u_shadow_proj.x);
-    highp float d1 = d - dot(slope, wi);
+    highp float d1 = d - min(dot(slope, wi), shift_max);
     cssm_basis b = cssm_fetch(c.uv, wi, layer, true);
     highp float occ = 1.0 - cssm_lit(b, d1);
     if (occ < 1e-3)
@@ -176,7 +189,7 @@ highp float shadow_visibility(highp vec3 world_pos, highp vec3 world_normal)
     highp float zavg_world = gk_soft_denorm(range.x + (zavg / u_cssm.x) * (range.y - range.x));
     highp vec2 wf = gk_soft_kernel(c.d, zavg_world);
     // Stage 3: filtered test over f_w, ringing suppression, contact sharpening.
-    highp float s = cssm_lit(cssm_fetch(c.uv, wf, layer, false), d - dot(slope, wf));
+    highp float s = cssm_lit(cssm_fetch(c.uv, wf, layer, false), d - min(dot(slope, wf), shift_max));
     s = clamp(CSSM_ALPHA * (s - 0.5) + 0.5, 0.0, 1.0);
     highp float p = 1.0 + CSSM_SHARP_A * exp(-CSSM_SHARP_B * max(c.d - zavg_world, 0.0));
     return pow(s, p);
