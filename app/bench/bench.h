@@ -26,7 +26,7 @@ typedef struct gk_bench_opts {
     char scenes[512];          /* comma list; "" = cornell,shadow-planes */
     char methods[256];         /* comma list; "" = every method that applies */
     char sweep[1024];          /* "KNOB=V1,V2;KNOB=V1,V2" (cartesian); "" = the default per method */
-    char budget[256];          /* "KNOB=VALUE,..." pinned in every configuration (--budget), before the sweep's */
+    char budget[1024];         /* "KNOB=VALUE,..." pinned in every configuration (--budget), before the sweep's */
     int width, height;         /* 0 = the reference's size */
     int frames, warmup;        /* timed frames per configuration, untimed frames before them */
     bool rebuild_gi;           /* GI methods redo their static work (voxelize, inject...) every frame */

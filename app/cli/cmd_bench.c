@@ -29,7 +29,8 @@ static void usage(FILE *f)
           "Defaults: scenes cornell,shadow-planes; every method that applies; for method none the sweep\n"
           "shadow x shadow_map, for a GI method each of its knobs one at a time; size from the reference;\n"
           "5 frames after 2 warm-up frames. On a machine without a GPU the times are llvmpipe CPU times:\n"
-          "read them as ratios between configurations measured in the same run.\n"
+          "read them as ratios between configurations measured in the same run. The scene clock stands\n"
+          "at 0 in every frame: nothing animates and lightmap's IIM blend shows the gathered IIM at once.\n"
           "--one-ruler: every method of a scene is measured against one reference (SCENE-1bounce.exr\n"
           "where it exists, else SCENE.exr), so the methods compare on one axis (default: each against\n"
           "what it computes; none against SCENE-direct.exr).\n"
@@ -51,6 +52,13 @@ static int parse_size(const char *s, int *w, int *h)
 {
     char tail;
     return sscanf(s, "%dx%d%c", w, h, &tail) == 2 && *w > 0 && *h > 0 && *w <= 8192 && *h <= 8192 ? 0 : -1;
+}
+
+/* A value longer than its field is refused, not cut: a cut --budget once pinned
+   "lightmap_workers=c" and failed on a knob value nobody wrote. */
+static int copy_value(char *dst, size_t size, const char *v)
+{
+    return (size_t)snprintf(dst, size, "%s", v) < size ? 0 : 2;
 }
 
 static int parse_count(const char *s, int lo, int hi, int *out)
@@ -142,19 +150,19 @@ int gk_cmd_bench(int argc, char **argv)
         const char *v = argv[++i];
         int bad = 0;
         if (!strcmp(a, "--scenes"))
-            snprintf(o.scenes, sizeof o.scenes, "%s", v);
+            bad = copy_value(o.scenes, sizeof o.scenes, v);
         else if (!strcmp(a, "--methods"))
-            snprintf(o.methods, sizeof o.methods, "%s", v);
+            bad = copy_value(o.methods, sizeof o.methods, v);
         else if (!strcmp(a, "--budget"))
-            snprintf(o.budget, sizeof o.budget, "%s", v);
+            bad = copy_value(o.budget, sizeof o.budget, v);
         else if (!strcmp(a, "--sweep"))
-            snprintf(o.sweep, sizeof o.sweep, "%s", v);
+            bad = copy_value(o.sweep, sizeof o.sweep, v);
         else if (!strcmp(a, "--out"))
-            snprintf(o.out_dir, sizeof o.out_dir, "%s", v);
+            bad = copy_value(o.out_dir, sizeof o.out_dir, v);
         else if (!strcmp(a, "--scenes-dir"))
-            snprintf(o.scenes_dir, sizeof o.scenes_dir, "%s", v);
+            bad = copy_value(o.scenes_dir, sizeof o.scenes_dir, v);
         else if (!strcmp(a, "--references"))
-            snprintf(o.refs_dir, sizeof o.refs_dir, "%s", v);
+            bad = copy_value(o.refs_dir, sizeof o.refs_dir, v);
         else if (!strcmp(a, "--shader-dir"))
             o.shader_dir = v;
         else if (!strcmp(a, "--size"))
@@ -182,7 +190,10 @@ int gk_cmd_bench(int argc, char **argv)
             return 2;
         }
         if (bad) {
-            fprintf(stderr, "gikiosk bench: %s: bad value '%s'\n", a, v);
+            if (bad == 2)
+                fprintf(stderr, "gikiosk bench: %s: value too long (%zu characters)\n", a, strlen(v));
+            else
+                fprintf(stderr, "gikiosk bench: %s: bad value '%s'\n", a, v);
             return 2;
         }
     }

@@ -144,4 +144,15 @@ expect_exit 0 "bench: --budget shadow=hard under a shadow_map sweep" "$GIKIOSK" 
 c_shadow=$(head -1 "$TMP/f/bench.csv" | tr ',' '\n' | grep -n '^shadow$' | cut -d: -f1)
 check "bench: every row ran with the pinned shadow=hard" \
     awk -F, -v c="$c_shadow" 'NR > 1 { n++; if ($c != "hard") bad = 1 } END { exit bad || n != 2 }' "$TMP/f/bench.csv"
+# A long --budget (a run's whole printed budget line, 281 characters) is taken whole: the field
+# was 256 characters and cut it to "...,lightmap_workers=c", refused as a value nobody wrote.
+long="render_scale=1,shadow=hard,shadow_map=1024,shadow_subdiv=3,gi_blend=4,env_lights=16,lightmap_groups=77,lightmap_aim=80,lightmap_iim=20,lightmap_gather=16,lightmap_texels=5,lightmap_sync=lockstep,lightmap_caustics=10000,lightmap_window=8,lightmap_workers=config,lightmap_count=float"
+expect_exit 0 "bench: a ${#long}-character --budget is taken whole" "$GIKIOSK" bench --scenes shadow-planes \
+    --methods none --budget "$long" --sweep "shadow_map=256" --frames 1 --warmup 0 --out "$TMP/g"
+c_count=$(head -1 "$TMP/g/bench.csv" | tr ',' '\n' | grep -n '^lightmap_count$' | cut -d: -f1)
+check "bench: the long --budget's last pin is in the row (lightmap_count=float)" \
+    awk -F, -v c="$c_count" 'NR == 2 { ok = $c == "float" } END { exit !ok }' "$TMP/g/bench.csv"
+expect_exit 2 "bench: a --budget longer than its 1,023 characters exits 2" "$GIKIOSK" bench --scenes shadow-planes \
+    --budget "$long,$long,$long,$long" --out "$TMP/h"
+stderr_has "too long" "bench: the message says the value is too long"
 finish
