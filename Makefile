@@ -11,9 +11,9 @@ CXX     ?= c++
 DEB_PACKAGES := build-essential pkg-config libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri \
 	libdrm-dev libgbm-dev libgpiod-dev libtinygltf-dev libopenimageio-dev openimageio-tools \
 	libinih-dev libcmocka-dev glslang-tools gnuplot-nox fonts-dejavu-core libstb-dev \
-	clang libclang-rt-14-dev jq python3 systemd
+	clang libclang-rt-14-dev jq python3 systemd libdraco-dev nlohmann-json3-dev
 
-PKGS := egl glesv2 gbm libdrm libgpiod tinygltf OpenImageIO inih stb
+PKGS := egl glesv2 gbm libdrm libgpiod tinygltf OpenImageIO inih stb draco
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
 
@@ -47,11 +47,11 @@ BIN  := $(BUILD)/gikiosk
 UNIT_SRCS := $(shell find tests/unit -name 'test_*.c' 2>/dev/null | LC_ALL=C sort)
 GPU_SRCS  := $(shell find tests/gpu -name 'test_*.c' 2>/dev/null | LC_ALL=C sort)
 FAKE_SRCS := $(shell find tests/fakes -name '*.c' 2>/dev/null | LC_ALL=C sort)
-TESTLIB_SRCS := $(shell find tests/common -name '*.c' 2>/dev/null | LC_ALL=C sort)
+TESTLIB_SRCS := $(shell find tests/common -name '*.c' -o -name '*.cpp' 2>/dev/null | LC_ALL=C sort)
 UNIT_BINS := $(UNIT_SRCS:tests/%.c=$(BUILD)/tests/%)
 GPU_BINS  := $(GPU_SRCS:tests/%.c=$(BUILD)/tests/%)
 FAKE_OBJS := $(FAKE_SRCS:%.c=$(BUILD)/obj/%.o)
-TESTLIB_OBJS := $(TESTLIB_SRCS:%.c=$(BUILD)/obj/%.o)
+TESTLIB_OBJS := $(addprefix $(BUILD)/obj/,$(addsuffix .o,$(basename $(TESTLIB_SRCS))))
 # Kept after the build: as intermediates make would delete them after the tests and print an
 # `rm` line after the suite's closing `N passed, N failed`.
 .SECONDARY: $(FAKE_OBJS) $(TESTLIB_OBJS)

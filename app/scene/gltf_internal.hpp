@@ -97,6 +97,15 @@ float *read_floats(Loader &L, const Model &m, int ai, const char *what, int type
 // An index of UNSIGNED_BYTE, _SHORT or _INT at q.
 uint32_t read_index(const unsigned char *q, int ctype);
 
+// gltf_draco.cpp: KHR_draco_mesh_compression primitives decoded into new buffers, their accessors
+// pointed at them (before the meshes are read).
+bool decode_draco(Loader &L, Model &m);
+// Debian's tinygltf is built without Draco and refuses an indices accessor without a bufferView,
+// which is what the extension writes: such an accessor is given the stream's bufferView as a
+// placeholder (decode_draco replaces it). True, with the patched file (text or GLB) in `patched`,
+// when something was patched.
+bool draco_placeholders(const unsigned char *data, size_t size, std::vector<unsigned char> &patched);
+
 // gltf_mesh.cpp
 bool read_primitive(Loader &L, const Model &m, int mi, int pi, const tinygltf::Primitive &p, int default_material,
                     gk_mesh *out);

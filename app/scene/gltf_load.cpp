@@ -158,7 +158,8 @@ gk_scene *convert(Loader &L, const Model &m, const char *base_dir)
 
 // The extensions the loader reads: a file may require these; any other required one is refused by
 // name, and any other one a file merely uses is logged by name (its effect is not shown).
-const char *const kSupportedExtensions[] = {"KHR_lights_punctual",        "KHR_materials_emissive_strength",
+const char *const kSupportedExtensions[] = {"KHR_draco_mesh_compression",
+                                            "KHR_lights_punctual",        "KHR_materials_emissive_strength",
                                             "KHR_materials_transmission", "KHR_materials_ior",
                                             "KHR_materials_specular",     "KHR_mesh_quantization",
                                             "KHR_texture_transform"};
@@ -193,6 +194,11 @@ gk_scene *load_bytes(const unsigned char *data, size_t size, const char *path, c
         loader.SetImageLoader(image_keep_embedded, nullptr);
         Model model;
         std::string err, warn;
+        std::vector<unsigned char> patched;
+        if (draco_placeholders(data, size, patched)) {
+            data = patched.data();
+            size = patched.size();
+        }
         bool glb = size >= 4 && memcmp(data, "glTF", 4) == 0;
         std::string dir = base_dir ? base_dir : "";
         bool ok = glb ? loader.LoadBinaryFromMemory(&model, &err, &warn, data, (unsigned)size, dir)
@@ -239,6 +245,8 @@ gk_scene *load_bytes(const unsigned char *data, size_t size, const char *path, c
         for (const std::string &x : model.extensionsRequired)
             if (x == "KHR_mesh_quantization")
                 L.quantization = true;
+        if (!decode_draco(L, model))
+            return nullptr;
         return convert(L, model, base_dir);
     } catch (const std::exception &ex) {
         L.fail("cannot parse the file (%s)", ex.what());

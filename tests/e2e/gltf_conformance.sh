@@ -31,8 +31,13 @@ check "the ignored extension and the orthographic camera are named" \
     grep -q "^gltf skips: *KHR_materials_clearcoat; 1 orthographic cameras never used" "$TMP/stdout"
 check "a file with a light gets no studio" grep -q "^lights: *1$" "$TMP/stdout"
 
-expect_exit 2 "a required extension gikiosk does not read exits 2" "$GIKIOSK" scenes --check $DIR/requires-draco.gltf
-stderr_has "requires-draco.gltf: requires extension 'KHR_draco_mesh_compression'" "naming the file and the extension"
+# Draco: the fuzz corpus's seed (tests/unit/test_gltf_draco.c's grid as text, extension required)
+expect_exit 0 "scenes --check on a Draco-compressed primitive" "$GIKIOSK" scenes --check tests/fuzz/corpus/gltf/draco-grid.gltf
+check "it reads the extension and counts the decoded primitive" \
+    grep -q "^gltf reads: *KHR_draco_mesh_compression; 1 Draco-compressed primitives decoded" "$TMP/stdout"
+check "the grid's 512 triangles are drawn" grep -q "^triangles: *512 drawn" "$TMP/stdout"
+expect_exit 2 "a required extension gikiosk does not read exits 2" "$GIKIOSK" scenes --check $DIR/requires-meshopt.gltf
+stderr_has "requires-meshopt.gltf: requires extension 'EXT_meshopt_compression'" "naming the file and the extension"
 expect_exit 2 "a KTX2 image exits 2" "$GIKIOSK" scenes --check $DIR/texture-ktx2.glb
 stderr_has "texture-ktx2.glb: texture 0 .*KHR_texture_basisu" "naming the file, the texture and the extension"
 expect_exit 0 "scenes --check on KHR_texture_transform" "$GIKIOSK" scenes --check $DIR/texture-transform.glb
