@@ -11,11 +11,13 @@ CXX     ?= c++
 DEB_PACKAGES := build-essential pkg-config libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri \
 	libdrm-dev libgbm-dev libgpiod-dev libtinygltf-dev libopenimageio-dev openimageio-tools \
 	libinih-dev libcmocka-dev glslang-tools gnuplot-nox fonts-dejavu-core libstb-dev \
-	clang libclang-rt-14-dev jq python3 systemd libdraco-dev nlohmann-json3-dev
+	clang libclang-rt-14-dev jq python3 systemd libdraco-dev nlohmann-json3-dev \
+	libmeshoptimizer-dev
 
 PKGS := egl glesv2 gbm libdrm libgpiod tinygltf OpenImageIO inih stb draco
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
-PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
+# libmeshoptimizer ships no pkg-config file
+PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null) -lmeshoptimizer
 
 # libgpiod v1 (Debian 12) or v2 (backports, Debian 13), chosen by the library's version.
 GPIOD_MAJOR = $(firstword $(subst ., ,$(shell pkg-config --modversion libgpiod 2>/dev/null)))

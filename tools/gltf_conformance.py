@@ -315,13 +315,14 @@ def main():
             d.j["extensionsUsed"] = ["KHR_texture_transform"]
         d.write_glb(name)
 
-    # Extensions: one required that gikiosk does not read (meshopt), refused by name. (Draco is
-    # read: tests/unit/test_gltf_draco.c encodes its streams with libdraco, which Python lacks here.)
+    # Extensions: one required that gikiosk does not read (GPU instancing), refused by name. (Draco
+    # and meshopt are read: tests/unit/test_gltf_draco.c and test_gltf_meshopt.c encode their
+    # streams with the C libraries, which Python lacks here.)
     d = Doc()
     pos = d.accessor("fff", [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0)], FLOAT, "VEC3", minmax=True)
     d.mesh_node([{"attributes": {"POSITION": pos}}], "tri")
-    d.j["extensionsUsed"] = d.j["extensionsRequired"] = ["EXT_meshopt_compression"]
-    d.write_gltf("requires-meshopt")
+    d.j["extensionsUsed"] = d.j["extensionsRequired"] = ["EXT_mesh_gpu_instancing"]
+    d.write_gltf("requires-instancing")
 
 
 if __name__ == "__main__":

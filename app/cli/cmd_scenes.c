@@ -94,6 +94,7 @@ static void print_gltf_use(const gk_scene_gltf_use *u)
         {u->quantized_accessors, "quantized accessors"},
         {u->strips_fans, "strips/fans converted to triangles"},
         {u->draco_primitives, "Draco-compressed primitives decoded"},
+        {u->meshopt_views, "meshopt-compressed bufferViews decoded"},
         {u->samplers, "textures with a non-default sampler"},
         {u->texture_transforms, "texture transforms"},
         {u->second_uv_slots, "textures on TEXCOORD_1"},

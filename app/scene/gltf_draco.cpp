@@ -5,13 +5,12 @@
 // The accessors keep what the file declares (type, component type, normalized, count): the
 // extension's spec says the decoded data must match them, so a mismatch is refused, not guessed.
 #include <draco/compression/decode.h>
-#include <nlohmann/json.hpp>
 
-#include <cstring>
 #include <map>
 #include <memory>
 
 #include "gltf_internal.hpp"
+#include "gltf_patch.hpp"
 
 namespace gkgltf {
 
@@ -175,23 +174,9 @@ bool decode_primitive(Loader &L, Model &m, int mi, int pi, std::map<int, Decoded
 
 } // namespace
 
-bool draco_placeholders(const unsigned char *data, size_t size, std::vector<unsigned char> &patched)
+bool draco_placeholders(nlohmann::json &j)
 {
-    if (!memmem(data, size, kDraco, sizeof kDraco - 1))
-        return false;
-    // A GLB's JSON chunk (header 12 bytes, then chunk length, 'JSON', the text), else the file.
-    bool glb = size >= 20 && memcmp(data, "glTF", 4) == 0;
-    size_t json_at = 0, json_len = size;
-    if (glb) {
-        uint32_t len0;
-        memcpy(&len0, data + 12, 4);
-        if (memcmp(data + 16, "JSON", 4) != 0 || len0 > size - 20)
-            return false; // tinygltf says what is wrong with it
-        json_at = 20, json_len = len0;
-    }
-    nlohmann::json j = nlohmann::json::parse(data + json_at, data + json_at + json_len, nullptr, false);
-    if (j.is_discarded() || !j.is_object() || !j.contains("meshes") || !j["meshes"].is_array() ||
-        !j.contains("accessors") || !j["accessors"].is_array())
+    if (!j.contains("meshes") || !j["meshes"].is_array() || !j.contains("accessors") || !j["accessors"].is_array())
         return false;
     nlohmann::json &acc = j["accessors"];
     bool changed = false;
@@ -211,28 +196,7 @@ bool draco_placeholders(const unsigned char *data, size_t size, std::vector<unsi
             changed = true;
         }
     }
-    if (!changed)
-        return false;
-    std::string text = j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
-    if (!glb) {
-        patched.assign(text.begin(), text.end());
-        return true;
-    }
-    while (text.size() % 4)
-        text.push_back(' ');
-    size_t rest = size - json_at - json_len; // the BIN chunk and anything after it, as they were
-    uint64_t total = 20 + text.size() + rest;
-    if (total > UINT32_MAX)
-        return false;
-    patched.resize((size_t)total);
-    memcpy(patched.data(), data, 12);
-    uint32_t total32 = (uint32_t)total, len0 = (uint32_t)text.size();
-    memcpy(patched.data() + 8, &total32, 4);
-    memcpy(patched.data() + 12, &len0, 4);
-    memcpy(patched.data() + 16, "JSON", 4);
-    memcpy(patched.data() + 20, text.data(), text.size());
-    memcpy(patched.data() + 20 + text.size(), data + json_at + json_len, rest);
-    return true;
+    return changed;
 }
 
 bool decode_draco(Loader &L, Model &m)

@@ -100,11 +100,13 @@ uint32_t read_index(const unsigned char *q, int ctype);
 // gltf_draco.cpp: KHR_draco_mesh_compression primitives decoded into new buffers, their accessors
 // pointed at them (before the meshes are read).
 bool decode_draco(Loader &L, Model &m);
-// Debian's tinygltf is built without Draco and refuses an indices accessor without a bufferView,
-// which is what the extension writes: such an accessor is given the stream's bufferView as a
-// placeholder (decode_draco replaces it). True, with the patched file (text or GLB) in `patched`,
-// when something was patched.
-bool draco_placeholders(const unsigned char *data, size_t size, std::vector<unsigned char> &patched);
+// gltf_meshopt.cpp: EXT_meshopt_compression bufferViews decoded into new buffers (before anything
+// reads a bufferView).
+bool decode_meshopt(Loader &L, Model &m);
+// gltf_patch.cpp: what Debian's tinygltf would refuse in a file using the two compression
+// extensions, patched in its JSON (text or a GLB's JSON chunk) before tinygltf parses it
+// (gltf_patch.hpp says what). True, with the patched file in `patched`, when something was.
+bool patch_for_tinygltf(const unsigned char *data, size_t size, std::vector<unsigned char> &patched);
 
 // gltf_mesh.cpp
 bool read_primitive(Loader &L, const Model &m, int mi, int pi, const tinygltf::Primitive &p, int default_material,

@@ -158,7 +158,7 @@ gk_scene *convert(Loader &L, const Model &m, const char *base_dir)
 
 // The extensions the loader reads: a file may require these; any other required one is refused by
 // name, and any other one a file merely uses is logged by name (its effect is not shown).
-const char *const kSupportedExtensions[] = {"KHR_draco_mesh_compression",
+const char *const kSupportedExtensions[] = {"EXT_meshopt_compression",     "KHR_draco_mesh_compression",
                                             "KHR_lights_punctual",        "KHR_materials_emissive_strength",
                                             "KHR_materials_transmission", "KHR_materials_ior",
                                             "KHR_materials_specular",     "KHR_mesh_quantization",
@@ -195,7 +195,7 @@ gk_scene *load_bytes(const unsigned char *data, size_t size, const char *path, c
         Model model;
         std::string err, warn;
         std::vector<unsigned char> patched;
-        if (draco_placeholders(data, size, patched)) {
+        if (patch_for_tinygltf(data, size, patched)) {
             data = patched.data();
             size = patched.size();
         }
@@ -245,7 +245,7 @@ gk_scene *load_bytes(const unsigned char *data, size_t size, const char *path, c
         for (const std::string &x : model.extensionsRequired)
             if (x == "KHR_mesh_quantization")
                 L.quantization = true;
-        if (!decode_draco(L, model))
+        if (!decode_meshopt(L, model) || !decode_draco(L, model))
             return nullptr;
         return convert(L, model, base_dir);
     } catch (const std::exception &ex) {

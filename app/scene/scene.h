@@ -195,6 +195,7 @@ typedef struct gk_scene_gltf_use {
     int quantized_accessors;   /* integer attributes read through KHR_mesh_quantization */
     int strips_fans;           /* primitives converted to triangle lists */
     int draco_primitives;      /* primitives decoded from KHR_draco_mesh_compression */
+    int meshopt_views;         /* bufferViews decoded from EXT_meshopt_compression */
     int not_drawn;             /* points and lines primitives */
     int orthographic_cameras;  /* loaded, never the view */
     int skins;                 /* nodes drawn at their node transform (no skinning) */

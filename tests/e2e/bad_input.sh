@@ -33,9 +33,9 @@ stderr_has "size 4096x4096 is beyond the mock's limit" "the cap is named"
 
 # --- glTF: a required extension gikiosk does not implement
 mkdir -p "$TMP/scene/sub" "$TMP/outside"
-printf '{"asset": {"version": "2.0"}, "extensionsUsed": ["EXT_meshopt_compression"], "extensionsRequired": ["EXT_meshopt_compression"]}\n' >"$TMP/scene/meshopt.gltf"
-expect_exit 2 "extensionsRequired EXT_meshopt_compression exits 2" $GIKIOSK scenes --check "$TMP/scene/meshopt.gltf"
-stderr_has "requires extension 'EXT_meshopt_compression'" "the extension is named"
+printf '{"asset": {"version": "2.0"}, "extensionsUsed": ["EXT_mesh_gpu_instancing"], "extensionsRequired": ["EXT_mesh_gpu_instancing"]}\n' >"$TMP/scene/instancing.gltf"
+expect_exit 2 "extensionsRequired EXT_mesh_gpu_instancing exits 2" $GIKIOSK scenes --check "$TMP/scene/instancing.gltf"
+stderr_has "requires extension 'EXT_mesh_gpu_instancing'" "the extension is named"
 printf '{"asset": {"version": "2.0"}, "extensionsUsed": ["KHR_lights_punctual"], "extensionsRequired": ["KHR_lights_punctual"]}\n' >"$TMP/scene/lights.gltf"
 expect_exit 0 "a supported required extension is accepted" $GIKIOSK scenes --check "$TMP/scene/lights.gltf"
 

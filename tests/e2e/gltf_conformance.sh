@@ -36,8 +36,13 @@ expect_exit 0 "scenes --check on a Draco-compressed primitive" "$GIKIOSK" scenes
 check "it reads the extension and counts the decoded primitive" \
     grep -q "^gltf reads: *KHR_draco_mesh_compression; 1 Draco-compressed primitives decoded" "$TMP/stdout"
 check "the grid's 512 triangles are drawn" grep -q "^triangles: *512 drawn" "$TMP/stdout"
-expect_exit 2 "a required extension gikiosk does not read exits 2" "$GIKIOSK" scenes --check $DIR/requires-meshopt.gltf
-stderr_has "requires-meshopt.gltf: requires extension 'EXT_meshopt_compression'" "naming the file and the extension"
+# meshopt: the fuzz corpus's seed (tests/unit/test_gltf_meshopt.c's grid, gltfpack's layout)
+expect_exit 0 "scenes --check on meshopt-compressed bufferViews" "$GIKIOSK" scenes --check tests/fuzz/corpus/gltf/meshopt-grid.gltf
+check "it reads both extensions and counts the decoded views" \
+    grep -q "^gltf reads: *EXT_meshopt_compression, KHR_mesh_quantization; .*4 meshopt-compressed bufferViews decoded" "$TMP/stdout"
+check "the grid's 512 triangles are drawn" grep -q "^triangles: *512 drawn" "$TMP/stdout"
+expect_exit 2 "a required extension gikiosk does not read exits 2" "$GIKIOSK" scenes --check $DIR/requires-instancing.gltf
+stderr_has "requires-instancing.gltf: requires extension 'EXT_mesh_gpu_instancing'" "naming the file and the extension"
 expect_exit 2 "a KTX2 image exits 2" "$GIKIOSK" scenes --check $DIR/texture-ktx2.glb
 stderr_has "texture-ktx2.glb: texture 0 .*KHR_texture_basisu" "naming the file, the texture and the extension"
 expect_exit 0 "scenes --check on KHR_texture_transform" "$GIKIOSK" scenes --check $DIR/texture-transform.glb

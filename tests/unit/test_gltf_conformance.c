@@ -182,7 +182,7 @@ static void orthographic_cameras_load_and_are_passed_over(void **state)
 static void required_extensions_not_read_are_refused_by_name(void **state)
 {
     (void)state;
-    expect_refused("requires-meshopt.gltf", "requires extension 'EXT_meshopt_compression'");
+    expect_refused("requires-instancing.gltf", "requires extension 'EXT_mesh_gpu_instancing'");
 }
 
 /* The studio (default_studio.c): the built-in environment plus one key light from the camera's
