@@ -16,6 +16,7 @@
 #include <string.h>
 
 #include "common/draco_encode.h"
+#include "common/grid_mesh.h"
 #include "scene/scene.h"
 
 #define GRID 16
@@ -27,45 +28,16 @@ static float pos[NV * 3], nrm[NV * 3], uv[NV * 2];
 static uint8_t rgba[NV * 4];
 static uint32_t idx[NT * 3];
 
-/* z = 0.2 sin(3x) cos(2y) over [0, 2] x [0, 1], normals from its gradient. */
+/* The shared grid (grid_mesh.h) with 8-bit colours: red along x, green along y. */
 static void make_grid(void)
 {
+    gk_test_grid(GRID, pos, nrm, 3, uv, 1.0f, 0.0f, idx);
     for (int j = 0; j <= GRID; j++)
         for (int i = 0; i <= GRID; i++) {
             int v = j * (GRID + 1) + i;
-            float x = 2.0f * (float)i / GRID, y = (float)j / GRID;
-            float z = 0.2f * sinf(3.0f * x) * cosf(2.0f * y);
-            float dzdx = 0.6f * cosf(3.0f * x) * cosf(2.0f * y), dzdy = -0.4f * sinf(3.0f * x) * sinf(2.0f * y);
-            float l = sqrtf(dzdx * dzdx + dzdy * dzdy + 1.0f);
-            pos[3 * v] = x, pos[3 * v + 1] = y, pos[3 * v + 2] = z;
-            nrm[3 * v] = -dzdx / l, nrm[3 * v + 1] = -dzdy / l, nrm[3 * v + 2] = 1.0f / l;
-            uv[2 * v] = (float)i / GRID, uv[2 * v + 1] = (float)j / GRID;
             rgba[4 * v] = (uint8_t)(i * 15), rgba[4 * v + 1] = (uint8_t)(j * 15), rgba[4 * v + 2] = 200,
                       rgba[4 * v + 3] = 255;
         }
-    int t = 0;
-    for (int j = 0; j < GRID; j++)
-        for (int i = 0; i < GRID; i++) {
-            uint32_t a = (uint32_t)(j * (GRID + 1) + i), b = a + 1, c = a + GRID + 1, d = c + 1;
-            uint32_t tri[6] = {a, b, d, a, d, c};
-            memcpy(&idx[3 * t], tri, sizeof tri);
-            t += 2;
-        }
-}
-
-static char *base64(const unsigned char *p, size_t n)
-{
-    static const char tab[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    char *out = malloc(4 * ((n + 2) / 3) + 1), *o = out;
-    for (size_t i = 0; i < n; i += 3) {
-        uint32_t w = (uint32_t)p[i] << 16 | (i + 1 < n ? (uint32_t)p[i + 1] << 8 : 0) | (i + 2 < n ? p[i + 2] : 0);
-        *o++ = tab[w >> 18 & 63];
-        *o++ = tab[w >> 12 & 63];
-        *o++ = i + 1 < n ? tab[w >> 6 & 63] : '=';
-        *o++ = i + 2 < n ? tab[w & 63] : '=';
-    }
-    *o = '\0';
-    return out;
 }
 
 typedef struct variant {
@@ -79,7 +51,7 @@ typedef struct variant {
 static char *make_gltf(const unsigned char *stream, size_t size, const gk_draco_ids *ids, variant v)
 {
     size_t n = v.stream_bytes ? v.stream_bytes : size;
-    char *b64 = base64(stream, n);
+    char *b64 = gk_test_base64(stream, n);
     size_t cap = strlen(b64) + 4096;
     char *j = malloc(cap);
     snprintf(j, cap,

@@ -17,6 +17,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "common/grid_mesh.h"
 #include "scene/scene.h"
 
 #define GRID 16
@@ -26,43 +27,13 @@
 #define EXP_BITS 20
 
 static float pos[NV * 3], nrm4[NV * 4], uv[NV * 2];
-static unsigned int idx[NT * 3];
+static uint32_t idx[NT * 3];
 
+/* The shared grid (grid_mesh.h); U runs to 3 so the exponential filter's shared exponent is
+   tested beyond 1, V starts off 0. */
 static void make_grid(void)
 {
-    for (int j = 0; j <= GRID; j++)
-        for (int i = 0; i <= GRID; i++) {
-            int v = j * (GRID + 1) + i;
-            float x = 2.0f * (float)i / GRID, y = (float)j / GRID;
-            float dzdx = 0.6f * cosf(3.0f * x) * cosf(2.0f * y), dzdy = -0.4f * sinf(3.0f * x) * sinf(2.0f * y);
-            float l = sqrtf(dzdx * dzdx + dzdy * dzdy + 1.0f);
-            pos[3 * v] = x, pos[3 * v + 1] = y, pos[3 * v + 2] = 0.2f * sinf(3.0f * x) * cosf(2.0f * y);
-            nrm4[4 * v] = -dzdx / l, nrm4[4 * v + 1] = -dzdy / l, nrm4[4 * v + 2] = 1.0f / l, nrm4[4 * v + 3] = 1.0f;
-            uv[2 * v] = 3.0f * (float)i / GRID, uv[2 * v + 1] = 0.001f + (float)j / GRID;
-        }
-    int t = 0;
-    for (int j = 0; j < GRID; j++)
-        for (int i = 0; i < GRID; i++) {
-            unsigned a = (unsigned)(j * (GRID + 1) + i), b = a + 1, c = a + GRID + 1, d = c + 1;
-            unsigned tri[6] = {a, b, d, a, d, c};
-            memcpy(&idx[3 * t], tri, sizeof tri);
-            t += 2;
-        }
-}
-
-static char *base64(const unsigned char *p, size_t n)
-{
-    static const char tab[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    char *out = malloc(4 * ((n + 2) / 3) + 1), *o = out;
-    for (size_t i = 0; i < n; i += 3) {
-        uint32_t w = (uint32_t)p[i] << 16 | (i + 1 < n ? (uint32_t)p[i + 1] << 8 : 0) | (i + 2 < n ? p[i + 2] : 0);
-        *o++ = tab[w >> 18 & 63];
-        *o++ = tab[w >> 12 & 63];
-        *o++ = i + 1 < n ? tab[w >> 6 & 63] : '=';
-        *o++ = i + 2 < n ? tab[w & 63] : '=';
-    }
-    *o = '\0';
-    return out;
+    gk_test_grid(GRID, pos, nrm4, 4, uv, 3.0f, 0.001f, idx);
 }
 
 /* The compressed streams, one after another (4-aligned), in buffer 0. */
@@ -118,7 +89,7 @@ static char *make_gltf(variant v)
     memcpy(bytes, packed, packed_len);
     if (v.corrupt)
         memset(bytes + s_pos.at, 0xA5, s_pos.len);
-    char *b64 = base64(bytes, packed_len);
+    char *b64 = gk_test_base64(bytes, packed_len);
     const stream *si = v.sequence ? &s_seq : &s_tri;
     const char *mode = v.index_mode ? v.index_mode : v.sequence ? "INDICES" : "TRIANGLES";
     /* the fallback buffer's layout: positions, normals, uvs, indices, each count x stride */
