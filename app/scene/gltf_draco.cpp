@@ -63,11 +63,8 @@ bool convert_attribute(const draco::Mesh &mesh, const draco::PointAttribute &a, 
     }
 }
 
-struct Decoded {
-    int draco_view; // the bufferView it was decoded from
-};
-
-bool decode_primitive(Loader &L, Model &m, int mi, int pi, std::map<int, Decoded> &done)
+// done: accessor -> the bufferView of the stream it was decoded from
+bool decode_primitive(Loader &L, Model &m, int mi, int pi, std::map<int, int> &done)
 {
     tinygltf::Primitive &p = m.meshes[(size_t)mi].primitives[(size_t)pi];
     const Value &x = p.extensions.find(kDraco)->second;
@@ -109,7 +106,7 @@ bool decode_primitive(Loader &L, Model &m, int mi, int pi, std::map<int, Decoded
         if (ai < 0 || (size_t)ai >= m.accessors.size())
             return L.fail("%s: the %s accessor %d does not exist", at, what, ai);
         auto it = done.find(ai);
-        if (it != done.end() && it->second.draco_view != vi)
+        if (it != done.end() && it->second != vi)
             return L.fail("%s: accessor %d (%s) is decoded from two Draco streams", at, ai, what);
         return true;
     };
@@ -132,7 +129,7 @@ bool decode_primitive(Loader &L, Model &m, int mi, int pi, std::map<int, Decoded
     ia.byteOffset = 0;
     ia.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
     ia.sparse.isSparse = false;
-    done[p.indices] = Decoded{vi};
+    done[p.indices] = vi;
     p.mode = TINYGLTF_MODE_TRIANGLES;
 
     const Value &attrs = x.Get("attributes");
@@ -166,7 +163,7 @@ bool decode_primitive(Loader &L, Model &m, int mi, int pi, std::map<int, Decoded
         acc.bufferView = add_view(m, std::move(data));
         acc.byteOffset = 0;
         acc.sparse.isSparse = false;
-        done[pa->second] = Decoded{vi};
+        done[pa->second] = vi;
     }
     L.use.draco_primitives++;
     return true;
@@ -201,7 +198,7 @@ bool draco_placeholders(nlohmann::json &j)
 
 bool decode_draco(Loader &L, Model &m)
 {
-    std::map<int, Decoded> done; // accessor -> the stream it was decoded from
+    std::map<int, int> done;
     for (size_t mi = 0; mi < m.meshes.size(); mi++)
         for (size_t pi = 0; pi < m.meshes[mi].primitives.size(); pi++)
             if (m.meshes[mi].primitives[pi].extensions.count(kDraco) &&

@@ -19,6 +19,7 @@ const char kMeshopt[] = "EXT_meshopt_compression";
 // cap is 256 MiB as well).
 const size_t kMaxDecodedBytes = (size_t)1 << 28;
 
+// A non-negative integer member; absent, the default (dflt < 0: the member is required).
 bool get_int(const Value &x, const char *key, long long dflt, long long *out)
 {
     if (!x.Has(key)) {
@@ -35,6 +36,7 @@ bool get_int(const Value &x, const char *key, long long dflt, long long *out)
     return true;
 }
 
+// A string member; absent, the default (nullptr: the member is required).
 bool get_string(const Value &x, const char *key, const char *dflt, std::string *out)
 {
     if (!x.Has(key)) {
@@ -82,6 +84,10 @@ bool decode_view(Loader &L, Model &m, int vi)
     if (mode == "ATTRIBUTES") {
         if (stride % 4)
             return L.fail("%s: ATTRIBUTES need a byteStride that is a multiple of 4 (%lld)", at, stride);
+        // the decoded vertices lie byteStride apart: a view that says otherwise would be read askew
+        if (view.byteStride != 0 && view.byteStride != (size_t)stride)
+            return L.fail("%s: the view's byteStride %zu is not the extension's %lld", at, view.byteStride, stride);
+        view.byteStride = (size_t)stride;
         rc = meshopt_decodeVertexBuffer(out.data(), (size_t)count, (size_t)stride, in, (size_t)length);
         if (rc == 0 && filter == "OCTAHEDRAL") {
             if (stride != 4 && stride != 8)

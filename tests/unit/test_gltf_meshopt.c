@@ -4,8 +4,9 @@
  * loaded from memory: positions (ATTRIBUTES, no filter) come back bit for bit, normals through the
  * OCTAHEDRAL filter (16-bit, KHR_mesh_quantization SHORT normals), UVs through the EXPONENTIAL
  * filter, indices as TRIANGLES or as an INDICES sequence, each within what its filter's encoding
- * keeps. A corrupt stream, a view whose size disagrees with count x byteStride, and an unknown
- * mode are refused naming the file and the bufferView. */
+ * keeps. A corrupt stream, a view whose size disagrees with count x byteStride or whose own
+ * byteStride disagrees with the extension's, and an unknown mode are refused naming the file and
+ * the bufferView. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -80,6 +81,7 @@ typedef struct variant {
     bool sequence;          /* indices as an INDICES sequence, not TRIANGLES */
     bool corrupt;           /* the position stream's bytes overwritten */
     size_t pos_view_bytes;  /* 0: count x stride */
+    int pos_view_stride;    /* the positions view's own byteStride; 0: 12, the extension's */
     const char *index_mode; /* NULL: as `sequence` says */
 } variant;
 
@@ -103,7 +105,7 @@ static char *make_gltf(variant v)
              "\"buffers\":[{\"byteLength\":%zu,\"uri\":\"data:application/octet-stream;base64,%s\"},"
              "{\"byteLength\":%zu,\"extensions\":{\"EXT_meshopt_compression\":{\"fallback\":true}}}],"
              "\"bufferViews\":["
-             "{\"buffer\":1,\"byteOffset\":%zu,\"byteLength\":%zu,\"byteStride\":12,\"extensions\":{\"EXT_meshopt_compression\":"
+             "{\"buffer\":1,\"byteOffset\":%zu,\"byteLength\":%zu,\"byteStride\":%d,\"extensions\":{\"EXT_meshopt_compression\":"
              "{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":%zu,\"byteStride\":12,\"count\":%d,\"mode\":\"ATTRIBUTES\"}}},"
              "{\"buffer\":1,\"byteOffset\":%zu,\"byteLength\":%d,\"byteStride\":8,\"extensions\":{\"EXT_meshopt_compression\":"
              "{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":%zu,\"byteStride\":8,\"count\":%d,\"mode\":\"ATTRIBUTES\","
@@ -122,7 +124,8 @@ static char *make_gltf(variant v)
              "\"TEXCOORD_0\":2},\"indices\":3}]}],"
              "\"nodes\":[{\"mesh\":0}],\"scenes\":[{\"nodes\":[0]}],\"scene\":0}",
              packed_len, b64, f_end,                                                        /* buffers */
-             f_pos, v.pos_view_bytes ? v.pos_view_bytes : (size_t)NV * 12, s_pos.at, s_pos.len, NV, /* positions */
+             f_pos, v.pos_view_bytes ? v.pos_view_bytes : (size_t)NV * 12, v.pos_view_stride ? v.pos_view_stride : 12,
+             s_pos.at, s_pos.len, NV, /* positions */
              f_nrm, NV * 8, s_nrm.at, s_nrm.len, NV,                                       /* normals */
              f_uv, NV * 8, s_uv.at, s_uv.len, NV,                                          /* uvs */
              f_idx, 3 * NT * 4, si->at, si->len, 3 * NT, mode,                             /* indices */
@@ -230,6 +233,13 @@ static void test_view_size(void **state)
                    "bufferView 0: EXT_meshopt_compression: the view's byteLength 3456 is not count 289 x byteStride 12");
 }
 
+static void test_view_stride(void **state)
+{
+    (void)state;
+    expect_refused((variant){.pos_view_stride = 16},
+                   "bufferView 0: EXT_meshopt_compression: the view's byteStride 16 is not the extension's 12");
+}
+
 static void test_unknown_mode(void **state)
 {
     (void)state;
@@ -243,6 +253,7 @@ int main(void)
         cmocka_unit_test(test_index_sequence),
         cmocka_unit_test(test_corrupt_stream),
         cmocka_unit_test(test_view_size),
+        cmocka_unit_test(test_view_stride),
         cmocka_unit_test(test_unknown_mode),
     };
     return cmocka_run_group_tests(tests, setup, NULL);
