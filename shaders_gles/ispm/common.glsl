@@ -5,7 +5,9 @@
 //          plus 4): linear view depth, geometric normal as half-float spherical (θ, φ), next node
 //          (-1 = end), and the surface's mirror reflectance (packUnorm4x8: rgb = specular albedo,
 //          a = roughness; 0 on surfaces that are not mirrors), which the trace's further specular
-//          bounces need (ispm_bounces > 1; the seed's single bounce reads only the first three).
+//          bounces need (ispm_bounces > 1; the seed's single bounce reads only the first three),
+//          then the surface's shape operator (ispm_shape_operator: how the normal turns across the
+//          surface), which those bounces need to reflect at the hit and not at the pixel centre.
 // Pixel  : a list head plus the list's min/max depth (float bits; depth > 0 so uint order = float
 //          order) and its length (the L8 test reads it).
 // Photon : first hit on a specular RSM texel after reflection: origin (w = 1 valid, 0 absorbed),
@@ -13,7 +15,7 @@
 //          reflected power (w = light→reflector distance).
 // Hit    : the photon's last hit (the second with the seed's one bounce): position (w = 1 valid),
 //          receiver normal (w = splat radius h), power (w = total path length light→…→receiver).
-struct Node { highp float depth; highp uint nrm; highp int next; highp uint spec; };
+struct Node { highp float depth; highp uint nrm; highp int next; highp uint spec; highp uvec2 shape; };
 struct Pixel { highp int head; highp uint zmin; highp uint zmax; highp uint count; };
 struct Photon { highp vec4 org; highp vec4 dir; highp vec4 pow_d1; };
 struct Hit { highp vec4 pos_valid; highp vec4 nrm_h; highp vec4 pow_dist; };
@@ -41,6 +43,28 @@ highp vec3 ispm_decode_normal(highp uint h)
 {
     highp vec2 s = unpackHalf2x16(h);
     return vec3(sin(s.x) * cos(s.y), sin(s.x) * sin(s.y), cos(s.x));
+}
+
+// A tangent frame (t, b) of the unit normal n, the same wherever n is the same: the frame the shape
+// operator is stored in (ll_build.frag's ispm_shape_operator).
+void ispm_tangent_frame(highp vec3 n, out highp vec3 t, out highp vec3 b)
+{
+    t = normalize(abs(n.y) < 0.999 ? cross(vec3(0.0, 1.0, 0.0), n) : cross(vec3(1.0, 0.0, 0.0), n));
+    b = cross(n, t);
+}
+
+// The shading normal at world point x on the surface of a node whose point is pn and normal n:
+// n turned by its shape operator over the displacement (clamped: the shape is a first-order model).
+highp vec3 ispm_normal_at(highp vec3 n, highp uvec2 shape, highp vec3 dp)
+{
+    highp vec3 t, b;
+    ispm_tangent_frame(n, t, b);
+    highp mat2 S = mat2(unpackHalf2x16(shape.x), unpackHalf2x16(shape.y));
+    highp vec2 dn = S * vec2(dot(dp, t), dot(dp, b));
+    highp float len = length(dn);
+    if (len > 0.5)
+        dn *= 0.5 / len;
+    return normalize(n + dn.x * t + dn.y * b);
 }
 
 // The seed's "pre-generated random numbers, the same every frame": a fixed hash (PCG) of a key,

@@ -23,7 +23,9 @@ void main()
         if (v.x == 0u)
             continue;   // cleared: no fragment this deep
         int idx = pix * u_k + k;
-        nodes[idx] = Node(uintBitsToFloat(v.x), v.y, head, v.z);
+        // no shape operator (a layer's one spare uint cannot hold its two halves): tier B's further
+        // specular bounces reflect about the node's own normal, as debug.flat_mirror_normal does
+        nodes[idx] = Node(uintBitsToFloat(v.x), v.y, head, v.z, uvec2(0u));
         head = idx;
         zmin = min(zmin, v.x), zmax = max(zmax, v.x), count++;
     }

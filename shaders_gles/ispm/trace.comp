@@ -18,7 +18,9 @@
 //   the back of what the ray leaves, not a hit (u_backface = 0 turns the rule off for L9).
 // Specular chains (u_bounces > 1, not in the seed, research L7): a hit on a mirror node (Node.spec)
 // reflects the photon again (power × the mirror's specular albedo, the Phong lobe of its roughness
-// from the photon's key) and the march restarts there, until a non-mirror surface or u_bounces
+// from the photon's key, about the normal at the hit: the node's normal turned by its shape operator
+// over the hit's offset from the node's point, ispm_normal_at; u_mirror_shape = 0 reflects about the
+// node's own normal) and the march restarts there, until a non-mirror surface or u_bounces
 // specular bounces in all (the emission's counts); with u_bounces = 1 a mirror hit ends the photon
 // as in the seed (the mirror's ρ_d of 0 shows nothing of it).
 // The hit carries its splat radius h = C0 · d / sqrt(cosθ) · sqrt(ΔΩ) (seed: h = C0/√p · √(A/N),
@@ -47,6 +49,7 @@ uniform float u_edge_on_cos;    // nodes seen at |cos| below this are "edge-on"
 uniform float u_edge_reach;     // an edge-on node's plane hit: at most this many pixel footprints off
 uniform float u_skip_rel;       // empty-space skip margin, relative depth (see march)
 uniform int u_bounces;          // specular bounces in all (1: the seed's)
+uniform int u_mirror_shape;     // 1: further bounces reflect about the normal at the hit (Node.shape)
 uniform int u_capacity;
 uniform float u_c0, u_omega_texel, u_cos_min, u_h_min, u_h_max;
 
@@ -59,8 +62,9 @@ vec3 pixel_point(ivec2 p, float z)
     return z * vec3((ndc.x + u_proj[2][0]) / u_proj[0][0], (ndc.y + u_proj[2][1]) / u_proj[1][1], -1.0);
 }
 
-// The first surface the ray o + r·t (t in (0, u_tmax]) meets in the lists: its node and t.
-bool march(vec3 o, vec3 r, out int hit_node, out float hit_t)
+// The first surface the ray o + r·t (t in (0, u_tmax]) meets in the lists: its node, t and the
+// node's view-space point (its depth at its pixel's centre).
+bool march(vec3 o, vec3 r, out int hit_node, out float hit_t, out vec3 hit_pn)
 {
     vec3 a = (u_view * vec4(o, 1.0)).xyz;
     vec3 b = (u_view * vec4(o + r * u_tmax, 1.0)).xyz;
@@ -117,6 +121,7 @@ bool march(vec3 o, vec3 r, out int hit_node, out float hit_t)
         float best = u_plane == 1 ? 2.0 : eps;   // plane test: the least u; seed: the least |Δz|
         int best_idx = -1;
         float best_u = 0.0;
+        vec3 best_pn = vec3(0.0);
         for (int idx = q.head; idx != -1; idx = nodes[idx].next) {
             work++;
             Node nd = nodes[idx];
@@ -140,7 +145,7 @@ bool march(vec3 o, vec3 r, out int hit_node, out float hit_t)
                 // far from the fragment; only within u_edge_reach pixel footprints of it
                 if (abs(dot(nv, pn)) < u_edge_on_cos * length(pn) && distance(Q, pn) > u_edge_reach * nd.depth * px_angle)
                     continue;
-                best = u, best_idx = idx, best_u = u;
+                best = u, best_idx = idx, best_u = u, best_pn = pn;
             } else {
                 // the seed's test
                 float dz = abs(nd.depth - zr);
@@ -150,12 +155,13 @@ bool march(vec3 o, vec3 r, out int hit_node, out float hit_t)
                 float u = (s * ib) / mix(ia, ib, s);   // perspective-correct parameter on [A, B]
                 if (abs(AB.z) > 1e-6 * abs(A.z))
                     u = clamp((-nd.depth - A.z) / AB.z, 0.0, 1.0);
-                best = dz, best_idx = idx, best_u = u;
+                best = dz, best_idx = idx, best_u = u, best_pn = pn;
             }
         }
         if (best_idx >= 0) {
             hit_node = best_idx;
             hit_t = mix(ta, tb, best_u) * u_tmax;
+            hit_pn = best_pn;
             return true;
         }
     }
@@ -179,7 +185,8 @@ void main()
     for (int bounce = 1; bounce <= u_bounces; bounce++) {
         int node;
         float t;
-        if (!march(o, r, node, t))
+        vec3 pn;
+        if (!march(o, r, node, t, pn))
             break;
         Node nd = nodes[node];
         vec3 nh = ispm_decode_normal(nd.nrm);
@@ -187,7 +194,10 @@ void main()
         dist += t;
         if (nd.spec != 0u && bounce < u_bounces) {   // a mirror: reflect and march on
             vec4 sr = unpackUnorm4x8(nd.spec);
-            vec3 nf = dot(nh, r) < 0.0 ? nh : -nh;
+            // the hit's offset from the node's point, rotated from view to world (u_view is rigid)
+            vec3 dp = transpose(mat3(u_view)) * ((u_view * vec4(x, 1.0)).xyz - pn);
+            vec3 nm = u_mirror_shape == 1 ? ispm_normal_at(nh, nd.shape, dp) : nh;
+            vec3 nf = dot(nh, r) < 0.0 ? nm : -nm;
             vec3 rn = ispm_phong_lobe(reflect(r, nf), sr.a, key, 1u + 2u * uint(bounce));
             if (dot(rn, nf) <= 0.0)
                 break;   // below the surface: absorbed

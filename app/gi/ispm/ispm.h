@@ -26,6 +26,8 @@ typedef struct gk_ispm_debug {
                                 GPU's nondeterministic compaction order on llvmpipe, L13) */
     bool no_backface_rule;   /* L9: keep hits on surfaces the ray leaves */
     bool faithful_hit;       /* the seed's |Δz| < ε instead of the plane test (trace.comp) */
+    bool flat_mirror_normal; /* ispm_bounces > 1: reflect about a node's own normal, not about the
+                                normal its shape operator gives at the hit (trace.comp) */
     float hit_px;            /* the plane test's reach around a pixel centre, in trace pixels */
     float edge_on_cos;       /* nodes seen at a smaller |cos| are edge-on (trace.comp) */
     float edge_reach;        /* an edge-on node's plane hit: at most this many pixel footprints off */

@@ -8,7 +8,7 @@
 
 typedef struct trace_uniforms {
     GLint u_view, u_proj, u_res, u_near, u_tmax, u_eps_abs, u_eps_slope, u_backface, u_plane, u_hit_px, u_edge_on_cos, u_edge_reach, u_skip_rel, u_bounces,
-        u_capacity, u_c0, u_omega_texel, u_cos_min, u_h_min, u_h_max;
+        u_mirror_shape, u_capacity, u_c0, u_omega_texel, u_cos_min, u_h_min, u_h_max;
 } trace_uniforms;
 static const gk_uniform_field trace_fields[] = {
     GK_UNIFORM(trace_uniforms, u_view),     GK_UNIFORM(trace_uniforms, u_proj),        GK_UNIFORM(trace_uniforms, u_res),
@@ -16,7 +16,7 @@ static const gk_uniform_field trace_fields[] = {
     GK_UNIFORM(trace_uniforms, u_eps_slope), GK_UNIFORM(trace_uniforms, u_backface),   GK_UNIFORM(trace_uniforms, u_plane),
     GK_UNIFORM(trace_uniforms, u_hit_px),   GK_UNIFORM(trace_uniforms, u_edge_on_cos), GK_UNIFORM(trace_uniforms, u_edge_reach),
     GK_UNIFORM(trace_uniforms, u_skip_rel),    GK_UNIFORM(trace_uniforms, u_bounces),
-    GK_UNIFORM(trace_uniforms, u_capacity),
+    GK_UNIFORM(trace_uniforms, u_mirror_shape), GK_UNIFORM(trace_uniforms, u_capacity),
     GK_UNIFORM(trace_uniforms, u_c0),       GK_UNIFORM(trace_uniforms, u_omega_texel), GK_UNIFORM(trace_uniforms, u_cos_min),
     GK_UNIFORM(trace_uniforms, u_h_min),    GK_UNIFORM(trace_uniforms, u_h_max)};
 
@@ -65,6 +65,7 @@ int ispm_trace(ispm_state *s, const gk_gi_frame *f, gk_err *e)
     float slope = sqrtf(1.0f - d->edge_on_cos * d->edge_on_cos) / fmaxf(d->edge_on_cos, 1e-3f);
     glUniform1f(u->u_skip_rel, slope * px_angle * (d->hit_px + 0.5f) * 1.4143f);
     glUniform1i(u->u_bounces, s->bounces);
+    glUniform1i(u->u_mirror_shape, !d->flat_mirror_normal);
     glUniform1i(u->u_capacity, s->capacity);
     glUniform1f(u->u_c0, d->c0);
     glUniform1f(u->u_omega_texel, s->light.omega_texel);
