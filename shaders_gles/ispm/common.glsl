@@ -6,8 +6,8 @@
 //          (-1 = end), and the surface's mirror reflectance (packUnorm4x8: rgb = specular albedo,
 //          a = roughness; 0 on surfaces that are not mirrors), which the trace's further specular
 //          bounces need (ispm_bounces > 1; the seed's single bounce reads only the first three),
-//          then the surface's shape operator (ispm_shape_operator: how the normal turns across the
-//          surface), which those bounces need to reflect at the hit and not at the pixel centre.
+//          then the surface's shape operator (shape.glsl: how the normal turns across the surface,
+//          ispm_pack_shape), which those bounces need to reflect at the hit, not at the pixel centre.
 // Pixel  : a list head plus the list's min/max depth (float bits; depth > 0 so uint order = float
 //          order) and its length (the L8 test reads it).
 // Photon : first hit on a specular RSM texel after reflection: origin (w = 1 valid, 0 absorbed),
@@ -15,7 +15,7 @@
 //          reflected power (w = light→reflector distance).
 // Hit    : the photon's last hit (the second with the seed's one bounce): position (w = 1 valid),
 //          receiver normal (w = splat radius h), power (w = total path length light→…→receiver).
-struct Node { highp float depth; highp uint nrm; highp int next; highp uint spec; highp uvec2 shape; };
+struct Node { highp float depth; highp uint nrm; highp int next; highp uint spec; highp uint shape; };
 struct Pixel { highp int head; highp uint zmin; highp uint zmax; highp uint count; };
 struct Photon { highp vec4 org; highp vec4 dir; highp vec4 pow_d1; };
 struct Hit { highp vec4 pos_valid; highp vec4 nrm_h; highp vec4 pow_dist; };
@@ -46,21 +46,42 @@ highp vec3 ispm_decode_normal(highp uint h)
 }
 
 // A tangent frame (t, b) of the unit normal n, the same wherever n is the same: the frame the shape
-// operator is stored in (ll_build.frag's ispm_shape_operator).
+// operator is stored in (shape.glsl).
 void ispm_tangent_frame(highp vec3 n, out highp vec3 t, out highp vec3 b)
 {
     t = normalize(abs(n.y) < 0.999 ? cross(vec3(0.0, 1.0, 0.0), n) : cross(vec3(1.0, 0.0, 0.0), n));
     b = cross(n, t);
 }
 
-// The shading normal at world point x on the surface of a node whose point is pn and normal n:
-// n turned by its shape operator over the displacement (clamped: the shape is a first-order model).
-highp vec3 ispm_normal_at(highp vec3 n, highp uvec2 shape, highp vec3 dp)
+// A shape operator in one uint, so that a peeled layer's spare channel holds it as a list node does:
+// its symmetric part (a surface's shape operator is self-adjoint in an orthonormal frame; the mesh's
+// interpolated normals nearly so) as three snorm8 entries over a shared power-of-two scale (top byte,
+// biased by 128; 0 = flat). 1/127 of the largest entry is plenty for a first-order correction.
+highp uint ispm_pack_shape(highp mat2 S)
+{
+    highp vec3 v = vec3(S[0][0], 0.5 * (S[0][1] + S[1][0]), S[1][1]);
+    highp float m = max(abs(v.x), max(abs(v.y), abs(v.z)));
+    if (!(m > 1e-20) || m > 1e20)
+        return 0u;   // flat, or not a number
+    highp int e = int(ceil(log2(m)));
+    return (packSnorm4x8(vec4(v * exp2(float(-e)), 0.0)) & 0x00ffffffu) | (uint(e + 128) << 24);
+}
+
+highp mat2 ispm_unpack_shape(highp uint u)
+{
+    if (u == 0u)
+        return mat2(0.0);
+    highp vec3 v = unpackSnorm4x8(u).xyz * exp2(float(int(u >> 24) - 128));
+    return mat2(v.x, v.y, v.y, v.z);
+}
+
+// The shading normal at a point dp (world) from a node's point, on the surface of the node's normal
+// n and packed shape operator: n turned by the operator (clamped: it is a first-order model).
+highp vec3 ispm_normal_at(highp vec3 n, highp uint shape, highp vec3 dp)
 {
     highp vec3 t, b;
     ispm_tangent_frame(n, t, b);
-    highp mat2 S = mat2(unpackHalf2x16(shape.x), unpackHalf2x16(shape.y));
-    highp vec2 dn = S * vec2(dot(dp, t), dot(dp, b));
+    highp vec2 dn = ispm_unpack_shape(shape) * vec2(dot(dp, t), dot(dp, b));
     highp float len = length(dn);
     if (len > 0.5)
         dn *= 0.5 / len;

@@ -7,6 +7,7 @@
 precision highp float;
 precision highp int;
 #include "ispm/common.glsl"
+#include "ispm/shape.glsl"
 layout(std430, binding = 0) writeonly buffer Nodes { Node nodes[]; };
 layout(std430, binding = 1) buffer Pixels { Pixel px[]; };
 layout(std430, binding = 2) buffer Counter { uint ll_count; uint ll_capacity; uint ll_overflow; uint ll_pad; };
@@ -23,33 +24,10 @@ layout(location = 0) out vec4 o_unused;   // colour writes are masked; declared 
 
 const int MAT_LIGHT_PROXY = 4;
 
-// The shape operator of the surface a fragment lies on: the 2×2 map S with dn = S·dp from an
-// in-plane displacement dp to the change of the shading normal, both in the tangent frame of the
-// stored (encoded) normal, as two packHalf2x16 columns. From the screen derivatives of the world
-// position and of the normal: on a triangle both are affine in the same barycentrics, so S is exact
-// there (the normalisation aside). A mirror's further bounces (trace.comp) reflect about the normal
-// at the hit: the pixel centre's normal is up to a pixel footprint away, which on a curved mirror
-// turns the reflection by twice that arc over the radius (caustic-ring at 256²: 15% of the two-bounce
-// photon power landed over 3 cm off the tracer's, 30% at 128²). Call in uniform control flow (before
-// any discard): derivatives are undefined elsewhere.
-highp uvec2 ispm_shape_operator(highp vec3 p, highp vec3 n)
-{
-    highp vec3 t, b;
-    ispm_tangent_frame(ispm_decode_normal(ispm_encode_normal(n)), t, b);
-    highp vec3 dpx = dFdx(p), dpy = dFdy(p), dnx = dFdx(n), dny = dFdy(n);
-    highp mat2 U = mat2(dot(dpx, t), dot(dpx, b), dot(dpy, t), dot(dpy, b));
-    highp mat2 M = mat2(dot(dnx, t), dot(dnx, b), dot(dny, t), dot(dny, b));
-    highp float det = determinant(U);
-    if (!(abs(det) > 1e-12))
-        return uvec2(0u);   // a fragment seen edge-on: no in-plane extent to differentiate over
-    highp mat2 S = M * inverse(U);
-    return uvec2(packHalf2x16(S[0]), packHalf2x16(S[1]));
-}
-
 void main()
 {
     vec3 n = normalize(v_normal);
-    uvec2 shape = ispm_shape_operator(v_world, n);   // derivatives: before any discard
+    uint shape = ispm_shape_operator(v_world, n);   // derivatives: before any discard
     if ((u_mat_flags & MAT_LIGHT_PROXY) != 0)
         discard;   // the path tracer does not see light proxies; neither do photons
     ivec2 p = ivec2(gl_FragCoord.xy);

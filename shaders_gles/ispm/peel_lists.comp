@@ -17,15 +17,13 @@ void main()
     int head = -1;
     uint zmin = 0x7f800000u, zmax = 0u, count = 0u;
     for (int k = u_k - 1; k >= 0; k--) {
-        uvec3 v = k == 0 ? texelFetch(u_layers[0], p, 0).rgb
-                : k == 1 ? texelFetch(u_layers[1], p, 0).rgb
-                : k == 2 ? texelFetch(u_layers[2], p, 0).rgb : texelFetch(u_layers[3], p, 0).rgb;   // constant indices (ESSL 3.10)
+        uvec4 v = k == 0 ? texelFetch(u_layers[0], p, 0)
+                : k == 1 ? texelFetch(u_layers[1], p, 0)
+                : k == 2 ? texelFetch(u_layers[2], p, 0) : texelFetch(u_layers[3], p, 0);   // constant indices (ESSL 3.10)
         if (v.x == 0u)
             continue;   // cleared: no fragment this deep
         int idx = pix * u_k + k;
-        // no shape operator (a layer's one spare uint cannot hold its two halves): tier B's further
-        // specular bounces reflect about the node's own normal, as debug.flat_mirror_normal does
-        nodes[idx] = Node(uintBitsToFloat(v.x), v.y, head, v.z, uvec2(0u));
+        nodes[idx] = Node(uintBitsToFloat(v.x), v.y, head, v.z, v.w);
         head = idx;
         zmin = min(zmin, v.x), zmax = max(zmax, v.x), count++;
     }

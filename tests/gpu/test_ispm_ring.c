@@ -143,9 +143,9 @@ static void test_single_bounce_against_its_reference(void **state)
    radius and with ispm_radius=density, each also with the chains reflecting about the node's own
    normal (flat_mirror_normal, the previous default) instead of the normal at the hit.
    Measured on llvmpipe (shape operator / flat normal):
-     ispm_bounces=3:                     energy 0.922 / 0.916, IoU 0.551 / 0.517, rel. RMSE inside 0.200 / 0.261
-     ispm_bounces=3, ispm_radius=density: energy 0.914 / 0.908, IoU 0.671 / 0.586, rel. RMSE inside 0.210 / 0.272
-   The issue's targets: energy ±15% is met; IoU ≥ 0.7 is NOT (best 0.671). The ruler's noise is far
+     ispm_bounces=3:                     energy 0.922 / 0.916, IoU 0.549 / 0.517, rel. RMSE inside 0.200 / 0.261
+     ispm_bounces=3, ispm_radius=density: energy 0.913 / 0.908, IoU 0.673 / 0.586, rel. RMSE inside 0.210 / 0.272
+   The issue's targets: energy ±15% is met; IoU ≥ 0.7 is NOT (best 0.673). The ruler's noise is far
    below both: an independent 512-spp render of the same caustic (seed 2) has energy 0.998 and IoU
    0.906 against this 2048-spp mask (the reference's floor inside it is 0.013, noise-regions.csv).
    Nor does the three-bounce limit forbid it: the tracer's own caustic cut at three specular vertices (--caustic-specular 3, 512 spp) has
@@ -160,7 +160,7 @@ static void test_single_bounce_against_its_reference(void **state)
    Asserted: the energy target for both radii, the single bounce's loss (L7, < 0.7), the shape
    operator's gain in IoU and rel. RMSE over the flat normal for both radii, and the IoU as measured:
    bounds 0.5 (seed radius) and 0.62 (density): the measurements less the ±0.05 the IoU moves under
-   immaterial changes (above; density k = 24/32 gave 0.634/0.671). */
+   immaterial changes (above; density k = 24/32 gave 0.634/0.671 with the shape operator in two halves). */
 static void test_reference_mask(void **state)
 {
     (void)state;
@@ -350,16 +350,25 @@ static void test_chains_against_the_tracer(void **state)
         printf("# chains vs the tracer at ispm_trace=%d (power landing > 3 cm off or missed): 2 specular vertices %.3f "
                "(flat normal %.3f), 3: %.3f (flat %.3f)\n", r ? 128 : 256, shape[r][2], flat[r][2], shape[r][3], flat[r][3]);
     }
+    /* tier B: the peeled layers carry the shape operator too, but four layers miss what lies deeper
+       (L8), which the chains inside the ring need */
+    double peel[4];
+    assert_int_equal(ih_budget(&H, RICH ",ispm_bounces=3,ispm_tier=peel"), 0);
     ih_debug(&H, NULL);
+    assert_int_equal(ih_frame(&H), 0);
+    chain_accuracy(&rs, peel);
+    printf("# chains vs the tracer, tier B (4 layers) at 256²: 2 specular vertices %.3f, 3: %.3f\n", peel[2], peel[3]);
     gk_ref_scene_free(&rs);
-    /* measured at 256²: 0.041 (flat 0.150) and 0.089 (0.249); at 128²: 0.049 (0.299) and 0.108 (0.452).
+    /* measured at 256²: 0.045 (flat 0.151) and 0.094 (0.249); at 128²: 0.049 (0.300) and 0.110 (0.453);
+       tier B 0.620 and 0.802 (flat normal 0.638, 0.823: by hand).
        Bounds: two vertices within 6% and three within 12% at both resolutions (what remains lands on
        another surface, 0.5 m off on average: an edge-on wall pixel's plane); the flat normal at
-       least twice as far off in each */
+       least twice as far off in each; tier B worse than the lists (L8) */
     for (int r = 0; r < 2; r++) {
         assert_true(shape[r][2] < 0.06 && shape[r][3] < 0.12);
         assert_true(flat[r][2] > 2.0 * shape[r][2] && flat[r][3] > 2.0 * shape[r][3]);
     }
+    assert_true(peel[2] > shape[0][2] && peel[3] > shape[0][3]);
 }
 
 static void test_trace_against_the_tracer(void **state)
@@ -460,8 +469,8 @@ static void test_l13_flicker(void **state)
     free(prev);
     printf("# L13 max frame-to-frame change / peak under a shuffled compaction: random numbers by RSM block %.2e, "
            "by compacted index %.3f\n", flicker[0], flicker[1]);
-    /* by block only the order of the float additions changes (measured 1.3e-7); by index each
-       surface point draws new numbers every frame (measured 0.28) */
+    /* by block only the order of the float additions changes (measured 2.2e-7); by index each
+       surface point draws new numbers every frame (measured 0.35) */
     assert_true(flicker[0] < 1e-4);
     assert_true(flicker[1] > 0.05);
 }

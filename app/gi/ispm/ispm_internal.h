@@ -9,7 +9,7 @@
 #define ISPM_RSM_RES 256     /* research A.4's llvmpipe size (the seed: 512²) */
 #define ISPM_RSM_LEVELS 9    /* 256 .. 1 */
 #define ISPM_PEEL_LAYERS 4   /* tier B: the seed's Fig. 4.2b compares against 4 layers */
-#define ISPM_NODE_BYTES 24   /* Node in shaders_gles/ispm/common.glsl */
+#define ISPM_NODE_BYTES 20   /* Node in shaders_gles/ispm/common.glsl */
 #define ISPM_PHOTON_BYTES 48
 #define ISPM_HIT_BYTES 48
 /* Header of the photon buffer (ISPM_PHOTON_HEADER in common.glsl), in uints. */
