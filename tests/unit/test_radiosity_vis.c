@@ -16,6 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "common/scene_file.h"
 #include "gi/radiosity/rad_direct.h"
 #include "gi/radiosity/rad_solve.h"
 #include "gi/radiosity/rad_vis.h"
@@ -25,13 +26,10 @@
 
 static gk_scene *load(const char *name)
 {
-    char path[256];
-    snprintf(path, sizeof path, "config/scenes/%s.gltf", name);
     gk_err e = {0};
-    gk_scene *s = gk_scene_load(path, &e);
+    gk_scene *s = gkt_load_scene(name, &e);
     if (!s)
         fail_msg("%s", e.msg);
-    gk_scene_evaluate(s, 0.0f);
     return s;
 }
 
