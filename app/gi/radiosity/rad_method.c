@@ -182,7 +182,6 @@ static int render(void *self, const gk_gi_frame *f, gk_err *e)
     static const rad_env_mode env_modes[] = {RAD_ENV_BINS, RAD_ENV_REST, RAD_ENV_RAYS}; /* the knob's levels */
     int env_level = gk_knob_level(b, &s->knob[K_ENV], 0);
     set.env = env_modes[env_level >= 0 && env_level < 3 ? env_level : 0];
-    set.vis_rays = gk_knob_level(b, &s->knob[K_VIS], 0) == 1;
     set.vis_rays = s->rays;
     bool lockstep = gk_knob_level(b, &s->knob[K_SYNC], 0) == 1;
     /* the render thread's share of the CPU work: hand over the frame's node matrices, (lockstep:
