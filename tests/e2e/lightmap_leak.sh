@@ -4,7 +4,7 @@
 # the capture leaked. Leak ratio as in vct_leak.sh: mean luminance of the capture / 2.94 nits (the
 # lit side of the wall nearest the lamp, rho/pi E). The light-map charts used to run under the wall
 # (the room box's floor, ceiling and long walls are single quads through both rooms): absolute RMSE
-# 1.141 against the black ruler. Walls now split the surfaces they cross (lm_split.h): no chart
+# 1.141 against the black ruler. Walls now split the surfaces they cross (scene/wall_split.h): no chart
 # spans the wall, the dark room's texels get no photon (tests/unit/test_lightmap_split.c), and the
 # dark room renders black, at the seed's texel rule and at the finest one, after the photons and the
 # final gather settled (40 frames, lockstep) and in the async default.

@@ -132,12 +132,12 @@ static void check_scene(const char *name)
     gk_scene *s = load(name);
     gk_err e = {0};
     lm_atlas a;
-    /* as the method builds it: walls split the surfaces they cross first (lm_split.h) */
-    lm_regions r;
-    int cuts = lm_split_walls(s, &r, &e);
+    /* as the method builds it: walls split the surfaces they cross first (scene/wall_split.h) */
+    gk_wall_regions r;
+    int cuts = gk_split_walls(s, &r, &e);
     if (cuts < 0 || lm_atlas_build_regions(&a, s, 5, &r, &e))
         fail_msg("%s", e.msg);
-    lm_regions_free(&r);
+    gk_wall_regions_free(&r);
     print_message("# %s: %d wall cuts\n", name, cuts);
     check_layout(&a);
     /* the seed's rule: the largest chart is 5 texels along its longer side */

@@ -1,4 +1,4 @@
-/* Walls split the surfaces they cross (app/gi/lightmap/lm_split.h), the light-leak part of issue 16:
+/* Walls split the surfaces they cross (app/scene/wall_split.h), the light-leak part of issue 16:
  *  - light-leak: the 2 cm wall's two sides cut the floor, the ceiling and the two long walls (8
  *    cuts); afterwards no chart reaches from one room into the other (without the split the
  *    floor's chart does: the failure the test would catch), and the cut surfaces keep their area;
@@ -17,7 +17,7 @@
 #include <string.h>
 
 #include "gi/lightmap/lm_atlas.h"
-#include "gi/lightmap/lm_split.h"
+#include "scene/wall_split.h"
 #include "gi/lightmap/lm_worker.h"
 
 #define WALL 0.01f /* light-leak's wall: x in [-0.01, 0.01] */
@@ -55,8 +55,8 @@ static void test_light_leak_charts(void **state)
     for (int i = 0; i < before.n_charts; i++)
         spanning += spans_wall(&before.charts[i]);
     assert_int_equal(spanning, 4); /* floor, ceiling, the two long walls: the leak's cause */
-    lm_regions r;
-    int cuts = lm_split_walls(s, &r, &e);
+    gk_wall_regions r;
+    int cuts = gk_split_walls(s, &r, &e);
     assert_int_equal(cuts, 8); /* 4 surfaces x the wall's 2 sides */
     lm_atlas after;
     assert_int_equal(lm_atlas_build_regions(&after, s, 5, &r, &e), 0);
@@ -68,7 +68,7 @@ static void test_light_leak_charts(void **state)
                   charted_area(&before), charted_area(&after));
     assert_true(fabs(charted_area(&after) - charted_area(&before)) < 1e-4 * charted_area(&before));
     lm_atlas_free(&before), lm_atlas_free(&after);
-    lm_regions_free(&r);
+    gk_wall_regions_free(&r);
     gk_scene_free(s);
 }
 
@@ -77,13 +77,13 @@ static void test_cornell_untouched(void **state)
     (void)state;
     gk_scene *s = load("cornell");
     gk_err e = {0};
-    lm_regions r;
-    assert_int_equal(lm_split_walls(s, &r, &e), 0);
+    gk_wall_regions r;
+    assert_int_equal(gk_split_walls(s, &r, &e), 0);
     lm_atlas a;
     assert_int_equal(lm_atlas_build_regions(&a, s, 5, &r, &e), 0);
     assert_int_equal(a.n_charts, 16);
     lm_atlas_free(&a);
-    lm_regions_free(&r);
+    gk_wall_regions_free(&r);
     gk_scene_free(s);
 }
 
@@ -104,8 +104,8 @@ static void test_photons_stay_in_their_room(void **state)
     (void)state;
     gk_scene *s = load("light-leak");
     gk_err e = {0};
-    lm_regions r;
-    assert_true(lm_split_walls(s, &r, &e) > 0);
+    gk_wall_regions r;
+    assert_true(gk_split_walls(s, &r, &e) > 0);
     lm_atlas a;
     assert_int_equal(lm_atlas_build_regions(&a, s, 5, &r, &e), 0);
     lm_worker *w = lm_worker_create(s, &a, 1, &e);
@@ -144,7 +144,7 @@ static void test_photons_stay_in_their_room(void **state)
     free(c.ind), free(c.full);
     lm_worker_destroy(w);
     lm_atlas_free(&a);
-    lm_regions_free(&r);
+    gk_wall_regions_free(&r);
     gk_scene_free(s);
 }
 

@@ -85,7 +85,7 @@ static void test_spot_anim(void **state)
     rad_settings set = {.edge = v3_len(ext) / 16.0f, .n_face = 12, .weight = RAD_WEIGHT_SPILL, .samples = 16,
                         .max_verts = 60000, .link_every = 1};
     static run R;
-    rad_worker *lock = rad_worker_create(s, &e);
+    rad_worker *lock = rad_worker_create(s, NULL, &e);
     assert_non_null(lock);
     grab gr = {.copy_geometry = true};
     uint64_t seen = 0;
@@ -127,7 +127,7 @@ static void test_spot_anim(void **state)
     assert_true(lag_err[1] < lag_err[2] && lag_err[2] < lag_err[4] && lag_err[4] < lag_err[8]);
 
     /* async: what the frame shows is a lockstep result of a frame no later than its own */
-    rad_worker *async = rad_worker_create(s, &e);
+    rad_worker *async = rad_worker_create(s, NULL, &e);
     assert_non_null(async);
     grab ag = {0};
     seen = 0;

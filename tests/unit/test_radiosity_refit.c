@@ -286,7 +286,7 @@ static void test_worker_never_blocks_the_frame(void **state)
     int block;
     gk_scene *s = load_moving_block(&block);
     gk_err e = {0};
-    rad_worker *wk = rad_worker_create(s, &e);
+    rad_worker *wk = rad_worker_create(s, NULL, &e);
     assert_non_null(wk);
     /* 6x16² at ~5k vertices: a link build of seconds on llvmpipe's machine */
     vec3 ext = v3_sub(s->bmax, s->bmin);
@@ -333,7 +333,7 @@ static void test_link_update_rate(void **state)
     int block;
     gk_scene *s = load_moving_block(&block);
     gk_err e = {0};
-    rad_worker *wk = rad_worker_create(s, &e);
+    rad_worker *wk = rad_worker_create(s, NULL, &e);
     assert_non_null(wk);
     vec3 ext = v3_sub(s->bmax, s->bmin);
     rad_settings set = {.edge = v3_len(ext) / 16.0f, .n_face = 8, .weight = RAD_WEIGHT_SPILL, .samples = 4,
@@ -371,7 +371,7 @@ static void test_redo_rebuilds_every_link(void **state)
     if (!s)
         fail_msg("%s", e.msg);
     gk_scene_evaluate(s, 0.0f);
-    rad_worker *wk = rad_worker_create(s, &e);
+    rad_worker *wk = rad_worker_create(s, NULL, &e);
     assert_non_null(wk);
     vec3 ext = v3_sub(s->bmax, s->bmin);
     rad_settings set = {.edge = v3_len(ext) / 16.0f, .n_face = 8, .weight = RAD_WEIGHT_SPILL, .samples = 4,

@@ -21,7 +21,7 @@ extern const gk_gi_method gk_gi_lightmap;
 typedef struct gk_lightmap_stats {
     lm_worker_stats worker;      /* the pool's, as of this frame */
     int atlas_w, atlas_h, charts;
-    int wall_cuts;               /* surfaces cut along walls standing across them (lm_split.h) */
+    int wall_cuts;               /* surfaces cut along walls standing across them (scene/wall_split.h) */
     float texel_size;            /* metres */
     int threads;
     uint64_t uploads;            /* atlases uploaded to the GPU */

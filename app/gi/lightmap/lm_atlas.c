@@ -9,7 +9,7 @@
 #include <string.h>
 
 typedef struct tri_key {
-    long long k[5];          /* quantised normal (3), plane offset, region (lm_split.h) */
+    long long k[5];          /* quantised normal (3), plane offset, region (scene/wall_split.h) */
     int tri;
 } tri_key;
 
@@ -100,7 +100,7 @@ static int pack(lm_atlas *a, gk_err *e)
     return 0;
 }
 
-static int build_protos(const gk_scene *s, const lm_regions *regions, proto **out, int *n_out, tri_key **keys_out,
+static int build_protos(const gk_scene *s, const gk_wall_regions *regions, proto **out, int *n_out, tri_key **keys_out,
                         gk_err *e)
 {
     size_t total = 0;
@@ -337,7 +337,7 @@ int lm_atlas_build(lm_atlas *a, const gk_scene *s, int texels_across, gk_err *e)
     return lm_atlas_build_regions(a, s, texels_across, NULL, e);
 }
 
-int lm_atlas_build_regions(lm_atlas *a, const gk_scene *s, int texels_across, const lm_regions *regions, gk_err *e)
+int lm_atlas_build_regions(lm_atlas *a, const gk_scene *s, int texels_across, const gk_wall_regions *regions, gk_err *e)
 {
     memset(a, 0, sizeof *a);
     a->texels_across = texels_across < 1 ? 1 : texels_across;

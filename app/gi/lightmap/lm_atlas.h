@@ -2,7 +2,8 @@
  * B.1.4, B.2, M9): generated at scene load, from the geometry alone, nothing cached on disk.
  *
  * A *surface* (the seed's hand-made partition) is here a chart: the triangles of one drawn
- * (node, mesh) pair that lie in one plane and on one side of the walls that cross it (lm_split.h) (same geometric normal within 0.9999 and the same plane
+ * (node, mesh) pair that lie in one plane and on one side of the walls that cross it
+ * (scene/wall_split.h) (same geometric normal within 0.9999 and the same plane
  * offset within 1e-4 of the scene's diameter). Each chart is projected orthographically onto its
  * plane, so its triangles never overlap in the atlas, and gets w x h texels at one texel size for
  * the whole scene: the seed's resolution rule, "the big surfaces on the walls have textures of 5
@@ -23,7 +24,7 @@
 #include "base/err.h"
 #include "core/vecmath.h"
 #include "scene/scene.h"
-#include "lm_split.h"
+#include "scene/wall_split.h"
 
 #define LM_GUTTER 1
 #define LM_MAX_ATLAS 4096
@@ -76,9 +77,9 @@ typedef struct lm_atlas {
 
 /* Builds the atlas of s (evaluated: node world matrices valid). texels_across >= 1. */
 int lm_atlas_build(lm_atlas *a, const gk_scene *s, int texels_across, gk_err *e);
-/* The same, keeping triangles of different region labels (lm_split.h; NULL: none) in different
+/* The same, keeping triangles of different region labels (scene/wall_split.h; NULL: none) in different
  * charts. */
-int lm_atlas_build_regions(lm_atlas *a, const gk_scene *s, int texels_across, const lm_regions *regions, gk_err *e);
+int lm_atlas_build_regions(lm_atlas *a, const gk_scene *s, int texels_across, const gk_wall_regions *regions, gk_err *e);
 void lm_atlas_free(lm_atlas *a);
 
 /* Texel coordinates (continuous, texel centres at +0.5) of an object-space point of chart c. */

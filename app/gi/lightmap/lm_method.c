@@ -121,18 +121,18 @@ static int setup_scene(lm_state *s, const gk_scene *sc, int texels_across, gk_er
                 s->own_scene->nodes[i].world = sc->nodes[i].world;
     }
     s->scene = s->own_scene ? s->own_scene : sc;
-    /* walls split the surfaces they cross (lm_split.h): only in the method's own copy, which the
+    /* walls split the surfaces they cross (scene/wall_split.h): only in the method's own copy, which the
        tracer and the atlas both read */
-    lm_regions regions = {0};
+    gk_wall_regions regions = {0};
     s->st.wall_cuts = 0;
     if (s->own_scene) {
-        int cuts = lm_split_walls(s->own_scene, &regions, e);
+        int cuts = gk_split_walls(s->own_scene, &regions, e);
         if (cuts < 0)
             return -1;
         s->st.wall_cuts = cuts;
     }
     int rc = lm_atlas_build_regions(&s->atlas, s->scene, texels_across, s->own_scene ? &regions : NULL, e);
-    lm_regions_free(&regions);
+    gk_wall_regions_free(&regions);
     if (rc)
         return -1;
     s->have_atlas = true;

@@ -5,8 +5,9 @@
 #include "gl/gl.h"
 #include "gl/gl_program.h"
 #include "radiosity.h"
+#include "scene/wall_split.h"
 
-#define RAD_KNOBS 7
+#define RAD_KNOBS 8
 #define RAD_MAX_VERTS 60000     /* ~2x the richest tessellation of our scenes: a dropped-in scene
                                    too large for it shows direct light only, with a log line */
 #define RAD_DIRECT_SAMPLES 64   /* per area light and surfel: the direct light's noise (1/8) only
@@ -36,6 +37,8 @@ typedef struct rad_state {
     gk_knob knob[RAD_KNOBS];
     gk_radiosity_stats st;
     gk_scene *own_scene;
+    bool rays;                       /* radiosity_vis=rays: own_scene is cut along its walls */
+    gk_wall_regions regions;         /* the cuts' labels (n_meshes 0: none made) */
     const gk_scene *scene;           /* what the worker reads */
     const gk_scene *source;          /* the renderer's scene it stands for */
     rad_worker *worker;

@@ -13,6 +13,7 @@ typedef struct src_tri {
     float area;
     int material;
     int node;        /* the scene node that draws it: a chart moves with one node (refit) */
+    uint32_t region; /* its side of the walls that cut its mesh (scene/wall_split.h; 0: uncut) */
 } src_tri;
 
 int rad_mesh_segments(float len, float edge)
@@ -79,7 +80,7 @@ static int cmp_edge(const void *x, const void *y)
     return p->tri - q->tri;
 }
 
-static int collect(const gk_scene *s, src_tri **out, int *n_out, double *area_out)
+static int collect(const gk_scene *s, const gk_wall_regions *regions, src_tri **out, int *n_out, double *area_out)
 {
     int cap = 0, n = 0;
     src_tri *t = NULL;
@@ -114,6 +115,7 @@ static int collect(const gk_scene *s, src_tri **out, int *n_out, double *area_ou
                 st.area = 0.5f * len;
                 st.material = mat;
                 st.node = ni;
+                st.region = regions && mi < regions->n_meshes && regions->tri[mi] ? regions->tri[mi][k] : 0;
                 if (n == cap) {
                     cap = cap ? 2 * cap : 256;
                     src_tri *g = realloc(t, sizeof *t * (size_t)cap);
@@ -157,7 +159,8 @@ static int make_charts(const src_tri *t, int n, float q, int *chart_of)
     for (int i = 0; i + 1 < 3 * n; i++)
         for (int j = i + 1; j < 3 * n && edges[j].a == edges[i].a && edges[j].b == edges[i].b; j++) {
             const src_tri *x = &t[edges[i].tri], *y = &t[edges[j].tri];
-            if (x->material == y->material && x->node == y->node && v3_dot(x->n, y->n) > COPLANAR_COS) {
+            if (x->material == y->material && x->node == y->node && x->region == y->region &&
+                v3_dot(x->n, y->n) > COPLANAR_COS) {
                 int rx = find(parent, edges[i].tri), ry = find(parent, edges[j].tri);
                 if (rx != ry)
                     parent[rx > ry ? rx : ry] = rx < ry ? rx : ry;
@@ -340,11 +343,17 @@ int rad_mesh_refit(rad_mesh *m, const mat4 *worlds, int n_worlds)
 
 int rad_mesh_build(rad_mesh *m, const gk_scene *s, float edge, int max_verts, gk_err *e)
 {
+    return rad_mesh_build_regions(m, s, NULL, edge, max_verts, e);
+}
+
+int rad_mesh_build_regions(rad_mesh *m, const gk_scene *s, const gk_wall_regions *regions, float edge, int max_verts,
+                           gk_err *e)
+{
     memset(m, 0, sizeof *m);
     m->edge = edge;
     src_tri *t = NULL;
     int n = 0;
-    if (collect(s, &t, &n, &m->surface_area))
+    if (collect(s, regions, &t, &n, &m->surface_area))
         return gk_fail(e, GK_ERUNTIME, "radiosity: out of memory reading %s's triangles", s->name);
     m->n_source_tris = n;
     if (n == 0) {

@@ -32,6 +32,7 @@
 #include "base/err.h"
 #include "core/vecmath.h"
 #include "scene/scene.h"
+#include "scene/wall_split.h"
 
 typedef struct rad_chart {
     vec3 normal;            /* unit, world, at the pose of the last refit */
@@ -68,6 +69,11 @@ typedef struct rad_mesh {
  * edge length. max_verts bounds the result: a scene whose refinement would exceed it is a GK_EINPUT
  * error naming the scene and the count (a coarser edge fits). */
 int rad_mesh_build(rad_mesh *m, const gk_scene *s, float edge, int max_verts, gk_err *e);
+/* The same where walls cut s's surfaces (scene/wall_split.h; regions NULL: none): triangles of
+ * different labels go to different charts, so no element straddles a wall and no vertex's radiance
+ * is interpolated across one. */
+int rad_mesh_build_regions(rad_mesh *m, const gk_scene *s, const gk_wall_regions *regions, float edge, int max_verts,
+                           gk_err *e);
 void rad_mesh_free(rad_mesh *m);
 
 /* UpdateElements' first half [doc, Algorithm 1 step 1]: moves the vertices, surfel centres and chart

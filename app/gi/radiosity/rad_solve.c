@@ -8,9 +8,15 @@
 int rad_geometry_build(rad_geometry *g, const gk_scene *s, float edge, int max_verts, int n_face, rad_weight weight,
                        gk_err *e)
 {
+    return rad_geometry_build_regions(g, s, NULL, edge, max_verts, n_face, weight, e);
+}
+
+int rad_geometry_build_regions(rad_geometry *g, const gk_scene *s, const gk_wall_regions *regions, float edge,
+                               int max_verts, int n_face, rad_weight weight, gk_err *e)
+{
     memset(g, 0, sizeof *g);
     g->edge = edge, g->n_face = n_face, g->weight = weight;
-    if (rad_mesh_build(&g->mesh, s, edge, max_verts, e))
+    if (rad_mesh_build_regions(&g->mesh, s, regions, edge, max_verts, e))
         return -1;
     if (rad_tree_build(&g->tree, &g->mesh, e) || rad_links_build(&g->links, &g->tree, n_face, weight, e)) {
         rad_geometry_free(g);

@@ -35,6 +35,9 @@ typedef struct rad_geometry {
 /* s: evaluated. Errors as rad_mesh_build (input: too many vertices) and out of memory. */
 int rad_geometry_build(rad_geometry *g, const gk_scene *s, float edge, int max_verts, int n_face, rad_weight weight,
                        gk_err *e);
+/* The same over a scene cut along its walls (rad_mesh_build_regions). */
+int rad_geometry_build_regions(rad_geometry *g, const gk_scene *s, const gk_wall_regions *regions, float edge,
+                               int max_verts, int n_face, rad_weight weight, gk_err *e);
 void rad_geometry_free(rad_geometry *g);
 /* A deep copy (the worker refits a copy while the frame reads the published one). -1: out of memory. */
 int rad_geometry_clone(rad_geometry *dst, const rad_geometry *src);

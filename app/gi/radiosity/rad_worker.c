@@ -8,6 +8,7 @@
 
 #include "rad_direct.h"
 #include "rad_env.h"
+#include "rad_vis.h"
 
 struct rad_worker {
     pthread_t thread;
@@ -20,6 +21,7 @@ struct rad_worker {
 
     /* the worker's own (only its thread touches these during a tick) */
     gk_scene view;             /* the loaded scene with its own node array */
+    const gk_wall_regions *regions; /* its walls' cuts (NULL: none) */
     gk_node *nodes;
     mat4 *built_worlds;
     bool have_rs;
@@ -53,7 +55,8 @@ static void fail(rad_worker *w, const char *msg)
 
 static bool same_geometry(const rad_settings *a, const rad_settings *b)
 {
-    return a->edge == b->edge && a->n_face == b->n_face && a->weight == b->weight && a->max_verts == b->max_verts;
+    return a->edge == b->edge && a->n_face == b->n_face && a->weight == b->weight && a->max_verts == b->max_verts &&
+           a->vis_rays == b->vis_rays;
 }
 
 /* UpdateElements on a copy of the published geometry (the frame may be reading it), and the links
@@ -80,6 +83,8 @@ static int refit(rad_worker *w, const mat4 *worlds, const rad_settings *set, boo
             fail(w, e.msg);
             return -1;
         }
+        if (set->vis_rays)
+            rad_links_cull_occluded(&g->links, &g->tree, &w->rs);
         g->links_id = ++w->links_seq;
         w->moved_since_links = 0;
     }
@@ -137,11 +142,13 @@ static void tick(rad_worker *w, const mat4 *worlds, const rad_settings *set, boo
            refit from that rest pose (rad_tree.h) */
         rad_geometry *g = calloc(1, sizeof *g);
         gk_err e = {0};
-        if (!g || rad_geometry_build(g, &w->view, set->edge, set->max_verts, set->n_face, set->weight, &e)) {
+        if (!g || rad_geometry_build_regions(g, &w->view, w->regions, set->edge, set->max_verts, set->n_face, set->weight, &e)) {
             free(g);
             fail(w, g ? e.msg : "radiosity: out of memory");
             return;
         }
+        if (set->vis_rays)
+            rad_links_cull_occluded(&g->links, &g->tree, &w->rs);
         size_t nn = (size_t)g->tree.n_nodes, nl = (size_t)g->tree.n_leaves;
         float *ed = malloc(sizeof *ed * 3 * nl), *b0 = malloc(sizeof *b0 * 3 * nn);
         if (!ed || !b0) {
@@ -253,7 +260,7 @@ static void *worker_main(void *p)
     return NULL;
 }
 
-rad_worker *rad_worker_create(const gk_scene *scene, gk_err *e)
+rad_worker *rad_worker_create(const gk_scene *scene, const gk_wall_regions *regions, gk_err *e)
 {
     rad_worker *w = calloc(1, sizeof *w);
     if (!w) {
@@ -262,6 +269,7 @@ rad_worker *rad_worker_create(const gk_scene *scene, gk_err *e)
     }
     int n = scene->n_nodes;
     w->view = *scene;
+    w->regions = regions;
     w->nodes = malloc(sizeof *w->nodes * (size_t)(n > 0 ? n : 1));
     w->req_worlds = calloc((size_t)(n > 0 ? n : 1), sizeof *w->req_worlds);
     w->built_worlds = calloc((size_t)(n > 0 ? n : 1), sizeof *w->built_worlds);

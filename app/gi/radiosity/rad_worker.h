@@ -31,6 +31,8 @@ typedef struct rad_settings {
     int link_every;        /* while meshes move: links rebuilt every link_every-th tick that moved
                               them (the link update rate); the other ticks refit the hierarchy and
                               keep the last links (their targets and weights) */
+    bool vis_rays;         /* links tested by shadow rays (rad_vis.h) on top of the bins' implicit
+                              visibility */
 } rad_settings;
 
 typedef struct rad_worker_stats {
@@ -50,8 +52,9 @@ typedef struct rad_worker_stats {
 typedef struct rad_worker rad_worker;
 
 /* scene: as loaded; read by the worker for its life (meshes, materials, lights); node matrices come
- * with each submit. */
-rad_worker *rad_worker_create(const gk_scene *scene, gk_err *e);
+ * with each submit. regions: where walls cut scene's surfaces (scene/wall_split.h; NULL: no cuts),
+ * read likewise: the mesh keeps the pieces in separate charts. */
+rad_worker *rad_worker_create(const gk_scene *scene, const gk_wall_regions *regions, gk_err *e);
 void rad_worker_destroy(rad_worker *w);
 /* Non-blocking: the frame's evaluated scene (its node matrices are copied) and settings. */
 void rad_worker_submit(rad_worker *w, const gk_scene *evaluated, const rad_settings *set);

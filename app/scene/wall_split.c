@@ -1,5 +1,5 @@
-/* Walls split the surfaces they stand on (lm_split.h). */
-#include "lm_split.h"
+/* Walls split the surfaces they stand on (scene/wall_split.h). */
+#include "scene/wall_split.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -207,7 +207,7 @@ static bool crosses(const wtri *T, plane pg, const gk_mesh *m, mat4 w, const uin
     return true;
 }
 
-void lm_regions_free(lm_regions *r)
+void gk_wall_regions_free(gk_wall_regions *r)
 {
     for (int i = 0; r->tri && i < r->n_meshes; i++)
         free(r->tri[i]);
@@ -217,7 +217,7 @@ void lm_regions_free(lm_regions *r)
 
 /* Sets bit `bit` of the labels of m's triangles in plane pg (world, under w) by their side of the
    object-space cut co. */
-static int label(lm_regions *r, int mi, const gk_mesh *m, mat4 w, plane pg, plane co, int bit, float eps,
+static int label(gk_wall_regions *r, int mi, const gk_mesh *m, mat4 w, plane pg, plane co, int bit, float eps,
                  uint32_t *labelled)
 {
     uint32_t *lab = realloc(r->tri[mi], sizeof *lab * (m->n_triangles ? m->n_triangles : 1));
@@ -241,7 +241,7 @@ static int label(lm_regions *r, int mi, const gk_mesh *m, mat4 w, plane pg, plan
     return 0;
 }
 
-int lm_split_walls(gk_scene *s, lm_regions *r, gk_err *e)
+int gk_split_walls(gk_scene *s, gk_wall_regions *r, gk_err *e)
 {
     memset(r, 0, sizeof *r);
     r->tri = calloc((size_t)(s->n_meshes > 0 ? s->n_meshes : 1), sizeof *r->tri);
@@ -372,6 +372,6 @@ oom_all:
     free(tris), free(all);
 oom:
     free(users);
-    lm_regions_free(r);
+    gk_wall_regions_free(r);
     return gk_fail(e, GK_ERUNTIME, "lightmap: out of memory splitting surfaces along walls");
 }
