@@ -32,43 +32,12 @@ static int teardown(void **state)
     return 0;
 }
 
-/* T1: light square S = 1 at y = 4, blocker 2x2 at y = 1, receiver y = 0 (test_shadow_accuracy.c). */
-static sx_setup t1(void)
-{
-    sx_setup st = {.S = 1.0f, .light = v3(0, SX_LIGHT_Y, 0), .n_rects = 1, .eye = v3(0, 6, 6), .target = v3(0, 0, 0),
-                   .yfov = 1.0471976f};
-    st.rect[0] = (sx_rect){-1, 1, -1, 1, 1};
-    return st;
-}
-
-/* sx_draw with GI method vct. */
-static int draw_vct(const char *pins, float *out)
-{
-    gk_err e = {0};
-    if (gk_budget_pin_list(&ses.b, pins, &e) != 0) {
-        fprintf(stderr, "pins %s: %s\n", pins, e.msg);
-        return -1;
-    }
-    gk_frame_params fp = {.time_s = 0, .method = "vct", .budget = &ses.b};
-    gk_frame_report t;
-    gk_image img = {0};
-    if (gk_renderer_draw(ses.r, &fp, ses.gl.fb.fbo, &t, &e) != 0 || gk_renderer_read_linear(ses.r, &img, &e) != 0 ||
-        gk_renderer_gi_failed(ses.r, "vct")) {
-        fprintf(stderr, "draw %s: %s\n", pins, e.msg);
-        return -1;
-    }
-    for (int i = 0; i < img.width * img.height; i++)
-        out[i] = img.pixels[(size_t)i * img.channels + 1];
-    gk_image_free(&img);
-    return 0;
-}
-
 static const char *const variants[] = {"map", "cone9", "cone6", "cone3", "cone0", "cone"};
 enum { V_PCSS, V_CONE9, V_CONE6, V_CONE3, V_CONE0, V_CONE, V_N };
 
 static void measure(int res, sx_stats *stats)
 {
-    sx_setup st = t1();
+    sx_setup st = sx_t1(1.0f);
     fx_scene with, without;
     sx_build(&with, &st, true);
     sx_build(&without, &st, false);
@@ -78,13 +47,13 @@ static void measure(int res, sx_stats *stats)
     gk_err e = {0};
     char pins[160];
     snprintf(pins, sizeof pins, "shadow=hard,shadow_map=512,vct_shadow=map,vct_res=%d", res);
-    if (gk_renderer_set_scene(ses.r, &without.s, &e) != 0 || draw_vct(pins, b) != 0)
+    if (gk_renderer_set_scene(ses.r, &without.s, &e) != 0 || sx_draw_method(&ses, "vct", pins, b) != 0)
         fail_msg("render without blockers: %s", e.msg);
     if (gk_renderer_set_scene(ses.r, &with.s, &e) != 0)
         fail_msg("set_scene: %s", e.msg);
     for (int m = 0; m < V_N; m++) {
         snprintf(pins, sizeof pins, "shadow=pcss,shadow_map=512,vct_shadow=%s,vct_res=%d,vct_skip=off", variants[m], res);
-        if (draw_vct(pins, a) != 0)
+        if (sx_draw_method(&ses, "vct", pins, a) != 0)
             fail_msg("render %s", variants[m]);
         sx_ratio(a, b, &t, v);
         stats[m] = sx_compare(v, &t);

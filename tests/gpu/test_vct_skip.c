@@ -58,24 +58,6 @@ static void read_mask(unsigned tex, float *out)
     glDeleteFramebuffers(1, &fbo);
 }
 
-/* vt_render's frame (the G-buffer of f) for the shadow_mask hook. */
-static gk_gi_frame frame_of(vt_frame *f, vt_scene *sc, const gk_budget *b, const gk_gi_light *L)
-{
-    gk_gi_frame fr;
-    memset(&fr, 0, sizeof fr);
-    fr.scene = &sc->s;
-    fr.width = f->w, fr.height = f->h;
-    fr.view = f->view, fr.proj = f->proj, fr.view_proj = f->view_proj, fr.inv_view_proj = f->inv_view_proj;
-    fr.eye = f->eye;
-    fr.gbuf_depth = f->gbuf.depth, fr.gbuf_normal = f->gbuf.color[1], fr.gbuf_albedo = f->gbuf.color[2];
-    fr.gbuf_specular = f->gbuf.color[3];
-    fr.hdr_fbo = f->hdr.fbo;
-    fr.n_lights = 1;
-    fr.lights = L;
-    fr.budget = b;
-    return fr;
-}
-
 typedef struct run {
     unsigned long shadow_steps, trace_steps;
     float *mask, *image;
@@ -97,7 +79,7 @@ static void render(vt_frame *f, vt_scene *sc, const gk_gi_light *L, const char *
     out->image = malloc(sizeof(float) * 4 * W * H);
     out->mask = malloc(sizeof(float) * W * H);
     assert_int_equal(vt_render(vct, f, sc, &b, L, 1, out->image, NULL), 0);
-    gk_gi_frame fr = frame_of(f, sc, &b, L);
+    gk_gi_frame fr = vt_gi_frame(f, sc, &b, L, 1);
     unsigned tex = 0;
     gk_err e = {0};
     assert_int_equal(gk_gi_vct.shadow_mask(vct, &fr, 0, &tex, &e), 0);
