@@ -108,6 +108,9 @@ typedef struct gk_gi_method {
        f->height whose red channel is the visibility per G-buffer pixel, or 0 when the method does
        not shadow this light this frame (the shadow maps stay). Returns -1 with e filled on failure. */
     int (*shadow_mask)(void *self, const gk_gi_frame *f, int light, unsigned *tex, gk_err *e);
+    /* With shadow_mask: whether budget b asks the method for masks at all. Only then does the
+       renderer make the method ready before the direct pass (its set-up stays in the gi pass else). */
+    bool (*wants_shadow_mask)(const gk_budget *b);
     /* Optional: forget the work cached between frames (vct: voxels and injected light), so the next
        render redoes it; the bench's --rebuild-gi times those passes with it. */
     void (*invalidate)(void *self);

@@ -24,6 +24,8 @@
 struct gk_render_gi {
     void *state[GI_MAX_METHODS];             /* per registered method, created on first use */
     unsigned generation_of[GI_MAX_METHODS];  /* renderer scene generation each state last saw (0 = none) */
+    bool changed_unseen[GI_MAX_METHODS];     /* a new scene the shadow masks prepared the method for this
+                                                frame, not yet told to its render() (scene_changed) */
     unsigned failed_on[GI_MAX_METHODS];      /* scene generation on which the method failed (0 = none):
                                                 skipped until the next scene, never retried per frame */
     GLuint depth_tex[GK_GI_MAX_LIGHTS];
@@ -290,13 +292,19 @@ int gk_render_gi_shadow_masks(gk_render_gi *g, gk_renderer *r, const char *metho
 {
     for (int i = 0; i < n; i++)
         masks[i] = 0;
-    int k, count;
-    bool changed = false;
+    int k = method ? method_index(method) : -1, count;
     const gk_gi_method *const *methods = gk_gi_methods(&count);
+    /* only a method whose budget asks for masks is made ready here, before the direct pass: the
+       others' set-up and light maps stay in the gi pass they are timed in */
+    if (k < 0 || !methods[k]->shadow_mask || !methods[k]->wants_shadow_mask ||
+        !methods[k]->wants_shadow_mask(ctx->budget))
+        return 0;
+    bool changed = false;
     if (ready(g, r, method, &k, &changed, e) != 0)
         return -1;
-    if (k < 0 || !methods[k]->shadow_mask)
+    if (k < 0)
         return 0;
+    g->changed_unseen[k] = changed; /* the method's render() this frame is told the scene changed */
     gk_gi_frame f;
     fill_frame(g, r, ctx, changed, &f);
     for (int li = 0; li < g->n_lights; li++) {
@@ -324,6 +332,8 @@ int gk_render_gi_run(gk_render_gi *g, gk_renderer *r, const char *method, const 
         return -1;
     if (k < 0)
         return 0;
+    changed = changed || g->changed_unseen[k];
+    g->changed_unseen[k] = false;
     const gk_gi_method *m = gk_gi_methods(&count)[k];
     gk_gi_frame f;
     fill_frame(g, r, ctx, changed, &f);

@@ -87,6 +87,12 @@ static bool vct_applies(const gk_scene *s)
     return s && s->n_triangles > 0 && (s->n_lights > 0 || s->features.has_emissive);
 }
 
+static bool vct_wants_shadow_mask(const gk_budget *b)
+{
+    gk_knob k = gk_budget_knob(b, &knob_shadow);
+    return gk_knob_level(b, &k, 0) != VCT_SHADOW_MAP;
+}
+
 static void vct_declare_knobs(gk_budget *b)
 {
     gk_budget_add(b, &knob_res);
@@ -427,6 +433,7 @@ const gk_gi_method gk_gi_vct = {
     .render = vct_render,
     .memory_bytes = vct_memory_bytes,
     .shadow_mask = vct_shadow_mask,
+    .wants_shadow_mask = vct_wants_shadow_mask,
     .invalidate = vct_invalidate,
     .destroy = vct_destroy,
 };
