@@ -10,9 +10,7 @@
 #include <stddef.h>
 #include <cmocka.h>
 
-#include "gi/vct/vct.h"
 #include "gpu/test_shadow_util.h"
-#include "gpu/test_vct_util.h"
 
 #define W 128
 #define H 128

@@ -35,7 +35,8 @@ static const gk_knob_def knob_variant = {"vct_variant", "vct", 2, {"default", "t
    cone9 .. cone0, one cone toward the light per pixel through the voxel map at the thesis's fixed
    apertures (9, 6, 3, 0 degrees full apex angle); cone, its aperture the light's angular diameter
    from the receiver (not in the thesis). A switch, not a scheduler pick: the calibration has no rows
-   for it yet (README "Voxel cone tracing", soft-shadow cone). */
+   for it, and on llvmpipe it measured slower than PCSS for a larger error (README "vct: the
+   soft-shadow cone and empty-space skipping"). */
 static const gk_knob_def knob_shadow = {.name = "vct_shadow", .owner = "vct", .n_values = 6,
                                         .values = {"map", "cone9", "cone6", "cone3", "cone0", "cone"},
                                         .cost = {1, 1, 1, 1, 1, 1}, .default_level = 0, .fixed = true};
