@@ -30,6 +30,9 @@ if "$BIN" scenes | grep -q 'vct'; then
     # direct.vct_shadow_cone (inside the direct pass, whose time compares with the maps' lookups).
     run vct-shadows --scenes cornell,cornell-spot --methods vct \
         --sweep 'vct_shadow=map,cone9,cone6,cone3,cone0,cone;shadow=hard,pcss,vssm,cssm'
+    # Algorithm 1 (vct_skip) on the shadow cone, off against on (README: the 0-degree cone gains, the
+    # light-sized one loses; the specular cone's count is in tests/gpu/test_vct_skip.c).
+    run vct-skip --scenes cornell,cornell-spot --methods vct --sweep 'vct_shadow=cone0,cone;vct_skip=off,on'
 fi
 # VPLs with clustered virtual area lights: N x M and adaptive M.
 if "$BIN" scenes | grep -q 'vpl'; then
