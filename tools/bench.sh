@@ -25,6 +25,14 @@ if "$BIN" scenes | grep -q 'vct'; then
     run vct --scenes cornell,light-leak,atrium --methods vct
     # What a moving light or object costs: every pass every frame, per voxel resolution.
     run vct-rebuild --scenes cornell,atrium --methods vct --sweep 'vct_res=32,64,128' --rebuild-gi
+    # Shadows with vct (README "Soft-shadow cone"): the cone toward the light at the thesis's
+    # apertures and the light's, beside the shadow maps' methods, in one run; the cone's pass is
+    # direct.vct_shadow_cone (inside the direct pass, whose time compares with the maps' lookups).
+    run vct-shadows --scenes cornell,cornell-spot --methods vct \
+        --sweep 'vct_shadow=map,cone9,cone6,cone3,cone0,cone;shadow=hard,pcss,vssm,cssm'
+    # Algorithm 1 (vct_skip) on the shadow cone, off against on (README: the 0-degree cone gains, the
+    # light-sized one loses; the specular cone's count is in tests/gpu/test_vct_skip.c).
+    run vct-skip --scenes cornell,cornell-spot --methods vct --sweep 'vct_shadow=cone0,cone;vct_skip=off,on'
 fi
 # VPLs with clustered virtual area lights: N x M and adaptive M.
 if "$BIN" scenes | grep -q 'vpl'; then

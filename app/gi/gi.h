@@ -100,6 +100,17 @@ typedef struct gk_gi_method {
     int (*render)(void *self, const gk_gi_frame *f, gk_err *e);
     /* Bytes of GPU memory held at the current budget (reported and asserted in tests). */
     long (*memory_bytes)(const void *self);
+    /* Optional: a soft-shadow mask for light `light` (an index into f->lights) traced through the
+       method's own scene representation, for the renderer's direct pass to multiply in instead of
+       its shadow maps (vct: the shadow cone, knob vct_shadow). Called after the G-buffer pass and
+       before the direct pass, so the method brings what it traces through up to date for this
+       frame first (the later render() then finds it done). *tex: a texture of f->width x
+       f->height whose red channel is the visibility per G-buffer pixel, or 0 when the method does
+       not shadow this light this frame (the shadow maps stay). Returns -1 with e filled on failure. */
+    int (*shadow_mask)(void *self, const gk_gi_frame *f, int light, unsigned *tex, gk_err *e);
+    /* With shadow_mask: whether budget b asks the method for masks at all. Only then does the
+       renderer make the method ready before the direct pass (its set-up stays in the gi pass else). */
+    bool (*wants_shadow_mask)(const gk_budget *b);
     /* Optional: forget the work cached between frames (vct: voxels and injected light), so the next
        render redoes it; the bench's --rebuild-gi times those passes with it. */
     void (*invalidate)(void *self);

@@ -50,6 +50,7 @@ typedef struct frame_light {
     const gk_shadow_method *method; /* the knob's, or CSSM for the environment's lights (render_env.h) */
     int slot;                       /* the light's slot in its method's state */
     gk_shadow_view view;
+    unsigned mask;                  /* the GI method's visibility mask in place of the maps (0: none) */
 } frame_light;
 
 /* The method's state, created on first use; NULL with e set on failure. */
@@ -151,7 +152,7 @@ typedef struct light_uniforms {
     gk_gbuffer_uniforms gb;
     GLint u_gb_geom_normal;
     GLint u_light_pos, u_light_dir, u_light_u, u_light_v, u_light_color, u_light_range, u_light_cone,
-        u_light_radius, u_light_size, u_ltc;
+        u_light_radius, u_light_size, u_ltc, u_shadow_mask;
 } light_uniforms;
 static const gk_uniform_field light_fields[] = {
     GK_GBUFFER_FIELDS(light_uniforms, gb),
@@ -166,6 +167,7 @@ static const gk_uniform_field light_fields[] = {
     GK_UNIFORM(light_uniforms, u_light_radius),
     GK_UNIFORM(light_uniforms, u_light_size),
     GK_UNIFORM(light_uniforms, u_ltc),
+    GK_UNIFORM(light_uniforms, u_shadow_mask),
 };
 
 /* compose/compose.frag */
@@ -247,7 +249,7 @@ static int pass_direct(gk_renderer *r, const gk_frame_knobs *fk, const frame_lig
         char defines[256];
         snprintf(defines, sizeof defines, "#define GK_LIGHT_KIND %d\n%s%s", gk_render_light_kind(l),
                  l->type == GK_LIGHT_SPOT ? "#define GK_LIGHT_SPOT 1\n" : "",
-                 fl[i].shadowed ? fl[i].method->glsl_define : "");
+                 fl[i].mask ? "#define SHADOW_MASK 1\n" : fl[i].shadowed ? fl[i].method->glsl_define : "");
         prog = gk_program_get(r->progs, "common/fullscreen.vert", "direct/light.frag", defines, e);
         const light_uniforms *lu = prog ? gk_program_uniforms(r->progs, prog, GK_FIELDS(light_fields), sizeof *lu, e) : NULL;
         if (!lu) {
@@ -264,7 +266,12 @@ static int pass_direct(gk_renderer *r, const gk_frame_knobs *fk, const frame_lig
         glBindTexture(GL_TEXTURE_2D, r->ltc_tex);
         glBindSampler(UNIT_LTC, 0);
         glUniform1i(lu->u_ltc, UNIT_LTC);
-        if (fl[i].shadowed && fl[i].method->bind(r->shadow_state[method_index(fl[i].method)], r->progs, fl[i].slot,
+        if (fl[i].mask) {
+            glActiveTexture(GL_TEXTURE0 + UNIT_SHADOW);
+            glBindTexture(GL_TEXTURE_2D, fl[i].mask);
+            glBindSampler(UNIT_SHADOW, 0);
+            glUniform1i(lu->u_shadow_mask, UNIT_SHADOW);
+        } else if (fl[i].shadowed && fl[i].method->bind(r->shadow_state[method_index(fl[i].method)], r->progs, fl[i].slot,
                                                  &fl[i].view, prog, UNIT_SHADOW, e) != 0) {
             glDisable(GL_BLEND);
             return -1;
@@ -355,6 +362,23 @@ static void pass_gi(gk_renderer *r, const gk_frame_params *fp, const gk_frame_kn
     gk_pass_end(ctx);
 }
 
+/* The GI method's shadow masks for the frame's lights (render_gi.h), inside the direct pass whose
+   cost they are (the method's passes nest under `direct`). A method that fails is logged once, as in
+   pass_gi, and the lights keep their shadow maps. */
+static void gi_shadow_masks(gk_renderer *r, const gk_frame_params *fp, const gk_pass_ctx *ctx, frame_light *fl, int n)
+{
+    int nodes[64];
+    unsigned masks[64];
+    for (int i = 0; i < n; i++)
+        nodes[i] = fl[i].node;
+    gk_err err = {0};
+    if (gk_render_gi_shadow_masks(r->gi, r, fp ? fp->method : NULL, ctx, nodes, n, masks, &err) != 0)
+        gk_log("renderer: GI method %s failed on scene %s, showing it without GI: %s", fp->method,
+               r->scene->name[0] ? r->scene->name : "?", err.msg);
+    for (int i = 0; i < n; i++)
+        fl[i].mask = masks[i];
+}
+
 /* True when fp->stop asks to abandon the frame before pass `next`; *last is the pass that ran last
    and becomes `next` when the frame goes on. */
 static bool stop_before(const gk_frame_params *fp, const char *next, const char **last)
@@ -431,6 +455,7 @@ int gk_renderer_draw(gk_renderer *r, const gk_frame_params *fp, unsigned target_
     }
     if (rc == 0 && !abandoned && !(abandoned = stop_before(fp, "direct", &last))) {
         gk_pass_begin(&ctx, "direct");
+        gi_shadow_masks(r, fp, &ctx, fl, n);
         rc = pass_direct(r, &fk, fl, n, &gb, e);
         gk_pass_end(&ctx);
     }

@@ -24,6 +24,8 @@
 struct gk_render_gi {
     void *state[GI_MAX_METHODS];             /* per registered method, created on first use */
     unsigned generation_of[GI_MAX_METHODS];  /* renderer scene generation each state last saw (0 = none) */
+    bool changed_unseen[GI_MAX_METHODS];     /* a new scene the shadow masks prepared the method for this
+                                                frame, not yet told to its render() (scene_changed) */
     unsigned failed_on[GI_MAX_METHODS];      /* scene generation on which the method failed (0 = none):
                                                 skipped until the next scene, never retried per frame */
     GLuint depth_tex[GK_GI_MAX_LIGHTS];
@@ -231,21 +233,9 @@ static int prepare(gk_render_gi *g, gk_renderer *r, const gk_gi_method *m, int k
     return 0;
 }
 
-int gk_render_gi_run(gk_render_gi *g, gk_renderer *r, const char *method, const gk_pass_ctx *ctx, gk_err *e)
+/* The frame a method is lent (gi.h), after prepare() and render_light_maps(). */
+static void fill_frame(gk_render_gi *g, gk_renderer *r, const gk_pass_ctx *ctx, bool changed, gk_gi_frame *out)
 {
-    if (!method || strcmp(method, "none") == 0)
-        return 0;
-    int k = method_index(method);
-    if (k < 0 || g->failed_on[k] == r->scene_generation)
-        return 0; /* unknown, or broken on this scene: direct light only (the kiosk keeps showing something) */
-    int count;
-    const gk_gi_method *m = gk_gi_methods(&count)[k];
-    bool changed = false;
-    if (prepare(g, r, m, k, &changed, e) != 0 || render_light_maps(g, r, e) != 0) {
-        g->failed_on[k] = r->scene_generation;
-        return -1;
-    }
-
     const gk_gbuffer_view *gb = ctx->gbuffer;
     gk_gi_frame f;
     memset(&f, 0, sizeof f);
@@ -273,6 +263,80 @@ int gk_render_gi_run(gk_render_gi *g, gk_renderer *r, const char *method, const 
     f.budget = ctx->budget;
     f.draw_scene = draw_scene_cb;
     f.draw_ctx = r;
+    *out = f;
+}
+
+/* The method's index (-1: none, unknown, or failed on this scene), its state made and handed the
+   scene, the GI light maps rendered; -1 in *k with e filled when that fails (the method is then
+   skipped on this scene). */
+static int ready(gk_render_gi *g, gk_renderer *r, const char *method, int *k, bool *changed, gk_err *e)
+{
+    *k = -1;
+    if (!method || strcmp(method, "none") == 0)
+        return 0;
+    int i = method_index(method);
+    if (i < 0 || g->failed_on[i] == r->scene_generation)
+        return 0; /* unknown, or broken on this scene: direct light only (the kiosk keeps showing something) */
+    int count;
+    const gk_gi_method *m = gk_gi_methods(&count)[i];
+    if (prepare(g, r, m, i, changed, e) != 0 || render_light_maps(g, r, e) != 0) {
+        g->failed_on[i] = r->scene_generation;
+        return -1;
+    }
+    *k = i;
+    return 0;
+}
+
+int gk_render_gi_shadow_masks(gk_render_gi *g, gk_renderer *r, const char *method, const gk_pass_ctx *ctx,
+                              const int *nodes, int n, unsigned *masks, gk_err *e)
+{
+    for (int i = 0; i < n; i++)
+        masks[i] = 0;
+    int k = method ? method_index(method) : -1, count;
+    const gk_gi_method *const *methods = gk_gi_methods(&count);
+    /* only a method whose budget asks for masks is made ready here, before the direct pass: the
+       others' set-up and light maps stay in the gi pass they are timed in */
+    if (k < 0 || !methods[k]->shadow_mask || !methods[k]->wants_shadow_mask ||
+        !methods[k]->wants_shadow_mask(ctx->budget))
+        return 0;
+    bool changed = false;
+    if (ready(g, r, method, &k, &changed, e) != 0)
+        return -1;
+    if (k < 0)
+        return 0;
+    g->changed_unseen[k] = changed; /* the method's render() this frame is told the scene changed */
+    gk_gi_frame f;
+    fill_frame(g, r, ctx, changed, &f);
+    for (int li = 0; li < g->n_lights; li++) {
+        int at = -1; /* the frame light on the GI light's node */
+        for (int i = 0; i < n && at < 0; i++)
+            if (nodes[i] == g->lights[li].node)
+                at = i;
+        if (at < 0)
+            continue;
+        if (methods[k]->shadow_mask(g->state[k], &f, li, &masks[at], e) != 0) {
+            g->failed_on[k] = r->scene_generation;
+            for (int i = 0; i < n; i++)
+                masks[i] = 0;
+            return -1;
+        }
+    }
+    return 0;
+}
+
+int gk_render_gi_run(gk_render_gi *g, gk_renderer *r, const char *method, const gk_pass_ctx *ctx, gk_err *e)
+{
+    int k, count;
+    bool changed = false;
+    if (ready(g, r, method, &k, &changed, e) != 0)
+        return -1;
+    if (k < 0)
+        return 0;
+    changed = changed || g->changed_unseen[k];
+    g->changed_unseen[k] = false;
+    const gk_gi_method *m = gk_gi_methods(&count)[k];
+    gk_gi_frame f;
+    fill_frame(g, r, ctx, changed, &f);
     if (r->opts.rebuild_gi && m->invalidate)
         m->invalidate(g->state[k]);
     int rc = m->render(g->state[k], &f, e);

@@ -20,6 +20,12 @@ int gk_render_gi_methods(const gk_scene *s, const char **names, int max);
  * method that fails (create, scene upload or a frame) returns -1 once with e filled and is then
  * skipped -- not retried, not logged again -- until the renderer gets another scene. */
 int gk_render_gi_run(gk_render_gi *g, gk_renderer *r, const char *method, const gk_pass_ctx *ctx, gk_err *e);
+/* Soft-shadow masks of the method for this frame's lights (gi.h shadow_mask), before the direct
+ * pass (ctx's G-buffer drawn): masks[i] for the light on node nodes[i], 0 where the method leaves the
+ * light to the shadow maps (no hook, its knob says so, or a light it does not see). A failure is
+ * handled as gk_render_gi_run's (-1 once, then skipped on this scene; every mask 0). */
+int gk_render_gi_shadow_masks(gk_render_gi *g, gk_renderer *r, const char *method, const gk_pass_ctx *ctx,
+                              const int *nodes, int n, unsigned *masks, gk_err *e);
 /* True when `method` failed on the current scene (the kiosk then shows the scene without it). */
 bool gk_render_gi_failed(const gk_render_gi *g, const gk_renderer *r, const char *method);
 /* GPU memory of a method's state at its current budget (0 when not created). */

@@ -1,5 +1,5 @@
 // Selects the shadow method of the lighting pass by #define (app/render/shadow/shadow.h):
-//   SHADOW_HARD, SHADOW_PCSS, SHADOW_VSSM, SHADOW_CSSM, none: unshadowed.
+//   SHADOW_HARD, SHADOW_PCSS, SHADOW_VSSM, SHADOW_CSSM, SHADOW_MASK (a GI method's mask), none: unshadowed.
 // Every method provides  highp float shadow_visibility(highp vec3 world_pos, highp vec3 world_normal)
 // in [0, 1]. Included files are expanded textually; the preprocessor drops the unused ones. A file
 // is expanded once per program, so helpers shared by two methods are included here, outside the
@@ -18,6 +18,8 @@
 #include "shadow/vssm.glsl"
 #elif defined(SHADOW_CSSM)
 #include "shadow/cssm.glsl"
+#elif defined(SHADOW_MASK)
+#include "shadow/mask.glsl"
 #else
 highp float shadow_visibility(highp vec3 world_pos, highp vec3 world_normal) { return 1.0; }
 #endif

@@ -9,6 +9,7 @@
 //   OPACITY_CORRECTION=1: alpha' = 1 - (1 - alpha)^(step / voxel(lod)) -- not in the thesis.
 //   CLIP_CONES=1: every cone stops at the volume border (thesis code: only apertures < 0.3; wide
 //                 cones keep sampling clamped edge texels, the Fig. 18b banding) -- not in the thesis.
+//   EMPTY_SKIP=1: Algorithm 1's empty-space skipping for cones narrower than 0.3 (vct/empty_skip.glsl).
 #ifndef CLIP_CONES
 #define CLIP_CONES 0
 #endif
@@ -89,6 +90,8 @@ vec4 dir_sample_level0(vec3 p, cone_axes a)
 }
 #endif
 
+#include "vct/empty_skip.glsl"
+
 // Early termination (not in the thesis): a cone whose accumulated opacity reaches this stops; what
 // it no longer adds is at most (1 - CONE_OPAQUE) of the radiance behind, below the 16-bit targets'
 // and the references' noise on the Cornell box.
@@ -144,6 +147,9 @@ vec4 trace_cone(vec3 apex, vec3 d, float aperture, float max_dist, vec4 plane, o
 #endif
         acc += (1.0 - acc.a) * s;
         ao_acc += (1.0 - ao_acc) * s.a / (1.0 + dst * u_ao_lambda);
+#if EMPTY_SKIP
+        if (aperture < SKIP_MAX_APERTURE && s.a < SKIP_EPS) step_len = max(step_len, empty_skip(c.p, d));
+#endif
         dst += step_len;
         diam = dst * aperture;
         steps++;
@@ -161,6 +167,9 @@ vec4 trace_cone(vec3 apex, vec3 d, float aperture, float max_dist, vec4 plane, o
 #endif
         acc += (1.0 - acc.a) * s;
         ao_acc += (1.0 - ao_acc) * s.a / (1.0 + dst * u_ao_lambda);
+#if EMPTY_SKIP
+        if (aperture < SKIP_MAX_APERTURE && s.a < SKIP_EPS) step_len = max(step_len, empty_skip(c.p, d));
+#endif
         dst += step_len;
         diam = dst * aperture;
         steps++;

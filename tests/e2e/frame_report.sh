@@ -43,4 +43,12 @@ for m in vct vpl; do
     check "$m: frames ($total ms) fit in the run's wall time" \
         awk -v s="$total" -v a="$t0" -v b="$t1" 'BEGIN { exit !(s > 0 && s <= (b - a) * 1000) }'
 done
+# vct's soft-shadow cone runs inside the direct pass (README "vct: the soft-shadow cone"): its column
+# is nested under direct, and the direct pass holds it.
+csv=$TMP/vct-cone.csv
+check "run --stats cornell vct vct_shadow=cone" "$GIKIOSK" run --platform mock --size 96x72 --scene cornell --method vct \
+    --frames 5 --target-ms 1000 --budget vct_shadow=cone --stats "$csv"
+check "vct_shadow=cone: the cone's pass is the nested column direct.vct_shadow_cone_ms" \
+    grep -Eq ",direct_ms,(direct\.[a-z_]+_ms,)*direct\.vct_shadow_cone_ms" "$csv"
+check "vct_shadow=cone: frame_ms is the sum of the top-level passes, the cone within direct" rows_add_up "$csv"
 finish

@@ -250,15 +250,16 @@ static inline void sx_close(sx_session *x)
     fx_gl_close(&x->gl);
 }
 
-/* Draws the scene (already set) with the given pins and reads the green channel into out. */
-static inline int sx_draw(sx_session *x, const char *pins, float *out)
+/* Draws the scene (already set) with GI method `method` and the given pins and reads the green
+   channel into out. */
+static inline int sx_draw_method(sx_session *x, const char *method, const char *pins, float *out)
 {
     gk_err e = {0};
     if (gk_budget_pin_list(&x->b, pins, &e) != 0) {
         fprintf(stderr, "pins %s: %s\n", pins, e.msg);
         return -1;
     }
-    gk_frame_params fp = {.time_s = 0, .method = "none", .budget = &x->b};
+    gk_frame_params fp = {.time_s = 0, .method = method, .budget = &x->b};
     gk_frame_report t;
     gk_image img = {0};
     if (gk_renderer_draw(x->r, &fp, x->gl.fb.fbo, &t, &e) != 0 || gk_renderer_read_linear(x->r, &img, &e) != 0) {
@@ -268,7 +269,20 @@ static inline int sx_draw(sx_session *x, const char *pins, float *out)
     for (int i = 0; i < img.width * img.height; i++)
         out[i] = img.pixels[(size_t)i * img.channels + 1];
     gk_image_free(&img);
-    return 0;
+    return gk_renderer_gi_failed(x->r, method) ? -1 : 0;
+}
+
+/* sx_draw_method without GI. */
+static inline int sx_draw(sx_session *x, const char *pins, float *out) { return sx_draw_method(x, "none", pins, out); }
+
+/* T1 "plane-over-plane" (dong-001.md §9.2): light square of side S at y = 4 facing down, blocker 2x2
+   at y = 1 centred at the origin; camera (0, 6, 6) looking at the origin, 60 degree FOV. */
+static inline sx_setup sx_t1(float S)
+{
+    sx_setup st = {.S = S, .light = v3(0, SX_LIGHT_Y, 0), .n_rects = 1, .eye = v3(0, 6, 6), .target = v3(0, 0, 0),
+                   .yfov = 1.0471976f};
+    st.rect[0] = (sx_rect){-1, 1, -1, 1, 1};
+    return st;
 }
 
 /* Per pixel: the receiver point (valid when the camera ray reaches the receiver plane y = 0

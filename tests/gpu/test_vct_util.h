@@ -190,9 +190,9 @@ static inline gk_gi_light vt_light(vt_scene *v, enum gk_light_type type, vec3 po
     return L;
 }
 
-/* Renders one frame through gk_gi_vct into a cleared HDR target and reads it back (RGBA floats). */
-static inline int vt_render(void *vct, vt_frame *f, const vt_scene *v, const gk_budget *b, const gk_gi_light *lights,
-                     int n_lights, float *out_rgba, gk_frame_report *report)
+/* The frame gk_gi_vct is lent for f's G-buffer (untimed: pass NULL). */
+static inline gk_gi_frame vt_gi_frame(vt_frame *f, const vt_scene *v, const gk_budget *b, const gk_gi_light *lights,
+                                      int n_lights)
 {
     gk_gi_frame fr;
     memset(&fr, 0, sizeof fr);
@@ -207,6 +207,14 @@ static inline int vt_render(void *vct, vt_frame *f, const vt_scene *v, const gk_
     fr.n_lights = n_lights;
     fr.lights = lights;
     fr.budget = b;
+    return fr;
+}
+
+/* Renders one frame through gk_gi_vct into a cleared HDR target and reads it back (RGBA floats). */
+static inline int vt_render(void *vct, vt_frame *f, const vt_scene *v, const gk_budget *b, const gk_gi_light *lights,
+                     int n_lights, float *out_rgba, gk_frame_report *report)
+{
+    gk_gi_frame fr = vt_gi_frame(f, v, b, lights, n_lights);
     glBindFramebuffer(GL_FRAMEBUFFER, f->hdr.fbo);
     glClearColor(0, 0, 0, 0);
     glClear(GL_COLOR_BUFFER_BIT);

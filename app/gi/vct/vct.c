@@ -31,6 +31,20 @@ static const gk_knob_def knob_mips = {"vct_mips", "vct", 2, {"iso", "aniso"}, {1
 static const gk_knob_def knob_bounces = {.name = "vct_bounces", .owner = "vct", .n_values = 2, .values = {"1", "2"},
                                          .cost = {1, 1.3f}, .default_level = 0};
 static const gk_knob_def knob_variant = {"vct_variant", "vct", 2, {"default", "thesis"}, {1, 1}, 0, 0, .fixed = true};
+/* Shadows of direct light (thesis §3.3, Fig. 17; vct_shadow.c): map, the renderer's `shadow` knob;
+   cone9 .. cone0, one cone toward the light per pixel through the voxel map at the thesis's fixed
+   apertures (9, 6, 3, 0 degrees full apex angle); cone, its aperture the light's angular diameter
+   from the receiver (not in the thesis). A switch, not a scheduler pick: the calibration has no rows
+   for it, and on llvmpipe it measured slower than PCSS for a larger error (README "vct: the
+   soft-shadow cone and empty-space skipping"). */
+static const gk_knob_def knob_shadow = {.name = "vct_shadow", .owner = "vct", .n_values = 6,
+                                        .values = {"map", "cone9", "cone6", "cone3", "cone0", "cone"},
+                                        .cost = {1, 1, 1, 1, 1, 1}, .default_level = 0, .fixed = true};
+/* Algorithm 1's empty-space skipping (vct/empty_skip.glsl) for the cones narrower than 0.3: the
+   specular cone and the shadow cone. Off: the samples of every step, as the published code (whose
+   skipping branch is disabled); on: the thesis's text. A switch for measuring one against the other. */
+static const gk_knob_def knob_skip = {.name = "vct_skip", .owner = "vct", .n_values = 2, .values = {"off", "on"},
+                                      .cost = {1, 1}, .default_level = 0, .fixed = true};
 
 /* Levels of the variant knobs, in the order of their values above. */
 enum { MIPS_ISO, MIPS_ANISO };
@@ -74,6 +88,12 @@ static bool vct_applies(const gk_scene *s)
     return s && s->n_triangles > 0 && (s->n_lights > 0 || s->features.has_emissive);
 }
 
+static bool vct_wants_shadow_mask(const gk_budget *b)
+{
+    gk_knob k = gk_budget_knob(b, &knob_shadow);
+    return gk_knob_level(b, &k, 0) != VCT_SHADOW_MAP;
+}
+
 static void vct_declare_knobs(gk_budget *b)
 {
     gk_budget_add(b, &knob_res);
@@ -83,6 +103,8 @@ static void vct_declare_knobs(gk_budget *b)
     gk_budget_add(b, &knob_mips);
     gk_budget_add(b, &knob_variant);
     gk_budget_add(b, &knob_bounces);
+    gk_budget_add(b, &knob_shadow);
+    gk_budget_add(b, &knob_skip);
 }
 
 static void *vct_create(const gk_gi_context *ctx, gk_err *e)
@@ -99,6 +121,8 @@ static void *vct_create(const gk_gi_context *ctx, gk_err *e)
     v->k_mips = (gk_knob){&knob_mips, -1};
     v->k_variant = (gk_knob){&knob_variant, -1};
     v->k_bounces = (gk_knob){&knob_bounces, -1};
+    v->k_shadow = (gk_knob){&knob_shadow, -1};
+    v->k_skip = (gk_knob){&knob_skip, -1};
     v->ctx = *ctx;
     gk_vct_default_options(&v->opt);
     v->user_opt = v->opt;
@@ -160,7 +184,7 @@ void gk_vct_set_options(void *self, const gk_vct_options *o)
     apply_options(v);
 }
 
-static void read_budget(gk_vct *v, const gk_budget *b, vct_budget *out)
+void vct_read_budget(gk_vct *v, const gk_budget *b, vct_budget *out)
 {
     out->res = (int)gk_knob_number(b, &v->k_res, 64);
     out->cones = (int)gk_knob_number(b, &v->k_cones, 6);
@@ -169,6 +193,8 @@ static void read_budget(gk_vct *v, const gk_budget *b, vct_budget *out)
     out->aniso = gk_knob_level(b, &v->k_mips, MIPS_ANISO) == MIPS_ANISO;
     out->thesis = gk_knob_level(b, &v->k_variant, VARIANT_DEFAULT) == VARIANT_THESIS;
     out->bounces = (int)gk_knob_number(b, &v->k_bounces, 1) == 2 ? 2 : 1;
+    out->shadow = gk_knob_level(b, &v->k_shadow, 0);
+    out->skip = gk_knob_level(b, &v->k_skip, 0) == 1;
     if (out->res < 8)
         out->res = 64;
     if (out->cones != 4 && out->cones != 9)
@@ -214,14 +240,12 @@ static int upload_tris(gk_vct *v, int first, int count)
     return 0;
 }
 
-static int vct_render(void *self, const gk_gi_frame *f, gk_err *e)
+int vct_update(gk_vct *v, const gk_gi_frame *f, vct_budget *bp, gk_err *e)
 {
-    gk_vct *v = self;
+    vct_budget b = *bp;
     const gk_scene *s = f->scene ? f->scene : v->scene;
     if (!s)
         return gk_fail(e, GK_ERUNTIME, "vct: render without a scene");
-    vct_budget b;
-    read_budget(v, f->budget, &b);
     if (b.thesis != v->thesis) {   /* variant switched: rebuild everything */
         v->thesis = b.thesis;
         apply_options(v);
@@ -317,6 +341,18 @@ static int vct_render(void *self, const gk_gi_frame *f, gk_err *e)
         v->need_inject = false;
         v->light_hash = lh;
     }
+    v->cur.skip = b.skip;
+    *bp = b;
+    return 0;
+}
+
+static int vct_render(void *self, const gk_gi_frame *f, gk_err *e)
+{
+    gk_vct *v = self;
+    vct_budget b;
+    vct_read_budget(v, f->budget, &b);
+    if (vct_update(v, f, &b, e) != 0)
+        return -1;
     gk_pass_begin(f->pass, "vct_trace");
     int rc = vct_pass_trace(v, f, &b, e);
     gk_pass_end(f->pass);
@@ -361,6 +397,7 @@ static void vct_destroy(void *self)
         glDeleteTextures(1, &v->trace_diffuse);
     if (v->trace_spec)
         glDeleteTextures(1, &v->trace_spec);
+    vct_shadow_free(v);
     glDeleteSamplers(1, &v->nearest_sampler);
     glDeleteSamplers(1, &v->level0_sampler);
     glDeleteVertexArrays(1, &v->vao);
@@ -372,15 +409,17 @@ void gk_vct_get_stats(const void *self, gk_vct_stats *out)
 {
     const gk_vct *v = self;
     *out = v->stats;
-    GLuint steps = 0;
+    GLuint steps[2] = {0, 0}; /* the trace pass's samples, the shadow cones' (vct_shadow.c) */
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, v->counter_ssbo);
     const GLuint *p = glMapBufferRange(GL_SHADER_STORAGE_BUFFER, 0, sizeof steps, GL_MAP_READ_BIT);
     if (p) {
-        steps = *p;
+        steps[0] = p[0];
+        steps[1] = p[1];
         glUnmapBuffer(GL_SHADER_STORAGE_BUFFER);
     }
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
-    out->last_trace_steps = steps;
+    out->last_trace_steps = steps[0];
+    out->last_shadow_steps = steps[1];
 }
 
 unsigned gk_vct_scratch_buffer(const void *self) { return ((const gk_vct *)self)->scratch_ssbo; }
@@ -394,6 +433,8 @@ const gk_gi_method gk_gi_vct = {
     .set_scene = vct_set_scene,
     .render = vct_render,
     .memory_bytes = vct_memory_bytes,
+    .shadow_mask = vct_shadow_mask,
+    .wants_shadow_mask = vct_wants_shadow_mask,
     .invalidate = vct_invalidate,
     .destroy = vct_destroy,
 };

@@ -67,6 +67,8 @@ typedef struct gk_vct_stats {
     int bounce_runs;                /* vct_bounces=2 passes */
     long last_voxelized_region;     /* voxels in the last voxelized region */
     unsigned long last_trace_steps; /* cone samples of the last trace pass (all pixels, all cones) */
+    unsigned long last_shadow_steps; /* shadow-cone samples of the last frame's masks (all lights, all pixels) */
+    int shadow_runs;                /* shadow-cone passes (one per light and frame) */
     int res;                        /* level-0 resolution in use */
     float grid_origin[3], grid_size, voxel_size;  /* world */
     int trace_w, trace_h;

@@ -18,7 +18,12 @@ typedef struct vct_budget {
     bool aniso;         /* vct_mips */
     bool thesis;        /* vct_variant=thesis */
     int bounces;        /* vct_bounces: 1 (thesis) or 2 (vct/bounce.comp) */
+    int shadow;         /* vct_shadow level: VCT_SHADOW_MAP, or a cone (vct_shadow.c) */
+    bool skip;          /* vct_skip: Algorithm 1's empty-space skipping for narrow cones */
 } vct_budget;
+
+/* Levels of vct_shadow (vct.c): the renderer's shadow maps, the thesis's fixed apertures, the light's. */
+enum { VCT_SHADOW_MAP, VCT_SHADOW_CONE9, VCT_SHADOW_CONE6, VCT_SHADOW_CONE3, VCT_SHADOW_CONE0, VCT_SHADOW_CONE_LIGHT };
 
 typedef struct vct_tris {
     float *data;                 /* n * VCT_TRI_FLOATS, world space */
@@ -39,7 +44,7 @@ typedef struct gk_vct {
     const gk_scene *scene;
     vct_budget cur;              /* budget the GPU resources were made for */
     gk_knob k_res, k_cones, k_step, k_scale, k_mips, k_variant; /* knob handles (vct.c) */
-    gk_knob k_bounces;
+    gk_knob k_bounces, k_shadow, k_skip;
     bool allocated;
     bool need_voxelize, need_inject;
     bool emissive, specular;
@@ -57,12 +62,24 @@ typedef struct gk_vct {
     GLuint vox_bounce;           /* vct_bounces=2: level 0 of direct + first bounce, written by the bounce
                                     pass while it samples vox0, then swapped with it (same storage) */
     GLuint trace_diffuse, trace_spec;
+    GLuint shadow_mask[VCT_MAX_LIGHTS]; /* R32F visibility per G-buffer pixel (vct_shadow.c), mask_w x mask_h */
+    int mask_w, mask_h;
     int trace_w, trace_h, full_w, full_h;
     GLuint nearest_sampler, level0_sampler, vao;
     vct_tris tris;
     unsigned long light_hash;
     gk_vct_stats stats;
 } gk_vct;
+
+/* vct.c */
+void vct_read_budget(gk_vct *v, const gk_budget *b, vct_budget *out);
+/* Brings the voxel map up to date for frame f (voxelize, inject, mips, bounce: each only when it
+   has work); b: the frame's budget, its resolution clamped to what the GPU allows on return. */
+int vct_update(gk_vct *v, const gk_gi_frame *f, vct_budget *b, gk_err *e);
+
+/* vct_shadow.c: gk_gi_method.shadow_mask (the soft-shadow cone) and its textures. */
+int vct_shadow_mask(void *self, const gk_gi_frame *f, int light, unsigned *tex, gk_err *e);
+void vct_shadow_free(gk_vct *v);
 
 /* vct_grid.c */
 void vct_grid_fit(gk_vct *v, const gk_scene *s, int res);
@@ -91,6 +108,10 @@ int vct_pass_mips(gk_vct *v, bool directional, gk_err *e);
 int vct_pass_bounce(gk_vct *v, const vct_budget *b, gk_err *e);
 int vct_pass_trace(gk_vct *v, const gk_gi_frame *f, const vct_budget *b, gk_err *e);
 int vct_pass_compose(gk_vct *v, const gk_gi_frame *f, gk_err *e);
+/* Where Algorithm 1's top-down search starts: map level log2(res) - 3 (thesis code), within the map. */
+int vct_skip_top(const gk_vct *v);
+/* Binds the voxel map's textures (units 0..6) for a cone-tracing program. */
+void vct_bind_map(const gk_vct *v, GLint vox0, const GLint voxp[3], const GLint voxp_l0[3], GLint dir_levels);
 /* The cone set for n cones (4, 6 or 9) in the tangent frame (t, n, b); weights calibrated or the
    thesis code's. Returns the number of cones. */
 int vct_cone_set(int n, bool faithful, float dir[][3], float aperture[], float weight[]);

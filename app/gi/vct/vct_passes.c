@@ -81,7 +81,8 @@ typedef struct trace_uniforms {
     GLint u_gb_geom_normal;
     GLint u_vox0, u_voxp[3], u_voxp_l0[3], u_dir_levels;
     GLint u_low_size, u_block, u_res, u_res_f, u_grid_origin, u_grid_size, u_step_mul, u_ao_lambda, u_max_dist,
-        u_apex_offset, u_footprint_clamp, u_spec_aperture, u_n_cones, u_cone_dir, u_cone_aperture, u_cone_weight;
+        u_apex_offset, u_footprint_clamp, u_spec_aperture, u_n_cones, u_cone_dir, u_cone_aperture, u_cone_weight,
+        u_skip_top;
 } trace_uniforms;
 static const gk_uniform_field trace_fields[] = {
     GK_GBUFFER_FIELDS(trace_uniforms, g),
@@ -110,6 +111,7 @@ static const gk_uniform_field trace_fields[] = {
     GK_UNIFORM(trace_uniforms, u_cone_dir),
     GK_UNIFORM(trace_uniforms, u_cone_aperture),
     GK_UNIFORM(trace_uniforms, u_cone_weight),
+    GK_UNIFORM(trace_uniforms, u_skip_top),
 };
 
 /* vct/bounce.comp */
@@ -361,6 +363,26 @@ static void bind_tex(GLint loc, int unit, GLenum target, GLuint tex, GLuint samp
     glUniform1i(loc, unit);
 }
 
+void vct_bind_map(const gk_vct *v, GLint vox0, const GLint voxp[3], const GLint voxp_l0[3], GLint dir_levels)
+{
+    bind_tex(vox0, 0, GL_TEXTURE_3D, v->vox0, 0);
+    if (v->cur.aniso)
+        for (int a = 0; a < 3; a++) {
+            bind_tex(voxp[a], 1 + a, GL_TEXTURE_3D, v->voxp[a], 0);
+            bind_tex(voxp_l0[a], 4 + a, GL_TEXTURE_3D, v->voxp[a], v->level0_sampler);
+        }
+    glUniform1f(dir_levels, (float)(v->levels - 1));
+}
+
+int vct_skip_top(const gk_vct *v)
+{
+    int depth = 0;
+    while ((1 << (depth + 1)) <= v->res)
+        depth++;
+    int top = depth - 3;
+    return top < 0 ? 0 : top > v->levels - 1 ? v->levels - 1 : top;
+}
+
 /* The G-buffer on units first.. first + 3 (gk_gbuffer_bind). */
 static void bind_gbuffer(const gk_gbuffer_uniforms *u, const gk_gi_frame *f, int first, GLuint sampler)
 {
@@ -384,21 +406,16 @@ int vct_pass_trace(gk_vct *v, const gk_gi_frame *f, const vct_budget *b, gk_err 
     char defs[256];
     snprintf(defs, sizeof defs,
              "#define ISO_MIPS %d\n#define AXIS_WEIGHT_SQ %d\n#define OPACITY_CORRECTION %d\n#define SPECULAR %d\n"
-             "#define CLIP_CONES %d\n",
+             "#define CLIP_CONES %d\n#define EMPTY_SKIP %d\n",
              v->cur.aniso ? 0 : 1, v->opt.axis_weight_sq ? 1 : 0, v->opt.opacity_correction ? 1 : 0,
-             v->specular ? 1 : 0, v->opt.clip_cones ? 1 : 0);
+             v->specular ? 1 : 0, v->opt.clip_cones ? 1 : 0, b->skip && v->specular ? 1 : 0);
     GLuint p = gk_program_get_compute(v->ctx.programs, "vct/trace.comp", defs, e);
     const trace_uniforms *u = p ? gk_program_uniforms(v->ctx.programs, p, GK_FIELDS(trace_fields), sizeof *u, e) : NULL;
     if (!u)
         return -1;
     glUseProgram(p);
-    bind_tex(u->u_vox0, 0, GL_TEXTURE_3D, v->vox0, 0);
-    if (v->cur.aniso)
-        for (int a = 0; a < 3; a++) {
-            bind_tex(u->u_voxp[a], 1 + a, GL_TEXTURE_3D, v->voxp[a], 0);
-            bind_tex(u->u_voxp_l0[a], 4 + a, GL_TEXTURE_3D, v->voxp[a], v->level0_sampler);
-        }
-    glUniform1f(u->u_dir_levels, (float)(v->levels - 1));
+    vct_bind_map(v, u->u_vox0, u->u_voxp, u->u_voxp_l0, u->u_dir_levels);
+    glUniform1i(u->u_skip_top, vct_skip_top(v));
     bind_gbuffer(&u->g, f, 7, v->nearest_sampler);
     gk_gbuffer_view gb = gk_gi_gbuffer(f);
     gk_gbuffer_bind_geom_normal(&gb, u->u_gb_geom_normal, 7 + GK_GBUFFER_UNITS, v->nearest_sampler);
@@ -453,13 +470,7 @@ int vct_pass_bounce(gk_vct *v, const vct_budget *b, gk_err *e)
     if (!u || vct_ensure_bounce_target(v, e) != 0)
         return -1;
     glUseProgram(p);
-    bind_tex(u->u_vox0, 0, GL_TEXTURE_3D, v->vox0, 0);
-    if (v->cur.aniso)
-        for (int a = 0; a < 3; a++) {
-            bind_tex(u->u_voxp[a], 1 + a, GL_TEXTURE_3D, v->voxp[a], 0);
-            bind_tex(u->u_voxp_l0[a], 4 + a, GL_TEXTURE_3D, v->voxp[a], v->level0_sampler);
-        }
-    glUniform1f(u->u_dir_levels, (float)(v->levels - 1));
+    vct_bind_map(v, u->u_vox0, u->u_voxp, u->u_voxp_l0, u->u_dir_levels);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, v->scratch_ssbo);
     glBindImageTexture(0, v->vox_bounce, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glUniform1i(u->u_res, v->res);
