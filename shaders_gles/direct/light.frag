@@ -16,6 +16,7 @@
 // @variant GK_LIGHT_KIND=2 SHADOW_CSSM CSSM_SAT=1
 // @variant GK_LIGHT_KIND=3 SHADOW_CSSM CSSM_SLOPE=0
 // @variant GK_LIGHT_KIND=2 SHADOW_CSSM CSSM_SLOPE_MAX=0.05
+// @variant GK_LIGHT_KIND=2 SHADOW_CSSM CSSM_PLANE=1
 precision highp float;
 precision highp int;
 #define GB_GEOM_NORMAL 1
