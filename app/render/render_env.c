@@ -19,10 +19,11 @@ bool gk_render_env_light_on(const gk_scene *s, int li, int env_lights)
 }
 
 /* CSSM at 256² as the thesis shadows its environment lights, with the per-layer depth range and the
-   slope-scaled shift capped at 5 cm (shadow_cssm.c says why, with the measurement) */
+   final kernel tested against the receiver plane (cssm_plane: shadow_cssm.c says why, with the
+   measurement; it replaced cssm_env's 5 cm cap on the slope-scaled shift) */
 const gk_shadow_method *gk_render_env_shadow_method(void)
 {
-    return gk_shadow_method_find("cssm_env");
+    return gk_shadow_method_find("cssm_plane");
 }
 
 /* direct/environment.frag */

@@ -17,6 +17,7 @@
 // @variant GK_LIGHT_KIND=3 SHADOW_CSSM CSSM_SLOPE=0
 // @variant GK_LIGHT_KIND=2 SHADOW_CSSM CSSM_SLOPE_MAX=0.05
 // @variant GK_LIGHT_KIND=5 SHADOW_MASK
+// @variant GK_LIGHT_KIND=2 SHADOW_CSSM CSSM_PLANE=1
 precision highp float;
 precision highp int;
 #define GB_GEOM_NORMAL 1

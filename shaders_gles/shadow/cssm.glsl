@@ -43,6 +43,29 @@
 #ifndef CSSM_SLOPE_MAX
 #define CSSM_SLOPE_MAX 1e6
 #endif
+// CSSM_PLANE 1 (method cssm_plane, the environment's lights: render_env.c; default 0; an addition
+// to the thesis, #11): a scale-free replacement of CSSM_SLOPE_MAX, the receiver-plane test VSSM has
+// (VSSM_RECEIVER_PLANE, vssm.glsl). Stage 3's kernel, where the receiver's tangent plane spans
+// more z_c over it than the series' own shift u_cssm.y (which already keeps that much of the
+// receiver lit), is split into n x n sub-kernels, n the least that brings each one's span under
+// u_cssm.y (at most CSSM_PLANE_N), each a lookup of its own width tested against the smaller of
+// the pixel's depth d and the plane's farthest depth over the sub-kernel (its centre + half its
+// span). The plane keeps the receiver's own nearer texels from counting as blockers (what the
+// slope-scaled shift did, by moving d back over the whole kernel and with it past the objects'
+// contact shadows); d keeps surfaces behind the plane's extension from counting. Stage 1 is the
+// thesis's (one lookup at d, no slope shift). Measured at 160x120 (method none; env-studio against
+// env-studio-direct.exr / sampler-wrap.glb's lone quad against the tracer, as CSSM_SLOPE_MAX
+// above), env_lights 4, 8, 16, 32:
+//   the 5 cm cap (cssm_env)   0.092 0.086 0.076 0.071 / 0.042 0.060 0.057 0.064
+//   cssm_plane                0.089 0.082 0.070 0.064 / 0.038 0.054 0.049 0.054
+// At 16 lights, other choices: both stages subdivided 0.072 / 0.048 (the direct pass 4x the cap's
+// time, this one 1.65x); CSSM_PLANE_N 4 there 0.073 / 0.041 (and 4 lights 0.093, mean ratio
+// 1.040); the plane at the sub-kernel's centre instead of its far edge 0.083 / 0.031 (the
+// receiver's own half kept lit only by u_cssm.y, the objects' contact texels lost).
+#ifndef CSSM_PLANE
+#define CSSM_PLANE 0
+#endif
+#define CSSM_PLANE_N 3
 const highp vec4 CSSM_CK = 3.14159265358979 * vec4(1.0, 3.0, 5.0, 7.0);
 uniform highp vec4 u_cssm; // depth scale (z_c = x * z), receiver shift, SAT 1/q, unused
 // Per layer the (min, max) of the normalised depth the map holds (cssm_range.comp): the bases were
@@ -156,6 +179,39 @@ highp float cssm_znum(cssm_basis b, highp float d)
     return 0.5 * b.z + 2.0 * dot(sin(CSSM_CK * d) * b.zc - cos(CSSM_CK * d) * b.zs, 1.0 / CSSM_CK);
 }
 
+// Mean of the filtered lit test and of CSM-Z's numerator over the kernel of width w (texels) at uv,
+// for the shifted receiver depth d: one lookup, the slope-scaled shift (slope: half the plane's
+// z_c span per texel) at most shift_max, or (CSSM_PLANE) n x n sub-kernels against the receiver
+// plane, whose z_c changes by grad per texel.
+highp vec2 cssm_filtered(highp vec2 uv, highp vec2 w, int layer, bool with_z, highp float d, highp vec2 grad,
+                         highp vec2 slope, highp float shift_max)
+{
+#if CSSM_PLANE
+    int n = int(clamp(ceil(dot(slope, w) / u_cssm.y), 1.0, float(CSSM_PLANE_N)));
+    highp vec2 ws = w / float(n);
+    highp float half_span = dot(slope, ws);
+    highp vec2 r = vec2(0.0);
+    for (int j = 0; j < CSSM_PLANE_N; j++) {
+        if (j >= n)
+            break;
+        for (int i = 0; i < CSSM_PLANE_N; i++) {
+            if (i >= n)
+                break;
+            highp vec2 off = ((vec2(float(i), float(j)) + 0.5) / float(n) - 0.5) * w; // texels
+            // kept above u_cssm.x - 1: d - z stays within the series' period (lit, not wrapped)
+            highp float di = max(d + min(dot(grad, off) + half_span, 0.0), u_cssm.x - 0.95);
+            cssm_basis b = cssm_fetch(uv + off / u_shadow_light.w, ws, layer, with_z);
+            r += vec2(cssm_lit(b, di), with_z ? cssm_znum(b, di) : 0.0);
+        }
+    }
+    return r / float(n * n);
+#else
+    highp float di = d - min(dot(slope, w), shift_max);
+    cssm_basis b = cssm_fetch(uv, w, layer, with_z);
+    return vec2(cssm_lit(b, di), with_z ? cssm_znum(b, di) : 0.0);
+#endif
+}
+
 highp float shadow_visibility(highp vec3 world_pos, highp vec3 world_normal)
 {
     highp vec3 pos = gk_shadow_offset(world_pos, world_normal);
@@ -168,28 +224,35 @@ highp float shadow_visibility(highp vec3 world_pos, highp vec3 world_normal)
     // plateau (d - z < 1, inside the series' period)
     highp float dn = clamp((gk_soft_norm(c.d - 0.5 * gk_shadow_texel_world(c.d)) - range.x) / (range.y - range.x), 0.0, 1.0);
     highp float d = u_cssm.x * dn - u_cssm.y;
-#if CSSM_SLOPE
+#if CSSM_SLOPE || CSSM_PLANE
     // half the receiver plane's depth spread per texel of kernel width, in z_c units
-    highp vec2 slope = 0.5 * abs(gk_shadow_receiver_gradient(c, pos, world_normal)) * u_cssm.x /
-                       (u_shadow_light.w * (u_shadow_proj.y - u_shadow_proj.x) * (range.y - range.x));
+    highp vec2 g = gk_shadow_receiver_gradient(c, pos, world_normal);
+    highp float per_texel = u_shadow_light.w * (u_shadow_proj.y - u_shadow_proj.x) * (range.y - range.x);
+    highp vec2 slope = 0.5 * abs(g) * u_cssm.x / per_texel;
+    highp vec2 grad = g * u_cssm.x / per_texel; // the plane's signed change per texel (CSSM_PLANE)
 #else
-    highp vec2 slope = vec2(0.0);
+    highp vec2 grad = vec2(0.0), slope = vec2(0.0);
 #endif
     // CSSM_SLOPE_MAX in z_c units
     highp float shift_max = CSSM_SLOPE_MAX * u_cssm.x / ((u_shadow_proj.y - u_shadow_proj.x) * (range.y - range.x));
     // Stage 1: initial kernel at the near plane; filtered test and CSM-Z over it.
     highp vec2 wi = gk_soft_kernel(c.d, u_shadow_proj.x);
-    highp float d1 = d - min(dot(slope, wi), shift_max);
-    cssm_basis b = cssm_fetch(c.uv, wi, layer, true);
-    highp float occ = 1.0 - cssm_lit(b, d1);
+#if CSSM_PLANE
+    // the thesis's search, one lookup at d: the receiver's own nearer texels only pull z_avg toward
+    // it (a narrower f_w), and the plane in stage 3 keeps them lit
+    highp vec2 f1 = cssm_filtered(c.uv, wi, layer, true, d, vec2(0.0), vec2(0.0), shift_max);
+#else
+    highp vec2 f1 = cssm_filtered(c.uv, wi, layer, true, d, grad, slope, shift_max);
+#endif
+    highp float occ = 1.0 - f1.x;
     if (occ < 1e-3)
         return 1.0; // no blockers
     // Stage 2: z_avg, final kernel f_w.
-    highp float zavg = clamp(cssm_znum(b, d1) / occ, 0.0, u_cssm.x * dn);
+    highp float zavg = clamp(f1.y / occ, 0.0, u_cssm.x * dn);
     highp float zavg_world = gk_soft_denorm(range.x + (zavg / u_cssm.x) * (range.y - range.x));
     highp vec2 wf = gk_soft_kernel(c.d, zavg_world);
     // Stage 3: filtered test over f_w, ringing suppression, contact sharpening.
-    highp float s = cssm_lit(cssm_fetch(c.uv, wf, layer, false), d - min(dot(slope, wf), shift_max));
+    highp float s = cssm_filtered(c.uv, wf, layer, false, d, grad, slope, shift_max).x;
     s = clamp(CSSM_ALPHA * (s - 0.5) + 0.5, 0.0, 1.0);
     highp float p = 1.0 + CSSM_SHARP_A * exp(-CSSM_SHARP_B * max(c.d - zavg_world, 0.0));
     return pow(s, p);

@@ -64,16 +64,17 @@ check "the tracer lights env-studio by its environment (mean ratio $(json_field 
 
 # The rasterizer's split against the direct-light reference (method none: direct light only), every
 # other knob pinned. Measured at 160x120 on llvmpipe (README, "Environment lighting"):
-#   env_lights   4: rel_rmse 0.092, mean ratio 1.036     16: 0.076, 1.022
-#               8:          0.086,            1.032     32: 0.071, 1.016
-# (the lights shadowed by cssm_env, render_env.c: the slope-scaled shift capped at 5 cm; uncapped,
-# as the cssm knob level has it, they lost their contact shadows: 16 lights 0.104 / 1.049; the
-# thesis's CSSM 0.099 / 1.031)
+#   env_lights   4: rel_rmse 0.089, mean ratio 1.037     16: 0.070, 1.020
+#               8:          0.082,            1.032     32: 0.064, 1.013
+# (the lights shadowed by cssm_plane, render_env.c: the final kernel tested against the receiver
+# plane in sub-kernels. Before it, cssm_env's slope-scaled shift capped at 5 cm: 0.092, 0.086,
+# 0.076, 0.071; uncapped, as the cssm knob level has it, the lights lost their contact shadows:
+# 16 lights 0.104 / 1.049; the thesis's CSSM 0.099 / 1.031)
 # The residual ambient is unshadowed (no sky occlusion under the objects): most of what is left at
-# 32. Bounds: each N's rel_rmse its measured value + 12% (4: 0.103, 16: 0.085, 32: 0.080; the
+# 32. Bounds: each N's rel_rmse its measured value + 12% (4: 0.100, 16: 0.079, 32: 0.072; the
 # uncapped slope-scaled CSSM's 0.104 at 16 fails), its mean ratio in [0.97, 1.04] (the residual ambient
 # only adds light; 1.049 with the slope-scaled CSSM fails); 32 lights at least 0.01 better than 4
-# (measured 0.021; the render is deterministic, the margin is for another Mesa).
+# (measured 0.025; the render is deterministic, the margin is for another Mesa).
 for n in 4 16 32; do
     "$GIKIOSK" run --platform mock --scenes-dir "$D" --scene env-studio --method none --frames 2 --size 160x120 \
         --budget render_scale=1,shadow=pcss,shadow_map=1024,shadow_subdiv=3,env_lights=$n \
@@ -85,7 +86,7 @@ for n in 4 16 32; do
     eval "err$n=$(json_field rel_rmse "$TMP/n$n.json")"
     ratio=$(json_field mean_ratio "$TMP/n$n.json")
     echo "# env_lights=$n: rel_rmse $(eval echo \$err$n), mean_ratio $ratio"
-    case $n in 4) bound=0.103 ;; 16) bound=0.085 ;; *) bound=0.080 ;; esac
+    case $n in 4) bound=0.100 ;; 16) bound=0.079 ;; *) bound=0.072 ;; esac
     check "env_lights=$n: rel_rmse $(eval echo \$err$n) within $bound" awk -v e="$(eval echo \$err$n)" -v b=$bound 'BEGIN { exit !(e != "" && e <= b) }'
     check "env_lights=$n: mean ratio $ratio in [0.97, 1.04]" awk -v r="$ratio" 'BEGIN { exit !(r != "" && r >= 0.97 && r <= 1.04) }'
 done

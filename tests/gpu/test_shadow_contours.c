@@ -31,9 +31,9 @@
 #define DARK 0.97f
 
 static const gk_knob_def knob_contours = {
-    .name = "shadow", .owner = "test", .n_values = 7,
-    .values = {"hard", "pcss", "vssm", "cssm", "vssm_thesis", "cssm_sat", "cssm_thesis"},
-    .cost = {1, 1, 1, 1, 1, 1, 1}, .default_level = 0,
+    .name = "shadow", .owner = "test", .n_values = 8,
+    .values = {"hard", "pcss", "vssm", "cssm", "vssm_thesis", "cssm_sat", "cssm_thesis", "cssm_plane"},
+    .cost = {1, 1, 1, 1, 1, 1, 1, 1}, .default_level = 0,
 };
 
 static sx_session ses;
@@ -141,7 +141,7 @@ static void vssm_walls_have_no_contours(void **state)
     contour_count thesis = count_contours("vssm_thesis", 1024), v1 = count_contours("vssm", 1024),
                   v2 = count_contours("vssm", 2048), pcss = count_contours("pcss", 1024),
                   cssm = count_contours("cssm", 1024), csat = count_contours("cssm_sat", 1024),
-                  cthesis = count_contours("cssm_thesis", 1024);
+                  cthesis = count_contours("cssm_thesis", 1024), cplane = count_contours("cssm_plane", 1024);
     assert_true(v1.wall > W * H / 4);
     /* Measured (llvmpipe, 37630 wall pixels): contour runs / dark pixels
          vssm_thesis 1024: 667 / 10615   (bands over the walls' lower halves)
@@ -164,6 +164,13 @@ static void vssm_walls_have_no_contours(void **state)
        average, the baseline below 0.95. */
     assert_true(cssm.mean_v > 0.98 && csat.mean_v > 0.98);
     assert_true(cthesis.mean_v < 0.95);
+    /* cssm_plane (the environment's lights, #11) is no method for these walls: measured mean V
+       0.883 (561 runs, 21028 dark pixels; 0.900 with its blocker search subdivided too). Its
+       sub-kernels are at most 3 x 3, and the walls' lower halves lie almost along the downward
+       face's axis, so each sub-kernel still spans far more depth than the series' shift; the cssm
+       knob level keeps its slope-scaled shift for them. Bound: its measurement less 0.01, so a
+       change that darkens it further shows here. */
+    assert_true(cplane.mean_v > 0.873);
 }
 
 int main(void)

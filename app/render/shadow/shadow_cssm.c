@@ -20,7 +20,13 @@
  *              any shift a lone quad shadows itself under grazing sky lights. env-studio, method
  *              none against env-studio-direct.exr (160x120, llvmpipe): cssm 0.104 rel. RMSE / mean
  *              ratio 1.049, cssm_thesis 0.099 / 1.031, cssm_env 0.076 / 1.022 (the trade-off
- *              curve of the cap is in shaders_gles/shadow/cssm.glsl).
+ *              curve of the cap is in shaders_gles/shadow/cssm.glsl). Kept for comparison.
+ *   cssm_plane as cssm with stage 3 tested against the receiver's tangent plane in sub-kernels
+ *              (CSSM_PLANE) and stage 1 as the thesis's (no slope-scaled shift): scale-free, no
+ *              length in metres; the environment's lights since #11 (render_env.c). Against the
+ *              same reference 0.070 / 1.020 at 16 lights (the cap 0.076 / 1.022), and sampler-
+ *              wrap.glb's lone quad against the tracer 0.049 (the cap 0.057); every env_lights
+ *              level better than the cap on both (shaders_gles/shadow/cssm.glsl).
  * Texture units: the method's unit (depth map), +1..+4 the bases, +5 z (+6 z^2 SAT, unused sums),
  * +7 the per-layer depth range (2 x 1 texels per layer: min, max of the normalised depth). */
 #include <math.h>
@@ -305,6 +311,15 @@ const gk_shadow_method gk_shadow_cssm_thesis = {
 const gk_shadow_method gk_shadow_cssm_env = {
     .name = "cssm_env",
     .glsl_define = "#define SHADOW_CSSM 1\n#define CSSM_SLOPE_MAX 0.05\n",
+    .create = cssm_create_mm,
+    .destroy = cssm_destroy,
+    .render = cssm_render,
+    .bind = cssm_bind,
+};
+
+const gk_shadow_method gk_shadow_cssm_plane = {
+    .name = "cssm_plane",
+    .glsl_define = "#define SHADOW_CSSM 1\n#define CSSM_PLANE 1\n",
     .create = cssm_create_mm,
     .destroy = cssm_destroy,
     .render = cssm_render,
