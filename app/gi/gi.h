@@ -17,6 +17,7 @@
 #include "../sched/budget.h"
 #include "gl/gbuffer_bind.h"
 #include "gl/pass.h"
+#include "gl/pass_work.h"
 
 /* What the renderer lends a method for its whole life. */
 typedef struct gk_gi_context {
@@ -103,6 +104,10 @@ typedef struct gk_gi_method {
     /* Optional: forget the work cached between frames (vct: voxels and injected light), so the next
        render redoes it; the bench's --rebuild-gi times those passes with it. */
     void (*invalidate)(void *self);
+    /* Optional (the bench's efficiency, #21): the useful fetches of the last frame's passes
+       (app/gl/pass_work.h); up to max entries, returns how many. It may read GPU counters back (a
+       stall), so only the bench calls it, after a frame. */
+    int (*pass_work)(void *self, gk_pass_work *out, int max);
     void (*destroy)(void *self);
 } gk_gi_method;
 

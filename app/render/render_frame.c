@@ -326,6 +326,11 @@ bool gk_renderer_gi_failed(const gk_renderer *r, const char *method)
     return gk_render_gi_failed(r->gi, r, method);
 }
 
+int gk_renderer_pass_work(const gk_renderer *r, const char *method, gk_pass_work *out, int max)
+{
+    return gk_render_gi_pass_work(r->gi, method, out, max);
+}
+
 /* Whether this frame has a `gi` pass: a method other than none, or a cross-fade still running. */
 static bool gi_runs(const gk_renderer *r, const gk_frame_params *fp)
 {

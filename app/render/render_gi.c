@@ -294,3 +294,13 @@ long gk_render_gi_memory(const gk_render_gi *g, const char *method)
             return m[i]->memory_bytes(g->state[i]);
     return 0;
 }
+
+int gk_render_gi_pass_work(const gk_render_gi *g, const char *method, gk_pass_work *out, int max)
+{
+    int count;
+    const gk_gi_method *const *m = gk_gi_methods(&count);
+    for (int i = 0; i < count && i < GI_MAX_METHODS; i++)
+        if (g->state[i] && strcmp(m[i]->name, method) == 0 && m[i]->pass_work)
+            return m[i]->pass_work(g->state[i], out, max);
+    return 0;
+}

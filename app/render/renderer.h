@@ -11,6 +11,7 @@
 #include "../sched/budget.h"
 #include "gl/frame_report.h"
 #include "gl/pass.h"
+#include "gl/pass_work.h"
 
 
 typedef struct gk_render_opts {
@@ -90,6 +91,9 @@ void gk_renderer_cut(gk_renderer *r);
 /* True when the GI method failed on the current scene (logged once by the renderer; it is not
  * run again until the next scene). */
 bool gk_renderer_gi_failed(const gk_renderer *r, const char *method);
+/* The useful fetches of the last frame's passes (app/gl/pass_work.h) of GI method `method`, for
+ * the bench's efficiency: up to max entries, returns how many. May stall on a GPU counter. */
+int gk_renderer_pass_work(const gk_renderer *r, const char *method, gk_pass_work *out, int max);
 
 /* Writes the last frame: png_path display-referred (tonemapped, as shown), exr_path linear scene
  * radiance before exposure (either may be NULL). */

@@ -372,15 +372,18 @@ void gk_vct_get_stats(const void *self, gk_vct_stats *out)
 {
     const gk_vct *v = self;
     *out = v->stats;
-    GLuint steps = 0;
+    GLuint counted[3] = {0, 0, 0}; /* vct/trace.comp Counters: all samples, those below lod 1, pixels */
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, v->counter_ssbo);
-    const GLuint *p = glMapBufferRange(GL_SHADER_STORAGE_BUFFER, 0, sizeof steps, GL_MAP_READ_BIT);
+    const GLuint *p = glMapBufferRange(GL_SHADER_STORAGE_BUFFER, 0, sizeof counted, GL_MAP_READ_BIT);
     if (p) {
-        steps = *p;
+        memcpy(counted, p, sizeof counted);
         glUnmapBuffer(GL_SHADER_STORAGE_BUFFER);
     }
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
-    out->last_trace_steps = steps;
+    out->last_trace_steps = counted[0];
+    out->last_trace_fine_steps = counted[1];
+    out->last_trace_pixels = counted[2];
+    out->aniso = v->cur.aniso;
 }
 
 unsigned gk_vct_scratch_buffer(const void *self) { return ((const gk_vct *)self)->scratch_ssbo; }
@@ -395,5 +398,6 @@ const gk_gi_method gk_gi_vct = {
     .render = vct_render,
     .memory_bytes = vct_memory_bytes,
     .invalidate = vct_invalidate,
+    .pass_work = vct_pass_work,
     .destroy = vct_destroy,
 };

@@ -94,5 +94,7 @@ int vct_pass_compose(gk_vct *v, const gk_gi_frame *f, gk_err *e);
 /* The cone set for n cones (4, 6 or 9) in the tangent frame (t, n, b); weights calibrated or the
    thesis code's. Returns the number of cones. */
 int vct_cone_set(int n, bool faithful, float dir[][3], float aperture[], float weight[]);
+/* gk_gi_method.pass_work (vct_work.c): the last trace's counted samples as fetches. */
+int vct_pass_work(void *self, gk_pass_work *out, int max);
 
 #endif
