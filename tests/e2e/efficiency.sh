@@ -1,0 +1,54 @@
+#!/bin/sh
+# `gikiosk bench --roofline-csv` (#21): efficiency.csv holds one line per measured pass that has a
+# work model, each of its numbers recomputed here another way -- the pass time from bench.csv's own
+# column, the limit from roofline.csv, the rate and the efficiency from those and the fetches -- the
+# bars chart is drawn per scene, and a broken roofline.csv is bad input naming its file and line.
+. tests/e2e/lib.sh
+export EGL_PLATFORM=surfaceless
+
+# A roofline of round numbers (the real one is `bench --roofline`, tests/e2e/roofline.sh): the
+# recomputation below does not depend on this machine's speed.
+cat >"$TMP/roofline.csv" <<'CSV'
+name,format,size,fetches,median_ms,fetches_per_s
+tex3d_rgba8_trilinear,rgba8,64,1000000,10,1e+08
+tex3d_rgba16f_trilinear,rgba16f,64,1000000,20,5e+07
+CSV
+expect_exit 0 "bench --roofline-csv: vct at two cone counts" sh -c "'$GIKIOSK' bench --scenes cornell --methods vct \
+    --size 80x60 --frames 1 --warmup 1 --sweep 'vct_cones=4,9' --roofline-csv '$TMP/roofline.csv' --out '$TMP/b' 2>'$TMP/b.log'"
+EFF=$TMP/b/efficiency.csv
+check "efficiency.csv: the header ends with the efficiency columns" \
+    sh -c "head -1 '$EFF' | grep -q ',pass,kind,fetches,pass_ms,fetches_per_s,limit_fetches_per_s,efficiency\$'"
+check "efficiency.csv: one line per row (vct_trace is the pass with a model)" [ "$(grep -c ',gi.vct_trace,tex3d_rgba16f_trilinear,' "$EFF")" -eq 2 ]
+check "efficiency.csv: every number recomputed from bench.csv and roofline.csv" python3 - "$TMP/b/bench.csv" "$EFF" "$TMP/roofline.csv" <<'PY'
+import csv, sys
+bench = list(csv.DictReader(open(sys.argv[1])))
+eff = list(csv.DictReader(open(sys.argv[2])))
+limits = {r["name"]: float(r["fetches_per_s"]) for r in csv.DictReader(open(sys.argv[3]))}
+close = lambda a, b: abs(a - b) <= 1e-5 * abs(b)   # the CSVs print %.6g
+assert len(eff) == len(bench) == 2, (len(eff), len(bench))
+cones = set()
+for b, e in zip(bench, eff):
+    assert e["vct_cones"] == b["vct_cones"] and e["scene"] == b["scene"]
+    cones.add(e["vct_cones"])
+    fetches, ms = float(e["fetches"]), float(b[e["pass"] + "_ms"])
+    assert fetches > 0 and close(float(e["pass_ms"]), ms), (e, ms)
+    assert close(float(e["limit_fetches_per_s"]), limits[e["kind"]]), e
+    assert close(float(e["fetches_per_s"]), fetches / (ms * 1e-3)), e
+    assert close(float(e["efficiency"]), fetches / (ms * 1e-3) / limits[e["kind"]]), e
+assert cones == {"4", "9"}
+# more cones, more samples: 9 cones fetch more than 4 at the same resolution
+by = {e["vct_cones"]: float(e["fetches"]) for e in eff}
+assert by["9"] > by["4"], by
+PY
+if command -v gnuplot >/dev/null 2>&1; then
+    check "efficiency-cornell.png and .svg drawn" sh -c "[ -s '$TMP/b/efficiency-cornell.png' ] && [ -s '$TMP/b/efficiency-cornell.svg' ]"
+    check "the chart's data: a bar per row, in percent" \
+        sh -c "[ \"\$(grep -c 'gi.vct_trace' '$TMP/b/efficiency-cornell.dat')\" -eq 2 ]"
+fi
+printf 'name,format,size,fetches,median_ms,fetches_per_s\ntex3d_rgba16f_trilinear,rgba16f,64,1,1,fast\n' >"$TMP/bad.csv"
+expect_exit 2 "a roofline.csv with a rate that is not a number" "$GIKIOSK" bench --scenes cornell --methods vct \
+    --roofline-csv "$TMP/bad.csv" --out "$TMP/bad"
+stderr_has "bad.csv:2: fetches_per_s 'fast'" "the error names the file, line and value"
+expect_exit 1 "a roofline.csv that is not there" "$GIKIOSK" bench --roofline-csv "$TMP/none.csv" --out "$TMP/none"
+stderr_has "none.csv: cannot read" "the error names the file"
+finish
