@@ -2,6 +2,7 @@
 #include "efficiency.h"
 
 #include <math.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -171,7 +172,11 @@ static int write_scene_bars(const gk_bench_result *r, const gk_fetch_limit *lim,
             double eff = gk_pass_efficiency(pw->fetches, work_ms(r, row, pw), gk_fetch_limit_of(lim, n_lim, pw->kind));
             if (isnan(eff))
                 continue;
-            fprintf(o.f, "\"%s: %s\" %.6g\n", name, pw->pass, 100.0 * eff);
+            bool two_kinds = false; /* CSSM's direct pass: a bar per kind, named by it */
+            for (int v = 0; v < row->n_work; v++)
+                two_kinds |= v != w && !strcmp(row->work[v].pass, pw->pass);
+            fprintf(o.f, "\"%s: %s%s%s\" %.6g\n", name, pw->pass, two_kinds ? " " : "", two_kinds ? pw->kind : "",
+                    100.0 * eff);
             bars++;
         }
     }

@@ -91,8 +91,13 @@ void gk_renderer_cut(gk_renderer *r);
 /* True when the GI method failed on the current scene (logged once by the renderer; it is not
  * run again until the next scene). */
 bool gk_renderer_gi_failed(const gk_renderer *r, const char *method);
-/* The useful fetches of the last frame's passes (app/gl/pass_work.h) of GI method `method`, for
- * the bench's efficiency: up to max entries, returns how many. May stall on a GPU counter. */
+/* The bench's efficiency (#21, render_work.c). While on, the direct pass's shadowed lights run a
+ * variant that counts the shadow lookups' fetches (an atomic add per pixel: not for timed frames).
+ * Returns false, and counts nothing, where the fragment stage has no storage buffers. */
+bool gk_renderer_count_shadow_fetches(gk_renderer *r, bool on);
+/* The useful fetches of the last frame's passes (app/gl/pass_work.h): the `direct` pass's shadow
+ * lookups when that frame counted them, then GI method `method`'s passes. Up to max entries,
+ * returns how many. May stall on a GPU counter. */
 int gk_renderer_pass_work(const gk_renderer *r, const char *method, gk_pass_work *out, int max);
 
 /* Writes the last frame: png_path display-referred (tonemapped, as shown), exr_path linear scene

@@ -99,7 +99,20 @@ struct gk_renderer {
     float exposure;             /* display scale, fixed per scene (tonemap.h) */
     bool exposure_known;
     bool have_frame;            /* hdr holds a finished frame for capture */
+
+    /* The bench's count of the shadow lookups' fetches (render_work.c, #21) */
+    bool count_shadow_fetches;  /* this frame's lighting passes use the counting variant */
+    GLuint shadow_count_ssbo;   /* two uints: unfiltered 32-bit fetches, filtered RGBA16F fetches */
+    bool shadow_counted;        /* shadow_fetches holds the last frame's count */
+    double shadow_fetches[2];
 };
+
+/* render_work.c: around the direct pass's lights, when r->count_shadow_fetches: zero and bind the
+ * counter before them (returns the define the shadowed lights' programs add, "" when not counting),
+ * read it back after them. */
+const char *gk_render_work_begin(gk_renderer *r);
+void gk_render_work_end(gk_renderer *r);
+void gk_render_work_destroy(gk_renderer *r);
 
 /* renderer_knobs.c: handles set up at creation; the frame's values from budget b (NULL: defaults). */
 void gk_render_knobs_init(gk_render_knobs *k);

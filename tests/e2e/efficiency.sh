@@ -12,38 +12,43 @@ cat >"$TMP/roofline.csv" <<'CSV'
 name,format,size,fetches,median_ms,fetches_per_s
 tex3d_rgba8_trilinear,rgba8,64,1000000,10,1e+08
 tex3d_rgba16f_trilinear,rgba16f,64,1000000,20,5e+07
+tex2d_rgba32f_nearest,rgba32f,512,1000000,5,2e+08
+tex2d_rgba16f_trilinear,rgba16f,512,1000000,10,1e+08
 CSV
 expect_exit 0 "bench --roofline-csv: vct at two cone counts" sh -c "'$GIKIOSK' bench --scenes cornell --methods vct \
     --size 80x60 --frames 1 --warmup 1 --sweep 'vct_cones=4,9' --roofline-csv '$TMP/roofline.csv' --out '$TMP/b' 2>'$TMP/b.log'"
 EFF=$TMP/b/efficiency.csv
 check "efficiency.csv: the header ends with the efficiency columns" \
     sh -c "head -1 '$EFF' | grep -q ',pass,kind,fetches,pass_ms,fetches_per_s,limit_fetches_per_s,efficiency\$'"
-check "efficiency.csv: one line per row (vct_trace is the pass with a model)" [ "$(grep -c ',gi.vct_trace,tex3d_rgba16f_trilinear,' "$EFF")" -eq 2 ]
+check "efficiency.csv: the cone trace's line in each row" [ "$(grep -c ',gi.vct_trace,tex3d_rgba16f_trilinear,' "$EFF")" -eq 2 ]
 check "efficiency.csv: every number recomputed from bench.csv and roofline.csv" python3 - "$TMP/b/bench.csv" "$EFF" "$TMP/roofline.csv" <<'PY'
 import csv, sys
 bench = list(csv.DictReader(open(sys.argv[1])))
 eff = list(csv.DictReader(open(sys.argv[2])))
 limits = {r["name"]: float(r["fetches_per_s"]) for r in csv.DictReader(open(sys.argv[3]))}
 close = lambda a, b: abs(a - b) <= 1e-5 * abs(b)   # the CSVs print %.6g
-assert len(eff) == len(bench) == 2, (len(eff), len(bench))
-cones = set()
-for b, e in zip(bench, eff):
-    assert e["vct_cones"] == b["vct_cones"] and e["scene"] == b["scene"]
-    cones.add(e["vct_cones"])
+assert len(bench) == 2, len(bench)
+row = {b["vct_cones"]: b for b in bench}           # the two rows differ in vct_cones only
+passes = set()
+for e in eff:
+    b = row[e["vct_cones"]]
+    assert e["scene"] == b["scene"] and e["shadow"] == b["shadow"]
+    passes.add((e["vct_cones"], e["pass"]))
     fetches, ms = float(e["fetches"]), float(b[e["pass"] + "_ms"])
     assert fetches > 0 and close(float(e["pass_ms"]), ms), (e, ms)
     assert close(float(e["limit_fetches_per_s"]), limits[e["kind"]]), e
     assert close(float(e["fetches_per_s"]), fetches / (ms * 1e-3)), e
     assert close(float(e["efficiency"]), fetches / (ms * 1e-3) / limits[e["kind"]]), e
-assert cones == {"4", "9"}
+# each row: the cone trace, and the direct pass's shadow lookups (cornell's light is shadowed)
+assert passes == {(c, p) for c in ("4", "9") for p in ("gi.vct_trace", "direct")}, passes
 # more cones, more samples: 9 cones fetch more than 4 at the same resolution
-by = {e["vct_cones"]: float(e["fetches"]) for e in eff}
+by = {e["vct_cones"]: float(e["fetches"]) for e in eff if e["pass"] == "gi.vct_trace"}
 assert by["9"] > by["4"], by
 PY
 if command -v gnuplot >/dev/null 2>&1; then
     check "efficiency-cornell.png and .svg drawn" sh -c "[ -s '$TMP/b/efficiency-cornell.png' ] && [ -s '$TMP/b/efficiency-cornell.svg' ]"
-    check "the chart's data: a bar per row, in percent" \
-        sh -c "[ \"\$(grep -c 'gi.vct_trace' '$TMP/b/efficiency-cornell.dat')\" -eq 2 ]"
+    check "the chart's data: a bar per row and pass" \
+        sh -c "[ \"\$(grep -c 'gi.vct_trace' '$TMP/b/efficiency-cornell.dat')\" -eq 2 ] && [ \"\$(wc -l <'$TMP/b/efficiency-cornell.dat')\" -eq \"\$(( \$(wc -l <'$EFF') - 1 ))\" ]"
 fi
 printf 'name,format,size,fetches,median_ms,fetches_per_s\ntex3d_rgba16f_trilinear,rgba16f,64,1,1,fast\n' >"$TMP/bad.csv"
 expect_exit 2 "a roofline.csv with a rate that is not a number" "$GIKIOSK" bench --scenes cornell --methods vct \
