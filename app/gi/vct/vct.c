@@ -257,6 +257,7 @@ static int vct_render(void *self, const gk_gi_frame *f, gk_err *e)
     v->stats.n_dynamic_triangles = v->tris.n - v->tris.n_static;
 
     int lo[3] = {0, 0, 0}, hi[3] = {v->res - 1, v->res - 1, v->res - 1};
+    v->mips_ran = false;
     /* Each pass of the thesis is a pass of the renderer's clock (nested under `gi`); a pass that
        has nothing to do this frame (static voxels, unchanged light) is not begun, so its column
        is empty rather than a measured zero. */
@@ -305,6 +306,7 @@ static int vct_render(void *self, const gk_gi_frame *f, gk_err *e)
         gk_pass_end(f->pass);
         if (rc != 0)
             return -1;
+        v->mips_ran = true;
         if (b.bounces == 2) {
             gk_pass_begin(f->pass, "vct_bounce");
             rc = vct_pass_bounce(v, &b, e);

@@ -82,6 +82,10 @@ void gk_vct_get_stats(const void *self, gk_vct_stats *s);
  * and `coarse` ones from lod 1 on: aniso 4 and 3 a sample (level 0 blended with the three views a
  * direction sees, then the views alone), iso 1. */
 double gk_vct_trace_fetches(bool aniso, double fine, double coarse);
+/* The anisotropic mips' image loads (vct/mip_aniso.comp): 8 per texel of each of the six views,
+ * levels 1 .. levels-1 of a res³ map (the first level's also read the voxels' mean normals from the
+ * scratch buffer: not counted). */
+double gk_vct_mip_fetches(int res, int levels);
 /* One cone in open space: only its length stops it (no opacity, no volume border), over the
  * receiver's own tangent plane (cos_n: the cone's cosine to its normal), as vct/cone_lib.glsl steps. */
 typedef struct gk_vct_cone_model {

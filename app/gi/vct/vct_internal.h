@@ -46,6 +46,7 @@ typedef struct gk_vct {
     /* grid */
     float origin[3], size, voxel;
     int res, levels;
+    bool mips_ran;               /* this frame rebuilt the mips (vct_work.c counts their fetches) */
     /* GL objects */
     GLuint tri_ssbo, scratch_ssbo, counter_ssbo;
     GLuint vox0;                 /* level-0 radiance (iso: with its mip chain) */

@@ -56,17 +56,29 @@ void gk_vct_trace_model(int cones, int res, float step_mul, bool aniso, const gk
     }
 }
 
-/* gk_gi_method.pass_work: the trace's counted samples as fetches of the RGBA16F voxel textures. */
+double gk_vct_mip_fetches(int res, int levels)
+{
+    double texels = 0.0;
+    for (int l = 1; l < levels; l++)
+        texels += (double)(res >> l) * (res >> l) * (res >> l);
+    return 6.0 * 8.0 * texels;
+}
+
+/* gk_gi_method.pass_work: the trace's counted samples as fetches of the RGBA16F voxel textures, and
+   in a frame that rebuilt them, the anisotropic mips' image loads (the isotropic chain is the
+   driver's glGenerateMipmap: no model). */
 int vct_pass_work(void *self, gk_pass_work *out, int max)
 {
-    if (max < 1)
-        return 0;
+    const gk_vct *v = self;
     gk_vct_stats s;
     gk_vct_get_stats(self, &s);
-    if (s.trace_runs == 0)
-        return 0;
-    out[0] = (gk_pass_work){.pass = "gi.vct_trace", .kind = "tex3d_rgba16f_trilinear",
-                            .fetches = gk_vct_trace_fetches(s.aniso, (double)s.last_trace_fine_steps,
-                                                            (double)(s.last_trace_steps - s.last_trace_fine_steps))};
-    return 1;
+    int n = 0;
+    if (s.trace_runs > 0 && n < max)
+        out[n++] = (gk_pass_work){.pass = "gi.vct_trace", .kind = "tex3d_rgba16f_trilinear",
+                                  .fetches = gk_vct_trace_fetches(s.aniso, (double)s.last_trace_fine_steps,
+                                                                  (double)(s.last_trace_steps - s.last_trace_fine_steps))};
+    if (v->mips_ran && v->cur.aniso && n < max)
+        out[n++] = (gk_pass_work){.pass = "gi.vct_mips", .kind = "image3d_rgba16f_load",
+                                  .fetches = gk_vct_mip_fetches(v->res, v->levels)};
+    return n;
 }
