@@ -1,11 +1,17 @@
-/* What the bench's charts share (bench_output.c): gnuplot run on a script into files renamed into
- * place, and the names rows go by. */
+/* What the bench's outputs share (bench_output.c): a row's key columns and numbers in a CSV, gnuplot
+ * run on a script into files renamed into place, and the names rows go by. */
 #ifndef GK_BENCH_CHART_H
 #define GK_BENCH_CHART_H
 
 #include <stdio.h>
 
 #include "bench.h"
+
+/* "scene,method,KNOB..." (no newline), and a row's values of those columns. */
+void gk_bench_csv_key_header(FILE *f, const gk_bench_result *r);
+void gk_bench_csv_key(FILE *f, const gk_bench_result *r, const gk_bench_row *row);
+/* ",V" (%.6g), "," for NaN, ",inf" for infinity. */
+void gk_bench_put_num(FILE *f, double v);
 
 /* Writes a gnuplot script to f drawing into png and svg. */
 typedef void (*gk_bench_script_fn)(FILE *f, const void *ctx, const char *png, const char *svg);

@@ -84,39 +84,25 @@ static double work_ms(const gk_bench_result *r, const gk_bench_row *row, const g
     return col < 0 ? NAN : row->pass_ms[col];
 }
 
-static void put_num(FILE *f, double v)
-{
-    if (isnan(v))
-        fputs(",", f);
-    else
-        fprintf(f, ",%.6g", v);
-}
-
 static int write_csv(const gk_bench_result *r, const gk_fetch_limit *lim, int n_lim, const char *path, gk_err *e)
 {
     gk_outfile o;
     if (gk_outfile_open(&o, path, e))
         return -1;
     FILE *f = o.f;
-    fputs("scene,method", f);
-    for (int k = 0; k < r->budget.n; k++)
-        fprintf(f, ",%s", r->budget.def[k]->name);
+    gk_bench_csv_key_header(f, r);
     fputs(",pass,kind,fetches,pass_ms,fetches_per_s,limit_fetches_per_s,efficiency\n", f);
     for (int i = 0; i < r->n_rows; i++) {
         const gk_bench_row *row = &r->rows[i];
         for (int w = 0; w < row->n_work; w++) {
             const gk_pass_work *pw = &row->work[w];
             double ms = work_ms(r, row, pw), limit = gk_fetch_limit_of(lim, n_lim, pw->kind);
-            gk_csv_field(f, row->scene);
-            fputc(',', f);
-            gk_csv_field(f, row->method);
-            for (int k = 0; k < r->budget.n; k++)
-                fprintf(f, ",%s", r->budget.def[k]->values[row->level[k]]);
+            gk_bench_csv_key(f, r, row);
             fprintf(f, ",%s,%s,%.0f", pw->pass, pw->kind, pw->fetches);
-            put_num(f, ms);
-            put_num(f, ms > 0.0 ? pw->fetches / (ms * 1e-3) : NAN);
-            put_num(f, limit > 0.0 ? limit : NAN);
-            put_num(f, gk_pass_efficiency(pw->fetches, ms, limit));
+            gk_bench_put_num(f, ms);
+            gk_bench_put_num(f, ms > 0.0 ? pw->fetches / (ms * 1e-3) : NAN);
+            gk_bench_put_num(f, limit > 0.0 ? limit : NAN);
+            gk_bench_put_num(f, gk_pass_efficiency(pw->fetches, ms, limit));
             fputc('\n', f);
         }
     }

@@ -12,7 +12,7 @@
 #include "base/log.h"
 #include "base/outfile.h"
 
-static void put_num(FILE *f, double v)
+void gk_bench_put_num(FILE *f, double v)
 {
     if (isnan(v))
         fputs(",", f);
@@ -22,15 +22,29 @@ static void put_num(FILE *f, double v)
         fprintf(f, ",%.6g", v);
 }
 
+void gk_bench_csv_key_header(FILE *f, const gk_bench_result *r)
+{
+    fputs("scene,method", f);
+    for (int k = 0; k < r->budget.n; k++)
+        fprintf(f, ",%s", r->budget.def[k]->name);
+}
+
+void gk_bench_csv_key(FILE *f, const gk_bench_result *r, const gk_bench_row *row)
+{
+    gk_csv_field(f, row->scene); /* a scene name is a file name: quoted if it holds a comma */
+    fputc(',', f);
+    gk_csv_field(f, row->method);
+    for (int k = 0; k < r->budget.n; k++)
+        fprintf(f, ",%s", r->budget.def[k]->values[row->level[k]]);
+}
+
 int gk_bench_write_csv(const gk_bench_result *r, const char *path, gk_err *e)
 {
     gk_outfile o; /* complete or not at all: a temporary file renamed into place */
     if (gk_outfile_open(&o, path, e))
         return -1;
     FILE *f = o.f;
-    fputs("scene,method", f);
-    for (int k = 0; k < r->budget.n; k++)
-        fprintf(f, ",%s", r->budget.def[k]->name);
+    gk_bench_csv_key_header(f, r);
     fputs(",frame_ms_median,frame_ms_p95,reference,rel_rmse,ssim,psnr,mean_ratio,test_mean,caustic_rel_rmse,"
           "caustic_mean_ratio,pareto,chosen", f);
     for (int p = 0; p < r->n_passes; p++)
@@ -38,25 +52,21 @@ int gk_bench_write_csv(const gk_bench_result *r, const char *path, gk_err *e)
     fputc('\n', f);
     for (int i = 0; i < r->n_rows; i++) {
         const gk_bench_row *row = &r->rows[i];
-        gk_csv_field(f, row->scene); /* a scene name is a file name: quoted if it holds a comma */
-        fputc(',', f);
-        gk_csv_field(f, row->method);
-        for (int k = 0; k < r->budget.n; k++)
-            fprintf(f, ",%s", r->budget.def[k]->values[row->level[k]]);
-        put_num(f, row->frame_ms_median);
-        put_num(f, row->frame_ms_p95);
+        gk_bench_csv_key(f, r, row);
+        gk_bench_put_num(f, row->frame_ms_median);
+        gk_bench_put_num(f, row->frame_ms_p95);
         fputc(',', f);
         gk_csv_field(f, row->reference);
-        put_num(f, row->rel_rmse);
-        put_num(f, row->ssim);
-        put_num(f, row->psnr);
-        put_num(f, row->mean_ratio);
-        put_num(f, row->test_mean);
-        put_num(f, row->caustic_rel_rmse);
-        put_num(f, row->caustic_mean_ratio);
+        gk_bench_put_num(f, row->rel_rmse);
+        gk_bench_put_num(f, row->ssim);
+        gk_bench_put_num(f, row->psnr);
+        gk_bench_put_num(f, row->mean_ratio);
+        gk_bench_put_num(f, row->test_mean);
+        gk_bench_put_num(f, row->caustic_rel_rmse);
+        gk_bench_put_num(f, row->caustic_mean_ratio);
         fprintf(f, ",%d,%d", row->pareto ? 1 : 0, row->chosen ? 1 : 0);
         for (int p = 0; p < r->n_passes; p++)
-            put_num(f, row->pass_ms[p]);
+            gk_bench_put_num(f, row->pass_ms[p]);
         fputc('\n', f);
     }
     return gk_outfile_commit(&o, e);
