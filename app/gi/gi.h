@@ -90,6 +90,9 @@ typedef struct gk_gi_frame {
        KHR_materials_transmission's factor) per material. Attribute locations: 0 position, 1 normal, 2 uv. */
     int (*draw_scene)(void *draw_ctx, unsigned program, gk_err *e);
     void *draw_ctx;
+    /* The bench's counting frame (#21, gk_gi_method.pass_work): passes whose work depends on the
+       data run their counting variants (atomic adds: never in a timed frame). */
+    bool count_work;
 } gk_gi_frame;
 
 typedef struct gk_gi_method {

@@ -273,6 +273,7 @@ int gk_render_gi_run(gk_render_gi *g, gk_renderer *r, const char *method, const 
     f.budget = ctx->budget;
     f.draw_scene = draw_scene_cb;
     f.draw_ctx = r;
+    f.count_work = r->count_work;
     if (r->opts.rebuild_gi && m->invalidate)
         m->invalidate(g->state[k]);
     int rc = m->render(g->state[k], &f, e);

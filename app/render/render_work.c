@@ -3,51 +3,29 @@
  * shrinks its PCF grid with the penumbra, VSSM subdivides kernels that straddle depths), so they
  * are counted: a counting variant of the lighting pass (SHADOW_COUNT_FETCHES, shaders_gles/shadow/
  * common.glsl) adds each pixel's fetches to a storage buffer, in frames the bench does not time. */
-#include <string.h>
-
+#include "gl/gl_counters.h"
 #include "render_gi.h"
 #include "renderer_internal.h"
 
-bool gk_renderer_count_shadow_fetches(gk_renderer *r, bool on)
+bool gk_renderer_count_work(gk_renderer *r, bool on)
 {
-    GLint blocks = 0;
-    glGetIntegerv(GL_MAX_FRAGMENT_SHADER_STORAGE_BLOCKS, &blocks); /* GLES 3.1 allows 0 */
-    r->count_shadow_fetches = on && blocks > 0;
-    return r->count_shadow_fetches || !on;
+    r->count_work = on && gk_counters_in_fragment_shaders();
+    return r->count_work || !on;
 }
 
 const char *gk_render_work_begin(gk_renderer *r)
 {
     r->shadow_counted = false;
-    if (!r->count_shadow_fetches)
+    if (!r->count_work)
         return "";
-    static const GLuint zero[2] = {0, 0};
-    if (!r->shadow_count_ssbo) {
-        glGenBuffers(1, &r->shadow_count_ssbo);
-        glBindBuffer(GL_SHADER_STORAGE_BUFFER, r->shadow_count_ssbo);
-        glBufferData(GL_SHADER_STORAGE_BUFFER, sizeof zero, zero, GL_DYNAMIC_READ);
-    } else {
-        glBindBuffer(GL_SHADER_STORAGE_BUFFER, r->shadow_count_ssbo);
-        glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof zero, zero);
-    }
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, r->shadow_count_ssbo); /* direct/light.frag ShadowFetches */
+    gk_counters_reset(&r->shadow_count_ssbo, 2, 6); /* direct/light.frag ShadowFetches */
     return "#define SHADOW_COUNT_FETCHES 1\n";
 }
 
 void gk_render_work_end(gk_renderer *r)
 {
-    if (!r->count_shadow_fetches)
-        return;
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    glBindBuffer(GL_SHADER_STORAGE_BUFFER, r->shadow_count_ssbo);
-    const GLuint *p = glMapBufferRange(GL_SHADER_STORAGE_BUFFER, 0, 2 * sizeof(GLuint), GL_MAP_READ_BIT);
-    if (p) {
-        r->shadow_fetches[0] = p[0];
-        r->shadow_fetches[1] = p[1];
-        r->shadow_counted = true;
-        glUnmapBuffer(GL_SHADER_STORAGE_BUFFER);
-    }
-    glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+    if (r->count_work)
+        r->shadow_counted = gk_counters_read(r->shadow_count_ssbo, 2, r->shadow_fetches);
 }
 
 void gk_render_work_destroy(gk_renderer *r)

@@ -101,13 +101,14 @@ struct gk_renderer {
     bool have_frame;            /* hdr holds a finished frame for capture */
 
     /* The bench's count of the shadow lookups' fetches (render_work.c, #21) */
-    bool count_shadow_fetches;  /* this frame's lighting passes use the counting variant */
+    bool count_work;            /* this frame's passes use their counting variants (the lighting
+                                   pass's shadow lookups; the GI method's, gk_gi_frame.count_work) */
     GLuint shadow_count_ssbo;   /* two uints: unfiltered 32-bit fetches, filtered RGBA16F fetches */
     bool shadow_counted;        /* shadow_fetches holds the last frame's count */
     double shadow_fetches[2];
 };
 
-/* render_work.c: around the direct pass's lights, when r->count_shadow_fetches: zero and bind the
+/* render_work.c: around the direct pass's lights, when r->count_work: zero and bind the
  * counter before them (returns the define the shadowed lights' programs add, "" when not counting),
  * read it back after them. */
 const char *gk_render_work_begin(gk_renderer *r);

@@ -2,7 +2,8 @@
 # `gikiosk bench --roofline-csv` (#21): efficiency.csv holds one line per measured pass that has a
 # work model, each of its numbers recomputed here another way -- the pass time from bench.csv's own
 # column, the limit from roofline.csv, the rate and the efficiency from those and the fetches -- the
-# bars chart is drawn per scene, and a broken roofline.csv is bad input naming its file and line.
+# bars chart is drawn per scene, vpl's gather counts agree between two visibilities, and a broken
+# roofline.csv is bad input naming its file and line.
 . tests/e2e/lib.sh
 export EGL_PLATFORM=surfaceless
 
@@ -14,6 +15,7 @@ tex3d_rgba8_trilinear,rgba8,64,1000000,10,1e+08
 tex3d_rgba16f_trilinear,rgba16f,64,1000000,20,5e+07
 tex2d_rgba32f_nearest,rgba32f,512,1000000,5,2e+08
 tex2d_rgba16f_trilinear,rgba16f,512,1000000,10,1e+08
+tex2d_rgba8_trilinear,rgba8,512,1000000,8,1.25e+08
 CSV
 expect_exit 0 "bench --roofline-csv: vct at two cone counts" sh -c "'$GIKIOSK' bench --scenes cornell --methods vct \
     --size 80x60 --frames 1 --warmup 1 --sweep 'vct_cones=4,9' --roofline-csv '$TMP/roofline.csv' --out '$TMP/b' 2>'$TMP/b.log'"
@@ -50,6 +52,23 @@ if command -v gnuplot >/dev/null 2>&1; then
     check "the chart's data: a bar per row and pass" \
         sh -c "[ \"\$(grep -c 'gi.vct_trace' '$TMP/b/efficiency-cornell.dat')\" -eq 2 ] && [ \"\$(wc -l <'$TMP/b/efficiency-cornell.dat')\" -eq \"\$(( \$(wc -l <'$EFF') - 1 ))\" ]"
 fi
+# vpl's gather counts (app/gi/vpl/vpl_work.c) checked against each other: VSM and CSSM visibility
+# share the VPLs and their clusters, so the unfiltered fetches (VPL and VAL tables) are equal; per VPL
+# past the VAL's early-out VSM reads 2 moments and CSSM 2 RGBA8 bases, and where it finds blockers
+# CSSM adds 3 16-bit and 2 RGBA8 lookups: VSM's 16-bit count = CSSM's RGBA8 - 2/3 of its 16-bit.
+expect_exit 0 "bench --roofline-csv: vpl with VSM and CSSM visibility" sh -c "'$GIKIOSK' bench --scenes cornell \
+    --methods vpl --size 80x60 --frames 1 --warmup 1 --sweep 'vpl_vis=vsm,cssm' --roofline-csv '$TMP/roofline.csv' \
+    --out '$TMP/v' 2>'$TMP/v.log'"
+check "vpl_gather: VSM's and CSSM's counts agree" python3 - "$TMP/v/efficiency.csv" <<'PY'
+import csv, sys
+f = {}
+for e in csv.DictReader(open(sys.argv[1])):
+    if e["pass"] == "gi.vpl_gather":
+        f[(e["vpl_vis"], e["kind"])] = float(e["fetches"])
+u, h = "tex2d_rgba32f_nearest", "tex2d_rgba16f_trilinear"
+assert f[("vsm", u)] > 0 and f[("vsm", u)] == f[("cssm", u)], f
+assert f[("vsm", h)] > 0 and f[("vsm", h)] == f[("cssm", "tex2d_rgba8_trilinear")] - 2 * f[("cssm", h)] / 3, f
+PY
 printf 'name,format,size,fetches,median_ms,fetches_per_s\ntex3d_rgba16f_trilinear,rgba16f,64,1,1,fast\n' >"$TMP/bad.csv"
 expect_exit 2 "a roofline.csv with a rate that is not a number" "$GIKIOSK" bench --scenes cornell --methods vct \
     --roofline-csv "$TMP/bad.csv" --out "$TMP/bad"

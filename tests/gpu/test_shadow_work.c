@@ -62,7 +62,7 @@ static int direct_fetches(const char *pins, bool count, double fetches[2])
     gk_budget_init(&b);
     gk_renderer_declare_knobs(r, &b);
     assert_true(gk_budget_pin_list(&b, pins, &e) >= 0);
-    assert_true(gk_renderer_count_shadow_fetches(r, count));
+    assert_true(gk_renderer_count_work(r, count));
     gk_frame_params fp = {.time_s = 0, .method = "none", .budget = &b};
     gk_frame_report rep;
     if (gk_renderer_draw(r, &fp, FB.fbo, &rep, &e) != 0)
