@@ -10,33 +10,45 @@ bool gk_counters_in_fragment_shaders(void)
     return blocks > 0;
 }
 
-void gk_counters_reset(GLuint *ssbo, int n, GLuint binding)
+bool gk_counters_begin(gk_counters *c, bool on)
 {
+    c->counted = false;
+    c->counting = on && c->n > 0 && c->n <= GK_COUNTERS_MAX && gk_counters_in_fragment_shaders();
+    if (!c->counting)
+        return false;
     static const GLuint zero[GK_COUNTERS_MAX] = {0};
-    GLsizeiptr bytes = (GLsizeiptr)sizeof(GLuint) * (n < GK_COUNTERS_MAX ? n : GK_COUNTERS_MAX);
-    if (!*ssbo) {
-        glGenBuffers(1, ssbo);
-        glBindBuffer(GL_SHADER_STORAGE_BUFFER, *ssbo);
+    if (!c->ssbo) {
+        glGenBuffers(1, &c->ssbo);
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, c->ssbo);
         glBufferData(GL_SHADER_STORAGE_BUFFER, (GLsizeiptr)sizeof zero, zero, GL_DYNAMIC_READ);
     } else {
-        glBindBuffer(GL_SHADER_STORAGE_BUFFER, *ssbo);
-        glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, bytes, zero);
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, c->ssbo);
+        glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, (GLsizeiptr)sizeof zero, zero);
     }
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, *ssbo);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, c->binding, c->ssbo);
+    return true;
 }
 
-bool gk_counters_read(GLuint ssbo, int n, double *out)
+void gk_counters_end(gk_counters *c)
 {
-    if (!ssbo)
-        return false;
+    if (!c->counting)
+        return;
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    glBindBuffer(GL_SHADER_STORAGE_BUFFER, ssbo);
-    const GLuint *p = glMapBufferRange(GL_SHADER_STORAGE_BUFFER, 0, (GLsizeiptr)sizeof(GLuint) * n, GL_MAP_READ_BIT);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, c->ssbo);
+    const GLuint *p = glMapBufferRange(GL_SHADER_STORAGE_BUFFER, 0, (GLsizeiptr)sizeof(GLuint) * c->n, GL_MAP_READ_BIT);
     if (p) {
-        for (int i = 0; i < n; i++)
-            out[i] = p[i];
+        for (int i = 0; i < c->n; i++)
+            c->value[i] = p[i];
         glUnmapBuffer(GL_SHADER_STORAGE_BUFFER);
     }
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
-    return p != NULL;
+    c->counted = p != NULL;
+}
+
+void gk_counters_free(gk_counters *c)
+{
+    if (c->ssbo)
+        glDeleteBuffers(1, &c->ssbo);
+    c->ssbo = 0;
+    c->counted = c->counting = false;
 }

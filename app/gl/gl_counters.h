@@ -9,11 +9,22 @@
 
 #define GK_COUNTERS_MAX 4
 
-/* True when fragment shaders may write storage buffers (GLES 3.1 allows none). */
+typedef struct gk_counters {
+    int n;                  /* counters (uints) the shader's buffer block holds */
+    GLuint binding;         /* its binding point */
+    GLuint ssbo;            /* made on first use */
+    bool counting;          /* this frame's pass runs its counting variant */
+    bool counted;           /* value holds the last counted pass's */
+    double value[GK_COUNTERS_MAX];
+} gk_counters;
+
+/* Before a pass: when `on` and fragment shaders may write storage buffers (GLES 3.1 allows none),
+ * zeroes and binds the counters and returns true (the pass then runs its counting variant). */
+bool gk_counters_begin(gk_counters *c, bool on);
+/* After it: reads the counters back when the pass counted. */
+void gk_counters_end(gk_counters *c);
+void gk_counters_free(gk_counters *c);
+/* True when fragment shaders may write storage buffers. */
 bool gk_counters_in_fragment_shaders(void);
-/* Zeroes n counters of *ssbo (made on first use) and binds them at `binding`. */
-void gk_counters_reset(GLuint *ssbo, int n, GLuint binding);
-/* Reads n counters into out; false (out untouched) when the buffer cannot be mapped. */
-bool gk_counters_read(GLuint ssbo, int n, double *out);
 
 #endif

@@ -15,25 +15,14 @@ bool gk_renderer_count_work(gk_renderer *r, bool on)
 
 const char *gk_render_work_begin(gk_renderer *r)
 {
-    r->shadow_counted = false;
-    if (!r->count_work)
-        return "";
-    gk_counters_reset(&r->shadow_count_ssbo, 2, 6); /* direct/light.frag ShadowFetches */
-    return "#define SHADOW_COUNT_FETCHES 1\n";
+    r->shadow_fetches.n = 2;
+    r->shadow_fetches.binding = 6; /* direct/light.frag ShadowFetches */
+    return gk_counters_begin(&r->shadow_fetches, r->count_work) ? "#define SHADOW_COUNT_FETCHES 1\n" : "";
 }
 
-void gk_render_work_end(gk_renderer *r)
-{
-    if (r->count_work)
-        r->shadow_counted = gk_counters_read(r->shadow_count_ssbo, 2, r->shadow_fetches);
-}
+void gk_render_work_end(gk_renderer *r) { gk_counters_end(&r->shadow_fetches); }
 
-void gk_render_work_destroy(gk_renderer *r)
-{
-    if (r->shadow_count_ssbo)
-        glDeleteBuffers(1, &r->shadow_count_ssbo);
-    r->shadow_count_ssbo = 0;
-}
+void gk_render_work_destroy(gk_renderer *r) { gk_counters_free(&r->shadow_fetches); }
 
 int gk_renderer_pass_work(const gk_renderer *r, const char *method, gk_pass_work *out, int max)
 {
@@ -41,8 +30,8 @@ int gk_renderer_pass_work(const gk_renderer *r, const char *method, gk_pass_work
     /* the shadow maps are 32-bit depth and the SATs and min-max mips 32-bit integers, read
        unfiltered: the roofline's unfiltered 32-bit kind; CSSM's bases are mipmapped RGBA16F */
     static const char *const kinds[2] = {"tex2d_rgba32f_nearest", "tex2d_rgba16f_trilinear"};
-    for (int k = 0; k < 2 && r->shadow_counted; k++)
-        if (r->shadow_fetches[k] > 0.0 && n < max)
-            out[n++] = (gk_pass_work){.pass = "direct", .kind = kinds[k], .fetches = r->shadow_fetches[k]};
+    for (int k = 0; k < 2 && r->shadow_fetches.counted; k++)
+        if (r->shadow_fetches.value[k] > 0.0 && n < max)
+            out[n++] = (gk_pass_work){.pass = "direct", .kind = kinds[k], .fetches = r->shadow_fetches.value[k]};
     return n + gk_render_gi_pass_work(r->gi, method, out + n, max - n);
 }

@@ -3,6 +3,7 @@
 #ifndef GK_RENDERER_INTERNAL_H
 #define GK_RENDERER_INTERNAL_H
 
+#include "gl/gl_counters.h"
 #include "gl/gl.h"
 #include "gl/gl_program.h"
 #include "gl/gl_target.h"
@@ -103,9 +104,7 @@ struct gk_renderer {
     /* The bench's count of the shadow lookups' fetches (render_work.c, #21) */
     bool count_work;            /* this frame's passes use their counting variants (the lighting
                                    pass's shadow lookups; the GI method's, gk_gi_frame.count_work) */
-    GLuint shadow_count_ssbo;   /* two uints: unfiltered 32-bit fetches, filtered RGBA16F fetches */
-    bool shadow_counted;        /* shadow_fetches holds the last frame's count */
-    double shadow_fetches[2];
+    gk_counters shadow_fetches; /* two: unfiltered 32-bit fetches, filtered RGBA16F fetches */
 };
 
 /* render_work.c: around the direct pass's lights, when r->count_work: zero and bind the

@@ -21,31 +21,18 @@
 #define W 96
 #define H 72
 
-static gkt_gl G;
-static gk_target FB;
-static gk_scene *S;
+static gkt_shipped T; /* the Cornell box */
 
 static int setup(void **state)
 {
     (void)state;
-    const GLenum rgba8[1] = {GL_RGBA8};
-    if (gkt_gl_open(&G) != 0 || gkt_target(&FB, "test framebuffer", W, H, 1, rgba8, false) != 0)
-        return -1;
-    gk_err e = {0};
-    S = gk_scene_load("config/scenes/cornell.gltf", &e);
-    if (!S) {
-        fprintf(stderr, "%s\n", e.msg);
-        return -1;
-    }
-    return 0;
+    return gkt_shipped_open(&T, "config/scenes/cornell.gltf", W, H);
 }
 
 static int teardown(void **state)
 {
     (void)state;
-    gk_scene_free(S);
-    gk_target_destroy(&FB);
-    gkt_gl_close(&G);
+    gkt_shipped_close(&T);
     return 0;
 }
 
@@ -57,7 +44,7 @@ static int direct_fetches(const char *pins, bool count, double fetches[2])
     gk_render_opts o = {.width = W, .height = H, .gles_version = 31, .shader_dir = getenv("GK_SHADER_DIR")};
     gk_renderer *r = gk_renderer_create(&o, &e);
     assert_non_null(r);
-    assert_int_equal(gk_renderer_set_scene(r, S, &e), 0);
+    assert_int_equal(gk_renderer_set_scene(r, T.scene, &e), 0);
     gk_budget b;
     gk_budget_init(&b);
     gk_renderer_declare_knobs(r, &b);
@@ -65,7 +52,7 @@ static int direct_fetches(const char *pins, bool count, double fetches[2])
     assert_true(gk_renderer_count_work(r, count));
     gk_frame_params fp = {.time_s = 0, .method = "none", .budget = &b};
     gk_frame_report rep;
-    if (gk_renderer_draw(r, &fp, FB.fbo, &rep, &e) != 0)
+    if (gk_renderer_draw(r, &fp, T.fb.fbo, &rep, &e) != 0)
         fail_msg("%s: %s", pins, e.msg);
     gk_pass_work w[GK_MAX_PASS_WORK];
     int n = gk_renderer_pass_work(r, "none", w, GK_MAX_PASS_WORK), direct = 0;

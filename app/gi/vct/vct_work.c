@@ -5,7 +5,7 @@
  * cone takes depends on the voxels (it stops at opacity 0.99 and at the volume's border), so the
  * pass counts them (vct/trace.comp Counters) and the bench reads the count; the model below, a
  * replay of the step loop in open space, is what a cone costs when only its length stops it --
- * the bound the count is checked against (tests/gpu/test_vct_work.c). */
+ * the bound the count is checked against (tests/gpu/test_vct.c). */
 #include <math.h>
 
 #include "vct_internal.h"

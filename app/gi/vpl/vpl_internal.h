@@ -2,6 +2,7 @@
 #ifndef GK_VPL_INTERNAL_H
 #define GK_VPL_INTERNAL_H
 
+#include "gl/gl_counters.h"
 #include "gl/gl.h"
 #include "gl/gl_program.h"
 #include "vpl.h"
@@ -60,10 +61,7 @@ typedef struct vpl_state {
     GLuint mr_t[VPL_MR_MAX_LEVELS][4], mr_rend[VPL_MR_MAX_LEVELS], mr_sint[VPL_MR_MAX_LEVELS];
     GLuint mr_fbo[VPL_MR_MAX_LEVELS], mr_rend_fbo[VPL_MR_MAX_LEVELS], mr_sint_fbo[VPL_MR_MAX_LEVELS];
     /* the bench's count of the gather's fetches (vpl_work.c) */
-    GLuint count_ssbo;
-    bool gather_counting;       /* this frame's gather runs the counting variant */
-    bool gather_counted;        /* gather_fetches holds the last frame's */
-    double gather_fetches[3];   /* unfiltered, filtered RGBA8, filtered 16-bit float */
+    gk_counters gather_fetches; /* three: unfiltered, filtered RGBA8, filtered 16-bit float */
 } vpl_state;
 
 /* vpl_rsm.c: RSM of every light + VPL generation + readback into st.vpl; returns VPL count. */

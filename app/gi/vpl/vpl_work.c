@@ -9,23 +9,14 @@
  * not fetched: no model. */
 #include "vpl_internal.h"
 
-#include "gl/gl_counters.h"
-
 const char *vpl_work_begin(vpl_state *s, const gk_gi_frame *f)
 {
-    s->gather_counted = false;
-    s->gather_counting = f->count_work && gk_counters_in_fragment_shaders();
-    if (!s->gather_counting)
-        return "";
-    gk_counters_reset(&s->count_ssbo, 3, 6); /* vpl/gather.frag GatherFetches */
-    return "#define GATHER_COUNT_FETCHES 1\n";
+    s->gather_fetches.n = 3;
+    s->gather_fetches.binding = 6; /* vpl/gather.frag GatherFetches */
+    return gk_counters_begin(&s->gather_fetches, f->count_work) ? "#define GATHER_COUNT_FETCHES 1\n" : "";
 }
 
-void vpl_work_end(vpl_state *s)
-{
-    if (s->gather_counting)
-        s->gather_counted = gk_counters_read(s->count_ssbo, 3, s->gather_fetches);
-}
+void vpl_work_end(vpl_state *s) { gk_counters_end(&s->gather_fetches); }
 
 int vpl_pass_work(void *self, gk_pass_work *out, int max)
 {
@@ -34,15 +25,10 @@ int vpl_pass_work(void *self, gk_pass_work *out, int max)
        bases, depth and VSM's moments 16-bit float, all filtered between mips */
     static const char *const kinds[3] = {"tex2d_rgba32f_nearest", "tex2d_rgba8_trilinear", "tex2d_rgba16f_trilinear"};
     int n = 0;
-    for (int k = 0; k < 3 && s->gather_counted; k++)
-        if (s->gather_fetches[k] > 0.0 && n < max)
-            out[n++] = (gk_pass_work){.pass = "gi.vpl_gather", .kind = kinds[k], .fetches = s->gather_fetches[k]};
+    for (int k = 0; k < 3 && s->gather_fetches.counted; k++)
+        if (s->gather_fetches.value[k] > 0.0 && n < max)
+            out[n++] = (gk_pass_work){.pass = "gi.vpl_gather", .kind = kinds[k], .fetches = s->gather_fetches.value[k]};
     return n;
 }
 
-void vpl_work_free(vpl_state *s)
-{
-    if (s->count_ssbo)
-        glDeleteBuffers(1, &s->count_ssbo);
-    s->count_ssbo = 0;
-}
+void vpl_work_free(vpl_state *s) { gk_counters_free(&s->gather_fetches); }
