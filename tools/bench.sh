@@ -12,12 +12,17 @@ run() { # name, then bench options
     name=$1; shift
     echo "bench: $name: $*"
     # shellcheck disable=SC2086
-    "$BIN" bench "$@" $ARGS --out "$OUT/$name"
+    "$BIN" bench "$@" $ARGS --roofline-csv "$OUT/roofline.csv" --out "$OUT/$name"
 }
 # The machine's fetch limits (the roofline): fetches per second per kind of fetch the methods do,
-# the denominator of each pass's efficiency.
+# the denominator of each pass's efficiency (every sweep below writes efficiency.csv and its bars,
+# efficiency-SCENE.png, for the passes with a work model).
 echo "bench: roofline"
 "$BIN" bench --roofline --out "$OUT"
+# #21's yardstick: vct's cone trace at 64³, 9 cones, trace scale 1, anisotropic mips, cornell at
+# 640x360 (target: >= 30% of the tex3d_rgba16f_trilinear limit), beside the roofline it is divided by.
+run efficiency --scenes cornell --methods vct --size 640x360 \
+    --sweep 'vct_res=64;vct_cones=9;vct_trace_scale=1;vct_mips=aniso'
 # Direct light and soft shadows: shadow method x shadow-map size (renderer core).
 run shadows --scenes shadow-planes,cornell --methods none
 # Voxel cone tracing: each knob one at a time, on the scenes of its issue.

@@ -10,6 +10,7 @@
 #include "base/err.h"
 #include "../render/renderer.h"
 #include "../sched/budget.h"
+#include "gl/pass_work.h"
 
 #define GK_BENCH_MAX_AXES 6
 #define GK_BENCH_MAX_ROWS 1024
@@ -34,6 +35,8 @@ typedef struct gk_bench_opts {
                                   where it exists, else SCENE.exr), so methods compare on one
                                   axis; default: each against what it computes (none: -direct) */
     char out_dir[512];
+    char roofline_csv[512];    /* roofline.csv of `bench --roofline`: also write each pass's efficiency
+                                  (efficiency.h); "" = not */
     char scenes_dir[512];
     char refs_dir[512];
     int gles_version;
@@ -60,6 +63,9 @@ typedef struct gk_bench_row {
                                                  small bright region barely moves in the whole-image
                                                  error. NaN where the scene has no mask */
     double pass_ms[GK_MAX_PASSES];            /* medians, in the order of pass_names */
+    int n_work;                               /* the useful fetches of the passes with a work model
+                                                 (app/gl/pass_work.h), of the last timed frame */
+    gk_pass_work work[GK_MAX_PASS_WORK];
     bool pareto;
     bool chosen;               /* the kiosk's automatic choice for this scene (method at its default
                                   budgets) from the calibration, at opts.target_ms */

@@ -1,5 +1,6 @@
 /* The bench's outputs: bench.csv and the speed-against-accuracy charts (gnuplot). */
 #include "bench.h"
+#include "bench_chart.h"
 
 #include <errno.h>
 #include <math.h>
@@ -11,7 +12,7 @@
 #include "base/log.h"
 #include "base/outfile.h"
 
-static void put_num(FILE *f, double v)
+void gk_bench_put_num(FILE *f, double v)
 {
     if (isnan(v))
         fputs(",", f);
@@ -21,15 +22,29 @@ static void put_num(FILE *f, double v)
         fprintf(f, ",%.6g", v);
 }
 
+void gk_bench_csv_key_header(FILE *f, const gk_bench_result *r)
+{
+    fputs("scene,method", f);
+    for (int k = 0; k < r->budget.n; k++)
+        fprintf(f, ",%s", r->budget.def[k]->name);
+}
+
+void gk_bench_csv_key(FILE *f, const gk_bench_result *r, const gk_bench_row *row)
+{
+    gk_csv_field(f, row->scene); /* a scene name is a file name: quoted if it holds a comma */
+    fputc(',', f);
+    gk_csv_field(f, row->method);
+    for (int k = 0; k < r->budget.n; k++)
+        fprintf(f, ",%s", r->budget.def[k]->values[row->level[k]]);
+}
+
 int gk_bench_write_csv(const gk_bench_result *r, const char *path, gk_err *e)
 {
     gk_outfile o; /* complete or not at all: a temporary file renamed into place */
     if (gk_outfile_open(&o, path, e))
         return -1;
     FILE *f = o.f;
-    fputs("scene,method", f);
-    for (int k = 0; k < r->budget.n; k++)
-        fprintf(f, ",%s", r->budget.def[k]->name);
+    gk_bench_csv_key_header(f, r);
     fputs(",frame_ms_median,frame_ms_p95,reference,rel_rmse,ssim,psnr,mean_ratio,test_mean,caustic_rel_rmse,"
           "caustic_mean_ratio,pareto,chosen", f);
     for (int p = 0; p < r->n_passes; p++)
@@ -37,25 +52,21 @@ int gk_bench_write_csv(const gk_bench_result *r, const char *path, gk_err *e)
     fputc('\n', f);
     for (int i = 0; i < r->n_rows; i++) {
         const gk_bench_row *row = &r->rows[i];
-        gk_csv_field(f, row->scene); /* a scene name is a file name: quoted if it holds a comma */
-        fputc(',', f);
-        gk_csv_field(f, row->method);
-        for (int k = 0; k < r->budget.n; k++)
-            fprintf(f, ",%s", r->budget.def[k]->values[row->level[k]]);
-        put_num(f, row->frame_ms_median);
-        put_num(f, row->frame_ms_p95);
+        gk_bench_csv_key(f, r, row);
+        gk_bench_put_num(f, row->frame_ms_median);
+        gk_bench_put_num(f, row->frame_ms_p95);
         fputc(',', f);
         gk_csv_field(f, row->reference);
-        put_num(f, row->rel_rmse);
-        put_num(f, row->ssim);
-        put_num(f, row->psnr);
-        put_num(f, row->mean_ratio);
-        put_num(f, row->test_mean);
-        put_num(f, row->caustic_rel_rmse);
-        put_num(f, row->caustic_mean_ratio);
+        gk_bench_put_num(f, row->rel_rmse);
+        gk_bench_put_num(f, row->ssim);
+        gk_bench_put_num(f, row->psnr);
+        gk_bench_put_num(f, row->mean_ratio);
+        gk_bench_put_num(f, row->test_mean);
+        gk_bench_put_num(f, row->caustic_rel_rmse);
+        gk_bench_put_num(f, row->caustic_mean_ratio);
         fprintf(f, ",%d,%d", row->pareto ? 1 : 0, row->chosen ? 1 : 0);
         for (int p = 0; p < r->n_passes; p++)
-            put_num(f, row->pass_ms[p]);
+            gk_bench_put_num(f, row->pass_ms[p]);
         fputc('\n', f);
     }
     return gk_outfile_commit(&o, e);
@@ -100,6 +111,13 @@ static void row_label(const gk_bench_result *r, int i, int series_knob, char *ou
         int used = (int)strlen(out);
         snprintf(out + used, (size_t)(len - used), "%s%s", used ? "/" : "", r->budget.def[k]->values[row->level[k]]);
     }
+}
+
+void gk_bench_row_name(const gk_bench_result *r, int i, char *out, int len)
+{
+    char knobs[128];
+    row_label(r, i, -1, knobs, sizeof knobs);
+    snprintf(out, (size_t)len, "%s%s%s", r->rows[i].method, knobs[0] ? " " : "", knobs);
 }
 
 /* One kind of chart: its file prefix, the error on its y axis and what the axis calls it. */
@@ -165,6 +183,72 @@ static void put_chart_script(FILE *f, const gk_bench_result *r, const chart_kind
                     dat, n_series + 1, r->choice_target_ms, r->choice_width, r->choice_height);
         fputc('\n', f);
     }
+}
+
+/* Draws a chart by gnuplot (bench_chart.h). The script kept beside the chart names the final files
+   (`gnuplot FILE.gp` regenerates them); the run itself draws into temporary files renamed into place
+   when gnuplot succeeds. */
+int gk_bench_draw(const char *gp, gk_bench_script_fn script, const void *ctx, const char *png, const char *svg,
+                  gk_err *e)
+{
+    gk_outfile gp_out, run_gp, png_out, svg_out;
+    if (gk_outfile_open(&gp_out, gp, e))
+        return -1;
+    script(gp_out.f, ctx, png, svg);
+    if (gk_outfile_commit(&gp_out, e))
+        return -1;
+    if (gk_outfile_reserve(&png_out, png, e))
+        return -1;
+    if (gk_outfile_reserve(&svg_out, svg, e)) {
+        gk_outfile_discard(&png_out);
+        return -1;
+    }
+    if (gk_outfile_open(&run_gp, gp, e)) {
+        gk_outfile_discard(&png_out);
+        gk_outfile_discard(&svg_out);
+        return -1;
+    }
+    script(run_gp.f, ctx, png_out.tmp, svg_out.tmp);
+    fflush(run_gp.f);
+    char cmd[2200];
+    snprintf(cmd, sizeof cmd, "gnuplot '%s' 2>&1", run_gp.tmp);
+    FILE *p = ferror(run_gp.f) ? NULL : popen(cmd, "r");
+    if (!p) {
+        gk_outfile_discard(&run_gp);
+        gk_outfile_discard(&png_out);
+        gk_outfile_discard(&svg_out);
+        return gk_fail(e, GK_ERUNTIME, "bench: cannot run gnuplot: %s", strerror(errno));
+    }
+    char line[512];
+    while (fgets(line, sizeof line, p))
+        gk_log("gnuplot: %s", strtok(line, "\n"));
+    int status = pclose(p);
+    gk_outfile_discard(&run_gp);
+    if (status != 0) {
+        gk_outfile_discard(&png_out);
+        gk_outfile_discard(&svg_out);
+        gk_log("bench: gnuplot failed on %s (charts skipped; the CSV is complete)", gp);
+        return 0;
+    }
+    if (gk_outfile_commit(&png_out, e)) {
+        gk_outfile_discard(&svg_out);
+        return -1;
+    }
+    return gk_outfile_commit(&svg_out, e);
+}
+
+struct chart_script_args {
+    const gk_bench_result *r;
+    const chart_kind *k;
+    const char *scene, *dat, *gp;
+    char (*series)[64];
+    int n_series;
+};
+
+static void put_chart_script_of(FILE *f, const void *ctx, const char *png, const char *svg)
+{
+    const struct chart_script_args *a = ctx;
+    put_chart_script(f, a->r, a->k, a->scene, a->dat, a->gp, a->series, a->n_series, png, svg);
 }
 
 static int write_scene_chart(const gk_bench_result *r, const chart_kind *k, const char *dir, const char *scene,
@@ -247,52 +331,8 @@ static int write_scene_chart(const gk_bench_result *r, const chart_kind *k, cons
         return 0;
     }
 
-    /* The script kept beside the chart names the final files (`gnuplot FILE.gp` regenerates
-       them); the run itself draws into temporary files renamed into place when gnuplot succeeds. */
-    gk_outfile gp_out, run_gp, png_out, svg_out;
-    if (gk_outfile_open(&gp_out, gp, e))
-        return -1;
-    put_chart_script(gp_out.f, r, k, scene, dat, gp, series, n_series, png, svg);
-    if (gk_outfile_commit(&gp_out, e))
-        return -1;
-    if (gk_outfile_reserve(&png_out, png, e))
-        return -1;
-    if (gk_outfile_reserve(&svg_out, svg, e)) {
-        gk_outfile_discard(&png_out);
-        return -1;
-    }
-    if (gk_outfile_open(&run_gp, gp, e)) {
-        gk_outfile_discard(&png_out);
-        gk_outfile_discard(&svg_out);
-        return -1;
-    }
-    put_chart_script(run_gp.f, r, k, scene, dat, gp, series, n_series, png_out.tmp, svg_out.tmp);
-    fflush(run_gp.f);
-    char cmd[2200];
-    snprintf(cmd, sizeof cmd, "gnuplot '%s' 2>&1", run_gp.tmp);
-    FILE *p = ferror(run_gp.f) ? NULL : popen(cmd, "r");
-    if (!p) {
-        gk_outfile_discard(&run_gp);
-        gk_outfile_discard(&png_out);
-        gk_outfile_discard(&svg_out);
-        return gk_fail(e, GK_ERUNTIME, "bench: cannot run gnuplot: %s", strerror(errno));
-    }
-    char line[512];
-    while (fgets(line, sizeof line, p))
-        gk_log("gnuplot: %s", strtok(line, "\n"));
-    int status = pclose(p);
-    gk_outfile_discard(&run_gp);
-    if (status != 0) {
-        gk_outfile_discard(&png_out);
-        gk_outfile_discard(&svg_out);
-        gk_log("bench: gnuplot failed on %s (charts skipped; bench.csv is complete)", gp);
-        return 0;
-    }
-    if (gk_outfile_commit(&png_out, e)) {
-        gk_outfile_discard(&svg_out);
-        return -1;
-    }
-    return gk_outfile_commit(&svg_out, e);
+    struct chart_script_args a = {r, k, scene, dat, gp, series, n_series};
+    return gk_bench_draw(gp, put_chart_script_of, &a, png, svg, e);
 }
 
 int gk_bench_write_charts(const gk_bench_result *r, const char *dir, gk_err *e)

@@ -149,6 +149,17 @@ static int measure(bench_run *b, const char *method, const char *pins, gk_err *e
                 col_vals[k] = pass_ms[(size_t)k * GK_MAX_PASSES + (size_t)p];
             row->pass_ms[p] = percentile(col_vals, frames < 64 ? frames : 64, 0.5);
         }
+        /* the useful fetches (the efficiency's numerator), of the last frame: a static scene's
+           frames repeat the same work, so they go with the median times. What depends on the data (shadow
+           lookups, vpl's gather) is counted in one more, untimed frame (an atomic add per pixel would weigh on the timed ones). */
+        if (b->o->roofline_csv[0]) {
+            gk_renderer_count_work(b->renderer, true);
+            gk_frame_params fp = {.time_s = 0.0, .method = method, .budget = &budget};
+            gk_frame_report report;
+            rc = gk_renderer_draw(b->renderer, &fp, gk_platform_framebuffer(b->platform), &report, e);
+            gk_renderer_count_work(b->renderer, false);
+            row->n_work = gk_renderer_pass_work(b->renderer, method, row->work, GK_MAX_PASS_WORK);
+        }
         row->rel_rmse = row->ssim = row->psnr = row->mean_ratio = row->test_mean = NAN;
         row->caustic_rel_rmse = row->caustic_mean_ratio = NAN;
         /* The image that is compared: the linear HDR capture, written where the user can look. */

@@ -6,6 +6,7 @@
 #include "cli/commands.h"
 #include "base/log.h"
 #include "bench/bench.h"
+#include "bench/efficiency.h"
 #include "bench/roofline.h"
 #include "gl/gl.h"
 #include "platform/platform.h"
@@ -17,7 +18,8 @@ static void usage(FILE *f)
           "                     [--sweep KNOB=V1,V2[;KNOB=V1,V2...] | --sweep each] [--scenes-dir DIR]\n"
           "                     [--references DIR] [--budget KNOB=VALUE[,KNOB=VALUE...]]\n"
           "                     [--gles 3.1|3.2] [--shader-dir DIR] [--rebuild-gi]\n"
-          "                     [--target-ms MS] [--target-size WxH] [--one-ruler] --out DIR\n"
+          "                     [--target-ms MS] [--target-size WxH] [--one-ruler]\n"
+          "                     [--roofline-csv ROOFLINE.csv] --out DIR\n"
           "       gikiosk bench --roofline [--shader-dir DIR] [--gles 3.1|3.2] --out DIR\n"
           "\n"
           "Renders every configuration offscreen (mock platform), measures the frame time (median and p95\n"
@@ -44,7 +46,10 @@ static void usage(FILE *f)
           "--roofline: instead of the sweep, this machine's fetch limits: a compute shader does a known\n"
           "number of fetches per invocation -- trilinear 3D (rgba8, rgba16f: the voxel volumes), 2D\n"
           "(rgba8, rgba16f trilinear; rgba32f nearest: a summed-area table), 3D imageLoad -- timed as\n"
-          "the bench times frames; DIR/roofline.csv gets fetches per second per kind (median of 5).\n",
+          "the bench times frames; DIR/roofline.csv gets fetches per second per kind (median of 5).\n"
+          "--roofline-csv FILE: with the limits --roofline wrote, also each pass's efficiency -- its useful\n"
+          "fetches (counted or modelled beside the pass) per second of its median time, over the limit of\n"
+          "its kind of fetch -- in DIR/efficiency.csv and per scene DIR/efficiency-SCENE.png/.svg (bars).\n",
           f);
 }
 
@@ -163,6 +168,8 @@ int gk_cmd_bench(int argc, char **argv)
             bad = copy_value(o.scenes_dir, sizeof o.scenes_dir, v);
         else if (!strcmp(a, "--references"))
             bad = copy_value(o.refs_dir, sizeof o.refs_dir, v);
+        else if (!strcmp(a, "--roofline-csv"))
+            bad = copy_value(o.roofline_csv, sizeof o.roofline_csv, v);
         else if (!strcmp(a, "--shader-dir"))
             o.shader_dir = v;
         else if (!strcmp(a, "--size"))
@@ -205,6 +212,13 @@ int gk_cmd_bench(int argc, char **argv)
     if (roofline)
         return bench_roofline(&o);
     gk_err e = {0};
+    /* read before the sweep: a bad file is refused at once, not after minutes of rendering */
+    gk_fetch_limit limits[GK_ROOFLINE_MAX_CASES];
+    int n_limits = o.roofline_csv[0] ? gk_fetch_limits_read(o.roofline_csv, limits, GK_ROOFLINE_MAX_CASES, &e) : 0;
+    if (n_limits < 0) {
+        fprintf(stderr, "gikiosk bench: %s\n", e.msg);
+        return e.code ? e.code : 1;
+    }
     gk_bench_result *r = NULL;
     if (gk_bench_run(&o, &r, &e) < 0) {
         fprintf(stderr, "gikiosk bench: %s\n", e.msg);
@@ -215,6 +229,8 @@ int gk_cmd_bench(int argc, char **argv)
     int rc = gk_bench_write_csv(r, csv, &e);
     if (rc == 0)
         rc = gk_bench_write_charts(r, o.out_dir, &e);
+    if (rc == 0 && o.roofline_csv[0])
+        rc = gk_bench_write_efficiency(r, limits, n_limits, o.out_dir, &e);
     if (rc < 0)
         fprintf(stderr, "gikiosk bench: %s\n", e.msg);
     else

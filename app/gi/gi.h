@@ -17,6 +17,7 @@
 #include "../sched/budget.h"
 #include "gl/gbuffer_bind.h"
 #include "gl/pass.h"
+#include "gl/pass_work.h"
 
 /* What the renderer lends a method for its whole life. */
 typedef struct gk_gi_context {
@@ -89,6 +90,9 @@ typedef struct gk_gi_frame {
        KHR_materials_transmission's factor) per material. Attribute locations: 0 position, 1 normal, 2 uv. */
     int (*draw_scene)(void *draw_ctx, unsigned program, gk_err *e);
     void *draw_ctx;
+    /* The bench's counting frame (#21, gk_gi_method.pass_work): passes whose work depends on the
+       data run their counting variants (atomic adds: never in a timed frame). */
+    bool count_work;
 } gk_gi_frame;
 
 typedef struct gk_gi_method {
@@ -114,6 +118,10 @@ typedef struct gk_gi_method {
     /* Optional: forget the work cached between frames (vct: voxels and injected light), so the next
        render redoes it; the bench's --rebuild-gi times those passes with it. */
     void (*invalidate)(void *self);
+    /* Optional (the bench's efficiency, #21): the useful fetches of the last frame's passes
+       (app/gl/pass_work.h); up to max entries, returns how many. It may read GPU counters back (a
+       stall), so only the bench calls it, after a frame. */
+    int (*pass_work)(void *self, gk_pass_work *out, int max);
     void (*destroy)(void *self);
 } gk_gi_method;
 

@@ -243,13 +243,15 @@ static int pass_direct(gk_renderer *r, const gk_frame_knobs *fk, const frame_lig
     glEnable(GL_BLEND);
     glBlendEquation(GL_FUNC_ADD);
     glBlendFunc(GL_ONE, GL_ONE);
+    const char *count_define = gk_render_work_begin(r);
     for (int i = 0; i < n; i++) {
         const gk_scene *s = r->scene;
         const gk_light *l = &s->lights[s->nodes[fl[i].node].light];
-        char defines[256];
-        snprintf(defines, sizeof defines, "#define GK_LIGHT_KIND %d\n%s%s", gk_render_light_kind(l),
+        char defines[320];
+        snprintf(defines, sizeof defines, "#define GK_LIGHT_KIND %d\n%s%s%s", gk_render_light_kind(l),
                  l->type == GK_LIGHT_SPOT ? "#define GK_LIGHT_SPOT 1\n" : "",
-                 fl[i].mask ? "#define SHADOW_MASK 1\n" : fl[i].shadowed ? fl[i].method->glsl_define : "");
+                 fl[i].mask ? "#define SHADOW_MASK 1\n" : fl[i].shadowed ? fl[i].method->glsl_define : "",
+                 fl[i].shadowed && !fl[i].mask ? count_define : "");
         prog = gk_program_get(r->progs, "common/fullscreen.vert", "direct/light.frag", defines, e);
         const light_uniforms *lu = prog ? gk_program_uniforms(r->progs, prog, GK_FIELDS(light_fields), sizeof *lu, e) : NULL;
         if (!lu) {
@@ -278,6 +280,7 @@ static int pass_direct(gk_renderer *r, const gk_frame_knobs *fk, const frame_lig
         }
         gk_render_fullscreen(r);
     }
+    gk_render_work_end(r);
     int rc = gk_render_env_pass(r, gbuf, fk->env_lights, e);
     glDisable(GL_BLEND);
     return rc;

@@ -263,6 +263,7 @@ static void fill_frame(gk_render_gi *g, gk_renderer *r, const gk_pass_ctx *ctx, 
     f.budget = ctx->budget;
     f.draw_scene = draw_scene_cb;
     f.draw_ctx = r;
+    f.count_work = r->count_work; /* a bench counting frame (pass_work.h) */
     *out = f;
 }
 
@@ -356,5 +357,15 @@ long gk_render_gi_memory(const gk_render_gi *g, const char *method)
     for (int i = 0; i < count && i < GI_MAX_METHODS; i++)
         if (g->state[i] && strcmp(m[i]->name, method) == 0 && m[i]->memory_bytes)
             return m[i]->memory_bytes(g->state[i]);
+    return 0;
+}
+
+int gk_render_gi_pass_work(const gk_render_gi *g, const char *method, gk_pass_work *out, int max)
+{
+    int count;
+    const gk_gi_method *const *m = gk_gi_methods(&count);
+    for (int i = 0; i < count && i < GI_MAX_METHODS; i++)
+        if (g->state[i] && strcmp(m[i]->name, method) == 0 && m[i]->pass_work)
+            return m[i]->pass_work(g->state[i], out, max);
     return 0;
 }

@@ -28,6 +28,9 @@ int gk_render_gi_shadow_masks(gk_render_gi *g, gk_renderer *r, const char *metho
                               const int *nodes, int n, unsigned *masks, gk_err *e);
 /* True when `method` failed on the current scene (the kiosk then shows the scene without it). */
 bool gk_render_gi_failed(const gk_render_gi *g, const gk_renderer *r, const char *method);
+/* The useful fetches of the method's last frame (gk_gi_method.pass_work); 0 entries when it has
+ * no model or was not created. */
+int gk_render_gi_pass_work(const gk_render_gi *g, const char *method, gk_pass_work *out, int max);
 /* GPU memory of a method's state at its current budget (0 when not created). */
 long gk_render_gi_memory(const gk_render_gi *g, const char *method);
 

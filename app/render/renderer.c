@@ -93,6 +93,7 @@ void gk_renderer_destroy(gk_renderer *r)
     gk_target_destroy(&r->hdr);
     gk_target_destroy(&r->glass);
     gk_gi_blend_destroy(r);
+    gk_render_work_destroy(r);
     for (int i = 0; i < GK_MAX_SHADOW_METHODS && gk_shadow_methods[i]; i++)
         if (r->shadow_state[i])
             gk_shadow_methods[i]->destroy(r->shadow_state[i]);

@@ -3,6 +3,7 @@
 #ifndef GK_RENDERER_INTERNAL_H
 #define GK_RENDERER_INTERNAL_H
 
+#include "gl/gl_counters.h"
 #include "gl/gl.h"
 #include "gl/gl_program.h"
 #include "gl/gl_target.h"
@@ -99,7 +100,19 @@ struct gk_renderer {
     float exposure;             /* display scale, fixed per scene (tonemap.h) */
     bool exposure_known;
     bool have_frame;            /* hdr holds a finished frame for capture */
+
+    /* The bench's count of the shadow lookups' fetches (render_work.c, #21) */
+    bool count_work;            /* this frame's passes use their counting variants (the lighting
+                                   pass's shadow lookups; the GI method's, gk_gi_frame.count_work) */
+    gk_counters shadow_fetches; /* two: unfiltered 32-bit fetches, filtered RGBA16F fetches */
 };
+
+/* render_work.c: around the direct pass's lights, when r->count_work: zero and bind the
+ * counter before them (returns the define the shadowed lights' programs add, "" when not counting),
+ * read it back after them. */
+const char *gk_render_work_begin(gk_renderer *r);
+void gk_render_work_end(gk_renderer *r);
+void gk_render_work_destroy(gk_renderer *r);
 
 /* renderer_knobs.c: handles set up at creation; the frame's values from budget b (NULL: defaults). */
 void gk_render_knobs_init(gk_render_knobs *k);

@@ -18,6 +18,10 @@
 // @variant GK_LIGHT_KIND=2 SHADOW_CSSM CSSM_SLOPE_MAX=0.05
 // @variant GK_LIGHT_KIND=5 SHADOW_MASK
 // @variant GK_LIGHT_KIND=2 SHADOW_CSSM CSSM_PLANE=1
+// @variant GK_LIGHT_KIND=5 SHADOW_PCSS SHADOW_COUNT_FETCHES
+// @variant GK_LIGHT_KIND=5 SHADOW_VSSM SHADOW_COUNT_FETCHES
+// @variant GK_LIGHT_KIND=2 SHADOW_CSSM SHADOW_COUNT_FETCHES
+// @variant GK_LIGHT_KIND=2 SHADOW_CSSM CSSM_SAT=1 SHADOW_COUNT_FETCHES
 precision highp float;
 precision highp int;
 #define GB_GEOM_NORMAL 1
@@ -27,6 +31,11 @@ precision highp int;
 #include "shadow/shadow.glsl"
 
 out vec4 o_color;
+#ifdef SHADOW_COUNT_FETCHES
+// the bench's count of the shadow lookups' fetches (shadow/common.glsl; fragment-stage storage
+// buffers are capability-checked by the renderer before it asks for this variant)
+layout(std430, binding = 6) buffer ShadowFetches { highp uint nearest; highp uint filtered; } shadow_counted;
+#endif
 
 void main()
 {
@@ -40,5 +49,9 @@ void main()
     // The receiver offset and plane are the surface's own (the geometric normal): along a normal
     // map's tilted normal the receiver sinks behind its own depth in the map and shadows itself.
     radiance *= shadow_visibility(s.p, gb_geom_normal(px));
+#ifdef SHADOW_COUNT_FETCHES
+    atomicAdd(shadow_counted.nearest, gk_shadow_fetches.x);
+    atomicAdd(shadow_counted.filtered, gk_shadow_fetches.y);
+#endif
     o_color = vec4(radiance, 1.0);
 }

@@ -68,9 +68,21 @@ gk_shadow_coord gk_shadow_project(highp vec3 p)
     return c;
 }
 
+// The bench's counting variant (#21, app/render/render_work.c): with SHADOW_COUNT_FETCHES the shadow
+// lookups add up their fetches per pixel -- x unfiltered 32-bit ones (depth map, SATs, min-max
+// mips; a textureGather counts one), y filtered RGBA16F ones (CSSM's mipmapped bases) -- and
+// direct/light.frag adds them to a buffer once per pixel. Never in the kiosk's frames.
+#ifdef SHADOW_COUNT_FETCHES
+highp uvec2 gk_shadow_fetches = uvec2(0u);
+#define GK_SHADOW_COUNT(x, y) gk_shadow_fetches += uvec2(uint(x), uint(y))
+#else
+#define GK_SHADOW_COUNT(x, y)
+#endif
+
 // Linear depth of the nearest occluder stored at uv (clamped to the map).
 highp float gk_shadow_fetch(highp vec2 uv, highp float layer)
 {
+    GK_SHADOW_COUNT(1, 0);
     return gk_shadow_linear(texture(u_shadow_map, vec3(clamp(uv, 0.0, 1.0), layer)).r);
 }
 

@@ -43,7 +43,7 @@ void main()
     for (int k = 0; k < MAX_CONES; k++) {
         if (k >= u_n_cones) break;
         vec3 d = normalize(T * u_cone_dir[k].x + N * u_cone_dir[k].y + B * u_cone_dir[k].z);
-        float ao; int steps;
+        float ao; ivec2 steps;
         D += u_cone_weight[k] * trace_cone(apex, d, u_cone_aperture[k], u_max_dist, plane, ao, steps).rgb;
     }
     imageStore(u_out, c, vec4(direct.rgb + alb * D, direct.a));

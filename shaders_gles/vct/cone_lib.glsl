@@ -115,12 +115,14 @@ cone_pos cone_at(vec3 apex, vec3 d, float dst, float diam, float aperture, float
 
 // plane: the receiver's tangent plane (xyz normal, w offset) in voxel space, for the footprint clamp.
 // Front-to-back accumulation C += (1 - A) C_s, A += (1 - A) a_s; AO ao += (1 - ao) a_s / (1 + d lambda).
-// Returns the premultiplied radiance seen along the cone; ao = accumulated occlusion (0 = open).
-vec4 trace_cone(vec3 apex, vec3 d, float aperture, float max_dist, vec4 plane, out float ao, out int steps)
+// Returns the premultiplied radiance seen along the cone; ao = accumulated occlusion (0 = open);
+// steps = the samples taken, x below lod 1 (ISO_MIPS=0: 4 fetches each), y from lod 1 on (3 each; with
+// ISO_MIPS every sample is one fetch and counts in x): the trace's work (app/gi/vct/vct_work.c).
+vec4 trace_cone(vec3 apex, vec3 d, float aperture, float max_dist, vec4 plane, out float ao, out ivec2 steps)
 {
     float vs = 1.0 / u_res_f, dst = 0.0, diam = 0.0, ao_acc = 0.0;
     vec4 acc = vec4(0.0);
-    steps = 0;
+    steps = ivec2(0);
 #if !ISO_MIPS
     cone_axes ax = cone_axes_for(d);
 #endif
@@ -152,7 +154,7 @@ vec4 trace_cone(vec3 apex, vec3 d, float aperture, float max_dist, vec4 plane, o
 #endif
         dst += step_len;
         diam = dst * aperture;
-        steps++;
+        steps.x++;
     }
 #if !ISO_MIPS
     for (int it = 0; it < 4096; it++) {
@@ -172,7 +174,7 @@ vec4 trace_cone(vec3 apex, vec3 d, float aperture, float max_dist, vec4 plane, o
 #endif
         dst += step_len;
         diam = dst * aperture;
-        steps++;
+        steps.y++;
     }
 #endif
     ao = ao_acc;

@@ -16,7 +16,8 @@
 #include "vct/sparse.glsl"   // the G-buffer and vct_world_position
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 0, r32f) writeonly uniform highp image2D u_out_visibility;
-layout(std430, binding = 2) buffer Counters { uint total_steps; uint shadow_steps; } counters;
+// the layout of trace.comp's Counters, the shadow cones' samples after the trace's three
+layout(std430, binding = 2) buffer Counters { uint total_steps; uint fine_steps; uint traced_pixels; uint shadow_steps; } counters;
 
 uniform vec3 u_grid_origin;
 uniform float u_grid_size;       // world edge of the cubic grid

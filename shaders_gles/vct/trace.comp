@@ -13,7 +13,9 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 0, rgba16f) writeonly uniform highp image2D u_out_diffuse;
 layout(binding = 1, rgba16f) writeonly uniform highp image2D u_out_spec;
-layout(std430, binding = 2) buffer Counters { uint total_steps; } counters;
+// The trace's work (app/gi/vct/vct_work.c): cone samples below lod 1 and from lod 1 on (they differ in
+// fetches), and the pixels that traced cones (not background). One atomic add each per pixel.
+layout(std430, binding = 2) buffer Counters { uint total_steps; uint fine_steps; uint traced_pixels; } counters;
 
 #define MAX_CONES 9
 uniform ivec2 u_low_size;
@@ -52,7 +54,7 @@ void main()
     vec4 plane = vec4(Ng, -dot(Ng, pu));               // the receiver's tangent plane, voxel space
     vec3 D = vec3(0.0);
     float occ = 0.0;
-    int total = 0;
+    ivec2 total = ivec2(0);
     for (int k = 0; k < MAX_CONES; k++) {
         if (k >= u_n_cones) break;
         vec3 d = normalize(T * u_cone_dir[k].x + N * u_cone_dir[k].y + B * u_cone_dir[k].z);
@@ -63,7 +65,7 @@ void main()
             occ += u_cone_weight[k];
             continue;
         }
-        float ao; int steps;
+        float ao; ivec2 steps;
         vec4 c = trace_cone(apex, d, u_cone_aperture[k], u_max_dist, plane, ao, steps);
         D += u_cone_weight[k] * c.rgb;
         occ += u_cone_weight[k] * ao;
@@ -74,12 +76,14 @@ void main()
     vec2 mr = vct_metallic_roughness(px);
     if (mr.g < 0.5 || mr.r > 0.5) {                   // glossy enough to be worth a cone
         vec3 R = reflect(normalize(P - u_eye), N);
-        float ao; int steps;
+        float ao; ivec2 steps;
         spec = trace_cone(apex, R, u_spec_aperture, u_max_dist, plane, ao, steps);
         total += steps;
     }
 #endif
-    atomicAdd(counters.total_steps, uint(total));
+    atomicAdd(counters.total_steps, uint(total.x + total.y));
+    atomicAdd(counters.fine_steps, uint(total.x));
+    atomicAdd(counters.traced_pixels, 1u);
     imageStore(u_out_diffuse, q, vec4(D, clamp(1.0 - occ, 0.0, 1.0)));
     imageStore(u_out_spec, q, vec4(spec.rgb, 1.0));
 }

@@ -213,3 +213,24 @@ void gkt_scene_bounds(gkt_scene *t)
     t->s.bmin = lo;
     t->s.bmax = hi;
 }
+
+int gkt_shipped_open(gkt_shipped *t, const char *gltf, int w, int h)
+{
+    const GLenum rgba8[1] = {GL_RGBA8};
+    if (gkt_gl_open(&t->gl) != 0 || gkt_target(&t->fb, "test framebuffer", w, h, 1, rgba8, false) != 0)
+        return -1;
+    gk_err e = {0};
+    t->scene = gk_scene_load(gltf, &e);
+    if (!t->scene) {
+        fprintf(stderr, "%s\n", e.msg);
+        return -1;
+    }
+    return 0;
+}
+
+void gkt_shipped_close(gkt_shipped *t)
+{
+    gk_scene_free(t->scene);
+    gk_target_destroy(&t->fb);
+    gkt_gl_close(&t->gl);
+}

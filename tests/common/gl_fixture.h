@@ -38,6 +38,17 @@ const char *gkt_shader_dir(void);
 /* A program cache over gkt_shader_dir() (gles 31 or 32: the #version written). */
 gk_program_cache *gkt_programs(int gles);
 
+/* ---- a shipped scene for the renderer ----------------------------------------------------------- */
+typedef struct gkt_shipped {
+    gkt_gl gl;
+    gk_target fb;       /* RGBA8, the size asked */
+    gk_scene *scene;    /* loaded from a glTF file (config/scenes/...) */
+} gkt_shipped;
+
+/* Opens the context, a w x h RGBA8 framebuffer and the scene at gltf; prints why not and returns -1. */
+int gkt_shipped_open(gkt_shipped *t, const char *gltf, int w, int h);
+void gkt_shipped_close(gkt_shipped *t);
+
 /* ---- scenes ---------------------------------------------------------------------------------- */
 #define GKT_MAX_MESH 64
 #define GKT_MAX_LIGHT 8

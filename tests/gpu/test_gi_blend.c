@@ -30,9 +30,7 @@
 #define FRAMES 8
 #define SWITCH 3 /* first frame drawn with the new method/levels */
 
-static gkt_gl G;
-static gk_target FB;
-static gk_scene *S;
+static gkt_shipped T; /* the Cornell box */
 
 /* fp16 storage of the image before GI, the held contribution and the blended image: relative
    rounding 2^-11 each. The comparisons below allow 3 such roundings of the pixel's value plus a
@@ -44,24 +42,13 @@ static gk_scene *S;
 static int setup(void **state)
 {
     (void)state;
-    const GLenum rgba8[1] = {GL_RGBA8};
-    if (gkt_gl_open(&G) != 0 || gkt_target(&FB, "test framebuffer", W, H, 1, rgba8, false) != 0)
-        return -1;
-    gk_err e = {0};
-    S = gk_scene_load("config/scenes/cornell.gltf", &e);
-    if (!S) {
-        fprintf(stderr, "%s\n", e.msg);
-        return -1;
-    }
-    return 0;
+    return gkt_shipped_open(&T, "config/scenes/cornell.gltf", W, H);
 }
 
 static int teardown(void **state)
 {
     (void)state;
-    gk_scene_free(S);
-    gk_target_destroy(&FB);
-    gkt_gl_close(&G);
+    gkt_shipped_close(&T);
     return 0;
 }
 
@@ -76,7 +63,7 @@ static void draw_run(const char *common, const char *method_a, const char *pins_
     gk_render_opts o = {.width = W, .height = H, .gles_version = 31, .shader_dir = getenv("GK_SHADER_DIR")};
     gk_renderer *r = gk_renderer_create(&o, &e);
     assert_non_null(r);
-    assert_int_equal(gk_renderer_set_scene(r, S, &e), 0);
+    assert_int_equal(gk_renderer_set_scene(r, T.scene, &e), 0);
     gk_budget a, b;
     gk_budget_init(&a);
     gk_budget_init(&b);
@@ -91,7 +78,7 @@ static void draw_run(const char *common, const char *method_a, const char *pins_
         bool after = f >= SWITCH;
         gk_frame_params fp = {.time_s = 0, .method = after ? method_b : method_a, .budget = after ? &b : &a};
         gk_frame_report rep;
-        if (gk_renderer_draw(r, &fp, FB.fbo, &rep, &e) != 0)
+        if (gk_renderer_draw(r, &fp, T.fb.fbo, &rep, &e) != 0)
             fail_msg("frame %d: %s", f, e.msg);
         gk_image im;
         assert_int_equal(gk_renderer_read_linear(r, &im, &e), 0);

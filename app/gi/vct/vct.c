@@ -281,6 +281,7 @@ int vct_update(gk_vct *v, const gk_gi_frame *f, vct_budget *bp, gk_err *e)
     v->stats.n_dynamic_triangles = v->tris.n - v->tris.n_static;
 
     int lo[3] = {0, 0, 0}, hi[3] = {v->res - 1, v->res - 1, v->res - 1};
+    v->mips_ran = false;
     /* Each pass of the thesis is a pass of the renderer's clock (nested under `gi`); a pass that
        has nothing to do this frame (static voxels, unchanged light) is not begun, so its column
        is empty rather than a measured zero. */
@@ -329,6 +330,7 @@ int vct_update(gk_vct *v, const gk_gi_frame *f, vct_budget *bp, gk_err *e)
         gk_pass_end(f->pass);
         if (rc != 0)
             return -1;
+        v->mips_ran = true;
         if (b.bounces == 2) {
             gk_pass_begin(f->pass, "vct_bounce");
             rc = vct_pass_bounce(v, &b, e);
@@ -409,17 +411,21 @@ void gk_vct_get_stats(const void *self, gk_vct_stats *out)
 {
     const gk_vct *v = self;
     *out = v->stats;
-    GLuint steps[2] = {0, 0}; /* the trace pass's samples, the shadow cones' (vct_shadow.c) */
+    /* vct/trace.comp's and vct/shadow_cone.comp's Counters: all trace samples, those below lod 1,
+       traced pixels, the shadow cones' samples */
+    GLuint counted[4] = {0, 0, 0, 0};
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, v->counter_ssbo);
-    const GLuint *p = glMapBufferRange(GL_SHADER_STORAGE_BUFFER, 0, sizeof steps, GL_MAP_READ_BIT);
+    const GLuint *p = glMapBufferRange(GL_SHADER_STORAGE_BUFFER, 0, sizeof counted, GL_MAP_READ_BIT);
     if (p) {
-        steps[0] = p[0];
-        steps[1] = p[1];
+        memcpy(counted, p, sizeof counted);
         glUnmapBuffer(GL_SHADER_STORAGE_BUFFER);
     }
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
-    out->last_trace_steps = steps[0];
-    out->last_shadow_steps = steps[1];
+    out->last_trace_steps = counted[0];
+    out->last_trace_fine_steps = counted[1];
+    out->last_trace_pixels = counted[2];
+    out->last_shadow_steps = counted[3];
+    out->aniso = v->cur.aniso;
 }
 
 unsigned gk_vct_scratch_buffer(const void *self) { return ((const gk_vct *)self)->scratch_ssbo; }
@@ -436,5 +442,6 @@ const gk_gi_method gk_gi_vct = {
     .shadow_mask = vct_shadow_mask,
     .wants_shadow_mask = vct_wants_shadow_mask,
     .invalidate = vct_invalidate,
+    .pass_work = vct_pass_work,
     .destroy = vct_destroy,
 };

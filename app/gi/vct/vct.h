@@ -69,6 +69,9 @@ typedef struct gk_vct_stats {
     unsigned long last_trace_steps; /* cone samples of the last trace pass (all pixels, all cones) */
     unsigned long last_shadow_steps; /* shadow-cone samples of the last frame's masks (all lights, all pixels) */
     int shadow_runs;                /* shadow-cone passes (one per light and frame) */
+    unsigned long last_trace_fine_steps; /* of those, the samples below lod 1 (aniso: 4 fetches, not 3) */
+    unsigned long last_trace_pixels;     /* pixels that traced cones (not background) */
+    bool aniso;                     /* the mips in use: vct_mips=aniso */
     int res;                        /* level-0 resolution in use */
     float grid_origin[3], grid_size, voxel_size;  /* world */
     int trace_w, trace_h;
@@ -76,6 +79,26 @@ typedef struct gk_vct_stats {
 } gk_vct_stats;
 
 void gk_vct_get_stats(const void *self, gk_vct_stats *s);
+
+/* The trace's work (app/gi/vct/vct_work.c, #21). Fetches of a trace of `fine` samples below lod 1
+ * and `coarse` ones from lod 1 on: aniso 4 and 3 a sample (level 0 blended with the three views a
+ * direction sees, then the views alone), iso 1. */
+double gk_vct_trace_fetches(bool aniso, double fine, double coarse);
+/* The anisotropic mips' image loads (vct/mip_aniso.comp): 8 per texel of each of the six views,
+ * levels 1 .. levels-1 of a res³ map (the first level's also read the voxels' mean normals from the
+ * scratch buffer: not counted). */
+double gk_vct_mip_fetches(int res, int levels);
+/* One cone in open space: only its length stops it (no opacity, no volume border), over the
+ * receiver's own tangent plane (cos_n: the cone's cosine to its normal), as vct/cone_lib.glsl steps. */
+typedef struct gk_vct_cone_model {
+    int res;
+    float aperture, step_mul, apex_offset, max_dist, footprint_clamp, cos_n;
+} gk_vct_cone_model;
+void gk_vct_cone_samples(const gk_vct_cone_model *m, bool aniso, int *fine, int *coarse);
+/* The samples one traced pixel's diffuse cone set takes in open space (no specular cone): the sum
+ * of gk_vct_cone_samples over the set of `cones` at options o. */
+void gk_vct_trace_model(int cones, int res, float step_mul, bool aniso, const gk_vct_options *o, double *fine,
+                        double *coarse);
 
 /* Scratch channels per voxel: 10 (count, albedo, normal, position) + 3 with emissive surfaces. */
 int gk_vct_channels(bool emissive);

@@ -51,6 +51,7 @@ typedef struct gk_vct {
     /* grid */
     float origin[3], size, voxel;
     int res, levels;
+    bool mips_ran;               /* this frame rebuilt the mips (vct_work.c counts their fetches) */
     /* GL objects */
     GLuint tri_ssbo, scratch_ssbo, counter_ssbo;
     GLuint vox0;                 /* level-0 radiance (iso: with its mip chain) */
@@ -115,5 +116,7 @@ void vct_bind_map(const gk_vct *v, GLint vox0, const GLint voxp[3], const GLint 
 /* The cone set for n cones (4, 6 or 9) in the tangent frame (t, n, b); weights calibrated or the
    thesis code's. Returns the number of cones. */
 int vct_cone_set(int n, bool faithful, float dir[][3], float aperture[], float weight[]);
+/* gk_gi_method.pass_work (vct_work.c): the last trace's counted samples as fetches. */
+int vct_pass_work(void *self, gk_pass_work *out, int max);
 
 #endif

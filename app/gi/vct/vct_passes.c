@@ -438,9 +438,9 @@ int vct_pass_trace(gk_vct *v, const gk_gi_frame *f, const vct_budget *b, gk_err 
     glUniform3fv(u->u_cone_dir, n, &dir[0][0]);
     glUniform1fv(u->u_cone_aperture, n, ap);
     glUniform1fv(u->u_cone_weight, n, w);
-    static const GLuint zero = 0;
+    static const GLuint zero[3] = {0, 0, 0}; /* the trace's work counters (vct/trace.comp Counters) */
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, v->counter_ssbo);
-    glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof zero, &zero);
+    glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof zero, zero);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, v->counter_ssbo);
     glBindImageTexture(0, v->trace_diffuse, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glBindImageTexture(1, v->trace_spec, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);

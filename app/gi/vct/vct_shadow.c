@@ -154,7 +154,7 @@ int vct_shadow_mask(void *self, const gk_gi_frame *f, int light, unsigned *tex, 
     if (light == 0) { /* the frame's first mask: its samples are counted from zero */
         static const GLuint zero = 0;
         glBindBuffer(GL_SHADER_STORAGE_BUFFER, v->counter_ssbo);
-        glBufferSubData(GL_SHADER_STORAGE_BUFFER, sizeof zero, sizeof zero, &zero);
+        glBufferSubData(GL_SHADER_STORAGE_BUFFER, 3 * sizeof zero, sizeof zero, &zero); /* shadow_steps */
         glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
     }
     gk_pass_begin(f->pass, "vct_shadow_cone");

@@ -1,6 +1,7 @@
 /* Interleaved gather, geometry-aware blur and compose (thesis §6.5 steps 9–11); see the shaders in
  * shaders_gles/vpl/ for the formulas. */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -152,7 +153,9 @@ const char *vpl_vis_define(int vis)
 static int interleaved(vpl_state *s, const gk_gi_frame *f, gk_err *e)
 {
     int iw = s->iw, ih = s->ih;
-    GLuint g = gk_program_get(s->ctx.programs, "common/fullscreen.vert", "vpl/gather.frag", vpl_vis_define(s->vis), e);
+    char defines[160];
+    snprintf(defines, sizeof defines, "%s%s", vpl_vis_define(s->vis), vpl_work_begin(s, f));
+    GLuint g = gk_program_get(s->ctx.programs, "common/fullscreen.vert", "vpl/gather.frag", defines, e);
     const vpl_gather_uniforms *u = g ? vpl_gather_uniforms_of(s, g, e) : NULL;
     if (!u)
         return -1;
@@ -171,6 +174,7 @@ static int interleaved(vpl_state *s, const gk_gi_frame *f, gk_err *e)
     glUniform3f(u->u_origin, s->origin[0], s->origin[1], s->origin[2]);
     glUniform1f(u->u_out_max, vpl_target_max(s));
     glDrawArrays(GL_TRIANGLES, 0, 3);
+    vpl_work_end(s);
     if (s->dbg.measure)
         measure(s);
     return 0;

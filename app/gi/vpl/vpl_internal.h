@@ -2,6 +2,7 @@
 #ifndef GK_VPL_INTERNAL_H
 #define GK_VPL_INTERNAL_H
 
+#include "gl/gl_counters.h"
 #include "gl/gl.h"
 #include "gl/gl_program.h"
 #include "vpl.h"
@@ -59,6 +60,8 @@ typedef struct vpl_state {
     int mr_levels, mr_w, mr_h;
     GLuint mr_t[VPL_MR_MAX_LEVELS][4], mr_rend[VPL_MR_MAX_LEVELS], mr_sint[VPL_MR_MAX_LEVELS];
     GLuint mr_fbo[VPL_MR_MAX_LEVELS], mr_rend_fbo[VPL_MR_MAX_LEVELS], mr_sint_fbo[VPL_MR_MAX_LEVELS];
+    /* the bench's count of the gather's fetches (vpl_work.c) */
+    gk_counters gather_fetches; /* three: unfiltered, filtered RGBA8, filtered 16-bit float */
 } vpl_state;
 
 /* vpl_rsm.c: RSM of every light + VPL generation + readback into st.vpl; returns VPL count. */
@@ -75,6 +78,13 @@ void vpl_free_gpu(vpl_state *s);
    (plus pos_tex/nrm_tex for the blur), replacing the interleaved gather. */
 int vpl_gather_multires(vpl_state *s, const gk_gi_frame *f, gk_err *e);
 void vpl_free_multires(vpl_state *s);
+/* vpl_work.c (#21): around the interleaved gather of a counting frame (f->count_work), zero and bind
+   the counters (returns the define the gather adds, "" when not counting) and read them back;
+   gk_gi_method.pass_work; the counters' buffer freed. */
+const char *vpl_work_begin(vpl_state *s, const gk_gi_frame *f);
+void vpl_work_end(vpl_state *s);
+int vpl_pass_work(void *self, gk_pass_work *out, int max);
+void vpl_work_free(vpl_state *s);
 /* Largest value an indirect target stores (fp16 saturates at 65504; fp32: no cap). */
 float vpl_target_max(const vpl_state *s);
 /* vpl/gather.frag in every variant (visibility defines, dense and MULTIRES): its uniform locations,

@@ -270,6 +270,7 @@ static void destroy(void *self)
     if (!s)
         return;
     vpl_free_gpu(s);
+    vpl_work_free(s);
     if (s->own_cache)
         gk_program_cache_destroy(s->own_cache);
     free(s);
@@ -288,5 +289,6 @@ const gk_gi_method gk_gi_vpl = {
     .set_scene = set_scene,
     .render = render,
     .memory_bytes = memory_bytes,
+    .pass_work = vpl_pass_work,
     .destroy = destroy,
 };

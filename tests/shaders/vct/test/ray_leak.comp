@@ -25,7 +25,7 @@ void main()
     float ang = radians(17.0) * sqrt(rnd(i, 2u)), az = 6.2831853 * rnd(i, 3u);
     vec3 d = normalize(n * cos(ang) + (t * cos(az) + b * sin(az)) * sin(ang));
     vec3 start = hit - d * (0.5 * u_march * vs);
-    float ao; int steps;
+    float ao; ivec2 steps;
     vec4 c = trace_cone(start, d, 0.0, u_march * vs, vec4(0.0), ao, steps);
     if (c.a < 0.5) atomicAdd(result.leaked_half, 1u);
     if (c.a < 0.05) atomicAdd(result.leaked_full, 1u);

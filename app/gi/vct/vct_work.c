@@ -1,0 +1,84 @@
+/* The cone-trace pass's work (#21, app/gl/pass_work.h): how many voxel fetches vct_trace needs.
+ * A cone sample reads the pre-integrated map once with isotropic mips; with anisotropic ones it
+ * reads the three directional views its direction sees, and below lod 1 also the isotropic
+ * level 0 it blends with them (vct/cone_lib.glsl): 4 fetches, 3 from lod 1 on. How many samples a
+ * cone takes depends on the voxels (it stops at opacity 0.99 and at the volume's border), so the
+ * pass counts them (vct/trace.comp Counters) and the bench reads the count; the model below, a
+ * replay of the step loop in open space, is what a cone costs when only its length stops it --
+ * the bound the count is checked against (tests/gpu/test_vct.c). */
+#include <math.h>
+
+#include "vct_internal.h"
+
+double gk_vct_trace_fetches(bool aniso, double fine, double coarse)
+{
+    return aniso ? 4.0 * fine + 3.0 * coarse : fine + coarse;
+}
+
+/* vct/cone_lib.glsl trace_cone without the opacity and border tests, in float as the shader: the
+ * receiver's tangent plane is the cone's only geometry, the apex u_apex_offset voxels above it. */
+void gk_vct_cone_samples(const gk_vct_cone_model *m, bool aniso, int *fine, int *coarse)
+{
+    float res = (float)m->res, vs = 1.0f / res, dst = 0.0f, diam = 0.0f;
+    float h0 = m->apex_offset / res;
+    *fine = *coarse = 0;
+    for (int it = 0; it < 8192; it++) {
+        if (dst > m->max_dist)
+            break;
+        float ds = diam;
+        if (m->footprint_clamp > 0.0f)
+            ds = fminf(ds, m->footprint_clamp * fmaxf(h0 + dst * m->cos_n, 0.0f));
+        float lod = fmaxf(log2f(ds * res), 0.0f);
+        float step_len = fmaxf(ds * m->step_mul, vs);
+        /* aniso: the first loop ends at lod 1 and the second goes on from the same place */
+        if (aniso && lod >= 1.0f)
+            ++*coarse;
+        else
+            ++*fine;
+        dst += step_len;
+        diam = dst * m->aperture;
+    }
+}
+
+void gk_vct_trace_model(int cones, int res, float step_mul, bool aniso, const gk_vct_options *o, double *fine,
+                        double *coarse)
+{
+    float dir[VCT_MAX_CONES][3], ap[VCT_MAX_CONES], w[VCT_MAX_CONES];
+    int n = vct_cone_set(cones, o->faithful_weights, dir, ap, w);
+    *fine = *coarse = 0.0;
+    for (int k = 0; k < n; k++) {
+        gk_vct_cone_model m = {.res = res, .aperture = ap[k], .step_mul = step_mul, .apex_offset = o->apex_offset,
+                               .max_dist = o->max_dist, .footprint_clamp = o->footprint_clamp, .cos_n = dir[k][1]};
+        int f, c;
+        gk_vct_cone_samples(&m, aniso, &f, &c);
+        *fine += f;
+        *coarse += c;
+    }
+}
+
+double gk_vct_mip_fetches(int res, int levels)
+{
+    double texels = 0.0;
+    for (int l = 1; l < levels; l++)
+        texels += (double)(res >> l) * (res >> l) * (res >> l);
+    return 6.0 * 8.0 * texels;
+}
+
+/* gk_gi_method.pass_work: the trace's counted samples as fetches of the RGBA16F voxel textures, and
+   in a frame that rebuilt them, the anisotropic mips' image loads (the isotropic chain is the
+   driver's glGenerateMipmap: no model). */
+int vct_pass_work(void *self, gk_pass_work *out, int max)
+{
+    const gk_vct *v = self;
+    gk_vct_stats s;
+    gk_vct_get_stats(self, &s);
+    int n = 0;
+    if (s.trace_runs > 0 && n < max)
+        out[n++] = (gk_pass_work){.pass = "gi.vct_trace", .kind = "tex3d_rgba16f_trilinear",
+                                  .fetches = gk_vct_trace_fetches(s.aniso, (double)s.last_trace_fine_steps,
+                                                                  (double)(s.last_trace_steps - s.last_trace_fine_steps))};
+    if (v->mips_ran && v->cur.aniso && n < max)
+        out[n++] = (gk_pass_work){.pass = "gi.vct_mips", .kind = "image3d_rgba16f_load",
+                                  .fetches = gk_vct_mip_fetches(v->res, v->levels)};
+    return n;
+}

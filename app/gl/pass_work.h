@@ -1,0 +1,17 @@
+/* A pass's useful work (#21, the bench's efficiency): the fetches its algorithm needs at its
+ * parameters -- counted where the count depends on the data (a cone stops at opacity), modelled
+ * where it does not -- by the kind of fetch the roofline measures (app/bench/roofline.h), so that
+ * efficiency = (fetches / the pass's time) / the machine's limit for that kind. Each model lives
+ * beside the pass it describes (app/gi/vct/vct_work.c, ...). */
+#ifndef GK_PASS_WORK_H
+#define GK_PASS_WORK_H
+
+#define GK_MAX_PASS_WORK 8
+
+typedef struct gk_pass_work {
+    const char *pass;   /* dotted frame-report path: "gi.vct_trace" (a string literal) */
+    const char *kind;   /* a roofline.csv name: "tex3d_rgba16f_trilinear" (a string literal) */
+    double fetches;     /* useful fetches in the last frame */
+} gk_pass_work;
+
+#endif

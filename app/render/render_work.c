@@ -1,0 +1,37 @@
+/* What the bench divides by a pass's time (#21, app/gl/pass_work.h): the renderer's own passes'
+ * useful fetches, and the GI method's. The direct pass's shadow lookups depend on the data (PCSS
+ * shrinks its PCF grid with the penumbra, VSSM subdivides kernels that straddle depths), so they
+ * are counted: a counting variant of the lighting pass (SHADOW_COUNT_FETCHES, shaders_gles/shadow/
+ * common.glsl) adds each pixel's fetches to a storage buffer, in frames the bench does not time. */
+#include "gl/gl_counters.h"
+#include "render_gi.h"
+#include "renderer_internal.h"
+
+bool gk_renderer_count_work(gk_renderer *r, bool on)
+{
+    r->count_work = on && gk_counters_in_fragment_shaders();
+    return r->count_work || !on;
+}
+
+const char *gk_render_work_begin(gk_renderer *r)
+{
+    r->shadow_fetches.n = 2;
+    r->shadow_fetches.binding = 6; /* direct/light.frag ShadowFetches */
+    return gk_counters_begin(&r->shadow_fetches, r->count_work) ? "#define SHADOW_COUNT_FETCHES 1\n" : "";
+}
+
+void gk_render_work_end(gk_renderer *r) { gk_counters_end(&r->shadow_fetches); }
+
+void gk_render_work_destroy(gk_renderer *r) { gk_counters_free(&r->shadow_fetches); }
+
+int gk_renderer_pass_work(const gk_renderer *r, const char *method, gk_pass_work *out, int max)
+{
+    int n = 0;
+    /* the shadow maps are 32-bit depth and the SATs and min-max mips 32-bit integers, read
+       unfiltered: the roofline's unfiltered 32-bit kind; CSSM's bases are mipmapped RGBA16F */
+    static const char *const kinds[2] = {"tex2d_rgba32f_nearest", "tex2d_rgba16f_trilinear"};
+    for (int k = 0; k < 2 && r->shadow_fetches.counted; k++)
+        if (r->shadow_fetches.value[k] > 0.0 && n < max)
+            out[n++] = (gk_pass_work){.pass = "direct", .kind = kinds[k], .fetches = r->shadow_fetches.value[k]};
+    return n + gk_render_gi_pass_work(r->gi, method, out + n, max - n);
+}

@@ -1,0 +1,78 @@
+#!/bin/sh
+# `gikiosk bench --roofline-csv` (#21): efficiency.csv holds one line per measured pass that has a
+# work model, each of its numbers recomputed here another way -- the pass time from bench.csv's own
+# column, the limit from roofline.csv, the rate and the efficiency from those and the fetches -- the
+# bars chart is drawn per scene, vpl's gather counts agree between two visibilities, and a broken
+# roofline.csv is bad input naming its file and line.
+. tests/e2e/lib.sh
+export EGL_PLATFORM=surfaceless
+
+# A roofline of round numbers (the real one is `bench --roofline`, tests/e2e/roofline.sh): the
+# recomputation below does not depend on this machine's speed.
+cat >"$TMP/roofline.csv" <<'CSV'
+name,format,size,fetches,median_ms,fetches_per_s
+tex3d_rgba8_trilinear,rgba8,64,1000000,10,1e+08
+tex3d_rgba16f_trilinear,rgba16f,64,1000000,20,5e+07
+tex2d_rgba32f_nearest,rgba32f,512,1000000,5,2e+08
+tex2d_rgba16f_trilinear,rgba16f,512,1000000,10,1e+08
+tex2d_rgba8_trilinear,rgba8,512,1000000,8,1.25e+08
+CSV
+expect_exit 0 "bench --roofline-csv: vct at two cone counts" sh -c "'$GIKIOSK' bench --scenes cornell --methods vct \
+    --size 80x60 --frames 1 --warmup 1 --sweep 'vct_cones=4,9' --roofline-csv '$TMP/roofline.csv' --out '$TMP/b' 2>'$TMP/b.log'"
+EFF=$TMP/b/efficiency.csv
+check "efficiency.csv: the header ends with the efficiency columns" \
+    sh -c "head -1 '$EFF' | grep -q ',pass,kind,fetches,pass_ms,fetches_per_s,limit_fetches_per_s,efficiency\$'"
+check "efficiency.csv: the cone trace's line in each row" [ "$(grep -c ',gi.vct_trace,tex3d_rgba16f_trilinear,' "$EFF")" -eq 2 ]
+check "efficiency.csv: every number recomputed from bench.csv and roofline.csv" python3 - "$TMP/b/bench.csv" "$EFF" "$TMP/roofline.csv" <<'PY'
+import csv, sys
+bench = list(csv.DictReader(open(sys.argv[1])))
+eff = list(csv.DictReader(open(sys.argv[2])))
+limits = {r["name"]: float(r["fetches_per_s"]) for r in csv.DictReader(open(sys.argv[3]))}
+close = lambda a, b: abs(a - b) <= 1e-5 * abs(b)   # the CSVs print %.6g
+assert len(bench) == 2, len(bench)
+row = {b["vct_cones"]: b for b in bench}           # the two rows differ in vct_cones only
+passes = set()
+for e in eff:
+    b = row[e["vct_cones"]]
+    assert e["scene"] == b["scene"] and e["shadow"] == b["shadow"]
+    passes.add((e["vct_cones"], e["pass"]))
+    fetches, ms = float(e["fetches"]), float(b[e["pass"] + "_ms"])
+    assert fetches > 0 and close(float(e["pass_ms"]), ms), (e, ms)
+    assert close(float(e["limit_fetches_per_s"]), limits[e["kind"]]), e
+    assert close(float(e["fetches_per_s"]), fetches / (ms * 1e-3)), e
+    assert close(float(e["efficiency"]), fetches / (ms * 1e-3) / limits[e["kind"]]), e
+# each row: the cone trace, and the direct pass's shadow lookups (cornell's light is shadowed)
+assert passes == {(c, p) for c in ("4", "9") for p in ("gi.vct_trace", "direct")}, passes
+# more cones, more samples: 9 cones fetch more than 4 at the same resolution
+by = {e["vct_cones"]: float(e["fetches"]) for e in eff if e["pass"] == "gi.vct_trace"}
+assert by["9"] > by["4"], by
+PY
+if command -v gnuplot >/dev/null 2>&1; then
+    check "efficiency-cornell.png and .svg drawn" sh -c "[ -s '$TMP/b/efficiency-cornell.png' ] && [ -s '$TMP/b/efficiency-cornell.svg' ]"
+    check "the chart's data: a bar per row and pass" \
+        sh -c "[ \"\$(grep -c 'gi.vct_trace' '$TMP/b/efficiency-cornell.dat')\" -eq 2 ] && [ \"\$(wc -l <'$TMP/b/efficiency-cornell.dat')\" -eq \"\$(( \$(wc -l <'$EFF') - 1 ))\" ]"
+fi
+# vpl's gather counts (app/gi/vpl/vpl_work.c) checked against each other: VSM and CSSM visibility
+# share the VPLs and their clusters, so the unfiltered fetches (VPL and VAL tables) are equal; per VPL
+# past the VAL's early-out VSM reads 2 moments and CSSM 2 RGBA8 bases, and where it finds blockers
+# CSSM adds 3 16-bit and 2 RGBA8 lookups: VSM's 16-bit count = CSSM's RGBA8 - 2/3 of its 16-bit.
+expect_exit 0 "bench --roofline-csv: vpl with VSM and CSSM visibility" sh -c "'$GIKIOSK' bench --scenes cornell \
+    --methods vpl --size 80x60 --frames 1 --warmup 1 --sweep 'vpl_vis=vsm,cssm' --roofline-csv '$TMP/roofline.csv' \
+    --out '$TMP/v' 2>'$TMP/v.log'"
+check "vpl_gather: VSM's and CSSM's counts agree" python3 - "$TMP/v/efficiency.csv" <<'PY'
+import csv, sys
+f = {}
+for e in csv.DictReader(open(sys.argv[1])):
+    if e["pass"] == "gi.vpl_gather":
+        f[(e["vpl_vis"], e["kind"])] = float(e["fetches"])
+u, h = "tex2d_rgba32f_nearest", "tex2d_rgba16f_trilinear"
+assert f[("vsm", u)] > 0 and f[("vsm", u)] == f[("cssm", u)], f
+assert f[("vsm", h)] > 0 and f[("vsm", h)] == f[("cssm", "tex2d_rgba8_trilinear")] - 2 * f[("cssm", h)] / 3, f
+PY
+printf 'name,format,size,fetches,median_ms,fetches_per_s\ntex3d_rgba16f_trilinear,rgba16f,64,1,1,fast\n' >"$TMP/bad.csv"
+expect_exit 2 "a roofline.csv with a rate that is not a number" "$GIKIOSK" bench --scenes cornell --methods vct \
+    --roofline-csv "$TMP/bad.csv" --out "$TMP/bad"
+stderr_has "bad.csv:2: fetches_per_s 'fast'" "the error names the file, line and value"
+expect_exit 1 "a roofline.csv that is not there" "$GIKIOSK" bench --roofline-csv "$TMP/none.csv" --out "$TMP/none"
+stderr_has "none.csv: cannot read" "the error names the file"
+finish
