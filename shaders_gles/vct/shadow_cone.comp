@@ -55,7 +55,7 @@ void main()
         aperture = u_aperture >= 0.0 ? u_aperture : u_light_diameter / (dist * u_grid_size);
     }
     float vis = 1.0;
-    int steps = 0;
+    ivec2 steps = ivec2(0); // below lod 1, from lod 1 on (trace_cone)
     if (dot(to_light, Ng) > 0.0) {   // a light behind the surface lights nothing: no cone
         vec3 apex = pu + Ng * (u_apex_offset / u_res_f);
         vec4 plane = vec4(Ng, -dot(Ng, pu));   // the receiver's tangent plane (footprint clamp)
@@ -70,6 +70,6 @@ void main()
         vec4 c = trace_cone(apex, to_light, aperture, end, plane, ao, steps);
         vis = clamp(1.0 - c.a, 0.0, 1.0);
     }
-    atomicAdd(counters.shadow_steps, uint(steps));
+    atomicAdd(counters.shadow_steps, uint(steps.x + steps.y));
     imageStore(u_out_visibility, px, vec4(vis));
 }
