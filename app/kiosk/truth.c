@@ -47,7 +47,7 @@ struct gk_truth {
     _Atomic uint64_t generation; /* read by workers before every sample */
     uint64_t next_generation;
     int busy;                 /* workers inside a tile */
-    uint64_t samples, aborted_tiles;
+    uint64_t samples, aborted_tiles, retired_views;
     _Atomic int low_priority_ok;
     _Atomic uint64_t samples_after_stop;
 };
@@ -93,6 +93,7 @@ static void retire_locked(gk_truth *t)
     atomic_store(&t->generation, 0);
     if (!j)
         return;
+    t->retired_views++;
     j->retired = true;
     if (j->users == 0)
         job_free(j);
@@ -382,6 +383,7 @@ void gk_truth_get_stats(gk_truth *t, gk_truth_stats *s)
     pthread_mutex_lock(&t->lock);
     s->samples = t->samples;
     s->aborted_tiles = t->aborted_tiles;
+    s->retired_views = t->retired_views;
     s->samples_after_stop = atomic_load(&t->samples_after_stop);
     s->workers = t->n_threads;
     pthread_mutex_unlock(&t->lock);

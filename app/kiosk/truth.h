@@ -60,6 +60,7 @@ typedef struct gk_truth_stats {
     uint64_t aborted_tiles; /* tiles left part-way because their view was retired */
     uint64_t samples_after_stop; /* samples that finished after their view was retired: at most one
                                     per worker and retirement (the one in flight) */
+    uint64_t retired_views; /* views retired (by a restart, a stop or the end) */
     int workers;
     bool low_priority;      /* the workers run at SCHED_IDLE or nice 19 */
 } gk_truth_stats;
