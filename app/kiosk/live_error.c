@@ -110,13 +110,6 @@ static void trace_view(gk_live_error *le, double anim_t)
         gk_log("truth: %s: %s", le->scene_name, e.msg);
         return;
     }
-    if (rs.has_delta_surfaces) {
-        gk_ref_scene_free(&rs);
-        snprintf(le->note, sizeof le->note, "no truth: caustics need the reference's light tracer");
-        gk_log("truth: %s has mirrors or glass: its caustics need the reference renderer's light tracer; no live "
-               "ground truth", le->scene_name);
-        return;
-    }
     uint64_t g = gk_truth_restart(le->truth, &rs, le->w, le->h, le->sub, 1);
     if (s->anim_duration > 0)
         gk_log("truth: %s restarted at animation time %.3f s (view %llu)", le->scene_name, anim_t,

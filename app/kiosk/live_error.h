@@ -3,11 +3,11 @@
  *
  * The view: the truth restarts when the scene changes; an animated scene (gk_scene.anim_duration >
  * 0) moves every frame, so it gets a truth only while its animation is paused (prev held,
- * gk_live_error_pause: traced at the frozen time, stopped when it moves again), nor does a scene with mirrors or glass
- * (its caustics need the reference renderer's light tracer, which a per-pixel progressive estimate
- * does not run) unless a committed reference fits. Committed reference: SCENES_DIR/../../tests/
- * references/SCENE.exr, used as the truth when the truth size is the frame size (sub = 1) and
- * equals the reference's (the references are rendered through pixel centres at time 0).
+ * gk_live_error_pause: traced at the frozen time, stopped when it moves again). Scenes with mirrors
+ * or glass get the reference's light pass too (truth.h). Committed reference: SCENES_DIR/../../
+ * tests/references/SCENE.exr, used as the truth of a still scene when the truth size is the frame
+ * size (sub = 1) and equals the reference's (the references are rendered through pixel centres at
+ * time 0).
  *
  * The error: every GK_LIVE_ERROR_PERIOD_S of kiosk time, the frame's linear HDR image (before
  * exposure and tonemap, gk_renderer_read_linear) is box-downsampled by sub to the truth's size and
