@@ -85,9 +85,10 @@ static void sizes(void **state)
  * until it has spp samples, and checks that the noise it states for itself predicts its error
  * against that reference: E[rel_rmse^2] = noise^2 + ref_noise^2 (independent estimates of the same
  * image). Returns the truth's noise; *mask_ratio (when not NULL): the truth's mean over the pixels
- * of tests/references/SCENE-caustics-mask.png against the reference's there. The band [0.8, 1.25]
+ * of tests/references/SCENE-MASK-mask.png against the reference's there. The band [0.8, 1.25]
  * around the prediction: see the callers. */
-static double converges_to_reference(const char *scene, long spp, int workers, double limit_s, double *mask_ratio)
+static double converges_to_reference(const char *scene, long spp, int workers, double limit_s, const char *mask_name,
+                                     double *mask_ratio)
 {
     char path[256], gltf[256];
     snprintf(path, sizeof path, "tests/references/%s.exr", scene);
@@ -98,7 +99,8 @@ static double converges_to_reference(const char *scene, long spp, int workers, d
     char floor_s[64] = "";
     gk_image_read_attr(path, "gikiosk:noise_floor", floor_s, sizeof floor_s, &e);
     double ref_noise = atof(floor_s);
-    assert_true(ref_noise > 0 && ref_noise < 0.1); /* the references' floors: cornell 0.017, glass 0.063 */
+    assert_true(ref_noise > 0 && ref_noise < 0.15); /* the references' floors: cornell 0.017, glass 0.063,
+                                                        caustic-ring-fog 0.10 */
     size_t n = (size_t)ref.width * ref.height * 3;
     float *rgb = malloc(n * sizeof *rgb);
     for (size_t p = 0; p < (size_t)ref.width * ref.height; p++)
@@ -127,7 +129,7 @@ static double converges_to_reference(const char *scene, long spp, int workers, d
     assert_true(err / predicted > 0.8 && err / predicted < 1.25);
     if (mask_ratio) {
         char mpath[256];
-        snprintf(mpath, sizeof mpath, "tests/references/%s-caustics-mask.png", scene);
+        snprintf(mpath, sizeof mpath, "tests/references/%s-%s-mask.png", scene, mask_name);
         gk_image mask = {0};
         assert_int_equal(gk_image_read(mpath, &mask, &e), 0);
         assert_true(mask.width == ref.width && mask.height == ref.height);
@@ -168,7 +170,7 @@ static double converges_to_reference(const char *scene, long spp, int workers, d
 static void noise_estimate_predicts_error(void **state)
 {
     (void)state;
-    assert_true(converges_to_reference("cornell", 32, 1, 120, NULL) < 0.2);
+    assert_true(converges_to_reference("cornell", 32, 1, 120, NULL, NULL) < 0.2);
 }
 
 /* caustic-ring (a mirror ring focusing a point lamp): the truth runs the reference's light pass too
@@ -182,13 +184,19 @@ static void caustics_converge_to_reference(void **state)
 {
     (void)state;
     double ratio;
-    converges_to_reference("caustic-ring", 8, 2, 300, &ratio);
+    converges_to_reference("caustic-ring", 8, 2, 300, "caustics", &ratio);
     assert_true(ratio > 0.93 && ratio < 1.07);
     /* glass (a sphere focusing the lamp through two refractions): the caustic is 56% of the mask's
        mean in the references (glass-caustics.exr against glass.exr there), so without the light
-       pass the ratio falls near 0.45; measured 1.012, 1.041, 1.029, 1.036 over seeds 1-4 (30 pixels) */
-    converges_to_reference("glass", 8, 2, 300, &ratio);
+       pass the ratio falls near 0.45; measured 1.012, 1.041, 1.029, 1.036 over seeds 1-4, 1.001 in
+       another run of seed 1 (9 spp: the poll can land a pass late; 30 pixels) */
+    converges_to_reference("glass", 8, 2, 300, "caustics", &ratio);
     assert_true(ratio > 0.85 && ratio < 1.15);
+    /* caustic-ring-fog: the light pass also splats the volume caustics (L S+ V E) of the ring's
+       beams in the fog; inside their mask 0.988 at 8 spp (seed 1), 0.709 without the light pass
+       (whose whole-image error then fell to 0.844 of the predicted) */
+    converges_to_reference("caustic-ring-fog", 8, 2, 300, "vcaustics", &ratio);
+    assert_true(ratio > 0.9 && ratio < 1.1);
 }
 
 /* A restart begins a new generation from zero samples; a stop leaves no view; the workers leave a
