@@ -189,7 +189,8 @@ static void caustics_converge_to_reference(void **state)
     /* glass (a sphere focusing the lamp through two refractions): the caustic is 56% of the mask's
        mean in the references (glass-caustics.exr against glass.exr there), so without the light
        pass the ratio falls near 0.45; measured 1.012, 1.041, 1.029, 1.036 over seeds 1-4, 1.001 in
-       another run of seed 1 (9 spp: the poll can land a pass late; 30 pixels) */
+       another run of seed 1 (8 complete passes everywhere, plus whatever of the next had finished
+       when the test looked; 30 pixels) */
     converges_to_reference("glass", 8, 2, 300, "caustics", &ratio);
     assert_true(ratio > 0.85 && ratio < 1.15);
     /* caustic-ring-fog: the light pass also splats the volume caustics (L S+ V E) of the ring's
