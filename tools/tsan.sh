@@ -21,5 +21,14 @@ echo "tsan: the kiosk with [truth] enabled (2 workers, 2 scene changes, split vi
     --script "$TMP/script.txt" --stats "$TMP/s.csv" >"$TMP/run.log" 2>&1 || { fail=1; tail -40 "$TMP/run.log"; }
 grep -q "WARNING: ThreadSanitizer" "$TMP/run.log" && { fail=1; grep -A30 "WARNING: ThreadSanitizer" "$TMP/run.log" | head -80; }
 grep -q "truth: shadow-planes restarted" "$TMP/run.log" || { fail=1; echo "tsan: the run did not reach the second scene"; }
+# An animated scene paused and resumed twice (prev held): the truth starts at the frozen time and
+# stops on the resume, while the render thread goes on drawing.
+# (holds fire 0.8 s after the press: paused at 1.0 and 3.2 s, resumed at 2.1 and 4.3 s)
+printf '0.2 prev hold 900\n1.3 prev hold 900\n2.4 prev hold 900\n3.5 prev hold 900\n' >"$TMP/pause.txt"
+echo "tsan: the kiosk with an animated scene paused and resumed twice (2 workers), mock platform"
+"$BUILD/gikiosk" run --config "$TMP/truth.ini" --platform mock --size 160x90 --method none --seconds 5 \
+    --scene cornell-spot-anim --script "$TMP/pause.txt" --stats "$TMP/p.csv" >"$TMP/pause.log" 2>&1 || { fail=1; tail -40 "$TMP/pause.log"; }
+grep -q "WARNING: ThreadSanitizer" "$TMP/pause.log" && { fail=1; grep -A30 "WARNING: ThreadSanitizer" "$TMP/pause.log" | head -80; }
+[ "$(grep -c "moves again; its ground truth stopped" "$TMP/pause.log")" -eq 2 ] || { fail=1; echo "tsan: the run did not pause and resume twice"; }
 if [ "$fail" -eq 0 ]; then echo "tsan: clean"; else echo "tsan: FAILED"; fi
 exit "$fail"

@@ -378,7 +378,10 @@ static void read_test_hook(kiosk *k)
 static int frame(kiosk *k, double now, gk_err *e)
 {
     const char *scene = gk_playlist_scene(&k->pl), *method = gk_playlist_method(&k->pl);
-    gk_frame_params fp = {.time_s = now - k->pl.visit_start_s, .method = method, .budget = &k->budget};
+    double anim_t = gk_playlist_anim_time(&k->pl, now);
+    gk_frame_params fp = {.time_s = anim_t, .method = method, .budget = &k->budget};
+    if (k->live)
+        gk_live_error_pause(k->live, k->pl.paused, anim_t); /* before the frame: its error is on this view */
     if (k->hud && (k->pl.hud_visible || (k->pl.split_view && k->live))) {
         fp.overlay = draw_hud;
         fp.overlay_user = k;
@@ -487,6 +490,12 @@ static int handle_input(kiosk *k, double now, bool *scene_changed, gk_err *e)
         }
         if (what & GK_PL_HUD)
             gk_log("HUD %s", k->pl.hud_visible ? "on" : "off");
+        if (what & GK_PL_PAUSE) {
+            const gk_scene *s = k->scenes[k->pl.current];
+            gk_log("animation %s at %.3f s%s", k->pl.paused ? "paused" : "resumed",
+                   gk_playlist_anim_time(&k->pl, ev[i].time_s),
+                   s && s->anim_duration > 0 ? "" : " (this scene does not move)");
+        }
         if (what & GK_PL_SPLIT)
             gk_log("split view %s%s", k->pl.split_view ? "on" : "off",
                    k->live ? "" : " (no ground truth: [truth] enabled = false)");

@@ -10,6 +10,9 @@
 #include "io/image_io.h"
 #include "ref/render.h"
 
+/* The HUD's note while an animated scene moves: how a visitor gets its truth. */
+#define NOTE_MOVES "no truth: the scene moves (hold prev to pause)"
+
 int gk_live_error_open(gk_live_error *le, const gk_kiosk_config *c, int fw, int fh, gk_err *e)
 {
     memset(le, 0, sizeof *le);
@@ -41,8 +44,10 @@ void gk_live_error_close(gk_live_error *le)
     if (le->truth) {
         gk_truth_stats st;
         gk_truth_get_stats(le->truth, &st);
-        gk_log("truth: %llu samples traced, %llu tiles left part-way by restarts",
-               (unsigned long long)st.samples, (unsigned long long)st.aborted_tiles);
+        gk_log("truth: %llu samples traced, %llu tiles left part-way by restarts; %llu samples finished after their "
+               "view was stopped (%llu views stopped, %d workers)",
+               (unsigned long long)st.samples, (unsigned long long)st.aborted_tiles,
+               (unsigned long long)st.samples_after_stop, (unsigned long long)st.retired_views, st.workers);
     }
     gk_truth_destroy(le->truth);
     gk_truth_view_free(&le->view);
@@ -81,26 +86,20 @@ static bool use_committed(gk_live_error *le, const char *scene_name, const char 
     return fits;
 }
 
-void gk_live_error_scene(gk_live_error *le, gk_scene *s, int scene_index, const char *scene_name,
-                         const char *scenes_dir)
+/* Forgets the last measurement: the view it was taken on is gone. */
+static void forget_error(gk_live_error *le)
 {
-    gk_truth_stop(le->truth); /* workers leave the last view at once */
-    le->scene = s;
-    le->scene_index = scene_index >= 0 && scene_index < GK_MAX_PLAYLIST ? scene_index : 0;
-    le->current_point = -1;
     le->error = NAN;
     le->error_noise = NAN;
     le->error_spp = 0;
     le->next_measure_s = 0;
-    le->note[0] = '\0';
-    if (s->anim_duration > 0) {
-        snprintf(le->note, sizeof le->note, "no truth: the scene moves");
-        gk_log("truth: %s is animated; no ground truth while it moves", scene_name);
-        return;
-    }
-    if (use_committed(le, scene_name, scenes_dir))
-        return;
-    gk_scene_evaluate(s, 0.0f);
+}
+
+/* Flattens the scene as evaluated at anim_t and restarts the tracer on it; or says why not. */
+static void trace_view(gk_live_error *le, double anim_t)
+{
+    gk_scene *s = le->scene;
+    gk_scene_evaluate(s, (float)anim_t);
     mat4 view, proj;
     vec3 eye;
     gk_scene_camera(s, (float)le->frame_w / (float)le->frame_h, &view, &proj, &eye);
@@ -108,18 +107,54 @@ void gk_live_error_scene(gk_live_error *le, gk_scene *s, int scene_index, const 
     gk_err e = {0};
     if (gk_ref_scene_build(&rs, s, view, proj, eye, le->frame_w, le->frame_h, &e) != 0) {
         snprintf(le->note, sizeof le->note, "no truth: %.140s", e.msg);
-        gk_log("truth: %s: %s", scene_name, e.msg);
-        return;
-    }
-    if (rs.has_delta_surfaces) {
-        gk_ref_scene_free(&rs);
-        snprintf(le->note, sizeof le->note, "no truth: caustics need the reference's light tracer");
-        gk_log("truth: %s has mirrors or glass: its caustics need the reference renderer's light tracer; no live "
-               "ground truth", scene_name);
+        gk_log("truth: %s: %s", le->scene_name, e.msg);
         return;
     }
     uint64_t g = gk_truth_restart(le->truth, &rs, le->w, le->h, le->sub, 1);
-    gk_log("truth: %s restarted (view %llu)", scene_name, (unsigned long long)g);
+    if (s->anim_duration > 0)
+        gk_log("truth: %s restarted at animation time %.3f s (view %llu)", le->scene_name, anim_t,
+               (unsigned long long)g);
+    else
+        gk_log("truth: %s restarted (view %llu)", le->scene_name, (unsigned long long)g);
+}
+
+void gk_live_error_scene(gk_live_error *le, gk_scene *s, int scene_index, const char *scene_name,
+                         const char *scenes_dir)
+{
+    gk_truth_stop(le->truth); /* workers leave the last view at once */
+    le->scene = s;
+    snprintf(le->scene_name, sizeof le->scene_name, "%s", scene_name);
+    le->scene_index = scene_index >= 0 && scene_index < GK_MAX_PLAYLIST ? scene_index : 0;
+    le->current_point = -1;
+    le->frozen = false;
+    forget_error(le);
+    le->note[0] = '\0';
+    if (s->anim_duration > 0) {
+        snprintf(le->note, sizeof le->note, "%s", NOTE_MOVES);
+        gk_log("truth: %s is animated; no ground truth while it moves (prev held pauses it)", scene_name);
+        return;
+    }
+    if (use_committed(le, scene_name, scenes_dir))
+        return;
+    trace_view(le, 0.0);
+}
+
+void gk_live_error_pause(gk_live_error *le, bool paused, double anim_t)
+{
+    if (!le->scene || le->scene->anim_duration <= 0 || (paused == le->frozen && (!paused || anim_t == le->frozen_t)))
+        return; /* a still scene's truth never depends on the pause; nothing changed */
+    gk_truth_stop(le->truth); /* resumed, or frozen at another time: the workers leave the old view */
+    forget_error(le);
+    le->frozen = paused;
+    le->frozen_t = anim_t;
+    if (!paused) {
+        le->check_stop = true;
+        snprintf(le->note, sizeof le->note, "%s", NOTE_MOVES);
+        gk_log("truth: %s moves again; its ground truth stopped", le->scene_name);
+        return;
+    }
+    le->note[0] = '\0';
+    trace_view(le, anim_t);
 }
 
 double gk_live_error_measure(const float *rgba, int fw, int fh, int sub, const float *truth, int w, int h,
@@ -180,6 +215,11 @@ void gk_live_error_method(gk_live_error *le)
 bool gk_live_error_frame(gk_live_error *le, gk_renderer *r, double now, const char *method, const char *levels,
                          double frame_ms, bool judged)
 {
+    if (le->check_stop) { /* the frame after a resume: have the workers left the stopped view? */
+        le->check_stop = false;
+        gk_log("truth: one frame after the stop the workers are %s",
+               gk_truth_busy(le->truth) ? "still finishing their sample" : "idle");
+    }
     gk_live_point *pt = point_for(le, method, levels);
     if (pt && judged) {
         pt->ms_sum += frame_ms;

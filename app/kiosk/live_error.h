@@ -2,11 +2,12 @@
  * measures the shown method against it.
  *
  * The view: the truth restarts when the scene changes; an animated scene (gk_scene.anim_duration >
- * 0) moves every frame, so it gets no truth (a note says so), nor does a scene with mirrors or glass
- * (its caustics need the reference renderer's light tracer, which a per-pixel progressive estimate
- * does not run) unless a committed reference fits. Committed reference: SCENES_DIR/../../tests/
- * references/SCENE.exr, used as the truth when the truth size is the frame size (sub = 1) and
- * equals the reference's (the references are rendered through pixel centres at time 0).
+ * 0) moves every frame, so it gets a truth only while its animation is paused (prev held,
+ * gk_live_error_pause: traced at the frozen time, stopped when it moves again). Scenes with mirrors
+ * or glass get the reference's light pass too (truth.h). Committed reference: SCENES_DIR/../../
+ * tests/references/SCENE.exr, used as the truth of a still scene when the truth size is the frame
+ * size (sub = 1) and equals the reference's (the references are rendered through pixel centres at
+ * time 0).
  *
  * The error: every GK_LIVE_ERROR_PERIOD_S of kiosk time, the frame's linear HDR image (before
  * exposure and tonemap, gk_renderer_read_linear) is box-downsampled by sub to the truth's size and
@@ -46,7 +47,11 @@ typedef struct gk_live_error {
     gk_truth *truth;
     int frame_w, frame_h, w, h, sub;
     int workers;
-    const gk_scene *scene;    /* the view the truth follows (NULL: none) */
+    gk_scene *scene;          /* the view the truth follows (NULL: none) */
+    char scene_name[GK_NAME_LEN];
+    bool frozen;              /* an animated scene's truth runs at frozen_t (its animation paused) */
+    double frozen_t;
+    bool check_stop;          /* stopped on a resume: the next frame logs whether the workers are out */
     char note[160];           /* why there is no truth, or "" */
     gk_truth_view view;       /* the latest snapshot (the split view shows it) */
     double error;             /* the latest measurement, NAN before the first */
@@ -67,6 +72,10 @@ void gk_live_error_close(gk_live_error *le);
 /* A new scene is shown (s evaluated at t = 0 by the caller or not yet: done here). */
 void gk_live_error_scene(gk_live_error *le, gk_scene *s, int scene_index, const char *scene_name,
                          const char *scenes_dir);
+/* Once a frame, before it is drawn: the animation is paused (at anim_t) or moving. An animated
+ * scene's truth starts when it is paused, restarts when the frozen time changes and stops when it
+ * moves again (the workers leave the old view between two samples); a still scene's is untouched. */
+void gk_live_error_pause(gk_live_error *le, bool paused, double anim_t);
 /* The method shown changed: the error is unknown (NAN) until it is measured on the new method. */
 void gk_live_error_method(gk_live_error *le);
 /* After a frame drawn and shown: its (method, levels) point gets the frame time when judged (the

@@ -31,6 +31,8 @@ static void begin_visit(gk_playlist *pl, int index, double now)
 {
     pl->current = index;
     pl->visit_start_s = now;
+    pl->paused = false; /* a new scene starts moving at its time 0 */
+    pl->paused_total_s = 0;
 }
 
 void gk_playlist_start(gk_playlist *pl, double now)
@@ -59,7 +61,9 @@ int gk_playlist_step(gk_playlist *pl, int dir, double now)
             break;
     }
     if (pl->failed[i] || (i == pl->current && !pl->failed[pl->current])) {
-        pl->visit_start_s = now; /* one usable scene: the visit simply goes on */
+        pl->visit_start_s = now; /* one usable scene: the visit simply goes on, from time 0 */
+        pl->paused_at_s = now;    /* (a pause stays, at time 0) */
+        pl->paused_total_s = 0;
         return 0;
     }
     begin_visit(pl, i, now);
@@ -107,11 +111,23 @@ int gk_playlist_input(gk_playlist *pl, const gk_input_event *ev)
     } else if (ev->kind == GK_INPUT_HOLD && ev->button == GK_BTN_INFO) {
         pl->split_view = !pl->split_view;
         changed |= GK_PL_SPLIT;
+    } else if (ev->kind == GK_INPUT_HOLD && ev->button == GK_BTN_PREV) {
+        if (pl->paused)
+            pl->paused_total_s += ev->time_s - pl->paused_at_s;
+        else
+            pl->paused_at_s = ev->time_s;
+        pl->paused = !pl->paused;
+        changed |= GK_PL_PAUSE;
     } else if (ev->kind == GK_INPUT_HOLD && ev->button == GK_BTN_MODE && pl->method != pl->default_method) {
         pl->method = pl->default_method;
         changed |= GK_PL_METHOD;
     }
     return changed;
+}
+
+double gk_playlist_anim_time(const gk_playlist *pl, double now)
+{
+    return (pl->paused ? pl->paused_at_s : now) - pl->visit_start_s - pl->paused_total_s;
 }
 
 const char *gk_playlist_scene(const gk_playlist *pl) { return pl->n ? pl->names[pl->current] : ""; }

@@ -7,7 +7,12 @@
  * Buttons (clicks): next/prev change scene (wrapping, skipping scenes that failed to load); mode
  * cycles the GI methods that apply to the current scene; info toggles the HUD. Holding mode resets
  * to the scene's default method; holding info toggles the split view (the real-time image left,
- * the live ground truth right, when [truth] is enabled). Presses and releases only count as input (they pause attract). */
+ * the live ground truth right, when [truth] is enabled); holding prev pauses and resumes the scene's
+ * animation (its time frozen, so the live ground truth can run on it). Presses and releases only
+ * count as input (they pause attract).
+ *
+ * Animation time: the time since the visit began, less the time spent paused; a scene change ends
+ * a pause (the new visit starts at time 0, running). */
 #ifndef GK_KIOSK_PLAYLIST_H
 #define GK_KIOSK_PLAYLIST_H
 
@@ -19,7 +24,7 @@
 #define GK_PL_MAX_METHODS 8
 #define GK_METHOD_LEN 32
 
-enum { GK_PL_SCENE = 1, GK_PL_METHOD = 2, GK_PL_HUD = 4, GK_PL_INPUT = 8, GK_PL_SPLIT = 16 };
+enum { GK_PL_SCENE = 1, GK_PL_METHOD = 2, GK_PL_HUD = 4, GK_PL_INPUT = 8, GK_PL_SPLIT = 16, GK_PL_PAUSE = 32 };
 
 typedef struct gk_playlist {
     int n;
@@ -32,6 +37,9 @@ typedef struct gk_playlist {
     bool had_input;
     bool hud_visible;
     bool split_view;                   /* info held: real-time left, ground truth right */
+    bool paused;                       /* prev held: the animation time stands still */
+    double paused_at_s;                /* the platform time the pause began */
+    double paused_total_s;             /* platform time spent paused in this visit, before it */
     int n_methods;                     /* methods of the current scene, set by the kiosk */
     char methods[GK_PL_MAX_METHODS][GK_METHOD_LEN];
     int method, default_method;
@@ -50,6 +58,9 @@ int gk_playlist_step(gk_playlist *pl, int dir, double now);
 int gk_playlist_tick(gk_playlist *pl, double now);
 /* Time of the next automatic scene change. */
 double gk_playlist_next_change(const gk_playlist *pl);
+/* The scene's animation time at platform time now: now - visit start - time paused; while paused,
+ * the time the pause began at. */
+double gk_playlist_anim_time(const gk_playlist *pl, double now);
 /* Applies one input event; returns GK_PL_* flags of what changed (GK_PL_INPUT for any event). */
 int gk_playlist_input(gk_playlist *pl, const gk_input_event *ev);
 

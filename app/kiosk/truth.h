@@ -17,6 +17,17 @@
  * against its own limit (the same quantity as a reference's gikiosk:noise_floor, render.h). spp
  * counts complete cycles: samples per frame pixel, as a reference at the frame's size counts them.
  *
+ * Mirrors and glass: caustics seen directly (L S+ D E, and L S+ V E in a medium) come from the
+ * reference's light pass, which eye paths leave to it (trace.h); the truth runs it too, split as the
+ * reference splits it (gk_ref_light_terms) with the same guided emission. Each pass then has a
+ * second set of items, one per tile: a light path per pixel of the tile (its own random stream),
+ * splatted where it lands on the frame and box-filtered into the truth pixel there, so a cycle
+ * traces one path per frame pixel, as a reference's sample does. The light image is the sum of the
+ * splats over the paths traced (every path is an estimate of the whole image); per truth pixel and
+ * channel the sums of each path's contribution x and of x^2 give the variance of that mean, s^2/N,
+ * which adds to the eye estimate's (the two are independent). spp is the smaller of the eye cycles
+ * and the light paths per frame pixel.
+ *
  * Restarts: gk_truth_restart installs a new view (a flattened scene, owned from then on) under a new
  * generation; gk_truth_stop retires the current one. Workers read the generation before every
  * sample and leave a retired view's tile at once, so after a restart or stop each worker finishes at
@@ -60,6 +71,7 @@ typedef struct gk_truth_stats {
     uint64_t aborted_tiles; /* tiles left part-way because their view was retired */
     uint64_t samples_after_stop; /* samples that finished after their view was retired: at most one
                                     per worker and retirement (the one in flight) */
+    uint64_t retired_views; /* views retired (by a restart, a stop or the end) */
     int workers;
     bool low_priority;      /* the workers run at SCHED_IDLE or nice 19 */
 } gk_truth_stats;

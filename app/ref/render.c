@@ -136,6 +136,18 @@ const char *gk_ref_paths_name(unsigned mask)
     }
 }
 
+unsigned gk_ref_light_terms(const gk_ref_scene *rs, const gk_ref_options *o)
+{
+    unsigned terms = 0;
+    /* Light-traced caustics L S+ D E have one D vertex: dropped only by a limit of 0 bounces. */
+    if ((o->paths & GK_PATH_CAUSTICS) && (o->terms & GK_TERM_SURFACES) && o->max_diffuse != 0)
+        terms |= GK_TERM_SURFACES;
+    /* Volume caustics L S+ V E have no D vertex: no bounce limit drops them. */
+    if (rs->medium.present && (o->terms & GK_TERM_VCAUSTICS))
+        terms |= GK_TERM_VCAUSTICS;
+    return rs->n_lights > 0 && rs->has_delta_surfaces ? terms : 0;
+}
+
 static void render_tile(job *j, int tile, gk_trace_stats *st)
 {
     const gk_ref_scene *rs = j->rs;
@@ -267,13 +279,8 @@ int gk_ref_render(const gk_ref_scene *rs, const gk_ref_options *o, gk_ref_result
     j.n1 = o->spp / 2;
     j.tiles_x = (rs->width + TILE - 1) / TILE;
     j.n_tiles = j.tiles_x * ((rs->height + TILE - 1) / TILE);
-    /* Light-traced caustics L S+ D E have one D vertex: dropped only by a limit of 0 bounces. */
-    if ((o->paths & GK_PATH_CAUSTICS) && (o->terms & GK_TERM_SURFACES) && o->max_diffuse != 0)
-        j.light_terms |= GK_TERM_SURFACES;
-    /* Volume caustics L S+ V E have no D vertex: no bounce limit drops them. */
-    if (rs->medium.present && (o->terms & GK_TERM_VCAUSTICS))
-        j.light_terms |= GK_TERM_VCAUSTICS;
-    j.light_pass = j.light_terms && rs->n_lights > 0 && rs->has_delta_surfaces;
+    j.light_terms = gk_ref_light_terms(rs, o);
+    j.light_pass = j.light_terms != 0;
     j.n_items = j.n_tiles + (j.light_pass ? LIGHT_CHUNKS : 0);
     gk_caustic_emitter emitter = {0};
     if (j.light_pass && o->caustic_emit == GK_CAUSTIC_EMIT_GUIDED) {

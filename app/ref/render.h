@@ -52,6 +52,10 @@ typedef struct gk_ref_result {
 } gk_ref_result;
 
 void gk_ref_options_default(gk_ref_options *o);
+/* What the light pass connects for these options (GK_TERM_SURFACES: L S+ D E, GK_TERM_VCAUSTICS:
+ * L S+ V E; the eye pass leaves those paths to it), 0 when the scene needs no light pass (no lights
+ * or no delta surfaces). Shared with the kiosk's progressive truth, so both split paths alike. */
+unsigned gk_ref_light_terms(const gk_ref_scene *rs, const gk_ref_options *o);
 int gk_ref_render(const gk_ref_scene *rs, const gk_ref_options *o, gk_ref_result *r, gk_err *e);
 void gk_ref_result_free(gk_ref_result *r);
 

@@ -159,6 +159,44 @@ static void methods_for_scene_rules(void **state)
     assert_string_equal(out[def], "none");
 }
 
+/* prev held pauses the animation time and resumes it where it stood; a scene change (here next)
+ * starts the new visit at time 0, running; with one scene a step keeps the pause, at time 0. */
+static void prev_hold_pauses_animation_time(void **state)
+{
+    (void)state;
+    gk_playlist pl;
+    gk_playlist_init(&pl, names, 3, 100, 0);
+    gk_playlist_start(&pl, 10);
+    assert_true(gk_playlist_anim_time(&pl, 12.5) == 2.5);
+    gk_input_event e = ev(GK_INPUT_HOLD, GK_BTN_PREV, 13);
+    assert_int_equal(gk_playlist_input(&pl, &e), GK_PL_INPUT | GK_PL_PAUSE);
+    assert_true(pl.paused);
+    assert_string_equal(gk_playlist_scene(&pl), "a"); /* a hold is no click: the scene stays */
+    assert_true(gk_playlist_anim_time(&pl, 13) == 3.0);
+    assert_true(gk_playlist_anim_time(&pl, 40) == 3.0); /* frozen */
+    e = ev(GK_INPUT_HOLD, GK_BTN_PREV, 20);
+    assert_int_equal(gk_playlist_input(&pl, &e), GK_PL_INPUT | GK_PL_PAUSE);
+    assert_false(pl.paused);
+    assert_true(gk_playlist_anim_time(&pl, 20) == 3.0); /* resumed where it stood */
+    assert_true(gk_playlist_anim_time(&pl, 21.5) == 4.5);
+    e = ev(GK_INPUT_HOLD, GK_BTN_PREV, 22);               /* paused at 5 s again */
+    gk_playlist_input(&pl, &e);
+    assert_true(gk_playlist_anim_time(&pl, 30) == 5.0);
+    e = ev(GK_INPUT_CLICK, GK_BTN_NEXT, 31);
+    assert_int_equal(gk_playlist_input(&pl, &e), GK_PL_INPUT | GK_PL_SCENE);
+    assert_false(pl.paused);                               /* the next scene moves from time 0 */
+    assert_true(gk_playlist_anim_time(&pl, 31) == 0.0);
+    assert_true(gk_playlist_anim_time(&pl, 32) == 1.0);
+
+    gk_playlist_init(&pl, names, 1, 10, 0);                /* one scene: a step restarts its visit */
+    gk_playlist_start(&pl, 0);
+    e = ev(GK_INPUT_HOLD, GK_BTN_PREV, 4);
+    gk_playlist_input(&pl, &e);
+    assert_int_equal(gk_playlist_tick(&pl, 10), 0);
+    assert_true(pl.paused);
+    assert_true(gk_playlist_anim_time(&pl, 12) == 0.0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -168,6 +206,7 @@ int main(void)
         cmocka_unit_test(failed_scenes_are_skipped),
         cmocka_unit_test(mode_cycles_methods_info_toggles_hold_resets),
         cmocka_unit_test(methods_for_scene_rules),
+        cmocka_unit_test(prev_hold_pauses_animation_time),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
