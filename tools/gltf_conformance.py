@@ -301,6 +301,25 @@ def main():
         d.mesh_node([{"attributes": {"POSITION": wall}, "indices": widx, "material": 1}], "wall")
         d.write_glb(name)
 
+    # doubleSided: a red quad 0.5 m in front of a grey 3 x 3 m wall, turned to show the camera (on
+    # +z) its back face (winding reversed: its front faces -z, the wall). Single-sided, the camera
+    # sees the wall through it (culled in the G-buffer, passed by the tracer's camera rays); double-
+    # sided it hides the wall. Either way it casts the studio key light's shadow on the wall.
+    for name, both in (("single-sided", False), ("double-sided", True)):
+        d = Doc()
+        pos = d.accessor("fff", QUAD_POS, FLOAT, "VEC3", minmax=True)
+        idx = d.accessor("H", [0, 2, 1, 0, 3, 2], USHORT, "SCALAR")
+        d.j["materials"] = [{"name": "red-back", "doubleSided": both, "pbrMetallicRoughness": {
+            "baseColorFactor": [0.8, 0.1, 0.1, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0}},
+            {"name": "wall", "pbrMetallicRoughness": {
+                "baseColorFactor": [0.5, 0.5, 0.5, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0}}]
+        d.mesh_node([{"attributes": {"POSITION": pos}, "indices": idx, "material": 0}], "quad",
+                    translation=[0.0, 0.0, 0.5])
+        wall = d.accessor("fff", [(3 * x, 3 * y, z) for x, y, z in QUAD_POS], FLOAT, "VEC3", minmax=True)
+        widx = d.accessor("H", QUAD_IDX, USHORT, "SCALAR")
+        d.mesh_node([{"attributes": {"POSITION": wall}, "indices": widx, "material": 1}], "wall")
+        d.write_glb(name)
+
     # alphaMode BLEND: loaded and drawn opaque (counted in `gltf skips:`); refusals: a texture on
     # TEXCOORD_2, a transform whose scale is not two numbers, an alphaMode glTF does not have.
     for name, change in (

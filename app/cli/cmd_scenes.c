@@ -99,6 +99,7 @@ static void print_gltf_use(const gk_scene_gltf_use *u)
         {u->texture_transforms, "texture transforms"},
         {u->second_uv_slots, "textures on TEXCOORD_1"},
         {u->alpha_masked, "alpha-masked materials"},
+        {u->double_sided, "double-sided materials"},
     };
     for (size_t i = 0; i < sizeof counts / sizeof counts[0]; i++)
         if (counts[i].n)

@@ -189,7 +189,8 @@ static int pass_gbuffer(gk_renderer *r, const mat4 *viewproj, vec3 eye, gk_err *
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
     glDisable(GL_BLEND);
-    glDisable(GL_CULL_FACE);
+    glCullFace(GL_BACK);
+    glFrontFace(GL_CCW); /* glTF's front faces */
     const float zero[4] = {0, 0, 0, 0};
     glClearBufferfv(GL_COLOR, 0, zero);
     glClearBufferfv(GL_COLOR, 1, zero);
@@ -202,7 +203,7 @@ static int pass_gbuffer(gk_renderer *r, const mat4 *viewproj, vec3 eye, gk_err *
     glUseProgram(prog);
     glUniformMatrix4fv(u->u_viewproj, 1, GL_FALSE, viewproj->m);
     glUniform3f(u->u_eye, eye.x, eye.y, eye.z);
-    gk_scene_gpu_draw(&r->gpu, r->scene, &u->draw, GK_DRAW_MATERIALS | GK_DRAW_SKIP_GLASS);
+    gk_scene_gpu_draw(&r->gpu, r->scene, &u->draw, GK_DRAW_MATERIALS | GK_DRAW_SKIP_GLASS | GK_DRAW_CULL_SINGLE_SIDED);
     return 0;
 }
 

@@ -232,11 +232,19 @@ void gk_scene_gpu_draw(const gk_scene_gpu *g, const gk_scene *s, const gk_draw_u
                 continue;
             if (flags & GK_DRAW_MATERIALS)
                 set_material(g, s, u, mat);
+            if (flags & GK_DRAW_CULL_SINGLE_SIDED) {
+                if (mat->double_sided)
+                    glDisable(GL_CULL_FACE);
+                else
+                    glEnable(GL_CULL_FACE);
+            }
             glBindVertexArray(g->vao[k]);
             glDrawElements(GL_TRIANGLES, g->index_count[k], GL_UNSIGNED_INT, NULL);
         }
     }
     glBindVertexArray(0);
+    if (flags & GK_DRAW_CULL_SINGLE_SIDED)
+        glDisable(GL_CULL_FACE);
 }
 
 static bool any_alpha_mask(const gk_scene *s)

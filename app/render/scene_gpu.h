@@ -30,6 +30,11 @@ enum {
     GK_DRAW_SKIP_PROXIES = 2,  /* leave out light_proxy meshes (shadow maps: the light stands in their place) */
     GK_DRAW_SKIP_GLASS = 4,    /* leave out transmissive materials (the G-buffer: render_glass.c draws them) */
     GK_DRAW_ONLY_GLASS = 8,    /* only transmissive materials (render_glass.c) */
+    /* The camera's passes (the G-buffer): back faces of single-sided materials (glTF doubleSided
+       false) are culled, so a single-sided surface seen from behind shows what lies behind it, as
+       the tracer's camera rays pass through it (app/ref/trace.c). The light's passes (shadow maps,
+       RSMs, voxelization) keep both faces: a closed mesh must cast its shadow either way. */
+    GK_DRAW_CULL_SINGLE_SIDED = 16,
 };
 
 /* Material flags in u_mat_flags (mirrored in shaders_gles/gbuffer/gbuffer.frag). */

@@ -298,6 +298,8 @@ bool read_materials(Loader &L, const Model &m, gk_scene *s, std::vector<int> &te
         d->transmission = (float)transmission;
         d->ior = (float)ior;
         d->double_sided = src.doubleSided;
+        if (d->double_sided)
+            L.use.double_sided++;
         d->normal_scale = (float)src.normalTexture.scale;
         if (!std::isfinite(d->normal_scale))
             return L.fail("material %d ('%s'): normalTexture.scale must be finite", mi, src.name.c_str());

@@ -204,6 +204,8 @@ typedef struct gk_scene_gltf_use {
     int second_uv_slots;       /* texture slots that read TEXCOORD_1 */
     int alpha_masked;          /* materials with alphaMode MASK (read) */
     int alpha_blended;         /* materials with alphaMode BLEND (drawn opaque) */
+    int double_sided;          /* materials with doubleSided true (the others' back faces are culled
+                                  for the camera) */
 } gk_scene_gltf_use;
 /* A homogeneous participating medium filling the scene (or an axis-aligned box of it), given in the
  * scene's extras (DESIGN §4):

@@ -123,7 +123,10 @@ done
 # tracer is 0.107 (mean 0.984), over the 0.06 residual of the loop above, so the masked file is
 # held to its control: the mask may add no error (measured 0.095 against the control's 0.107).
 # The GI methods' own scene passes see the cut-outs as solid (README; vct 0.30 against 0.108).
-for sc in alpha-mask alpha-opaque; do
+# One file under the studio, method none against the tracer (512 spp, seed 1): $TMP/SC-ref1.exr,
+# $TMP/SC-gpu.exr and $TMP/SC.json (their comparison); the energy within 3% as above.
+none_vs_reference() {
+    sc=$1
     "$GIKIOSK" reference --scenes-dir $DIR --scene $sc --size 160x120 --spp 512 --out "$TMP/$sc-ref1.exr" 2>/dev/null
     "$GIKIOSK" run --platform mock --scenes-dir $DIR --scene $sc --method none --frames 12 --size 160x120 \
         --budget render_scale=1,shadow=pcss,shadow_map=1024,shadow_subdiv=3,env_lights=16 --capture "$TMP/$sc-none" --hdr >/dev/null 2>&1
@@ -135,6 +138,9 @@ for sc in alpha-mask alpha-opaque; do
     echo "# $sc none: rel_rmse $(json_field rel_rmse "$TMP/$sc.json") vs the reference, mean_ratio $ratio"
     check "$sc: lit like the reference (mean ratio $ratio in [0.97, 1.03])" \
         awk -v r="$ratio" 'BEGIN { exit !(r >= 0.97 && r <= 1.03) }'
+}
+for sc in alpha-mask alpha-opaque; do
+    none_vs_reference $sc
 done
 em=$(json_field rel_rmse "$TMP/alpha-mask.json")
 eo=$(json_field rel_rmse "$TMP/alpha-opaque.json")
@@ -167,4 +173,21 @@ check "the G-buffer and shadow maps cut the same holes (rel_rmse $amg, the trace
 ratio=$(json_field mean_ratio "$TMP/nm.json")
 check "the two tilts give different pictures (mean ratio $ratio, measured 0.62)" \
     awk -v r="$ratio" 'BEGIN { exit !(r ~ /^[0-9.]+$/ && r + 0 < 0.8) }'
+# doubleSided: a red quad showing the camera its back face in front of a grey wall. Single-sided,
+# the G-buffer culls it and the tracer's camera rays pass it: both show the wall (with the quad's
+# shadow, which both faces cast); double-sided, both show the red quad. Each file against the
+# tracer (the energy within 3%, above), and the two files differ in the rasterizer as in the tracer
+# (bounds as for the mask: the tracer's difference over 3x its noise, the rasterizer's within 25%).
+for sc in single-sided double-sided; do
+    none_vs_reference $sc
+done
+"$GIKIOSK" compare "$TMP/single-sided-ref1.exr" "$TMP/double-sided-ref1.exr" --json >"$TMP/sd.json"
+sd=$(json_field rel_rmse "$TMP/sd.json")
+"$GIKIOSK" compare "$TMP/single-sided-gpu.exr" "$TMP/double-sided-gpu.exr" --json >"$TMP/sdg.json"
+sdg=$(json_field rel_rmse "$TMP/sdg.json")
+echo "# single- vs double-sided: tracer $sd, rasterizer $sdg (the tracer's noise $an)"
+check "the tracer sees through the single-sided back face only (rel_rmse $sd, over 3x its noise $an)" \
+    awk -v r="$sd" -v n="$an" 'BEGIN { exit !(r != "" && n != "" && r > 3 * n) }'
+check "the G-buffer culls it as the tracer passes it (rel_rmse $sdg, the tracer's $sd within 25%)" \
+    awk -v r="$sdg" -v t="$sd" 'BEGIN { exit !(r != "" && t != "" && r >= 0.75 * t && r <= 1.25 * t) }'
 finish

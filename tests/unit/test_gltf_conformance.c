@@ -13,6 +13,7 @@
 #include "core/tonemap.h"
 #include "ref/materials.h"
 #include "ref/ref_scene.h"
+#include "ref/trace.h"
 #include "scene/scene.h"
 
 static gk_scene *load(const char *name)
@@ -399,6 +400,42 @@ static void alpha_mask_lets_rays_through_the_holes(void **state)
     expect_refused("alpha-bad-mode.glb", "material 0 ('checker'): alphaMode 'CUTOUT' is not OPAQUE, MASK or BLEND");
 }
 
+/* doubleSided (single-sided.glb, double-sided.glb: a quad at z = 0.5 showing its back face to +z,
+ * in front of a wall at z = 0): a camera ray from +z passes the single-sided quad and stops at the
+ * wall, and stops at the double-sided one; the light tracer's connection to an eye on +z agrees.
+ * Every other ray sees both faces: a bounce ray (closest hit) and a shadow ray stop at the quad in
+ * both files, so the quad casts its shadow either way. */
+static void single_sided_surfaces_are_seen_from_the_front_only(void **state)
+{
+    (void)state;
+    const char *files[] = {"single-sided.glb", "double-sided.glb"};
+    for (int both = 0; both < 2; both++) {
+        gk_scene *s = load(files[both]);
+        assert_int_equal(s->materials[0].double_sided, both);
+        assert_int_equal(s->gltf.double_sided, both);
+        gk_scene_evaluate(s, 0.0f);
+        gk_ref_scene rs;
+        gk_err e = {0};
+        mat4 id = m4_identity();
+        assert_int_equal(gk_ref_scene_build(&rs, s, id, id, v3(0, 0, 3), 1, 1, &e), 0);
+        rs.eye = v3(0, 0, 3);
+        vec3 o = v3(0.1f, 0.2f, 3.0f), d = v3(0, 0, -1);
+        gk_scene_hit h;
+        assert_true(gk_scene_intersect_camera(&rs, o, d, INFINITY, &h));
+        float z = 3.0f - h.t;
+        if (fabsf(z - (both ? 0.5f : 0.0f)) > 1e-4f)
+            fail_msg("%s: the camera ray stopped at z %g, wanted the %s", files[both], z, both ? "quad" : "wall");
+        assert_int_equal(rs.tris[h.tri].material, both ? 0 : 1);
+        assert_true(gk_scene_intersect(&rs, o, d, INFINITY, &h));
+        assert_float_equal(3.0f - h.t, 0.5f, 1e-4f); /* a bounce ray stops at the quad's back face */
+        assert_true(gk_scene_occluded(&rs, v3(0.1f, 0.2f, 0.25f), v3(0, 0, 1), 10.0f)); /* its shadow */
+        assert_int_equal(gk_scene_camera_sees(&rs, v3(0.1f, 0.2f, 0.0f)), !both);
+        assert_true(gk_scene_camera_sees(&rs, v3(0.1f, 0.2f, 0.5f)));
+        gk_ref_scene_free(&rs);
+        gk_scene_free(s);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -415,6 +452,7 @@ int main(void)
         cmocka_unit_test(samplers_wrap_and_filter_as_declared),
         cmocka_unit_test(texture_transform_and_second_uv_set),
         cmocka_unit_test(alpha_mask_lets_rays_through_the_holes),
+        cmocka_unit_test(single_sided_surfaces_are_seen_from_the_front_only),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
