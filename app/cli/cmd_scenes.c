@@ -100,6 +100,7 @@ static void print_gltf_use(const gk_scene_gltf_use *u)
         {u->second_uv_slots, "textures on TEXCOORD_1"},
         {u->alpha_masked, "alpha-masked materials"},
         {u->double_sided, "double-sided materials"},
+        {u->occlusion_textures, "occlusion textures (ambient and indirect light only; not the tracer's)"},
     };
     for (size_t i = 0; i < sizeof counts / sizeof counts[0]; i++)
         if (counts[i].n)

@@ -134,6 +134,8 @@ static const gk_uniform_field gbuffer_fields[] = {
     GK_UNIFORM_AS(gbuffer_uniforms, draw.u_emissive_tex, "u_emissive_tex"),
     GK_UNIFORM_AS(gbuffer_uniforms, draw.u_normal_tex, "u_normal_tex"),
     GK_UNIFORM_AS(gbuffer_uniforms, draw.u_normal_scale, "u_normal_scale"),
+    GK_UNIFORM_AS(gbuffer_uniforms, draw.u_occlusion_tex, "u_occlusion_tex"),
+    GK_UNIFORM_AS(gbuffer_uniforms, draw.u_occlusion_strength, "u_occlusion_strength"),
     GK_UNIFORM_AS(gbuffer_uniforms, draw.u_tex_xf, "u_tex_xf"),
     GK_UNIFORM_AS(gbuffer_uniforms, draw.u_tex_uv1, "u_tex_uv1"),
     GK_UNIFORM_AS(gbuffer_uniforms, draw.u_alpha_cutoff, "u_alpha_cutoff"),
@@ -351,6 +353,8 @@ static void pass_gi(gk_renderer *r, const gk_frame_params *fp, const gk_frame_kn
     if (run_method && gk_render_gi_run(r->gi, r, method, ctx, &gi_err) != 0)
         gk_log("renderer: GI method %s failed on scene %s, showing it without GI: %s", method,
                r->scene->name[0] ? r->scene->name : "?", gi_err.msg);
+    else if (run_method && rc == 0 && gk_gi_occlusion_apply(r, ctx, &gi_err) != 0)
+        gk_log("renderer: the occlusion texture on GI failed, showing GI without it: %s", gi_err.msg);
     if (rc == 0 && gk_gi_blend_after_method(r, ctx, &gi_err) != 0)
         gk_log("renderer: GI cross-fade failed, showing the new GI at once: %s", gi_err.msg);
     gk_pass_end(ctx);

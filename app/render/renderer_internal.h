@@ -115,6 +115,12 @@ int gk_gi_blend_before_method(gk_renderer *r, const gk_pass_ctx *ctx, int blend_
 int gk_gi_blend_after_method(gk_renderer *r, const gk_pass_ctx *ctx, gk_err *e);
 /* A new scene: nothing to fade from. */
 void gk_gi_blend_reset(gk_renderer *r);
+
+/* render_gi_occlusion.c: whether the scene has an occlusionTexture (the gi pass then keeps the image
+ * before the method, as the fade does), and, after the method, its contribution scaled by the
+ * G-buffer's ao (nested pass `occlusion`). */
+bool gk_gi_occlusion_needed(const gk_renderer *r);
+int gk_gi_occlusion_apply(gk_renderer *r, const gk_pass_ctx *ctx, gk_err *e);
 void gk_gi_blend_destroy(gk_renderer *r);
 
 /* Light kind numbers of shaders_gles/common/lights.glsl. */

@@ -2,7 +2,7 @@
 // render_env.h), added (blend ONE, ONE) into the HDR target after the lights:
 //   surfaces:   the residual map's irradiance E(n) as order-2 SH (coefficients already convolved
 //               with the clamped cosine; scene/env_split.h) times the diffuse BRDF averaged over
-//               the hemisphere, unshadowed;
+//               the hemisphere, unshadowed but times the occlusionTexture's ao (gb_occlusion);
 //   background: the map's radiance along the pixel's ray (the lat-long layout of
 //               scene/environment.h, nearest pixel: the map is piecewise constant).
 precision highp float;
@@ -51,6 +51,7 @@ void main()
     gk_surface s = gk_read_surface(px);
     if (s.unlit)
         discard;
-    highp vec3 e = max(env_irradiance(s.n), vec3(0.0));
+    // ambient light: the occlusionTexture darkens it (and only it: the environment's lights are direct)
+    highp vec3 e = max(env_irradiance(s.n), vec3(0.0)) * gb_occlusion(px);
     o_color = vec4(gk_brdf_diffuse_gathered(s.m, dot(s.n, s.v)) * e, 1.0);
 }

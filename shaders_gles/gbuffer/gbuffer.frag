@@ -26,11 +26,14 @@ uniform mediump sampler2D u_spec_color_tex;
 uniform mediump sampler2D u_emissive_tex;
 uniform mediump sampler2D u_normal_tex;
 uniform float u_normal_scale;
+uniform mediump sampler2D u_occlusion_tex;
+uniform float u_occlusion_strength;
 uniform vec3 u_eye;
 // Each texture slot's UVs (app/scene/scene.h gk_tex_uv): rows of its KHR_texture_transform 2x3
 // matrix, and bit k of u_tex_uv1 when slot k reads TEXCOORD_1.
-const int SLOT_BASE = 0, SLOT_MR = 1, SLOT_EMISSIVE = 2, SLOT_NORMAL = 3, SLOT_SPECULAR = 4, SLOT_SPECULAR_COLOR = 5;
-uniform vec3 u_tex_xf[12];
+const int SLOT_BASE = 0, SLOT_MR = 1, SLOT_EMISSIVE = 2, SLOT_NORMAL = 3, SLOT_SPECULAR = 4, SLOT_SPECULAR_COLOR = 5,
+          SLOT_OCCLUSION = 6;
+uniform vec3 u_tex_xf[14];
 uniform int u_tex_uv1;
 
 vec2 slot_uv(int slot)
@@ -58,6 +61,7 @@ const int MAT_SPEC_COLOR_TEX = 32;
 const int MAT_EMISSIVE_TEX = 64;
 const int MAT_NORMAL_TEX = 128;
 const int MAT_ALPHA_MASK = 256;
+const int MAT_OCCLUSION_TEX = 512;
 uniform float u_alpha_cutoff;
 
 void main()
@@ -108,7 +112,11 @@ void main()
     bool proxy = (u_mat_flags & MAT_LIGHT_PROXY) != 0;
     o_albedo = vec4(proxy ? vec3(0.0) : base.rgb, clamp(mr.x, 0.0, 1.0));
     o_normal = vec4(n, clamp(mr.y, 0.0, 1.0));
-    o_emission = vec4(emits ? emissive : vec3(0.0), proxy ? 1.0 : 0.0);
+    // glTF occlusionTexture: ao = 1 + strength (R - 1), for ambient and indirect light only
+    float ao = 1.0;
+    if ((u_mat_flags & MAT_OCCLUSION_TEX) != 0)
+        ao = 1.0 + u_occlusion_strength * (texture(u_occlusion_tex, slot_uv(SLOT_OCCLUSION)).r - 1.0);
+    o_emission = vec4(emits ? emissive : vec3(0.0), proxy ? 1.0 : 0.5 * (1.0 - clamp(ao, 0.0, 1.0)));
     o_specular = vec4(sqrt(clamp(spec.rgb, 0.0, 1.0)), clamp(spec.a, 0.0, 1.0));
 #if GK_GEOM_NORMAL_TARGET
     o_geom_normal = vec4(ng, 0.0);

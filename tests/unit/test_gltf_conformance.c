@@ -436,6 +436,28 @@ static void single_sided_surfaces_are_seen_from_the_front_only(void **state)
     }
 }
 
+/* occlusionTexture (occlusion-*.glb): the texture, its strength (1 by default, 0 kept) and its UV
+ * slot are read; a file without one has none. The tracer does not read it (scene.h). */
+static void occlusion_textures_are_read(void **state)
+{
+    (void)state;
+    const struct { const char *file; int tex; float strength; } want[] = {
+        {"occlusion-none.glb", -1, 1.0f}, {"occlusion-half.glb", 0, 1.0f}, {"occlusion-strength0.glb", 0, 0.0f}};
+    for (size_t i = 0; i < sizeof want / sizeof want[0]; i++) {
+        gk_scene *s = load(want[i].file);
+        const gk_material *m = &s->materials[0];
+        assert_int_equal(m->occlusion_tex, want[i].tex);
+        assert_int_equal(s->gltf.occlusion_textures, want[i].tex >= 0);
+        if (want[i].tex >= 0) {
+            assert_float_equal(m->occlusion_strength, want[i].strength, 0.0f);
+            assert_int_equal(m->tex_uv[GK_SLOT_OCCLUSION].texcoord, 0);
+            /* grey 128 as data: 128/255, not sRGB-decoded */
+            assert_float_equal(s->textures[m->occlusion_tex].rgba[0], 128.0f / 255.0f, 1e-6f);
+        }
+        gk_scene_free(s);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -453,6 +475,7 @@ int main(void)
         cmocka_unit_test(texture_transform_and_second_uv_set),
         cmocka_unit_test(alpha_mask_lets_rays_through_the_holes),
         cmocka_unit_test(single_sided_surfaces_are_seen_from_the_front_only),
+        cmocka_unit_test(occlusion_textures_are_read),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
