@@ -380,7 +380,33 @@ def main():
         d.j["extensions"] = {"KHR_lights_punctual": {"lights": [{"type": "directional", "intensity": 3.0}]}}
         d.write_glb(name)
 
-    # alphaMode BLEND: loaded and drawn opaque (counted in `gltf skips:`); refusals: a texture on
+    # alphaMode BLEND: a red quad of alpha 0.5 (base colour factor) 0.5 m in front of a white wall,
+    # both Lambertian (specularFactor 0), the camera 0.5 m in front of the quad (it fills the view),
+    # under the uniform 1-nit sky (ambient only). The same quad OPAQUE, and MASKed away (cutoff 0.6
+    # over alpha 0.5: not there), give the two colours the blend mixes half and half.
+    for name, mode in (("blend-half", "BLEND"), ("blend-opaque", "OPAQUE"), ("blend-cut", "MASK")):
+        d = Doc()
+        pos = d.accessor("fff", QUAD_POS, FLOAT, "VEC3", minmax=True)
+        idx = d.accessor("H", QUAD_IDX, USHORT, "SCALAR")
+        lambert = {"KHR_materials_specular": {"specularFactor": 0.0}}
+        red = {"name": "red", "alphaMode": mode, "extensions": lambert, "pbrMetallicRoughness": {
+            "baseColorFactor": [1.0, 0.0, 0.0, 0.5], "metallicFactor": 0.0, "roughnessFactor": 1.0}}
+        if mode == "MASK":
+            red["alphaCutoff"] = 0.6
+        d.j["materials"] = [red, {"name": "white", "extensions": lambert, "pbrMetallicRoughness": {
+            "baseColorFactor": [0.8, 0.8, 0.8, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0}}]
+        d.j["extensionsUsed"] = ["KHR_materials_specular"]
+        d.mesh_node([{"attributes": {"POSITION": pos}, "indices": idx, "material": 0}], "quad",
+                    translation=[0.0, 0.0, 0.5])
+        wall = d.accessor("fff", [(3 * x, 3 * y, z) for x, y, z in QUAD_POS], FLOAT, "VEC3", minmax=True)
+        d.mesh_node([{"attributes": {"POSITION": wall}, "indices": idx, "material": 1}], "wall")
+        d.j["cameras"] = [{"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.05, "zfar": 10}}]
+        d.j["nodes"].append({"name": "view", "camera": 0, "translation": [0, 0, 1]})
+        d.j["scenes"][0]["nodes"].append(2)
+        d.j["scenes"][0]["extras"] = {"gikiosk": {"environment": {"uri": "uniform-sky.pfm"}}}
+        d.write_glb(name)
+
+    # alphaMode BLEND on the checker (counted in `gltf reads:`); refusals: a texture on
     # TEXCOORD_2, a transform whose scale is not two numbers, an alphaMode glTF does not have.
     for name, change in (
             ("alpha-blend", lambda m: m.update(alphaMode="BLEND")),

@@ -182,48 +182,72 @@ void gk_draw_uniforms_lookup(GLuint prog, gk_draw_uniforms *u)
     u->u_alpha_cutoff = glGetUniformLocation(prog, "u_alpha_cutoff");
 }
 
+static void set_node(const gk_node *node, const gk_draw_uniforms *u)
+{
+    mat4 nm = m4_transpose(m4_inverse(node->world));
+    glUniformMatrix4fv(u->u_model, 1, GL_FALSE, node->world.m);
+    glUniformMatrix4fv(u->u_normal_matrix, 1, GL_FALSE, nm.m);
+}
+
+static void draw_one(const gk_scene_gpu *g, const gk_scene *s, const gk_draw_uniforms *u, int flags, int k)
+{
+    const gk_mesh *mesh = &s->meshes[k];
+    const gk_material *mat = &s->materials[mesh->material >= 0 && mesh->material < s->n_materials ? mesh->material : 0];
+    if ((flags & GK_DRAW_SKIP_PROXIES) && mat->light_proxy)
+        return;
+    bool glass = mat->transmission > 0.0f;
+    if (((flags & GK_DRAW_SKIP_GLASS) && glass) || ((flags & GK_DRAW_ONLY_GLASS) && !glass) ||
+        ((flags & GK_DRAW_SKIP_BLEND) && mat->alpha_blend))
+        return;
+    if (flags & GK_DRAW_MATERIALS)
+        set_material(g, s, u, mat);
+    if (flags & GK_DRAW_CULL_SINGLE_SIDED) {
+        if (mat->double_sided)
+            glDisable(GL_CULL_FACE);
+        else
+            glEnable(GL_CULL_FACE);
+    }
+    glBindVertexArray(g->vao[k]);
+    glDrawElements(GL_TRIANGLES, g->index_count[k], GL_UNSIGNED_INT, NULL);
+}
+
+static void set_sampler_units(const gk_draw_uniforms *u, int flags)
+{
+    if (!(flags & GK_DRAW_MATERIALS))
+        return;
+    glUniform1i(u->u_base_tex, 0);
+    glUniform1i(u->u_mr_tex, 1);
+    glUniform1i(u->u_spec_tex, 2);
+    glUniform1i(u->u_spec_color_tex, 3);
+    glUniform1i(u->u_emissive_tex, 4);
+    glUniform1i(u->u_normal_tex, 5);
+    glUniform1i(u->u_occlusion_tex, 6);
+}
+
 void gk_scene_gpu_draw(const gk_scene_gpu *g, const gk_scene *s, const gk_draw_uniforms *u, int flags)
 {
-    if (flags & GK_DRAW_MATERIALS) {
-        glUniform1i(u->u_base_tex, 0);
-        glUniform1i(u->u_mr_tex, 1);
-        glUniform1i(u->u_spec_tex, 2);
-        glUniform1i(u->u_spec_color_tex, 3);
-        glUniform1i(u->u_emissive_tex, 4);
-        glUniform1i(u->u_normal_tex, 5);
-        glUniform1i(u->u_occlusion_tex, 6);
-    }
-    GLint loc_model = u->u_model;
-    GLint loc_normal = u->u_normal_matrix;
+    set_sampler_units(u, flags);
     for (int n = 0; n < s->n_nodes; n++) {
         const gk_node *node = &s->nodes[n];
         if (node->mesh_count <= 0)
             continue;
-        mat4 nm = m4_transpose(m4_inverse(node->world));
-        glUniformMatrix4fv(loc_model, 1, GL_FALSE, node->world.m);
-        glUniformMatrix4fv(loc_normal, 1, GL_FALSE, nm.m);
-        for (int k = node->mesh_first; k < node->mesh_first + node->mesh_count && k < g->n_meshes; k++) {
-            if (k < 0)
-                continue;
-            const gk_mesh *mesh = &s->meshes[k];
-            const gk_material *mat = &s->materials[mesh->material >= 0 && mesh->material < s->n_materials ? mesh->material : 0];
-            if ((flags & GK_DRAW_SKIP_PROXIES) && mat->light_proxy)
-                continue;
-            bool glass = mat->transmission > 0.0f;
-            if (((flags & GK_DRAW_SKIP_GLASS) && glass) || ((flags & GK_DRAW_ONLY_GLASS) && !glass))
-                continue;
-            if (flags & GK_DRAW_MATERIALS)
-                set_material(g, s, u, mat);
-            if (flags & GK_DRAW_CULL_SINGLE_SIDED) {
-                if (mat->double_sided)
-                    glDisable(GL_CULL_FACE);
-                else
-                    glEnable(GL_CULL_FACE);
-            }
-            glBindVertexArray(g->vao[k]);
-            glDrawElements(GL_TRIANGLES, g->index_count[k], GL_UNSIGNED_INT, NULL);
-        }
+        set_node(node, u);
+        for (int k = node->mesh_first; k < node->mesh_first + node->mesh_count && k < g->n_meshes; k++)
+            if (k >= 0)
+                draw_one(g, s, u, flags, k);
     }
+    glBindVertexArray(0);
+    if (flags & GK_DRAW_CULL_SINGLE_SIDED)
+        glDisable(GL_CULL_FACE);
+}
+
+void gk_scene_gpu_draw_mesh(const gk_scene_gpu *g, const gk_scene *s, const gk_draw_uniforms *u, int flags, int n, int k)
+{
+    if (n < 0 || n >= s->n_nodes || k < 0 || k >= g->n_meshes)
+        return;
+    set_sampler_units(u, flags);
+    set_node(&s->nodes[n], u);
+    draw_one(g, s, u, flags, k);
     glBindVertexArray(0);
     if (flags & GK_DRAW_CULL_SINGLE_SIDED)
         glDisable(GL_CULL_FACE);

@@ -35,6 +35,7 @@ enum {
        the tracer's camera rays pass through it (app/ref/trace.c). The light's passes (shadow maps,
        RSMs, voxelization) keep both faces: a closed mesh must cast its shadow either way. */
     GK_DRAW_CULL_SINGLE_SIDED = 16,
+    GK_DRAW_SKIP_BLEND = 32,   /* leave out alphaMode BLEND materials (the G-buffer: render_blend.c draws them) */
 };
 
 /* Material flags in u_mat_flags (mirrored in shaders_gles/gbuffer/gbuffer.frag). */
@@ -89,6 +90,9 @@ int gk_scene_gpu_depth_flags(const gk_scene *s);
  * u_normal_matrix per node; textures on units 0 (base colour), 1 (metallic-roughness), 2 (specular),
  * 3 (specular colour), 4 (emissive), 5 (normal) and 6 (occlusion). */
 void gk_scene_gpu_draw(const gk_scene_gpu *g, const gk_scene *s, const gk_draw_uniforms *u, int flags);
+/* Draws mesh k of node n alone (the node's matrices, the material's uniforms with
+ * GK_DRAW_MATERIALS, back faces of single-sided materials culled with GK_DRAW_CULL_SINGLE_SIDED). */
+void gk_scene_gpu_draw_mesh(const gk_scene_gpu *g, const gk_scene *s, const gk_draw_uniforms *u, int flags, int n, int k);
 /* The locations by name, for tests and programs built outside a program cache (never per frame). */
 void gk_draw_uniforms_lookup(GLuint prog, gk_draw_uniforms *u);
 

@@ -287,6 +287,7 @@ bool read_materials(Loader &L, const Model &m, gk_scene *s, std::vector<int> &te
             d->alpha_cutoff = (float)src.alphaCutoff;
             L.use.alpha_masked++;
         } else if (src.alphaMode == "BLEND") {
+            d->alpha_blend = true;
             L.use.alpha_blended++;
         } else if (!src.alphaMode.empty() && src.alphaMode != "OPAQUE") {
             return L.fail("material %d ('%s'): alphaMode '%s' is not OPAQUE, MASK or BLEND", mi, src.name.c_str(),

@@ -109,9 +109,13 @@ typedef struct gk_material {
     gk_tex_uv tex_uv[GK_TEX_SLOTS]; /* each slot's UV set and KHR_texture_transform (zeroed: set 0, none) */
     /* glTF alphaMode MASK: a surface point whose alpha (base colour factor x texture x COLOR_0, A) is
        below alpha_cutoff is not there, for the camera, the shadow maps and the tracer's rays alike.
-       OPAQUE and BLEND leave it false (BLEND is drawn opaque: README). */
+       OPAQUE and BLEND leave it false. */
     bool alpha_mask;
     float alpha_cutoff;       /* glTF alphaCutoff, 0.5 by default */
+    /* glTF alphaMode BLEND: the surface covers alpha of what lies behind it. The rasterizer leaves it
+       out of the G-buffer and draws it over the lit image (app/render/render_blend.c); the tracer's
+       rays pass it with probability 1 - alpha (stochastic transparency, app/ref/materials.c). */
+    bool alpha_blend;
 } gk_material;
 
 typedef struct gk_mesh {       /* one glTF primitive, triangles only, in object space */
@@ -209,7 +213,7 @@ typedef struct gk_scene_gltf_use {
     int texture_transforms;    /* texture slots with KHR_texture_transform */
     int second_uv_slots;       /* texture slots that read TEXCOORD_1 */
     int alpha_masked;          /* materials with alphaMode MASK (read) */
-    int alpha_blended;         /* materials with alphaMode BLEND (drawn opaque) */
+    int alpha_blended;         /* materials with alphaMode BLEND (drawn after the opaque surfaces) */
     int occlusion_textures;    /* materials with an occlusionTexture (ambient and indirect light only) */
     int double_sided;          /* materials with doubleSided true (the others' back faces are culled
                                   for the camera) */

@@ -9,22 +9,12 @@ precision highp float;
 precision highp int;
 #include "common/brdf.glsl"
 #include "common/gbuffer.glsl"
+#include "common/env_sh.glsl"
 
-uniform highp vec3 u_env_sh[9];
 uniform highp sampler2D u_env_map;
 uniform ivec2 u_env_size;
 
 out vec4 o_color;
-
-// The SH basis of scene/env_split.c (gk_sh9_basis), the same constants.
-highp vec3 env_irradiance(highp vec3 n)
-{
-    return u_env_sh[0] * 0.282095
-         + u_env_sh[1] * (0.488603 * n.y) + u_env_sh[2] * (0.488603 * n.z) + u_env_sh[3] * (0.488603 * n.x)
-         + u_env_sh[4] * (1.092548 * n.x * n.y) + u_env_sh[5] * (1.092548 * n.y * n.z)
-         + u_env_sh[6] * (0.315392 * (3.0 * n.z * n.z - 1.0)) + u_env_sh[7] * (1.092548 * n.x * n.z)
-         + u_env_sh[8] * (0.546274 * (n.x * n.x - n.y * n.y));
-}
 
 highp vec3 env_radiance(highp vec3 d)
 {
