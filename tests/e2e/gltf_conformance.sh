@@ -130,6 +130,8 @@ done
 # The GI methods' own scene passes see the cut-outs as solid (README; vct 0.30 against 0.108).
 # One file under the studio, method none against the tracer (512 spp, seed 1): $TMP/SC-ref1.exr,
 # $TMP/SC-gpu.exr and $TMP/SC.json (their comparison); the energy within 3% as above.
+# A field of `compare A B --json`.
+compare_field() { "$GIKIOSK" compare "$1" "$2" --json >"$TMP/cmp.json"; json_field "$3" "$TMP/cmp.json"; }
 # One file under the studio, method none at 160 x 120 into $TMP/SC-gpu.exr.
 render_none() {
     "$GIKIOSK" run --platform mock --scenes-dir $DIR --scene $1 --method none --frames 12 --size 160x120 \
@@ -192,10 +194,8 @@ check "the two tilts give different pictures (mean ratio $ratio, measured 0.62)"
 for sc in single-sided double-sided; do
     none_vs_reference $sc
 done
-"$GIKIOSK" compare "$TMP/single-sided-ref1.exr" "$TMP/double-sided-ref1.exr" --json >"$TMP/sd.json"
-sd=$(json_field rel_rmse "$TMP/sd.json")
-"$GIKIOSK" compare "$TMP/single-sided-gpu.exr" "$TMP/double-sided-gpu.exr" --json >"$TMP/sdg.json"
-sdg=$(json_field rel_rmse "$TMP/sdg.json")
+sd=$(compare_field "$TMP/single-sided-ref1.exr" "$TMP/double-sided-ref1.exr" rel_rmse)
+sdg=$(compare_field "$TMP/single-sided-gpu.exr" "$TMP/double-sided-gpu.exr" rel_rmse)
 echo "# single- vs double-sided: tracer $sd, rasterizer $sdg (the tracer's noise $an)"
 check "the tracer sees through the single-sided back face only (rel_rmse $sd, over 3x its noise $an)" \
     awk -v r="$sd" -v n="$an" 'BEGIN { exit !(r != "" && n != "" && r > 3 * n) }'
@@ -209,12 +209,10 @@ check "the G-buffer culls it as the tracer passes it (rel_rmse $sdg, the tracer'
 none_vs_reference occlusion-none
 render_none occlusion-half
 render_none occlusion-strength0
-"$GIKIOSK" compare "$TMP/occlusion-none-gpu.exr" "$TMP/occlusion-half-gpu.exr" --json >"$TMP/oh.json"
-oh=$(json_field mean_ratio "$TMP/oh.json")
+oh=$(compare_field "$TMP/occlusion-none-gpu.exr" "$TMP/occlusion-half-gpu.exr" mean_ratio)
 check "an occlusion texture of 0.502 scales the ambient-only image by $oh (0.502 +- 0.002)" \
     awk -v r="$oh" 'BEGIN { exit !(r ~ /^[0-9.]+$/ && r >= 0.500 && r <= 0.504) }'
-"$GIKIOSK" compare "$TMP/occlusion-none-gpu.exr" "$TMP/occlusion-strength0-gpu.exr" --json >"$TMP/o0.json"
-o0=$(json_field rel_rmse "$TMP/o0.json")
+o0=$(compare_field "$TMP/occlusion-none-gpu.exr" "$TMP/occlusion-strength0-gpu.exr" rel_rmse)
 check "strength 0 leaves it unchanged (rel_rmse $o0)" awk -v r="$o0" 'BEGIN { exit !(r ~ /^[0-9.e-]+$/ && r + 0 == 0) }'
 # ... and the GI methods' light (a wall and floor under a sun, no ambient): method none is the same
 # with or without the texture (direct light is never occluded by it), and what vct and vpl add is
@@ -233,7 +231,7 @@ for f in none half; do
     done
 done
 # mean of an image over the untextured file's direct light
-rel_mean() { "$GIKIOSK" compare "$TMP/ogi-none-none.exr" "$TMP/ogi-$1.exr" --json >"$TMP/rm.json"; json_field mean_ratio "$TMP/rm.json"; }
+rel_mean() { compare_field "$TMP/ogi-none-none.exr" "$TMP/ogi-$1.exr" mean_ratio; }
 d=$(rel_mean half-none)
 check "the texture leaves direct light alone (mean ratio $d)" awk -v r="$d" 'BEGIN { exit !(r ~ /^[0-9.]+$/ && r == 1) }'
 for m in vct vpl; do
@@ -252,15 +250,13 @@ for sc in blend-half blend-opaque blend-cut; do
 done
 if command -v oiiotool >/dev/null; then
     oiiotool "$TMP/blend-opaque-gpu.exr" "$TMP/blend-cut-gpu.exr" --add --mulc 0.5 -o "$TMP/blend-expected.exr"
-    "$GIKIOSK" compare "$TMP/blend-expected.exr" "$TMP/blend-half-gpu.exr" --json >"$TMP/bl.json"
-    bl=$(json_field rel_rmse "$TMP/bl.json")
+    bl=$(compare_field "$TMP/blend-expected.exr" "$TMP/blend-half-gpu.exr" rel_rmse)
     check "a 50% red quad over the wall is half of each (rel_rmse $bl against the mix, at most 0.002)" \
         awk -v r="$bl" 'BEGIN { exit !(r ~ /^[0-9.e-]+$/ && r + 0 <= 0.002) }'
-    "$GIKIOSK" compare "$TMP/blend-opaque-gpu.exr" "$TMP/blend-half-gpu.exr" --json >"$TMP/bo.json"
-    bo=$(json_field rel_rmse "$TMP/bo.json")
+    bo=$(compare_field "$TMP/blend-opaque-gpu.exr" "$TMP/blend-half-gpu.exr" rel_rmse)
     check "and not the opaque quad (rel_rmse $bo against it, over 0.2)" awk -v r="$bo" 'BEGIN { exit !(r > 0.2) }'
 fi
 "$GIKIOSK" reference --scenes-dir $DIR --scene blend-half --size 160x120 --spp 256 --out "$TMP/blend-half-ref.exr" 2>/dev/null
-"$GIKIOSK" compare "$TMP/blend-half-ref.exr" "$TMP/blend-half-gpu.exr" --json >"$TMP/bt.json"
-echo "# blend-half none vs the tracer: rel_rmse $(json_field rel_rmse "$TMP/bt.json"), mean_ratio $(json_field mean_ratio "$TMP/bt.json")"
+echo "# blend-half none vs the tracer: rel_rmse $(compare_field "$TMP/blend-half-ref.exr" "$TMP/blend-half-gpu.exr" rel_rmse)," \
+    "mean_ratio $(compare_field "$TMP/blend-half-ref.exr" "$TMP/blend-half-gpu.exr" mean_ratio)"
 finish
