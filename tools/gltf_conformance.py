@@ -301,7 +301,112 @@ def main():
         d.mesh_node([{"attributes": {"POSITION": wall}, "indices": widx, "material": 1}], "wall")
         d.write_glb(name)
 
-    # alphaMode BLEND: loaded and drawn opaque (counted in `gltf skips:`); refusals: a texture on
+    # doubleSided: a red quad 0.5 m in front of a grey 3 x 3 m wall, turned to show the camera (on
+    # +z) its back face (winding reversed: its front faces -z, the wall). Single-sided, the camera
+    # sees the wall through it (culled in the G-buffer, passed by the tracer's camera rays); double-
+    # sided it hides the wall. Either way it casts the studio key light's shadow on the wall.
+    for name, both in (("single-sided", False), ("double-sided", True)):
+        d = Doc()
+        pos = d.accessor("fff", QUAD_POS, FLOAT, "VEC3", minmax=True)
+        idx = d.accessor("H", [0, 2, 1, 0, 3, 2], USHORT, "SCALAR")
+        d.j["materials"] = [{"name": "red-back", "doubleSided": both, "pbrMetallicRoughness": {
+            "baseColorFactor": [0.8, 0.1, 0.1, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0}},
+            {"name": "wall", "pbrMetallicRoughness": {
+                "baseColorFactor": [0.5, 0.5, 0.5, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0}}]
+        d.mesh_node([{"attributes": {"POSITION": pos}, "indices": idx, "material": 0}], "quad",
+                    translation=[0.0, 0.0, 0.5])
+        wall = d.accessor("fff", [(3 * x, 3 * y, z) for x, y, z in QUAD_POS], FLOAT, "VEC3", minmax=True)
+        widx = d.accessor("H", QUAD_IDX, USHORT, "SCALAR")
+        d.mesh_node([{"attributes": {"POSITION": wall}, "indices": widx, "material": 1}], "wall")
+        d.write_glb(name)
+
+    # occlusionTexture: a Lambertian (specularFactor 0) quad of albedo 0.5 filling the view of a
+    # camera 1 m in front of it, under a uniform 1-nit sky (uniform-sky.pfm: the environment's split
+    # finds no light brighter than the mean, so all of it is the rasterizer's ambient): the tracer
+    # gives 0.5 nits everywhere (it ignores the texture). With an occlusion texture of grey 128
+    # (0.502, data) the rasterizer's ambient-only image is 0.502 of the untextured one; with
+    # strength 0 it is the same.
+    sky_w, sky_h = 8, 4
+    with open(os.path.join(OUT, "uniform-sky.pfm"), "wb") as f:
+        f.write(b"PF\n%d %d\n-1.0\n" % (sky_w, sky_h) + struct.pack("<%df" % (3 * sky_w * sky_h),
+                                                                       *([1.0] * (3 * sky_w * sky_h))))
+    grey = png_rgb(2, 2, [[(128, 128, 128), (128, 128, 128)], [(128, 128, 128), (128, 128, 128)]])
+    for name, strength in (("occlusion-none", None), ("occlusion-half", 1.0), ("occlusion-strength0", 0.0)):
+        d = Doc()
+        pos = d.accessor("fff", QUAD_POS, FLOAT, "VEC3", minmax=True)
+        uv = d.accessor("ff", QUAD_UV, FLOAT, "VEC2")
+        idx = d.accessor("H", QUAD_IDX, USHORT, "SCALAR")
+        mat = {"name": "occluded", "pbrMetallicRoughness": {
+            "baseColorFactor": [0.5, 0.5, 0.5, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0},
+            "extensions": {"KHR_materials_specular": {"specularFactor": 0.0}}}
+        if strength is not None:
+            d.j["images"] = [{"bufferView": d.view(grey), "mimeType": "image/png"}]
+            d.j["textures"] = [{"source": 0}]
+            mat["occlusionTexture"] = {"index": 0, "strength": strength}
+        d.j["materials"] = [mat]
+        d.j["extensionsUsed"] = ["KHR_materials_specular"]
+        d.mesh_node([{"attributes": {"POSITION": pos, "TEXCOORD_0": uv}, "indices": idx, "material": 0}], "quad")
+        d.j["cameras"] = [{"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.05, "zfar": 10}}]
+        d.j["nodes"].append({"name": "view", "camera": 0, "translation": [0, 0, 1]})
+        d.j["scenes"][0]["nodes"].append(1)
+        d.j["scenes"][0]["extras"] = {"gikiosk": {"environment": {"uri": "uniform-sky.pfm"}}}
+        d.write_glb(name)
+
+    # occlusionTexture on the GI methods' light: a white wall and floor meeting at a right angle, lit
+    # by a sun from above and in front (no environment: no ambient), both with the grey occlusion
+    # texture or neither. Direct light is the same in both files; what a GI method adds (its
+    # bounce between the two) is 0.502 as much with the texture.
+    for name, occluded in (("occlusion-gi-none", False), ("occlusion-gi-half", True)):
+        d = Doc()
+        wall = d.accessor("fff", QUAD_POS, FLOAT, "VEC3", minmax=True)
+        floor = d.accessor("fff", [(x, -1.0, 1.0 - y) for x, y, _ in QUAD_POS], FLOAT, "VEC3", minmax=True)
+        uv = d.accessor("ff", QUAD_UV, FLOAT, "VEC2")
+        idx = d.accessor("H", QUAD_IDX, USHORT, "SCALAR")
+        mat = {"name": "white", "pbrMetallicRoughness": {
+            "baseColorFactor": [0.8, 0.8, 0.8, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0}}
+        if occluded:
+            d.j["images"] = [{"bufferView": d.view(grey), "mimeType": "image/png"}]
+            d.j["textures"] = [{"source": 0}]
+            mat["occlusionTexture"] = {"index": 0}
+        d.j["materials"] = [mat]
+        d.mesh_node([{"attributes": {"POSITION": wall, "TEXCOORD_0": uv}, "indices": idx, "material": 0},
+                     {"attributes": {"POSITION": floor, "TEXCOORD_0": uv}, "indices": idx, "material": 0}],
+                    "corner")
+        # the sun's -Z turned 50 degrees down about x and 20 about y: it lights wall and floor
+        d.j["nodes"].append({"name": "sun", "rotation": [-0.4162, 0.1574, 0.0734, 0.8925],
+                             "extensions": {"KHR_lights_punctual": {"light": 0}}})
+        d.j["scenes"][0]["nodes"].append(1)
+        d.j["extensionsUsed"] = ["KHR_lights_punctual"]
+        d.j["extensions"] = {"KHR_lights_punctual": {"lights": [{"type": "directional", "intensity": 3.0}]}}
+        d.write_glb(name)
+
+    # alphaMode BLEND: a red quad of alpha 0.5 (base colour factor) 0.5 m in front of a white wall,
+    # both Lambertian (specularFactor 0), the camera 0.5 m in front of the quad (it fills the view),
+    # under the uniform 1-nit sky (ambient only). The same quad OPAQUE, and MASKed away (cutoff 0.6
+    # over alpha 0.5: not there), give the two colours the blend mixes half and half.
+    for name, mode in (("blend-half", "BLEND"), ("blend-opaque", "OPAQUE"), ("blend-cut", "MASK")):
+        d = Doc()
+        pos = d.accessor("fff", QUAD_POS, FLOAT, "VEC3", minmax=True)
+        idx = d.accessor("H", QUAD_IDX, USHORT, "SCALAR")
+        lambert = {"KHR_materials_specular": {"specularFactor": 0.0}}
+        red = {"name": "red", "alphaMode": mode, "extensions": lambert, "pbrMetallicRoughness": {
+            "baseColorFactor": [1.0, 0.0, 0.0, 0.5], "metallicFactor": 0.0, "roughnessFactor": 1.0}}
+        if mode == "MASK":
+            red["alphaCutoff"] = 0.6
+        d.j["materials"] = [red, {"name": "white", "extensions": lambert, "pbrMetallicRoughness": {
+            "baseColorFactor": [0.8, 0.8, 0.8, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0}}]
+        d.j["extensionsUsed"] = ["KHR_materials_specular"]
+        d.mesh_node([{"attributes": {"POSITION": pos}, "indices": idx, "material": 0}], "quad",
+                    translation=[0.0, 0.0, 0.5])
+        wall = d.accessor("fff", [(3 * x, 3 * y, z) for x, y, z in QUAD_POS], FLOAT, "VEC3", minmax=True)
+        d.mesh_node([{"attributes": {"POSITION": wall}, "indices": idx, "material": 1}], "wall")
+        d.j["cameras"] = [{"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.05, "zfar": 10}}]
+        d.j["nodes"].append({"name": "view", "camera": 0, "translation": [0, 0, 1]})
+        d.j["scenes"][0]["nodes"].append(2)
+        d.j["scenes"][0]["extras"] = {"gikiosk": {"environment": {"uri": "uniform-sky.pfm"}}}
+        d.write_glb(name)
+
+    # alphaMode BLEND on the checker (counted in `gltf reads:`); refusals: a texture on
     # TEXCOORD_2, a transform whose scale is not two numbers, an alphaMode glTF does not have.
     for name, change in (
             ("alpha-blend", lambda m: m.update(alphaMode="BLEND")),

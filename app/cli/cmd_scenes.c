@@ -99,6 +99,9 @@ static void print_gltf_use(const gk_scene_gltf_use *u)
         {u->texture_transforms, "texture transforms"},
         {u->second_uv_slots, "textures on TEXCOORD_1"},
         {u->alpha_masked, "alpha-masked materials"},
+        {u->double_sided, "double-sided materials"},
+        {u->alpha_blended, "alpha-blended materials (drawn over the opaque ones)"},
+        {u->occlusion_textures, "occlusion textures (ambient and indirect light only; not the tracer's)"},
     };
     for (size_t i = 0; i < sizeof counts / sizeof counts[0]; i++)
         if (counts[i].n)
@@ -110,7 +113,6 @@ static void print_gltf_use(const gk_scene_gltf_use *u)
         {u->not_drawn, "points/lines primitives not drawn"},
         {u->orthographic_cameras, "orthographic cameras never used as the view"},
         {u->skins, "skins drawn unskinned"},
-        {u->alpha_blended, "alpha-blended materials drawn opaque"},
     };
     for (size_t i = 0; i < sizeof skips / sizeof skips[0]; i++)
         if (skips[i].n) {

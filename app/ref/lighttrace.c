@@ -64,7 +64,10 @@ static void connect_camera(const gk_ref_scene *rs, const gk_surface *sf, vec3 x,
     if (f.x <= 0.0f && f.y <= 0.0f && f.z <= 0.0f)
         return;
     st->rays++;
-    if (gk_scene_occluded(rs, offset_point(rs, x, sf->ng, wo), wo, d * (1.0f - 1e-4f)))
+    /* occluded toward the eye unless what is in the way is a single-sided back face the camera
+       looks through (gk_scene_camera_sees; asked only then, so other scenes trace as before) */
+    if (gk_scene_occluded(rs, offset_point(rs, x, sf->ng, wo), wo, d * (1.0f - 1e-4f)) &&
+        !gk_scene_camera_sees(rs, x))
         return;
     float cos_x = fabsf(v3_dot(sf->ng, wo));
     vec3 tr = gk_medium_transmittance(&rs->medium, x, wo, d);
@@ -134,7 +137,7 @@ static void connect_camera_medium(const gk_ref_scene *rs, vec3 o, vec3 dir, floa
     if (!project(rs, x, &px, &py, &wo, &d, &we))
         return;
     st->rays++;
-    if (gk_scene_occluded(rs, x, wo, d * (1.0f - 1e-4f)))
+    if (gk_scene_occluded(rs, x, wo, d * (1.0f - 1e-4f)) && !gk_scene_camera_sees(rs, x))
         return;
     vec3 tr_in = gk_medium_transmittance(m, o, dir, t);
     vec3 tr_out = gk_medium_transmittance(m, x, wo, d);

@@ -3,6 +3,7 @@
 #include "materials.h"
 
 #include <math.h>
+#include <string.h>
 
 #include "core/tonemap.h"
 
@@ -99,6 +100,24 @@ vec3 gk_tri_texture_rgb(const gk_ref_scene *rs, const gk_ref_tri *t, int tex, co
     return tex_sample(rs, tex, u, v);
 }
 
+/* A uniform number in [0, 1) from a hit: the barycentrics' bits and the triangle, hashed
+   (lowbias32, Wellons). Rays hit a surface at continuously varying points, so over a pixel's samples
+   or a light's shadow rays it acts as a fresh random number, with no RNG stream to thread through
+   the BVH (and the streams of every other scene stay as they were). */
+static float hit_hash(uint32_t tri, float b1, float b2)
+{
+    uint32_t x, y;
+    memcpy(&x, &b1, sizeof x);
+    memcpy(&y, &b2, sizeof y);
+    uint32_t h = x * 0x9e3779b9u ^ (y + 0x7f4a7c15u) * 0x85ebca6bu ^ tri * 0xc2b2ae35u;
+    h ^= h >> 16;
+    h *= 0x7feb352du;
+    h ^= h >> 15;
+    h *= 0x846ca68bu;
+    h ^= h >> 16;
+    return (float)(h >> 8) * (1.0f / 16777216.0f);
+}
+
 bool gk_tri_alpha_accept(const void *ctx, uint32_t tri, float b1, float b2)
 {
     const gk_ref_scene *rs = ctx;
@@ -111,6 +130,8 @@ bool gk_tri_alpha_accept(const void *ctx, uint32_t tri, float b1, float b2)
         slot_uv(t, &m->tex_uv[GK_SLOT_BASE], b1, b2, &u, &v);
         a *= tex_alpha(rs, m->base_color_tex, u, v);
     }
+    if (m->alpha_blend) /* stochastic transparency: there with probability alpha, for every ray */
+        return hit_hash(tri, b1, b2) < a;
     return a >= m->alpha_cutoff;
 }
 

@@ -42,7 +42,9 @@ typedef struct gk_bsdf_sample {
  * the slot's UV set and KHR_texture_transform xf (NULL: TEXCOORD_0 as is). */
 /* The BVH's any-hit test (gk_bvh.accept, ctx the gk_ref_scene): true where triangle tri of an
  * alpha-masked material is there, its alpha (base colour factor x texture x COLOR_0) at barycentrics
- * (u, v) at least the cutoff, as the G-buffer's discard and the shadow maps' decide. */
+ * (u, v) at least the cutoff, as the G-buffer's discard and the shadow maps' decide. For an
+ * alphaMode BLEND material, true with probability alpha (stochastic transparency: camera, shadow and
+ * bounce rays alike pass it with probability 1 - alpha; the draw is a hash of the hit point). */
 bool gk_tri_alpha_accept(const void *ctx, uint32_t tri, float u, float v);
 
 vec3 gk_tri_texture_rgb(const gk_ref_scene *rs, const gk_ref_tri *t, int tex, const gk_tex_uv *xf, float b1, float b2);

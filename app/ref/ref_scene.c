@@ -305,10 +305,10 @@ int gk_ref_scene_build(gk_ref_scene *rs, const gk_scene *s, mat4 view, mat4 proj
     free(verts);
     if (rc)
         goto fail;
-    /* glTF alphaMode MASK: the BVH asks the material's alpha at every hit on such a triangle */
+    /* glTF alphaMode MASK and BLEND: the BVH asks the material's alpha at every hit on such a triangle */
     bool any_mask = false;
     for (uint32_t i = 0; i < rs->n_tris && !any_mask; i++)
-        any_mask = rs->materials[rs->tris[i].material].alpha_mask;
+        any_mask = rs->materials[rs->tris[i].material].alpha_mask || rs->materials[rs->tris[i].material].alpha_blend;
     if (any_mask) {
         rs->alpha_tested = calloc(rs->n_tris, 1);
         if (!rs->alpha_tested) {
@@ -316,7 +316,8 @@ int gk_ref_scene_build(gk_ref_scene *rs, const gk_scene *s, mat4 view, mat4 proj
             goto fail;
         }
         for (uint32_t i = 0; i < rs->n_tris; i++)
-            rs->alpha_tested[i] = rs->materials[rs->tris[i].material].alpha_mask;
+            rs->alpha_tested[i] = rs->materials[rs->tris[i].material].alpha_mask ||
+                                  rs->materials[rs->tris[i].material].alpha_blend;
         rs->bvh.tested = rs->alpha_tested;
         rs->bvh.accept = gk_tri_alpha_accept;
         rs->bvh.accept_ctx = rs;

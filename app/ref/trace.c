@@ -13,10 +13,10 @@
    float error of the hit point, small enough not to skip thin geometry. */
 #define EPS_REL 1e-5f
 
-bool gk_scene_intersect(const gk_ref_scene *rs, vec3 o, vec3 d, float tmax, gk_scene_hit *h)
+/* The closest surface or area light with tmin < t < tmax along o + t d (h->t from o). */
+static bool intersect_from(const gk_ref_scene *rs, vec3 o, vec3 d, float tmin, float tmax, gk_scene_hit *h)
 {
     gk_bvh_hit bh;
-    float tmin = 0.0f;
     h->tri = -1;
     h->light = -1;
     h->t = tmax;
@@ -34,6 +34,42 @@ bool gk_scene_intersect(const gk_ref_scene *rs, vec3 o, vec3 d, float tmax, gk_s
         h->tri = -1;
     }
     return h->tri >= 0 || h->light >= 0;
+}
+
+bool gk_scene_intersect(const gk_ref_scene *rs, vec3 o, vec3 d, float tmax, gk_scene_hit *h)
+{
+    return intersect_from(rs, o, d, 0.0f, tmax, h);
+}
+
+/* Whether a camera ray along d passes through the hit: the back face of a single-sided material. */
+static bool camera_passes(const gk_ref_scene *rs, const gk_scene_hit *h, vec3 d)
+{
+    if (h->tri < 0)
+        return false;
+    const gk_ref_tri *t = &rs->tris[h->tri];
+    return !rs->materials[t->material].double_sided && v3_dot(d, t->ng) > 0.0f;
+}
+
+bool gk_scene_intersect_camera(const gk_ref_scene *rs, vec3 o, vec3 d, float tmax, gk_scene_hit *h)
+{
+    bool hit = intersect_from(rs, o, d, 0.0f, tmax, h);
+    /* past each back face, on from just beyond it (EPS_REL as offset_point's) */
+    for (int guard = 0; hit && camera_passes(rs, h, d) && guard < 1024; guard++) {
+        vec3 x = v3_add(o, v3_scale(d, h->t));
+        float eps = EPS_REL * (rs->radius + fmaxf(fabsf(x.x), fmaxf(fabsf(x.y), fabsf(x.z))));
+        hit = intersect_from(rs, o, d, h->t + eps, tmax, h);
+    }
+    return hit;
+}
+
+bool gk_scene_camera_sees(const gk_ref_scene *rs, vec3 x)
+{
+    vec3 to_x = v3_sub(x, rs->eye);
+    float dist = v3_len(to_x);
+    if (!(dist > 0.0f))
+        return false;
+    gk_scene_hit h;
+    return !gk_scene_intersect_camera(rs, rs->eye, v3_scale(to_x, 1.0f / dist), dist * (1.0f - 1e-4f), &h);
 }
 
 bool gk_scene_occluded(const gk_ref_scene *rs, vec3 o, vec3 d, float tmax)
@@ -152,7 +188,8 @@ vec3 gk_trace_eye(const gk_ref_scene *rs, vec3 o, vec3 d, unsigned mask, unsigne
     for (int depth = 0; depth <= max_depth; depth++) {
         gk_scene_hit h;
         st->rays++;
-        bool hit = gk_scene_intersect(rs, o, d, INFINITY, &h);
+        /* the camera ray (depth 0) sees single-sided materials from the front only */
+        bool hit = depth == 0 ? gk_scene_intersect_camera(rs, o, d, INFINITY, &h) : gk_scene_intersect(rs, o, d, INFINITY, &h);
         if (med->present && rs->has_delta_lights) {
             /* this segment's single scattering of point and spot lights: a new V vertex */
             bool want = wanted(term_of(n_medium + 1, n_diffuse, false), 0, mask, terms) &&

@@ -66,8 +66,16 @@ typedef struct gk_scene_hit {
 
 bool gk_scene_intersect(const gk_ref_scene *rs, vec3 o, vec3 d, float tmax, gk_scene_hit *h);
 bool gk_scene_occluded(const gk_ref_scene *rs, vec3 o, vec3 d, float tmax);
+/* glTF doubleSided false (single-sided materials): the camera sees such a surface from its front
+ * only, as the rasterizer culls its back faces in the G-buffer. A camera ray (gk_trace_eye's first
+ * segment) passes through back faces of single-sided materials; every other ray (bounces, shadow
+ * rays, photons) hits both faces, as the shadow maps and the GI methods' scene passes draw both: a
+ * closed mesh casts its shadow whichever side faces the light. The front is the winding's (ng). */
+bool gk_scene_intersect_camera(const gk_ref_scene *rs, vec3 o, vec3 d, float tmax, gk_scene_hit *h);
+/* The eye sees point x under that rule (light tracing's connections to the camera). */
+bool gk_scene_camera_sees(const gk_ref_scene *rs, vec3 x);
 
-/* Radiance along one camera ray, restricted to the path classes in mask and to paths with at most
+/* Radiance along one camera ray (o, d: its first segment passes single-sided back faces), restricted to the path classes in mask and to paths with at most
  * max_diffuse D vertices (GK_BOUNCES_UNLIMITED: no limit). Russian roulette (survival
  * min(0.95, max throughput)) applies from path vertex rr_depth on. */
 vec3 gk_trace_eye(const gk_ref_scene *rs, vec3 o, vec3 d, unsigned mask, unsigned terms, int max_diffuse,

@@ -135,6 +135,8 @@ static const gk_uniform_field gbuffer_fields[] = {
     GK_UNIFORM_AS(gbuffer_uniforms, draw.u_emissive_tex, "u_emissive_tex"),
     GK_UNIFORM_AS(gbuffer_uniforms, draw.u_normal_tex, "u_normal_tex"),
     GK_UNIFORM_AS(gbuffer_uniforms, draw.u_normal_scale, "u_normal_scale"),
+    GK_UNIFORM_AS(gbuffer_uniforms, draw.u_occlusion_tex, "u_occlusion_tex"),
+    GK_UNIFORM_AS(gbuffer_uniforms, draw.u_occlusion_strength, "u_occlusion_strength"),
     GK_UNIFORM_AS(gbuffer_uniforms, draw.u_tex_xf, "u_tex_xf"),
     GK_UNIFORM_AS(gbuffer_uniforms, draw.u_tex_uv1, "u_tex_uv1"),
     GK_UNIFORM_AS(gbuffer_uniforms, draw.u_alpha_cutoff, "u_alpha_cutoff"),
@@ -151,22 +153,13 @@ static const gk_uniform_field emission_fields[] = {GK_GBUFFER_FIELDS(emission_un
 typedef struct light_uniforms {
     gk_gbuffer_uniforms gb;
     GLint u_gb_geom_normal;
-    GLint u_light_pos, u_light_dir, u_light_u, u_light_v, u_light_color, u_light_range, u_light_cone,
-        u_light_radius, u_light_size, u_ltc, u_shadow_mask;
+    gk_light_uniforms light;
+    GLint u_shadow_mask;
 } light_uniforms;
 static const gk_uniform_field light_fields[] = {
     GK_GBUFFER_FIELDS(light_uniforms, gb),
     GK_UNIFORM(light_uniforms, u_gb_geom_normal),
-    GK_UNIFORM(light_uniforms, u_light_pos),
-    GK_UNIFORM(light_uniforms, u_light_dir),
-    GK_UNIFORM(light_uniforms, u_light_u),
-    GK_UNIFORM(light_uniforms, u_light_v),
-    GK_UNIFORM(light_uniforms, u_light_color),
-    GK_UNIFORM(light_uniforms, u_light_range),
-    GK_UNIFORM(light_uniforms, u_light_cone),
-    GK_UNIFORM(light_uniforms, u_light_radius),
-    GK_UNIFORM(light_uniforms, u_light_size),
-    GK_UNIFORM(light_uniforms, u_ltc),
+    GK_LIGHT_FIELDS(light_uniforms, light),
     GK_UNIFORM(light_uniforms, u_shadow_mask),
 };
 
@@ -191,7 +184,8 @@ static int pass_gbuffer(gk_renderer *r, const mat4 *viewproj, vec3 eye, gk_err *
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
     glDisable(GL_BLEND);
-    glDisable(GL_CULL_FACE);
+    glCullFace(GL_BACK);
+    glFrontFace(GL_CCW); /* glTF's front faces */
     const float zero[4] = {0, 0, 0, 0};
     glClearBufferfv(GL_COLOR, 0, zero);
     glClearBufferfv(GL_COLOR, 1, zero);
@@ -204,22 +198,8 @@ static int pass_gbuffer(gk_renderer *r, const mat4 *viewproj, vec3 eye, gk_err *
     glUseProgram(prog);
     glUniformMatrix4fv(u->u_viewproj, 1, GL_FALSE, viewproj->m);
     glUniform3f(u->u_eye, eye.x, eye.y, eye.z);
-    gk_scene_gpu_draw(&r->gpu, r->scene, &u->draw, GK_DRAW_MATERIALS | GK_DRAW_SKIP_GLASS);
+    gk_scene_gpu_draw(&r->gpu, r->scene, &u->draw, GK_DRAW_MATERIALS | GK_DRAW_SKIP_GLASS | GK_DRAW_SKIP_BLEND | GK_DRAW_CULL_SINGLE_SIDED);
     return 0;
-}
-
-static void set_light_uniforms(const light_uniforms *lu, const gk_light *l, vec3 pos, vec3 dir, vec3 u, vec3 v)
-{
-    glUniform3f(lu->u_light_pos, pos.x, pos.y, pos.z);
-    glUniform3f(lu->u_light_dir, dir.x, dir.y, dir.z);
-    glUniform3f(lu->u_light_u, u.x, u.y, u.z);
-    glUniform3f(lu->u_light_v, v.x, v.y, v.z);
-    glUniform3f(lu->u_light_color, l->color[0] * l->intensity, l->color[1] * l->intensity,
-                l->color[2] * l->intensity);
-    glUniform1f(lu->u_light_range, l->range);
-    glUniform2f(lu->u_light_cone, cosf(l->outer_cone), cosf(l->inner_cone));
-    glUniform1f(lu->u_light_radius, l->radius);
-    glUniform2f(lu->u_light_size, l->size[0], l->size[1]);
 }
 
 static int pass_direct(gk_renderer *r, const gk_frame_knobs *fk, const frame_light *fl, int n,
@@ -247,11 +227,11 @@ static int pass_direct(gk_renderer *r, const gk_frame_knobs *fk, const frame_lig
     for (int i = 0; i < n; i++) {
         const gk_scene *s = r->scene;
         const gk_light *l = &s->lights[s->nodes[fl[i].node].light];
-        char defines[320];
-        snprintf(defines, sizeof defines, "#define GK_LIGHT_KIND %d\n%s%s%s", gk_render_light_kind(l),
-                 l->type == GK_LIGHT_SPOT ? "#define GK_LIGHT_SPOT 1\n" : "",
+        char extra[256], defines[320];
+        snprintf(extra, sizeof extra, "%s%s",
                  fl[i].mask ? "#define SHADOW_MASK 1\n" : fl[i].shadowed ? fl[i].method->glsl_define : "",
                  fl[i].shadowed && !fl[i].mask ? count_define : "");
+        gk_render_light_defines(l, extra, defines, sizeof defines);
         prog = gk_program_get(r->progs, "common/fullscreen.vert", "direct/light.frag", defines, e);
         const light_uniforms *lu = prog ? gk_program_uniforms(r->progs, prog, GK_FIELDS(light_fields), sizeof *lu, e) : NULL;
         if (!lu) {
@@ -261,13 +241,7 @@ static int pass_direct(gk_renderer *r, const gk_frame_knobs *fk, const frame_lig
         glUseProgram(prog);
         gk_gbuffer_bind(gbuf, &lu->gb, UNIT_ALBEDO, 0);
         gk_gbuffer_bind_geom_normal(gbuf, lu->u_gb_geom_normal, UNIT_GEOM_NORMAL, 0);
-        vec3 pos, dir, u, v;
-        gk_scene_light_frame(s, fl[i].node, &pos, &dir, &u, &v);
-        set_light_uniforms(lu, l, pos, dir, u, v);
-        glActiveTexture(GL_TEXTURE0 + UNIT_LTC);
-        glBindTexture(GL_TEXTURE_2D, r->ltc_tex);
-        glBindSampler(UNIT_LTC, 0);
-        glUniform1i(lu->u_ltc, UNIT_LTC);
+        gk_render_set_light(r, &lu->light, fl[i].node);
         if (fl[i].mask) {
             glActiveTexture(GL_TEXTURE0 + UNIT_SHADOW);
             glBindTexture(GL_TEXTURE_2D, fl[i].mask);
@@ -360,6 +334,8 @@ static void pass_gi(gk_renderer *r, const gk_frame_params *fp, const gk_frame_kn
     if (run_method && gk_render_gi_run(r->gi, r, method, ctx, &gi_err) != 0)
         gk_log("renderer: GI method %s failed on scene %s, showing it without GI: %s", method,
                r->scene->name[0] ? r->scene->name : "?", gi_err.msg);
+    else if (run_method && rc == 0 && gk_gi_occlusion_apply(r, ctx, &gi_err) != 0)
+        gk_log("renderer: the occlusion texture on GI failed, showing GI without it: %s", gi_err.msg);
     if (rc == 0 && gk_gi_blend_after_method(r, ctx, &gi_err) != 0)
         gk_log("renderer: GI cross-fade failed, showing the new GI at once: %s", gi_err.msg);
     gk_pass_end(ctx);
@@ -467,6 +443,11 @@ int gk_renderer_draw(gk_renderer *r, const gk_frame_params *fp, unsigned target_
     if (rc == 0 && !abandoned && gk_render_glass_needed(r) && !(abandoned = stop_before(fp, "glass", &last))) {
         gk_pass_begin(&ctx, "glass");
         rc = gk_render_glass(r, &gb, e);
+        gk_pass_end(&ctx);
+    }
+    if (rc == 0 && !abandoned && gk_render_blend_needed(r) && !(abandoned = stop_before(fp, "blend", &last))) {
+        gk_pass_begin(&ctx, "blend");
+        rc = gk_render_blend(r, &gb, fk.env_lights, e);
         gk_pass_end(&ctx);
     }
     if (rc == 0 && !abandoned && !(abandoned = stop_before(fp, "compose", &last))) {

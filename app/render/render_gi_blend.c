@@ -112,7 +112,7 @@ bool gk_gi_blend_active(const gk_renderer *r)
 int gk_gi_blend_before_method(gk_renderer *r, const gk_pass_ctx *ctx, int blend_frames, gk_err *e)
 {
     gk_gi_blend *g = &r->blend;
-    if (blend_frames <= 1 && g->frames_left == 0)
+    if (blend_frames <= 1 && g->frames_left == 0 && !gk_gi_occlusion_needed(r))
         return 0;
     gk_pass_begin(ctx, "blend_hold");
     int rc = ensure_rgba16f(&g->pre, "gi blend (before GI)", r->render_w, r->render_h, e);

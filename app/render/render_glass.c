@@ -33,8 +33,8 @@ typedef struct copy_uniforms {
 } copy_uniforms;
 static const gk_uniform_field copy_fields[] = {GK_UNIFORM(copy_uniforms, u_hdr), GK_UNIFORM(copy_uniforms, u_exposure)};
 
-/* Units above the four gk_scene_gpu_draw binds material textures to (0..3). */
-enum { UNIT_GLASS_BEHIND = 6, UNIT_GLASS_DEPTH = 7 };
+/* Units above the seven gk_scene_gpu_draw binds material textures to (0..6). */
+enum { UNIT_GLASS_BEHIND = 7, UNIT_GLASS_DEPTH = 8 };
 
 bool gk_render_glass_needed(const gk_renderer *r) { return r->scene && r->scene->features.has_transmission; }
 

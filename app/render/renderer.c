@@ -1,5 +1,6 @@
 /* Renderer lifetime, scene upload and the GI method list. The passes are in render_frame.c. */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -103,6 +104,8 @@ void gk_renderer_destroy(gk_renderer *r)
         glDeleteVertexArrays(1, &r->empty_vao);
     if (r->ltc_tex)
         glDeleteTextures(1, &r->ltc_tex);
+    if (r->blend_fbo)
+        glDeleteFramebuffers(1, &r->blend_fbo);
     if (r->env_tex)
         glDeleteTextures(1, &r->env_tex);
     gk_timer_destroy(r->timer);
@@ -159,6 +162,32 @@ int gk_render_light_kind(const gk_light *l)
     case GK_SHAPE_RECT: return 5;
     default: return l->type == GK_LIGHT_SPOT ? 1 : 0;
     }
+}
+
+void gk_render_light_defines(const gk_light *l, const char *extra, char *out, size_t size)
+{
+    snprintf(out, size, "#define GK_LIGHT_KIND %d\n%s%s", gk_render_light_kind(l),
+             l->type == GK_LIGHT_SPOT ? "#define GK_LIGHT_SPOT 1\n" : "", extra ? extra : "");
+}
+
+void gk_render_set_light(gk_renderer *r, const gk_light_uniforms *u, int node)
+{
+    const gk_light *l = &r->scene->lights[r->scene->nodes[node].light];
+    vec3 pos, dir, lu, lv;
+    gk_scene_light_frame(r->scene, node, &pos, &dir, &lu, &lv);
+    glUniform3f(u->u_light_pos, pos.x, pos.y, pos.z);
+    glUniform3f(u->u_light_dir, dir.x, dir.y, dir.z);
+    glUniform3f(u->u_light_u, lu.x, lu.y, lu.z);
+    glUniform3f(u->u_light_v, lv.x, lv.y, lv.z);
+    glUniform3f(u->u_light_color, l->color[0] * l->intensity, l->color[1] * l->intensity, l->color[2] * l->intensity);
+    glUniform1f(u->u_light_range, l->range);
+    glUniform2f(u->u_light_cone, cosf(l->outer_cone), cosf(l->inner_cone));
+    glUniform1f(u->u_light_radius, l->radius);
+    glUniform2f(u->u_light_size, l->size[0], l->size[1]);
+    glActiveTexture(GL_TEXTURE0 + UNIT_LTC);
+    glBindTexture(GL_TEXTURE_2D, r->ltc_tex);
+    glBindSampler(UNIT_LTC, 0);
+    glUniform1i(u->u_ltc, UNIT_LTC);
 }
 
 void gk_render_fullscreen(gk_renderer *r)

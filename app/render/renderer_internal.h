@@ -96,6 +96,7 @@ struct gk_renderer {
     void *shadow_state[GK_MAX_SHADOW_METHODS]; /* per method of gk_shadow_methods[], created on first use */
 
     GLuint env_tex;             /* the scene environment's lat-long map (render_env.c), RGBA32F */
+    GLuint blend_fbo;           /* the blend pass's: the shown HDR image + the G-buffer's depth (render_blend.c) */
     unsigned env_tex_generation; /* scene generation env_tex was uploaded for */
     float exposure;             /* display scale, fixed per scene (tonemap.h) */
     bool exposure_known;
@@ -128,10 +129,39 @@ int gk_gi_blend_before_method(gk_renderer *r, const gk_pass_ctx *ctx, int blend_
 int gk_gi_blend_after_method(gk_renderer *r, const gk_pass_ctx *ctx, gk_err *e);
 /* A new scene: nothing to fade from. */
 void gk_gi_blend_reset(gk_renderer *r);
+
+/* render_gi_occlusion.c: whether the scene has an occlusionTexture (the gi pass then keeps the image
+ * before the method, as the fade does), and, after the method, its contribution scaled by the
+ * G-buffer's ao (nested pass `occlusion`). */
+bool gk_gi_occlusion_needed(const gk_renderer *r);
+int gk_gi_occlusion_apply(gk_renderer *r, const gk_pass_ctx *ctx, gk_err *e);
 void gk_gi_blend_destroy(gk_renderer *r);
 
 /* Light kind numbers of shaders_gles/common/lights.glsl. */
 int gk_render_light_kind(const gk_light *l);
+
+/* The uniforms of one light (shaders_gles/common/lights.glsl) and the LTC table area lights read,
+ * for the passes that light surfaces one light at a time (direct/light.frag, blend/forward.frag). */
+typedef struct gk_light_uniforms {
+    GLint u_light_pos, u_light_dir, u_light_u, u_light_v, u_light_color, u_light_range, u_light_cone,
+        u_light_radius, u_light_size, u_ltc;
+} gk_light_uniforms;
+#define GK_LIGHT_FIELDS(type, member)                                                                                  \
+    GK_UNIFORM_AS(type, member.u_light_pos, "u_light_pos"), GK_UNIFORM_AS(type, member.u_light_dir, "u_light_dir"),   \
+        GK_UNIFORM_AS(type, member.u_light_u, "u_light_u"), GK_UNIFORM_AS(type, member.u_light_v, "u_light_v"),       \
+        GK_UNIFORM_AS(type, member.u_light_color, "u_light_color"),                                                    \
+        GK_UNIFORM_AS(type, member.u_light_range, "u_light_range"),                                                    \
+        GK_UNIFORM_AS(type, member.u_light_cone, "u_light_cone"),                                                      \
+        GK_UNIFORM_AS(type, member.u_light_radius, "u_light_radius"),                                                  \
+        GK_UNIFORM_AS(type, member.u_light_size, "u_light_size"), GK_UNIFORM_AS(type, member.u_ltc, "u_ltc")
+/* The defines of lights.glsl for light l (kind, spot) followed by `extra` (a shadow variant). */
+void gk_render_light_defines(const gk_light *l, const char *extra, char *out, size_t size);
+/* Sets the light of scene node `node` on the bound program, and binds the LTC table on UNIT_LTC. */
+void gk_render_set_light(gk_renderer *r, const gk_light_uniforms *u, int node);
+
+/* render_blend.c: the `blend` pass, alphaMode BLEND surfaces over the lit image (see there). */
+bool gk_render_blend_needed(const gk_renderer *r);
+int gk_render_blend(gk_renderer *r, const gk_gbuffer_view *gb, int env_lights, gk_err *e);
 
 /* Draws the full-screen triangle with the bound program. */
 void gk_render_fullscreen(gk_renderer *r);

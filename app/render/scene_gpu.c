@@ -109,32 +109,22 @@ void gk_scene_gpu_free(gk_scene_gpu *g)
 
 static void set_material(const gk_scene_gpu *g, const gk_scene *s, const gk_draw_uniforms *u, const gk_material *m)
 {
+    /* the texture slots by unit (gk_scene_gpu_draw's sampler units), white where a slot is empty */
+    const struct { int tex, flag; } slots[] = {
+        {m->base_color_tex, GK_MAT_BASE_TEX},      {m->metallic_roughness_tex, GK_MAT_MR_TEX},
+        {m->specular_tex, GK_MAT_SPEC_TEX},        {m->specular_color_tex, GK_MAT_SPEC_COLOR_TEX},
+        {m->emissive_tex, GK_MAT_EMISSIVE_TEX},    {m->normal_tex, GK_MAT_NORMAL_TEX},
+        {m->occlusion_tex, GK_MAT_OCCLUSION_TEX},
+    };
     int flags = 0;
-    GLuint base = g->white_tex, mr = g->white_tex, spec = g->white_tex, spec_color = g->white_tex;
-    GLuint emissive = g->white_tex, normal = g->white_tex;
-    if (m->normal_tex >= 0 && m->normal_tex < s->n_textures) {
-        normal = g->tex[m->normal_tex];
-        flags |= GK_MAT_NORMAL_TEX;
-    }
-    if (m->emissive_tex >= 0 && m->emissive_tex < s->n_textures) {
-        emissive = g->tex[m->emissive_tex];
-        flags |= GK_MAT_EMISSIVE_TEX;
-    }
-    if (m->base_color_tex >= 0 && m->base_color_tex < s->n_textures) {
-        base = g->tex[m->base_color_tex];
-        flags |= GK_MAT_BASE_TEX;
-    }
-    if (m->metallic_roughness_tex >= 0 && m->metallic_roughness_tex < s->n_textures) {
-        mr = g->tex[m->metallic_roughness_tex];
-        flags |= GK_MAT_MR_TEX;
-    }
-    if (m->specular_tex >= 0 && m->specular_tex < s->n_textures) {
-        spec = g->tex[m->specular_tex];
-        flags |= GK_MAT_SPEC_TEX;
-    }
-    if (m->specular_color_tex >= 0 && m->specular_color_tex < s->n_textures) {
-        spec_color = g->tex[m->specular_color_tex];
-        flags |= GK_MAT_SPEC_COLOR_TEX;
+    for (int k = 0; k < (int)(sizeof slots / sizeof slots[0]); k++) {
+        GLuint tex = g->white_tex;
+        if (slots[k].tex >= 0 && slots[k].tex < s->n_textures) {
+            tex = g->tex[slots[k].tex];
+            flags |= slots[k].flag;
+        }
+        glActiveTexture(GL_TEXTURE0 + (GLenum)k);
+        glBindTexture(GL_TEXTURE_2D, tex);
     }
     if (m->light_proxy)
         flags |= GK_MAT_LIGHT_PROXY;
@@ -142,18 +132,7 @@ static void set_material(const gk_scene_gpu *g, const gk_scene *s, const gk_draw
         flags |= GK_MAT_DOUBLE_SIDED;
     if (m->alpha_mask)
         flags |= GK_MAT_ALPHA_MASK;
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, base);
-    glActiveTexture(GL_TEXTURE1);
-    glBindTexture(GL_TEXTURE_2D, mr);
-    glActiveTexture(GL_TEXTURE2);
-    glBindTexture(GL_TEXTURE_2D, spec);
-    glActiveTexture(GL_TEXTURE3);
-    glBindTexture(GL_TEXTURE_2D, spec_color);
-    glActiveTexture(GL_TEXTURE4);
-    glBindTexture(GL_TEXTURE_2D, emissive);
-    glActiveTexture(GL_TEXTURE5);
-    glBindTexture(GL_TEXTURE_2D, normal);
+    glUniform1f(u->u_occlusion_strength, m->occlusion_strength);
     glUniform1f(u->u_normal_scale, m->normal_scale);
     glUniform4f(u->u_base_color, m->base_color[0], m->base_color[1], m->base_color[2], m->base_color[3]);
     glUniform2f(u->u_metallic_roughness, m->metallic, m->roughness);
@@ -164,7 +143,7 @@ static void set_material(const gk_scene_gpu *g, const gk_scene *s, const gk_draw
     glUniform4f(u->u_specular, k * m->specular_color[0], k * m->specular_color[1], k * m->specular_color[2],
                 m->specular);
     glUniform2f(u->u_glass, m->ior, m->transmission);
-    _Static_assert(GK_TEX_SLOTS == 6, "gbuffer.frag declares u_tex_xf[12]: two rows per slot");
+    _Static_assert(GK_TEX_SLOTS == 7, "gbuffer.frag declares u_tex_xf[14]: two rows per slot");
     float xf[GK_TEX_SLOTS * 6];
     int uv1 = 0;
     for (int k = 0; k < GK_TEX_SLOTS; k++) {
@@ -195,48 +174,83 @@ void gk_draw_uniforms_lookup(GLuint prog, gk_draw_uniforms *u)
     u->u_emissive_tex = glGetUniformLocation(prog, "u_emissive_tex");
     u->u_normal_tex = glGetUniformLocation(prog, "u_normal_tex");
     u->u_normal_scale = glGetUniformLocation(prog, "u_normal_scale");
+    u->u_occlusion_tex = glGetUniformLocation(prog, "u_occlusion_tex");
+    u->u_occlusion_strength = glGetUniformLocation(prog, "u_occlusion_strength");
     u->u_glass = glGetUniformLocation(prog, "u_glass");
     u->u_tex_xf = glGetUniformLocation(prog, "u_tex_xf");
     u->u_tex_uv1 = glGetUniformLocation(prog, "u_tex_uv1");
     u->u_alpha_cutoff = glGetUniformLocation(prog, "u_alpha_cutoff");
 }
 
+static void set_node(const gk_node *node, const gk_draw_uniforms *u)
+{
+    mat4 nm = m4_transpose(m4_inverse(node->world));
+    glUniformMatrix4fv(u->u_model, 1, GL_FALSE, node->world.m);
+    glUniformMatrix4fv(u->u_normal_matrix, 1, GL_FALSE, nm.m);
+}
+
+static void draw_one(const gk_scene_gpu *g, const gk_scene *s, const gk_draw_uniforms *u, int flags, int k)
+{
+    const gk_mesh *mesh = &s->meshes[k];
+    const gk_material *mat = &s->materials[mesh->material >= 0 && mesh->material < s->n_materials ? mesh->material : 0];
+    if ((flags & GK_DRAW_SKIP_PROXIES) && mat->light_proxy)
+        return;
+    bool glass = mat->transmission > 0.0f;
+    if (((flags & GK_DRAW_SKIP_GLASS) && glass) || ((flags & GK_DRAW_ONLY_GLASS) && !glass) ||
+        ((flags & GK_DRAW_SKIP_BLEND) && mat->alpha_blend))
+        return;
+    if (flags & GK_DRAW_MATERIALS)
+        set_material(g, s, u, mat);
+    if (flags & GK_DRAW_CULL_SINGLE_SIDED) {
+        if (mat->double_sided)
+            glDisable(GL_CULL_FACE);
+        else
+            glEnable(GL_CULL_FACE);
+    }
+    glBindVertexArray(g->vao[k]);
+    glDrawElements(GL_TRIANGLES, g->index_count[k], GL_UNSIGNED_INT, NULL);
+}
+
+static void set_sampler_units(const gk_draw_uniforms *u, int flags)
+{
+    if (!(flags & GK_DRAW_MATERIALS))
+        return;
+    glUniform1i(u->u_base_tex, 0);
+    glUniform1i(u->u_mr_tex, 1);
+    glUniform1i(u->u_spec_tex, 2);
+    glUniform1i(u->u_spec_color_tex, 3);
+    glUniform1i(u->u_emissive_tex, 4);
+    glUniform1i(u->u_normal_tex, 5);
+    glUniform1i(u->u_occlusion_tex, 6);
+}
+
 void gk_scene_gpu_draw(const gk_scene_gpu *g, const gk_scene *s, const gk_draw_uniforms *u, int flags)
 {
-    if (flags & GK_DRAW_MATERIALS) {
-        glUniform1i(u->u_base_tex, 0);
-        glUniform1i(u->u_mr_tex, 1);
-        glUniform1i(u->u_spec_tex, 2);
-        glUniform1i(u->u_spec_color_tex, 3);
-        glUniform1i(u->u_emissive_tex, 4);
-        glUniform1i(u->u_normal_tex, 5);
-    }
-    GLint loc_model = u->u_model;
-    GLint loc_normal = u->u_normal_matrix;
+    set_sampler_units(u, flags);
     for (int n = 0; n < s->n_nodes; n++) {
         const gk_node *node = &s->nodes[n];
         if (node->mesh_count <= 0)
             continue;
-        mat4 nm = m4_transpose(m4_inverse(node->world));
-        glUniformMatrix4fv(loc_model, 1, GL_FALSE, node->world.m);
-        glUniformMatrix4fv(loc_normal, 1, GL_FALSE, nm.m);
-        for (int k = node->mesh_first; k < node->mesh_first + node->mesh_count && k < g->n_meshes; k++) {
-            if (k < 0)
-                continue;
-            const gk_mesh *mesh = &s->meshes[k];
-            const gk_material *mat = &s->materials[mesh->material >= 0 && mesh->material < s->n_materials ? mesh->material : 0];
-            if ((flags & GK_DRAW_SKIP_PROXIES) && mat->light_proxy)
-                continue;
-            bool glass = mat->transmission > 0.0f;
-            if (((flags & GK_DRAW_SKIP_GLASS) && glass) || ((flags & GK_DRAW_ONLY_GLASS) && !glass))
-                continue;
-            if (flags & GK_DRAW_MATERIALS)
-                set_material(g, s, u, mat);
-            glBindVertexArray(g->vao[k]);
-            glDrawElements(GL_TRIANGLES, g->index_count[k], GL_UNSIGNED_INT, NULL);
-        }
+        set_node(node, u);
+        for (int k = node->mesh_first; k < node->mesh_first + node->mesh_count && k < g->n_meshes; k++)
+            if (k >= 0)
+                draw_one(g, s, u, flags, k);
     }
     glBindVertexArray(0);
+    if (flags & GK_DRAW_CULL_SINGLE_SIDED)
+        glDisable(GL_CULL_FACE);
+}
+
+void gk_scene_gpu_draw_mesh(const gk_scene_gpu *g, const gk_scene *s, const gk_draw_uniforms *u, int flags, int n, int k)
+{
+    if (n < 0 || n >= s->n_nodes || k < 0 || k >= g->n_meshes)
+        return;
+    set_sampler_units(u, flags);
+    set_node(&s->nodes[n], u);
+    draw_one(g, s, u, flags, k);
+    glBindVertexArray(0);
+    if (flags & GK_DRAW_CULL_SINGLE_SIDED)
+        glDisable(GL_CULL_FACE);
 }
 
 static bool any_alpha_mask(const gk_scene *s)

@@ -30,6 +30,12 @@ enum {
     GK_DRAW_SKIP_PROXIES = 2,  /* leave out light_proxy meshes (shadow maps: the light stands in their place) */
     GK_DRAW_SKIP_GLASS = 4,    /* leave out transmissive materials (the G-buffer: render_glass.c draws them) */
     GK_DRAW_ONLY_GLASS = 8,    /* only transmissive materials (render_glass.c) */
+    /* The camera's passes (the G-buffer): back faces of single-sided materials (glTF doubleSided
+       false) are culled, so a single-sided surface seen from behind shows what lies behind it, as
+       the tracer's camera rays pass through it (app/ref/trace.c). The light's passes (shadow maps,
+       RSMs, voxelization) keep both faces: a closed mesh must cast its shadow either way. */
+    GK_DRAW_CULL_SINGLE_SIDED = 16,
+    GK_DRAW_SKIP_BLEND = 32,   /* leave out alphaMode BLEND materials (the G-buffer: render_blend.c draws them) */
 };
 
 /* Material flags in u_mat_flags (mirrored in shaders_gles/gbuffer/gbuffer.frag). */
@@ -43,6 +49,7 @@ enum {
     GK_MAT_EMISSIVE_TEX = 64,   /* emissiveTexture (RGB) times u_emissive */
     GK_MAT_NORMAL_TEX = 128,    /* normalTexture, tangent space, XY scaled by u_normal_scale */
     GK_MAT_ALPHA_MASK = 256,    /* alphaMode MASK: discard where base colour alpha < u_alpha_cutoff */
+    GK_MAT_OCCLUSION_TEX = 512, /* occlusionTexture (R), 1 + u_occlusion_strength (R - 1) */
 };
 
 /* The uniforms gk_scene_gpu_draw sets, by location (-1: the program has no such uniform). A pass
@@ -57,6 +64,7 @@ typedef struct gk_draw_uniforms {
     GLint u_specular, u_spec_tex, u_spec_color_tex;
     GLint u_emissive_tex;                                                 /* unit 4 */
     GLint u_normal_tex, u_normal_scale;                                   /* unit 5 */
+    GLint u_occlusion_tex, u_occlusion_strength;                          /* unit 6 */
     GLint u_glass;             /* (ior, transmission): KHR_materials_ior / _transmission (render_glass.c) */
     /* Each texture slot's UVs (gk_tex_uv): u_tex_xf vec3[2 * GK_TEX_SLOTS], rows of its 2x3
        KHR_texture_transform matrix (identity without one); u_tex_uv1 int, bit k set when slot k
@@ -79,9 +87,12 @@ const char *gk_scene_gpu_depth_defines(const gk_scene *s);
 int gk_scene_gpu_depth_flags(const gk_scene *s);
 
 /* Draws every node's meshes (after gk_scene_evaluate) with the bound program: sets u_model and
- * u_normal_matrix per node; textures on units 0 (base colour), 1 (metallic-roughness), 2 (specular)
- * and 3 (specular colour). */
+ * u_normal_matrix per node; textures on units 0 (base colour), 1 (metallic-roughness), 2 (specular),
+ * 3 (specular colour), 4 (emissive), 5 (normal) and 6 (occlusion). */
 void gk_scene_gpu_draw(const gk_scene_gpu *g, const gk_scene *s, const gk_draw_uniforms *u, int flags);
+/* Draws mesh k of node n alone (the node's matrices, the material's uniforms with
+ * GK_DRAW_MATERIALS, back faces of single-sided materials culled with GK_DRAW_CULL_SINGLE_SIDED). */
+void gk_scene_gpu_draw_mesh(const gk_scene_gpu *g, const gk_scene *s, const gk_draw_uniforms *u, int flags, int n, int k);
 /* The locations by name, for tests and programs built outside a program cache (never per frame). */
 void gk_draw_uniforms_lookup(GLuint prog, gk_draw_uniforms *u);
 

@@ -230,7 +230,7 @@ bool read_materials(Loader &L, const Model &m, gk_scene *s, std::vector<int> &te
     def->specular = 1.0f;
     def->specular_color[0] = def->specular_color[1] = def->specular_color[2] = 1.0f;
     def->specular_tex = def->specular_color_tex = -1;
-    def->emissive_tex = def->normal_tex = -1;
+    def->emissive_tex = def->normal_tex = def->occlusion_tex = -1;
     def->normal_scale = 1.0f;
     auto tex_ref = [&](int ti, int flag, int mi, const char *slot, int *out) {
         if (ti < 0) {
@@ -261,7 +261,8 @@ bool read_materials(Loader &L, const Model &m, gk_scene *s, std::vector<int> &te
             !tex_ref(pbr.metallicRoughnessTexture.index, GK_TEX_USED_AS_DATA, mi, "metallic-roughness",
                      &d->metallic_roughness_tex) ||
             !tex_ref(src.emissiveTexture.index, GK_TEX_USED_AS_COLOR, mi, "emissive", &d->emissive_tex) ||
-            !tex_ref(src.normalTexture.index, GK_TEX_USED_AS_DATA, mi, "normal", &d->normal_tex))
+            !tex_ref(src.normalTexture.index, GK_TEX_USED_AS_DATA, mi, "normal", &d->normal_tex) ||
+            !tex_ref(src.occlusionTexture.index, GK_TEX_USED_AS_DATA, mi, "occlusion", &d->occlusion_tex))
             return false;
         const struct { const char *slot; int texcoord; const tinygltf::ExtensionMap *ext; enum gk_tex_slot k; } uvs[] = {
             {"base colour", pbr.baseColorTexture.texCoord, &pbr.baseColorTexture.extensions, GK_SLOT_BASE},
@@ -269,8 +270,11 @@ bool read_materials(Loader &L, const Model &m, gk_scene *s, std::vector<int> &te
              GK_SLOT_MR},
             {"emissive", src.emissiveTexture.texCoord, &src.emissiveTexture.extensions, GK_SLOT_EMISSIVE},
             {"normal", src.normalTexture.texCoord, &src.normalTexture.extensions, GK_SLOT_NORMAL},
+            {"occlusion", src.occlusionTexture.texCoord, &src.occlusionTexture.extensions, GK_SLOT_OCCLUSION},
         };
-        const int slot_tex[] = {d->base_color_tex, d->metallic_roughness_tex, d->emissive_tex, d->normal_tex};
+        const int slot_tex[] = {d->base_color_tex, d->metallic_roughness_tex, d->emissive_tex, d->normal_tex,
+                                d->occlusion_tex};
+        static_assert(sizeof slot_tex / sizeof slot_tex[0] == sizeof uvs / sizeof uvs[0], "one texture per slot");
         for (size_t k = 0; k < sizeof uvs / sizeof uvs[0]; k++)
             if (slot_tex[k] >= 0 && !read_tex_uv(L, mi, uvs[k].slot, uvs[k].texcoord, texture_transform(*uvs[k].ext),
                                                  &d->tex_uv[uvs[k].k]))
@@ -283,6 +287,7 @@ bool read_materials(Loader &L, const Model &m, gk_scene *s, std::vector<int> &te
             d->alpha_cutoff = (float)src.alphaCutoff;
             L.use.alpha_masked++;
         } else if (src.alphaMode == "BLEND") {
+            d->alpha_blend = true;
             L.use.alpha_blended++;
         } else if (!src.alphaMode.empty() && src.alphaMode != "OPAQUE") {
             return L.fail("material %d ('%s'): alphaMode '%s' is not OPAQUE, MASK or BLEND", mi, src.name.c_str(),
@@ -298,7 +303,16 @@ bool read_materials(Loader &L, const Model &m, gk_scene *s, std::vector<int> &te
         d->transmission = (float)transmission;
         d->ior = (float)ior;
         d->double_sided = src.doubleSided;
+        if (d->double_sided)
+            L.use.double_sided++;
         d->normal_scale = (float)src.normalTexture.scale;
+        // occlusionTexture.strength (glTF 5.20): a number in [0, 1], 1 by default
+        d->occlusion_strength = (float)src.occlusionTexture.strength;
+        if (!(d->occlusion_strength >= 0.0f && d->occlusion_strength <= 1.0f))
+            return L.fail("material %d ('%s'): occlusionTexture.strength must be a number in [0, 1]", mi,
+                          src.name.c_str());
+        if (d->occlusion_tex >= 0)
+            L.use.occlusion_textures++;
         if (!std::isfinite(d->normal_scale))
             return L.fail("material %d ('%s'): normalTexture.scale must be finite", mi, src.name.c_str());
         if (!read_specular(L, src, mi, d, tex_ref))

@@ -49,7 +49,7 @@ typedef struct gk_texture {
 /* The texture slots of a material, for gk_material.tex_uv. */
 enum gk_tex_slot {
     GK_SLOT_BASE, GK_SLOT_MR, GK_SLOT_EMISSIVE, GK_SLOT_NORMAL, GK_SLOT_SPECULAR, GK_SLOT_SPECULAR_COLOR,
-    GK_TEX_SLOTS
+    GK_SLOT_OCCLUSION, GK_TEX_SLOTS
 };
 
 /* Where one texture slot reads its UVs: TEXCOORD_<texcoord> (0 or 1; glTF textureInfo.texCoord,
@@ -88,6 +88,12 @@ typedef struct gk_material {
     float emissive[3];        /* emissiveFactor * KHR_materials_emissive_strength, in nits */
     int emissive_tex;         /* RGB (sRGB-encoded) times emissive, -1 if none */
     int normal_tex;           /* tangent-space normal map (RGB data), -1 if none */
+    /* glTF occlusionTexture (R, data): ambient occlusion 1 + occlusion_strength (R - 1), applied by
+       the rasterizer to ambient and indirect light only (the environment's SH residual, the GI
+       methods' contribution), never to direct light. The path tracer ignores it: it computes
+       occlusion itself, so the texture would count it twice. -1 if none. */
+    int occlusion_tex;
+    float occlusion_strength; /* occlusionTexture.strength, in [0, 1] (1 by default) */
     float normal_scale;       /* normalTexture.scale: scales the map's X and Y */
     float transmission;       /* KHR_materials_transmission: 0 opaque .. 1 clear glass/water */
     float ior;                /* KHR_materials_ior, 1.5 by default */
@@ -103,9 +109,13 @@ typedef struct gk_material {
     gk_tex_uv tex_uv[GK_TEX_SLOTS]; /* each slot's UV set and KHR_texture_transform (zeroed: set 0, none) */
     /* glTF alphaMode MASK: a surface point whose alpha (base colour factor x texture x COLOR_0, A) is
        below alpha_cutoff is not there, for the camera, the shadow maps and the tracer's rays alike.
-       OPAQUE and BLEND leave it false (BLEND is drawn opaque: README). */
+       OPAQUE and BLEND leave it false. */
     bool alpha_mask;
     float alpha_cutoff;       /* glTF alphaCutoff, 0.5 by default */
+    /* glTF alphaMode BLEND: the surface covers alpha of what lies behind it. The rasterizer leaves it
+       out of the G-buffer and draws it over the lit image (app/render/render_blend.c); the tracer's
+       rays pass it with probability 1 - alpha (stochastic transparency, app/ref/materials.c). */
+    bool alpha_blend;
 } gk_material;
 
 typedef struct gk_mesh {       /* one glTF primitive, triangles only, in object space */
@@ -203,7 +213,10 @@ typedef struct gk_scene_gltf_use {
     int texture_transforms;    /* texture slots with KHR_texture_transform */
     int second_uv_slots;       /* texture slots that read TEXCOORD_1 */
     int alpha_masked;          /* materials with alphaMode MASK (read) */
-    int alpha_blended;         /* materials with alphaMode BLEND (drawn opaque) */
+    int alpha_blended;         /* materials with alphaMode BLEND (drawn after the opaque surfaces) */
+    int occlusion_textures;    /* materials with an occlusionTexture (ambient and indirect light only) */
+    int double_sided;          /* materials with doubleSided true (the others' back faces are culled
+                                  for the camera) */
 } gk_scene_gltf_use;
 /* A homogeneous participating medium filling the scene (or an axis-aligned box of it), given in the
  * scene's extras (DESIGN §4):

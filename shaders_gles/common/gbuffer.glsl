@@ -4,7 +4,8 @@
 //                   world = u_inv_viewproj * ndc (highp: positions in metres and 32-bit depth)
 //   u_gb_albedo     RGBA8: rgb = base colour, a = metallic
 //   u_gb_normal     RGBA16F: xyz = world normal, w = roughness
-//   u_gb_emission   RGBA16F: rgb = emitted radiance (nits), a > 0.5 = light proxy
+//   u_gb_emission   RGBA16F: rgb = emitted radiance (nits), a > 0.5 = light proxy, else
+//                   a = (1 - ao) / 2, ao the occlusionTexture's (gb_occlusion)
 //   u_gb_specular   RGBA8: rgb = sqrt(c0) (dielectric F0 colour), a = KHR_materials_specular weight
 //   u_inv_viewproj  inverse of the camera's projection * view
 //   u_eye           camera position (world)
@@ -45,6 +46,12 @@ highp float gb_roughness(ivec2 px) { return texelFetch(u_gb_normal, px, 0).w; }
 // rgb = base colour, a = metallic
 GB_ALBEDO_PRECISION vec4 gb_albedo_metallic(ivec2 px) { return texelFetch(u_gb_albedo, px, 0); }
 highp vec4 gb_emission(ivec2 px) { return texelFetch(u_gb_emission, px, 0); }
+// glTF occlusionTexture's ambient occlusion at px (1: none), for ambient and indirect light only.
+highp float gb_occlusion(ivec2 px)
+{
+    highp float a = gb_emission(px).a;
+    return a > 0.5 ? 1.0 : 1.0 - 2.0 * a; // a light proxy has none
+}
 
 // The material at pixel px, as the BRDF takes it (common/brdf.glsl).
 gk_brdf_material gb_material(ivec2 px)

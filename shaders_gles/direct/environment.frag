@@ -2,29 +2,19 @@
 // render_env.h), added (blend ONE, ONE) into the HDR target after the lights:
 //   surfaces:   the residual map's irradiance E(n) as order-2 SH (coefficients already convolved
 //               with the clamped cosine; scene/env_split.h) times the diffuse BRDF averaged over
-//               the hemisphere, unshadowed;
+//               the hemisphere, unshadowed but times the occlusionTexture's ao (gb_occlusion);
 //   background: the map's radiance along the pixel's ray (the lat-long layout of
 //               scene/environment.h, nearest pixel: the map is piecewise constant).
 precision highp float;
 precision highp int;
 #include "common/brdf.glsl"
 #include "common/gbuffer.glsl"
+#include "common/env_sh.glsl"
 
-uniform highp vec3 u_env_sh[9];
 uniform highp sampler2D u_env_map;
 uniform ivec2 u_env_size;
 
 out vec4 o_color;
-
-// The SH basis of scene/env_split.c (gk_sh9_basis), the same constants.
-highp vec3 env_irradiance(highp vec3 n)
-{
-    return u_env_sh[0] * 0.282095
-         + u_env_sh[1] * (0.488603 * n.y) + u_env_sh[2] * (0.488603 * n.z) + u_env_sh[3] * (0.488603 * n.x)
-         + u_env_sh[4] * (1.092548 * n.x * n.y) + u_env_sh[5] * (1.092548 * n.y * n.z)
-         + u_env_sh[6] * (0.315392 * (3.0 * n.z * n.z - 1.0)) + u_env_sh[7] * (1.092548 * n.x * n.z)
-         + u_env_sh[8] * (0.546274 * (n.x * n.x - n.y * n.y));
-}
 
 highp vec3 env_radiance(highp vec3 d)
 {
@@ -51,6 +41,7 @@ void main()
     gk_surface s = gk_read_surface(px);
     if (s.unlit)
         discard;
-    highp vec3 e = max(env_irradiance(s.n), vec3(0.0));
+    // ambient light: the occlusionTexture darkens it (and only it: the environment's lights are direct)
+    highp vec3 e = max(env_irradiance(s.n), vec3(0.0)) * gb_occlusion(px);
     o_color = vec4(gk_brdf_diffuse_gathered(s.m, dot(s.n, s.v)) * e, 1.0);
 }

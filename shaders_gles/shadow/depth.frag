@@ -16,7 +16,7 @@ uniform int u_mat_flags;            // GK_MAT_* in app/render/scene_gpu.h
 uniform vec4 u_base_color;
 uniform mediump sampler2D u_base_tex;
 uniform float u_alpha_cutoff;
-uniform vec3 u_tex_xf[12];          // the base colour slot's rows are 0 and 1 (gbuffer.frag)
+uniform vec3 u_tex_xf[14];          // the base colour slot's rows are 0 and 1 (gbuffer.frag)
 uniform int u_tex_uv1;
 const int MAT_BASE_TEX = 1;
 const int MAT_ALPHA_MASK = 256;

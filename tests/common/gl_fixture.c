@@ -88,7 +88,7 @@ int gkt_material(gkt_scene *t, vec3 base, float metallic, float roughness)
     snprintf(m->name, sizeof m->name, "m%d", t->s.n_materials);
     m->base_color[0] = base.x, m->base_color[1] = base.y, m->base_color[2] = base.z;
     m->base_color[3] = 1;
-    m->base_color_tex = m->metallic_roughness_tex = m->emissive_tex = m->normal_tex = -1;
+    m->base_color_tex = m->metallic_roughness_tex = m->emissive_tex = m->normal_tex = m->occlusion_tex = -1;
     m->metallic = metallic;
     m->roughness = roughness;
     m->ior = 1.5f;

@@ -52,7 +52,12 @@ check "it counts the slot on the second set" grep -q "^gltf reads: .*1 textures 
 expect_exit 0 "scenes --check on alphaMode MASK" "$GIKIOSK" scenes --check $DIR/alpha-mask.glb
 check "it counts the masked material" grep -q "^gltf reads: .*1 alpha-masked materials" "$TMP/stdout"
 expect_exit 0 "scenes --check on alphaMode BLEND" "$GIKIOSK" scenes --check $DIR/alpha-blend.glb
-check "it says the material is drawn opaque" grep -q "^gltf skips: *1 alpha-blended materials drawn opaque" "$TMP/stdout"
+check "it counts the blended material" grep -q "^gltf reads: .*1 alpha-blended materials (drawn over the opaque ones)" "$TMP/stdout"
+expect_exit 0 "scenes --check on a double-sided material" "$GIKIOSK" scenes --check $DIR/double-sided.glb
+check "it counts the double-sided material" grep -q "^gltf reads: .*1 double-sided materials" "$TMP/stdout"
+expect_exit 0 "scenes --check on an occlusion texture" "$GIKIOSK" scenes --check $DIR/occlusion-half.glb
+check "it counts the occlusion texture and says what it darkens" \
+    grep -q "^gltf reads: .*1 occlusion textures (ambient and indirect light only; not the tracer's)" "$TMP/stdout"
 expect_exit 2 "a texture on TEXCOORD_2 exits 2" "$GIKIOSK" scenes --check $DIR/texcoord2.glb
 stderr_has "texcoord2.glb: material 0: base colour texture reads TEXCOORD_2" "naming the file, material, slot and set"
 expect_exit 0 "scenes --check on a texture with a sampler" "$GIKIOSK" scenes --check $DIR/sampler-wrap.glb
@@ -124,18 +129,32 @@ done
 # tracer is 0.107 (mean 0.984), over the 0.06 residual of the loop above, so the masked file is
 # held to its control: the mask may add no error (measured 0.095 against the control's 0.107).
 # The GI methods' own scene passes see the cut-outs as solid (README; vct 0.30 against 0.108).
-for sc in alpha-mask alpha-opaque; do
+# One file under the studio, method none against the tracer (512 spp, seed 1): $TMP/SC-ref1.exr,
+# $TMP/SC-gpu.exr and $TMP/SC.json (their comparison); the energy within 3% as above.
+# A field of `compare A B --json`.
+compare_field() { "$GIKIOSK" compare "$1" "$2" --json >"$TMP/cmp.json"; json_field "$3" "$TMP/cmp.json"; }
+# One file under the studio, method none at 160 x 120 into $TMP/SC-gpu.exr.
+render_none() {
+    "$GIKIOSK" run --platform mock --scenes-dir $DIR --scene $1 --method none --frames 12 --size 160x120 \
+        --budget render_scale=1,shadow=pcss,shadow_map=1024,shadow_subdiv=3,env_lights=16 --capture "$TMP/$1-none" --hdr >/dev/null 2>&1
+    exr=$(ls "$TMP/$1-none"/*.exr 2>/dev/null | tail -1)
+    check "$1: renders" test -n "$exr"
+    cp "$exr" "$TMP/$1-gpu.exr" 2>/dev/null
+}
+# ... and against the tracer (512 spp, seed 1: $TMP/SC-ref1.exr; the comparison in $TMP/SC.json),
+# the energy within 3% as above.
+none_vs_reference() {
+    sc=$1
     "$GIKIOSK" reference --scenes-dir $DIR --scene $sc --size 160x120 --spp 512 --out "$TMP/$sc-ref1.exr" 2>/dev/null
-    "$GIKIOSK" run --platform mock --scenes-dir $DIR --scene $sc --method none --frames 12 --size 160x120 \
-        --budget render_scale=1,shadow=pcss,shadow_map=1024,shadow_subdiv=3,env_lights=16 --capture "$TMP/$sc-none" --hdr >/dev/null 2>&1
-    exr=$(ls "$TMP/$sc-none"/*.exr 2>/dev/null | tail -1)
-    check "$sc: renders" test -n "$exr"
-    cp "$exr" "$TMP/$sc-gpu.exr" 2>/dev/null
+    render_none $sc
     "$GIKIOSK" compare "$TMP/$sc-ref1.exr" "$TMP/$sc-gpu.exr" --json >"$TMP/$sc.json"
     ratio=$(json_field mean_ratio "$TMP/$sc.json")
     echo "# $sc none: rel_rmse $(json_field rel_rmse "$TMP/$sc.json") vs the reference, mean_ratio $ratio"
     check "$sc: lit like the reference (mean ratio $ratio in [0.97, 1.03])" \
         awk -v r="$ratio" 'BEGIN { exit !(r >= 0.97 && r <= 1.03) }'
+}
+for sc in alpha-mask alpha-opaque; do
+    none_vs_reference $sc
 done
 em=$(json_field rel_rmse "$TMP/alpha-mask.json")
 eo=$(json_field rel_rmse "$TMP/alpha-opaque.json")
@@ -168,4 +187,77 @@ check "the G-buffer and shadow maps cut the same holes (rel_rmse $amg, the trace
 ratio=$(json_field mean_ratio "$TMP/nm.json")
 check "the two tilts give different pictures (mean ratio $ratio, measured 0.62)" \
     awk -v r="$ratio" 'BEGIN { exit !(r ~ /^[0-9.]+$/ && r + 0 < 0.8) }'
+# doubleSided: a red quad showing the camera its back face in front of a grey wall. Single-sided,
+# the G-buffer culls it and the tracer's camera rays pass it: both show the wall (with the quad's
+# shadow, which both faces cast); double-sided, both show the red quad. Each file against the
+# tracer (the energy within 3%, above), and the two files differ in the rasterizer as in the tracer
+# (bounds as for the mask: the tracer's difference over 3x its noise, the rasterizer's within 25%).
+for sc in single-sided double-sided; do
+    none_vs_reference $sc
+done
+sd=$(compare_field "$TMP/single-sided-ref1.exr" "$TMP/double-sided-ref1.exr" rel_rmse)
+sdg=$(compare_field "$TMP/single-sided-gpu.exr" "$TMP/double-sided-gpu.exr" rel_rmse)
+echo "# single- vs double-sided: tracer $sd, rasterizer $sdg (the tracer's noise $an)"
+check "the tracer sees through the single-sided back face only (rel_rmse $sd, over 3x its noise $an)" \
+    awk -v r="$sd" -v n="$an" 'BEGIN { exit !(r != "" && n != "" && r > 3 * n) }'
+check "the G-buffer culls it as the tracer passes it (rel_rmse $sdg, the tracer's $sd within 25%)" \
+    awk -v r="$sdg" -v t="$sd" 'BEGIN { exit !(r != "" && t != "" && r >= 0.75 * t && r <= 1.25 * t) }'
+# occlusionTexture, ambient light (method none under a uniform 1-nit sky, all of it the
+# environment's SH ambient, the view filled by a quad of albedo 0.5): the texture's 0.502 (grey
+# 128) scales the image by 0.502, strength 0 leaves it as it is, and the untextured file agrees
+# with the tracer (which ignores the texture: measured 0.985, the SH fit of the 8 x 4 map). The
+# ratio's bound 0.002: the G-buffer keeps (1 - ao) / 2 in half float (2.4e-4 on ao; measured 0.5017).
+none_vs_reference occlusion-none
+render_none occlusion-half
+render_none occlusion-strength0
+oh=$(compare_field "$TMP/occlusion-none-gpu.exr" "$TMP/occlusion-half-gpu.exr" mean_ratio)
+check "an occlusion texture of 0.502 scales the ambient-only image by $oh (0.502 +- 0.002)" \
+    awk -v r="$oh" 'BEGIN { exit !(r ~ /^[0-9.]+$/ && r >= 0.500 && r <= 0.504) }'
+o0=$(compare_field "$TMP/occlusion-none-gpu.exr" "$TMP/occlusion-strength0-gpu.exr" rel_rmse)
+check "strength 0 leaves it unchanged (rel_rmse $o0)" awk -v r="$o0" 'BEGIN { exit !(r ~ /^[0-9.e-]+$/ && r + 0 == 0) }'
+# ... and the GI methods' light (a wall and floor under a sun, no ambient): method none is the same
+# with or without the texture (direct light is never occluded by it), and what vct and vpl add is
+# 0.502 as much with it. Measured 0.499 (vct) and 0.499 (vpl); bound 0.03 (half-float HDR: the GI
+# is a tenth of the image). Without the occlusion pass the ratio is 1. (lightmap 0.487 and
+# radiosity 0.473 were measured once and are not held to it: not investigated.) Every knob of the
+# two methods is pinned at its default: the scheduler moved vct's on a loaded machine (0.557).
+GI_PINNED=vct_res=64,vct_cones=6,vct_step=1,vct_trace_scale=0.5,vct_mips=aniso,vct_bounces=1
+GI_PINNED=$GI_PINNED,vpl_n=256,vpl_m=8,vpl_val_map=64,vpl_block=4,vpl_res=0.5,vpl_blur=4,vpl_vis=cssm,vpl_gather=interleaved
+for f in none half; do
+    for m in none vct vpl; do
+        "$GIKIOSK" run --platform mock --scenes-dir $DIR --scene occlusion-gi-$f --method $m --frames 12 --size 160x120 \
+            --budget render_scale=1,shadow=pcss,shadow_map=1024,shadow_subdiv=3,$GI_PINNED --capture "$TMP/ogi-$f-$m" --hdr >/dev/null 2>&1
+        cp "$(ls "$TMP/ogi-$f-$m"/*.exr 2>/dev/null | tail -1)" "$TMP/ogi-$f-$m.exr" 2>/dev/null
+        check "occlusion-gi-$f: $m renders" test -s "$TMP/ogi-$f-$m.exr"
+    done
+done
+# mean of an image over the untextured file's direct light
+rel_mean() { compare_field "$TMP/ogi-none-none.exr" "$TMP/ogi-$1.exr" mean_ratio; }
+d=$(rel_mean half-none)
+check "the texture leaves direct light alone (mean ratio $d)" awk -v r="$d" 'BEGIN { exit !(r ~ /^[0-9.]+$/ && r == 1) }'
+for m in vct vpl; do
+    gn=$(rel_mean none-$m)
+    gh=$(rel_mean half-$m)
+    check "$m: the GI with the texture is 0.502 of it without ((${gh} - ${d}) / (${gn} - 1), within 0.03)" \
+        awk -v n="$gn" -v h="$gh" -v d="$d" 'BEGIN { if (!(n > 1.02)) exit 1; r = (h - d) / (n - 1); exit !(r >= 0.472 && r <= 0.532) }'
+done
+# alphaMode BLEND: a red quad of alpha 0.5 over a white wall, filling the view, ambient light only:
+# the blend pass gives half the opaque quad's colour plus half the wall's (the same file OPAQUE, and
+# MASKed away), per channel. Bound rel_rmse 0.002: the HDR target is half float (its step is 4.9e-4
+# between 0.5 and 1; measured 5.1e-4). The tracer (stochastic transparency) is compared and printed,
+# not bounded: the quad's partial shadow on the wall, which the rasterizer lacks (render_blend.c).
+for sc in blend-half blend-opaque blend-cut; do
+    render_none $sc
+done
+if command -v oiiotool >/dev/null; then
+    oiiotool "$TMP/blend-opaque-gpu.exr" "$TMP/blend-cut-gpu.exr" --add --mulc 0.5 -o "$TMP/blend-expected.exr"
+    bl=$(compare_field "$TMP/blend-expected.exr" "$TMP/blend-half-gpu.exr" rel_rmse)
+    check "a 50% red quad over the wall is half of each (rel_rmse $bl against the mix, at most 0.002)" \
+        awk -v r="$bl" 'BEGIN { exit !(r ~ /^[0-9.e-]+$/ && r + 0 <= 0.002) }'
+    bo=$(compare_field "$TMP/blend-opaque-gpu.exr" "$TMP/blend-half-gpu.exr" rel_rmse)
+    check "and not the opaque quad (rel_rmse $bo against it, over 0.2)" awk -v r="$bo" 'BEGIN { exit !(r > 0.2) }'
+fi
+"$GIKIOSK" reference --scenes-dir $DIR --scene blend-half --size 160x120 --spp 256 --out "$TMP/blend-half-ref.exr" 2>/dev/null
+echo "# blend-half none vs the tracer: rel_rmse $(compare_field "$TMP/blend-half-ref.exr" "$TMP/blend-half-gpu.exr" rel_rmse)," \
+    "mean_ratio $(compare_field "$TMP/blend-half-ref.exr" "$TMP/blend-half-gpu.exr" mean_ratio)"
 finish

@@ -60,7 +60,7 @@ static gk_material material(vec3 base, float metallic, float roughness, float w,
     gk_material m;
     memset(&m, 0, sizeof m);
     m.base_color[0] = base.x, m.base_color[1] = base.y, m.base_color[2] = base.z, m.base_color[3] = 1;
-    m.base_color_tex = m.metallic_roughness_tex = m.specular_tex = m.specular_color_tex = m.emissive_tex = m.normal_tex = -1;
+    m.base_color_tex = m.metallic_roughness_tex = m.specular_tex = m.specular_color_tex = m.emissive_tex = m.normal_tex = m.occlusion_tex = -1;
     m.metallic = metallic;
     m.roughness = roughness;
     m.ior = 1.5f;

@@ -36,7 +36,7 @@ static void make_surface(one_surface *o, vec3 base, float metallic, float roughn
     memset(o, 0, sizeof *o);
     gk_material *m = &o->mat;
     m->base_color[0] = base.x, m->base_color[1] = base.y, m->base_color[2] = base.z, m->base_color[3] = 1;
-    m->base_color_tex = m->metallic_roughness_tex = m->specular_tex = m->specular_color_tex = m->emissive_tex = m->normal_tex = -1;
+    m->base_color_tex = m->metallic_roughness_tex = m->specular_tex = m->specular_color_tex = m->emissive_tex = m->normal_tex = m->occlusion_tex = -1;
     m->metallic = metallic;
     m->roughness = roughness;
     m->ior = 1.5f;

@@ -13,6 +13,7 @@
 #include "core/tonemap.h"
 #include "ref/materials.h"
 #include "ref/ref_scene.h"
+#include "ref/trace.h"
 #include "scene/scene.h"
 
 static gk_scene *load(const char *name)
@@ -391,12 +392,103 @@ static void alpha_mask_lets_rays_through_the_holes(void **state)
     }
     gk_ref_scene_free(&rs);
     gk_scene_free(s);
-    /* BLEND is loaded and drawn opaque, counted; a mode glTF does not have is refused */
+    /* BLEND is loaded and counted (blend_is_stochastic_transparency_in_the_tracer); a mode glTF
+       does not have is refused */
     s = load("alpha-blend.glb");
     assert_false(s->materials[0].alpha_mask);
+    assert_true(s->materials[0].alpha_blend);
     assert_int_equal(s->gltf.alpha_blended, 1);
     gk_scene_free(s);
     expect_refused("alpha-bad-mode.glb", "material 0 ('checker'): alphaMode 'CUTOUT' is not OPAQUE, MASK or BLEND");
+}
+
+/* doubleSided (single-sided.glb, double-sided.glb: a quad at z = 0.5 showing its back face to +z,
+ * in front of a wall at z = 0): a camera ray from +z passes the single-sided quad and stops at the
+ * wall, and stops at the double-sided one; the light tracer's connection to an eye on +z agrees.
+ * Every other ray sees both faces: a bounce ray (closest hit) and a shadow ray stop at the quad in
+ * both files, so the quad casts its shadow either way. */
+static void single_sided_surfaces_are_seen_from_the_front_only(void **state)
+{
+    (void)state;
+    const char *files[] = {"single-sided.glb", "double-sided.glb"};
+    for (int both = 0; both < 2; both++) {
+        gk_scene *s = load(files[both]);
+        assert_int_equal(s->materials[0].double_sided, both);
+        assert_int_equal(s->gltf.double_sided, both);
+        gk_scene_evaluate(s, 0.0f);
+        gk_ref_scene rs;
+        gk_err e = {0};
+        mat4 id = m4_identity();
+        assert_int_equal(gk_ref_scene_build(&rs, s, id, id, v3(0, 0, 3), 1, 1, &e), 0);
+        rs.eye = v3(0, 0, 3);
+        vec3 o = v3(0.1f, 0.2f, 3.0f), d = v3(0, 0, -1);
+        gk_scene_hit h;
+        assert_true(gk_scene_intersect_camera(&rs, o, d, INFINITY, &h));
+        float z = 3.0f - h.t;
+        if (fabsf(z - (both ? 0.5f : 0.0f)) > 1e-4f)
+            fail_msg("%s: the camera ray stopped at z %g, wanted the %s", files[both], z, both ? "quad" : "wall");
+        assert_int_equal(rs.tris[h.tri].material, both ? 0 : 1);
+        assert_true(gk_scene_intersect(&rs, o, d, INFINITY, &h));
+        assert_float_equal(3.0f - h.t, 0.5f, 1e-4f); /* a bounce ray stops at the quad's back face */
+        assert_true(gk_scene_occluded(&rs, v3(0.1f, 0.2f, 0.25f), v3(0, 0, 1), 10.0f)); /* its shadow */
+        assert_int_equal(gk_scene_camera_sees(&rs, v3(0.1f, 0.2f, 0.0f)), !both);
+        assert_true(gk_scene_camera_sees(&rs, v3(0.1f, 0.2f, 0.5f)));
+        gk_ref_scene_free(&rs);
+        gk_scene_free(s);
+    }
+}
+
+/* occlusionTexture (occlusion-*.glb): the texture, its strength (1 by default, 0 kept) and its UV
+ * slot are read; a file without one has none. The tracer does not read it (scene.h). */
+static void occlusion_textures_are_read(void **state)
+{
+    (void)state;
+    const struct { const char *file; int tex; float strength; } want[] = {
+        {"occlusion-none.glb", -1, 1.0f}, {"occlusion-half.glb", 0, 1.0f}, {"occlusion-strength0.glb", 0, 0.0f}};
+    for (size_t i = 0; i < sizeof want / sizeof want[0]; i++) {
+        gk_scene *s = load(want[i].file);
+        const gk_material *m = &s->materials[0];
+        assert_int_equal(m->occlusion_tex, want[i].tex);
+        assert_int_equal(s->gltf.occlusion_textures, want[i].tex >= 0);
+        if (want[i].tex >= 0) {
+            assert_float_equal(m->occlusion_strength, want[i].strength, 0.0f);
+            assert_int_equal(m->tex_uv[GK_SLOT_OCCLUSION].texcoord, 0);
+            /* grey 128 as data: 128/255, not sRGB-decoded */
+            assert_float_equal(s->textures[m->occlusion_tex].rgba[0], 128.0f / 255.0f, 1e-6f);
+        }
+        gk_scene_free(s);
+    }
+}
+
+/* alphaMode BLEND (blend-half.glb: a red quad of alpha 0.5 at z = 0.5 in front of a wall at z = 0):
+ * the tracer's rays pass it with probability 1 - alpha, camera and shadow rays alike. 10,000 rays
+ * on a grid over the quad: the share stopped by it is 0.5 within 0.02 (4 standard deviations of a
+ * binomial share, 0.005; measured below). */
+static void blend_is_stochastic_transparency_in_the_tracer(void **state)
+{
+    (void)state;
+    gk_scene *s = load("blend-half.glb");
+    assert_true(s->materials[0].alpha_blend);
+    assert_false(s->materials[0].alpha_mask);
+    gk_scene_evaluate(s, 0.0f);
+    gk_ref_scene rs;
+    gk_err e = {0};
+    mat4 id = m4_identity();
+    assert_int_equal(gk_ref_scene_build(&rs, s, id, id, v3(0, 0, 2), 1, 1, &e), 0);
+    int quad = 0, shadowed = 0, n = 0;
+    for (int i = 0; i < 100; i++)
+        for (int j = 0; j < 100; j++, n++) {
+            float x = -0.99f + 1.98f * ((float)i + 0.5f) / 100.0f, y = -0.99f + 1.98f * ((float)j + 0.5f) / 100.0f;
+            gk_bvh_hit h;
+            assert_true(gk_bvh_intersect(&rs.bvh, v3(x, y, 2.0f), v3(0, 0, -1), 0.0f, 10.0f, &h));
+            quad += fabsf(2.0f - h.t - 0.5f) < 1e-4f;
+            shadowed += gk_bvh_occluded(&rs.bvh, v3(x, y, 0.25f), v3(0, 0, 1), 0.0f, 10.0f);
+        }
+    print_message("# blend: %d of %d camera rays and %d shadow rays stopped by the alpha-0.5 quad\n", quad, n, shadowed);
+    assert_in_range(quad, 4800, 5200);
+    assert_in_range(shadowed, 4800, 5200);
+    gk_ref_scene_free(&rs);
+    gk_scene_free(s);
 }
 
 int main(void)
@@ -415,6 +507,9 @@ int main(void)
         cmocka_unit_test(samplers_wrap_and_filter_as_declared),
         cmocka_unit_test(texture_transform_and_second_uv_set),
         cmocka_unit_test(alpha_mask_lets_rays_through_the_holes),
+        cmocka_unit_test(single_sided_surfaces_are_seen_from_the_front_only),
+        cmocka_unit_test(occlusion_textures_are_read),
+        cmocka_unit_test(blend_is_stochastic_transparency_in_the_tracer),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -29,7 +29,7 @@ static void glass_init(glass_fixture *g, float ior, float tint, bool up)
     m->base_color[0] = m->base_color[1] = m->base_color[2] = tint;
     m->base_color[3] = 1;
     m->base_color_tex = m->metallic_roughness_tex = m->specular_tex = m->specular_color_tex = -1;
-    m->emissive_tex = m->normal_tex = -1;
+    m->emissive_tex = m->normal_tex = m->occlusion_tex = -1;
     m->metallic = 0;
     m->roughness = 0;
     m->transmission = 1;
