@@ -54,6 +54,7 @@ void gk_lgv_default_debug(gk_lgv_debug *d)
     d->parts = GK_LGV_PART_ALL;
     d->itp_mode = GK_LGV_ITP_ANGLE;
     d->snap_hits = true;
+    d->occlusion = true;
     d->c0 = LGV_C0;
 }
 
@@ -180,6 +181,7 @@ static long memory_bytes(const void *self)
     long layers = 6L * s->maps_count, texels = (long)s->maps_res * s->maps_res;
     long b = layers * texels * (4 * 4 / 3 + 4 + 4);                 /* R32UI with mips, 2 x RGBA8 */
     b += s->lgv_cells * 48 * 4 + s->lgv_cells * 8 * 3;              /* ints, src, acc, dst; 3 RGBA16F volumes */
+    b += 12L * (s->geo_dims[0] * s->geo_dims[1] * s->geo_dims[2]);  /* geometry volume (3 uints per corner) */
     b += LGV_CAUSTIC_HEADER + (long)s->caustic_cap * LGV_CAUSTIC_BYTES;
     b += (long)s->ss_w * s->ss_h * (48 * 3 + 8 * 3);
     return b;
@@ -193,9 +195,9 @@ void lgv_free_gpu(lgv_state *s)
     glDeleteTextures(3, s->ss_img);
     glDeleteRenderbuffers(1, &s->map_depth);
     glDeleteFramebuffers(1, &s->map_fbo);
-    GLuint bufs[11] = {s->centres_ssbo, s->lgv_ssbo, s->caustic_ssbo, s->stats_ssbo, s->probe_ssbo, s->src_ssbo,
-                       s->acc_ssbo, s->dst_ssbo, s->ss_grid, s->ss_a, s->ss_b};
-    glDeleteBuffers(11, bufs);
+    GLuint bufs[12] = {s->centres_ssbo, s->lgv_ssbo, s->caustic_ssbo, s->stats_ssbo, s->probe_ssbo, s->src_ssbo,
+                       s->acc_ssbo, s->dst_ssbo, s->ss_grid, s->ss_a, s->ss_b, s->geo_ssbo};
+    glDeleteBuffers(12, bufs);
     glDeleteVertexArrays(1, &s->empty_vao);
 }
 
