@@ -21,6 +21,7 @@ typedef struct gk_lgv_debug {
     bool snap_hits;    /* diffuse hits moved onto the surface the map's texel holds (default; false: the secant's point) */
     bool occlusion;    /* eq. (6)'s fuzzy occlusion G from the geometry volume (default; false: G = 1, leaks) */
     bool seeing_maps;  /* a ray's maps: the nearest that see its point (tracer.glsl lgv_seeing_map) */
+    float lookup_offset; /* eq. (7) reads the LGV this many cells along the normal (default 0.5, research B.5 item 8) */
     int max_events;    /* longest photon path in surface events (0: LGV_BOUNCES) */
     bool gather_replace; /* the lookup reads the last gathering iteration alone (default false: their sum, LPV's) */
 } gk_lgv_debug;
