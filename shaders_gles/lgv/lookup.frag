@@ -21,6 +21,7 @@ uniform vec2 u_ss_size;       // SSLGV pixels
 uniform vec2 u_tan_half;      // tan of the camera's half field of view, x and y
 uniform vec3 u_forward;       // camera forward (unit)
 uniform int u_parts;          // 1 LGV, 2 SSLGV, 3 both
+uniform float u_offset;       // cells along the normal the LGV is read at (0.5; gk_lgv_debug.lookup_offset)
 out vec4 o_color;
 
 // The SSLGV over this pixel's footprint. Finer than the image (lgv_sslgv wider than the view), the
@@ -59,7 +60,7 @@ void main()
     vec4 yn = lgv_sh(-n);
     vec3 c = vec3(0.0);
     if ((u_parts & 1) != 0) {
-        vec3 uvw = (x + 0.5 * u_cell * n - u_grid_min) / u_grid_size;
+        vec3 uvw = (x + u_offset * u_cell * n - u_grid_min) / u_grid_size;
         vec3 e = vec3(max(dot(texture(u_vol_r, uvw), yn), 0.0), max(dot(texture(u_vol_g, uvw), yn), 0.0),
                       max(dot(texture(u_vol_b, uvw), yn), 0.0));
         c += 4.0 * e / (u_cell * u_cell);

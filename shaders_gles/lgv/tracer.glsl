@@ -15,6 +15,7 @@ uniform int u_secant_steps;
 uniform vec3 u_bmin;          // the scene's bounds (a little padded): a ray leaving them met nothing
 uniform vec3 u_bmax;
 uniform int u_itp_mode;       // 0 angle partition (the seed), 1 planar ITP (Fig. 4's comparison)
+uniform int u_seeing;         // 1: a ray's maps are the nearest that see its point (lgv_seeing_map)
 layout(std430, binding = 0) readonly buffer Maps { highp vec4 centre[]; };
 
 highp float lgv_dist(int map, highp vec3 d, int level)
@@ -47,6 +48,33 @@ int lgv_nearest_map(highp vec3 x, int first, int count)
         }
     }
     return best;
+}
+
+// The lattice map nearest x among those that see x (x no farther from the centre than the map's
+// surface that way, within a texel's footprint); the nearest of all when none does. The seed's
+// "nearest map" presumes it sees the photon: a centre pushed out of a thin wall lies beside it, and
+// the photons on the wall's other side, nearest to it, were traced on a map that sees only the wall
+// (light-leak, 27 maps: 55% of the LGV's flux landed in the unlit room). u_seeing = 0: the nearest.
+int lgv_seeing_map(highp vec3 x)
+{
+    int nearest = lgv_nearest_map(x, 0, u_n_maps);
+    if (u_seeing == 0)
+        return nearest;
+    int best = -1;
+    highp float bd = 1e30;
+    for (int m = 0; m < u_n_maps; m++) {
+        highp vec3 c = x - centre[m].xyz;
+        highp float d2 = dot(c, c);
+        if (d2 >= bd)
+            continue;
+        highp float dm = lgv_dist(m, c, 0);
+        highp float reach = dm * (1.0 + 2.0 / float(u_res));
+        if (d2 <= reach * reach) {
+            bd = d2;
+            best = m;
+        }
+    }
+    return best >= 0 ? best : nearest;
 }
 
 // Eq. (2)-(3): f = d^2 a for impostor p (relative to the centre), photon t (relative to the
@@ -198,7 +226,7 @@ highp float lgv_exit(highp vec3 x, highp vec3 r)
 // fan behind the photon, or the map empty that way) falls back to where the ray leaves the bounds.
 highp float lgv_trace(highp vec3 x, highp vec3 r, out int map)
 {
-    int m1 = lgv_nearest_map(x, 0, u_n_maps);
+    int m1 = lgv_seeing_map(x);
     highp vec3 itp;
     bool ok = true;
     if (u_itp_mode == 1)
@@ -209,7 +237,7 @@ highp float lgv_trace(highp vec3 x, highp vec3 r, out int map)
     highp float d0 = ok ? dot(itp - x, r) : exit_d;
     if (!(d0 < exit_d)) // beyond the bounds (or an empty direction at LGV_FAR)
         d0 = exit_d;
-    map = lgv_nearest_map(x + d0 * r, 0, u_n_maps);
+    map = lgv_seeing_map(x + d0 * r);
     highp float start = 2.0 * length(x - centre[map].xyz) * 2.0 / float(u_res) + 1e-4;
     highp float d = lgv_secant(map, x, r, d0, start, exit_d);
     if (d < 0.0 && map != m1) {

@@ -19,6 +19,11 @@ typedef struct gk_lgv_debug {
     unsigned seed;     /* added to the frame index in the photons' hash keys */
     float c0;          /* the SSLGV's bandwidth factor C0 of h = C0 sqrt(A / N) (default LGV_C0) */
     bool snap_hits;    /* diffuse hits moved onto the surface the map's texel holds (default; false: the secant's point) */
+    bool occlusion;    /* eq. (6)'s fuzzy occlusion G from the geometry volume (default; false: G = 1, leaks) */
+    bool seeing_maps;  /* a ray's maps: the nearest that see its point (tracer.glsl lgv_seeing_map) */
+    float lookup_offset; /* eq. (7) reads the LGV this many cells along the normal (default 0.5, research B.5 item 8) */
+    int max_events;    /* longest photon path in surface events (0: LGV_BOUNCES) */
+    bool gather_replace; /* the lookup reads the last gathering iteration alone (default false: their sum, LPV's) */
 } gk_lgv_debug;
 
 typedef struct gk_lgv_stats {
@@ -37,5 +42,11 @@ const gk_lgv_stats *gk_lgv_get_stats(void *self);
 int gk_lgv_probe(void *self, const float *rays, int n, float *hits, gk_err *e);
 /* Map centres of the current scene (xyz, w) and their count (lattice first, then refractors). */
 int gk_lgv_centres(const void *self, float *out, int cap);
+/* The LGV the last frame's lookup read (the iterations' sum, or the last one), 12 floats per cell (R, G, B x 4 SH; x fastest, dims in
+ * the stats), into out (cap floats); the count or -1. */
+long gk_lgv_read_lgv(void *self, float *out, long cap, gk_err *e);
+/* The geometry volume (eq. 6's G, built at the first frame with gathering iterations): 3 opacities
+ * (projected areas / l^2 along x, y, z) per LGV cell corner, dims = the LGV's + 1; the count or -1. */
+long gk_lgv_read_geometry(void *self, float *out, long cap, int dims[3], gk_err *e);
 
 #endif

@@ -33,6 +33,10 @@ enum { LGV_ST_RAYS = 0, LGV_ST_INJECTED = 1, LGV_ST_CAUSTIC = 2, LGV_ST_ESCAPED 
  * so k = pi / (4 x 0.5417). Independent of N and C0 by construction (B.5 item 13 checks it). */
 #define LGV_INJECT_SCALE 1.44993f
 
+/* The geometry volume (lgv_geometry.c): fixed-point units per unit of opacity (projected area / l^2;
+ * a texel adds at most 10 x its area, a cell's sum stays far below 2^32 / 65536). */
+#define LGV_GEO_FIXED 65536.0f
+
 #define LGV_KNOBS 6
 
 typedef struct lgv_state {
@@ -57,11 +61,17 @@ typedef struct lgv_state {
     /* photons and grids */
     GLuint lgv_ssbo, caustic_ssbo, stats_ssbo, probe_ssbo;
     GLuint src_ssbo, acc_ssbo, dst_ssbo;
+    GLuint out_ssbo;             /* what the volume textures hold: acc_ssbo, or the last iteration's */
     long lgv_cells;
     int dims[3];
     float cell;
     vec3 grid_min;
     GLuint vol[3];
+    /* geometry volume (eq. 6's G): on the LGV's corners, built for maps_stamp, geo_dims, geo_cell */
+    GLuint geo_ssbo;
+    int geo_dims[3];
+    float geo_cell;
+    unsigned maps_stamp, geo_maps_stamp; /* maps_stamp counts the maps' renderings */
     int vol_dims[3];
     int caustic_cap;
     float fixed_scale;
@@ -79,6 +89,8 @@ int lgv_render_maps(lgv_state *s, const gk_gi_frame *f, gk_err *e);
 /* lgv_photons.c: emission + tracing + LGV injection, gathering, the volume textures. */
 int lgv_trace_photons(lgv_state *s, const gk_gi_frame *f, gk_err *e);
 int lgv_gather(lgv_state *s, const gk_gi_frame *f, gk_err *e);
+/* lgv_geometry.c: the geometry volume from the lattice maps (only when the maps or the grid changed). */
+int lgv_build_geometry(lgv_state *s, gk_err *e);
 /* Binds the maps and the tracer's uniforms for a program that includes lgv/tracer.glsl. */
 int lgv_bind_tracer(lgv_state *s, GLuint prog, gk_err *e);
 /* lgv_sslgv.c: caustic photons into the screen grid, its iterations; lookup into the HDR image. */

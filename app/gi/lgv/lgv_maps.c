@@ -308,5 +308,6 @@ int lgv_render_maps(lgv_state *s, const gk_gi_frame *f, gk_err *e)
     }
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     s->maps_valid = true;
+    s->maps_stamp++; /* the geometry volume follows the maps (lgv_geometry.c) */
     return 0;
 }

@@ -38,7 +38,7 @@ static void zero_buffer(GLuint b, long bytes)
 /* lgv/tracer.glsl (in trace.comp) */
 typedef struct tracer_uniforms {
     GLint u_dist, u_nrm, u_alb, u_res, u_levels, u_n_maps, u_n_refractors, u_q, u_loops, u_itp_eps, u_secant_steps,
-        u_itp_mode, u_bmin, u_bmax;
+        u_itp_mode, u_seeing, u_bmin, u_bmax;
 } tracer_uniforms;
 static const gk_uniform_field tracer_fields[] = {
     GK_UNIFORM(tracer_uniforms, u_dist),      GK_UNIFORM(tracer_uniforms, u_nrm),
@@ -47,7 +47,8 @@ static const gk_uniform_field tracer_fields[] = {
     GK_UNIFORM(tracer_uniforms, u_n_refractors), GK_UNIFORM(tracer_uniforms, u_q),
     GK_UNIFORM(tracer_uniforms, u_loops),     GK_UNIFORM(tracer_uniforms, u_itp_eps),
     GK_UNIFORM(tracer_uniforms, u_secant_steps),
-    GK_UNIFORM(tracer_uniforms, u_itp_mode),  GK_UNIFORM(tracer_uniforms, u_bmin),
+    GK_UNIFORM(tracer_uniforms, u_itp_mode),  GK_UNIFORM(tracer_uniforms, u_seeing),
+    GK_UNIFORM(tracer_uniforms, u_bmin),
     GK_UNIFORM(tracer_uniforms, u_bmax),
 };
 
@@ -92,6 +93,7 @@ int lgv_bind_tracer(lgv_state *s, GLuint prog, gk_err *e)
     glUniform1f(u->u_itp_eps, LGV_ITP_EPS_REL * s->diag);
     glUniform1i(u->u_secant_steps, LGV_SECANT_STEPS);
     glUniform1i(u->u_itp_mode, s->dbg.itp_mode);
+    glUniform1i(u->u_seeing, s->dbg.seeing_maps ? 1 : 0);
     glUniform3f(u->u_bmin, s->bmin.x, s->bmin.y, s->bmin.z);
     glUniform3f(u->u_bmax, s->bmax.x, s->bmax.y, s->bmax.z);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, s->centres_ssbo);
@@ -196,7 +198,7 @@ int lgv_trace_photons(lgv_state *s, const gk_gi_frame *f, gk_err *e)
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, s->probe_ssbo ? s->probe_ssbo : s->stats_ssbo);
     glUniform1i(u->u_probe, 0);
     glUniform1ui(u->u_frame, s->frame_index + s->dbg.seed);
-    glUniform1i(u->u_bounces, LGV_BOUNCES);
+    glUniform1i(u->u_bounces, s->dbg.max_events > 0 ? s->dbg.max_events : LGV_BOUNCES);
     glUniform3f(u->u_grid_min, s->grid_min.x, s->grid_min.y, s->grid_min.z);
     glUniform1f(u->u_cell, s->cell);
     glUniform3i(u->u_dims, s->dims[0], s->dims[1], s->dims[2]);
@@ -248,6 +250,12 @@ typedef struct dims_uniforms {
     GLint u_dims;
 } dims_uniforms;
 static const gk_uniform_field dims_fields[] = {GK_UNIFORM(dims_uniforms, u_dims)};
+typedef struct gather_uniforms {
+    GLint u_dims, u_occlusion, u_geo_fixed;
+} gather_uniforms;
+static const gk_uniform_field gather_fields[] = {GK_UNIFORM(gather_uniforms, u_dims),
+                                                 GK_UNIFORM(gather_uniforms, u_occlusion),
+                                                 GK_UNIFORM(gather_uniforms, u_geo_fixed)};
 
 int lgv_gather(lgv_state *s, const gk_gi_frame *f, gk_err *e)
 {
@@ -256,10 +264,13 @@ int lgv_gather(lgv_state *s, const gk_gi_frame *f, gk_err *e)
     GLuint res = gk_program_get_compute(pc, "lgv/lgv_resolve.comp", NULL, e);
     const resolve_uniforms *ru = res ? gk_program_uniforms(pc, res, GK_FIELDS(resolve_fields), sizeof *ru, e) : NULL;
     GLuint gat = ru ? gk_program_get_compute(pc, "lgv/lgv_gather.comp", NULL, e) : 0;
-    const dims_uniforms *gu = gat ? gk_program_uniforms(pc, gat, GK_FIELDS(dims_fields), sizeof *gu, e) : NULL;
+    const gather_uniforms *gu = gat ? gk_program_uniforms(pc, gat, GK_FIELDS(gather_fields), sizeof *gu, e) : NULL;
     GLuint vol = gu ? gk_program_get_compute(pc, "lgv/lgv_volume.comp", NULL, e) : 0;
     const dims_uniforms *vu = vol ? gk_program_uniforms(pc, vol, GK_FIELDS(dims_fields), sizeof *vu, e) : NULL;
     if (!vu)
+        return -1;
+    bool occlusion = s->iters > 0 && s->dbg.occlusion;
+    if (occlusion && lgv_build_geometry(s, e) != 0)
         return -1;
     int values = (int)(s->lgv_cells * 12);
     glUseProgram(res);
@@ -271,6 +282,9 @@ int lgv_gather(lgv_state *s, const gk_gi_frame *f, gk_err *e)
     glDispatchCompute((GLuint)(values + 63) / 64, 1, 1);
     glUseProgram(gat);
     glUniform3i(gu->u_dims, s->dims[0], s->dims[1], s->dims[2]);
+    glUniform1i(gu->u_occlusion, occlusion ? 1 : 0);
+    glUniform1f(gu->u_geo_fixed, LGV_GEO_FIXED);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, occlusion ? s->geo_ssbo : s->src_ssbo);
     GLuint a = s->src_ssbo, b = s->dst_ssbo;
     for (int it = 0; it < s->iters; it++) {
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
@@ -280,8 +294,11 @@ int lgv_gather(lgv_state *s, const gk_gi_frame *f, gk_err *e)
         GLuint t = a;
         a = b, b = t;
     }
+    /* the volume: the sum of the iterations (LPV practice, the default), or the last one alone */
+    s->out_ssbo = s->dbg.gather_replace ? a : s->acc_ssbo;
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     glUseProgram(vol);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, s->out_ssbo);
     glUniform3i(vu->u_dims, s->dims[0], s->dims[1], s->dims[2]);
     for (int i = 0; i < 3; i++)
         glBindImageTexture((GLuint)i, s->vol[i], 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
