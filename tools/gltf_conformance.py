@@ -305,7 +305,13 @@ def main():
     # +z) its back face (winding reversed: its front faces -z, the wall). Single-sided, the camera
     # sees the wall through it (culled in the G-buffer, passed by the tracer's camera rays); double-
     # sided it hides the wall. Either way it casts the studio key light's shadow on the wall.
-    for name, both in (("single-sided", False), ("double-sided", True)):
+    # single-sided-mirrored: the single-sided quad on a node scaled (-1, 1, 1) (the quad is symmetric
+    # in x, so it stays where it was). The mirror reverses its triangles' winding, and glTF 2.0 3.7.2.1
+    # makes a mirrored node's front faces clockwise: its front still faces the wall (the mirror of -z
+    # in x is -z), so both renderers show the wall as for single-sided.glb. A renderer that judges
+    # the winding without the determinant shows the red quad instead, as for double-sided.glb.
+    for name, both, mirror in (("single-sided", False, False), ("double-sided", True, False),
+                               ("single-sided-mirrored", False, True)):
         d = Doc()
         pos = d.accessor("fff", QUAD_POS, FLOAT, "VEC3", minmax=True)
         idx = d.accessor("H", [0, 2, 1, 0, 3, 2], USHORT, "SCALAR")
@@ -314,7 +320,7 @@ def main():
             {"name": "wall", "pbrMetallicRoughness": {
                 "baseColorFactor": [0.5, 0.5, 0.5, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0}}]
         d.mesh_node([{"attributes": {"POSITION": pos}, "indices": idx, "material": 0}], "quad",
-                    translation=[0.0, 0.0, 0.5])
+                    translation=[0.0, 0.0, 0.5], **({"scale": [-1.0, 1.0, 1.0]} if mirror else {}))
         wall = d.accessor("fff", [(3 * x, 3 * y, z) for x, y, z in QUAD_POS], FLOAT, "VEC3", minmax=True)
         widx = d.accessor("H", QUAD_IDX, USHORT, "SCALAR")
         d.mesh_node([{"attributes": {"POSITION": wall}, "indices": widx, "material": 1}], "wall")

@@ -20,6 +20,7 @@ static int add_mesh_triangles(gk_ref_scene *rs, const gk_scene *s, const gk_node
     if (mat->light_proxy)
         return 0; /* its area light stands in for it (scene.h) */
     mat4 w = node->world;
+    bool mirrored = gk_node_mirrored(node);
     mat4 nm = m4_transpose(m4_inverse(w));
     if (rs->n_tris + m->n_triangles > *cap) {
         uint32_t nc = (*cap ? *cap * 2 : 1024);
@@ -65,7 +66,8 @@ static int add_mesh_triangles(gk_ref_scene *rs, const gk_scene *s, const gk_node
         float len = v3_len(c);
         if (!(len > 1e-20f) || !isfinite(len))
             continue; /* degenerate after transform: never hit, never sampled */
-        t->ng = v3_scale(c, 1.0f / len);
+        /* the glTF front face: counter-clockwise, clockwise under a mirroring transform */
+        t->ng = v3_scale(c, (mirrored ? -1.0f : 1.0f) / len);
         t->area = 0.5f * len;
         if (!m->normals)
             t->n[0] = t->n[1] = t->n[2] = t->ng;

@@ -187,6 +187,9 @@ static void set_node(const gk_node *node, const gk_draw_uniforms *u)
     mat4 nm = m4_transpose(m4_inverse(node->world));
     glUniformMatrix4fv(u->u_model, 1, GL_FALSE, node->world.m);
     glUniformMatrix4fv(u->u_normal_matrix, 1, GL_FALSE, nm.m);
+    /* a mirroring transform turns the winding: glTF's front faces are then clockwise (culling and
+       gl_FrontFacing, which decides a single-sided emitter's lit side, follow it) */
+    glFrontFace(gk_node_mirrored(node) ? GL_CW : GL_CCW);
 }
 
 static void draw_one(const gk_scene_gpu *g, const gk_scene *s, const gk_draw_uniforms *u, int flags, int k)
@@ -237,6 +240,7 @@ void gk_scene_gpu_draw(const gk_scene_gpu *g, const gk_scene *s, const gk_draw_u
                 draw_one(g, s, u, flags, k);
     }
     glBindVertexArray(0);
+    glFrontFace(GL_CCW);
     if (flags & GK_DRAW_CULL_SINGLE_SIDED)
         glDisable(GL_CULL_FACE);
 }
@@ -249,6 +253,7 @@ void gk_scene_gpu_draw_mesh(const gk_scene_gpu *g, const gk_scene *s, const gk_d
     set_node(&s->nodes[n], u);
     draw_one(g, s, u, flags, k);
     glBindVertexArray(0);
+    glFrontFace(GL_CCW);
     if (flags & GK_DRAW_CULL_SINGLE_SIDED)
         glDisable(GL_CULL_FACE);
 }

@@ -83,6 +83,14 @@ static void apply_channel(gk_scene *s, const gk_anim_channel *c, float t)
         n->scale = v;
 }
 
+bool gk_node_mirrored(const gk_node *n)
+{
+    const float *m = n->world.m; /* the determinant of the 3x3 part (the same for its transpose) */
+    float det = m[0] * (m[5] * m[10] - m[9] * m[6]) - m[4] * (m[1] * m[10] - m[9] * m[2]) +
+                m[8] * (m[1] * m[6] - m[5] * m[2]);
+    return det < 0.0f;
+}
+
 void gk_scene_evaluate(gk_scene *s, float t)
 {
     if (s->anim_duration > 0.0f) {

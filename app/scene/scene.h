@@ -297,6 +297,10 @@ void gk_scene_free(gk_scene *s);
 /* Evaluates animations at time t (seconds, looped) and fills every node's world matrix. */
 void gk_scene_evaluate(gk_scene *s, float t);
 
+/* Whether a node's world transform mirrors (its 3x3 determinant is negative): glTF 2.0 3.7.2.1 then
+   makes its triangles' front faces clockwise, so both renderers turn the winding they test. */
+bool gk_node_mirrored(const gk_node *n);
+
 /* The view camera after gk_scene_evaluate: view and projection for the given aspect ratio, plus
  * the eye position. Both renderers call this, so they see exactly the same camera. */
 void gk_scene_camera(const gk_scene *s, float aspect, mat4 *view, mat4 *proj, vec3 *eye);

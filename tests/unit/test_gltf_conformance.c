@@ -402,6 +402,40 @@ static void alpha_mask_lets_rays_through_the_holes(void **state)
     expect_refused("alpha-bad-mode.glb", "material 0 ('checker'): alphaMode 'CUTOUT' is not OPAQUE, MASK or BLEND");
 }
 
+/* A mirroring node (single-sided-mirrored.glb: the single-sided quad under scale (-1, 1, 1)) reverses
+ * its triangles' winding, and glTF makes a mirrored node's front faces clockwise: the quad's front
+ * still faces the wall (the mirror of -z in x), so the camera ray passes it as in single-sided.glb.
+ * Judged by the world-space winding alone the quad would face the camera (as double-sided.glb). */
+static void mirrored_nodes_turn_the_front_face(void **state)
+{
+    (void)state;
+    gk_scene *s = load("single-sided-mirrored.glb");
+    assert_false(s->materials[0].double_sided);
+    gk_scene_evaluate(s, 0.0f);
+    int quad = -1;
+    for (int n = 0; n < s->n_nodes; n++)
+        if (strcmp(s->nodes[n].name, "quad") == 0)
+            quad = n;
+    assert_true(quad >= 0);
+    assert_true(gk_node_mirrored(&s->nodes[quad]));
+    assert_false(gk_node_mirrored(&s->nodes[quad == 0 ? 1 : 0]));
+    gk_ref_scene rs;
+    gk_err e = {0};
+    mat4 id = m4_identity();
+    assert_int_equal(gk_ref_scene_build(&rs, s, id, id, v3(0, 0, 3), 1, 1, &e), 0);
+    rs.eye = v3(0, 0, 3);
+    gk_scene_hit h;
+    assert_true(gk_scene_intersect_camera(&rs, v3(0.1f, 0.2f, 3.0f), v3(0, 0, -1), INFINITY, &h));
+    assert_float_equal(3.0f - h.t, 0.0f, 1e-4f); /* the wall */
+    assert_int_equal(rs.tris[h.tri].material, 1);
+    assert_true(gk_scene_intersect(&rs, v3(0.1f, 0.2f, 3.0f), v3(0, 0, -1), INFINITY, &h));
+    assert_int_equal(rs.tris[h.tri].material, 0);
+    assert_true(rs.tris[h.tri].ng.z < -0.99f); /* the quad's front, towards the wall */
+    assert_true(gk_scene_camera_sees(&rs, v3(0.1f, 0.2f, 0.0f))); /* the wall through it */
+    gk_ref_scene_free(&rs);
+    gk_scene_free(s);
+}
+
 /* doubleSided (single-sided.glb, double-sided.glb: a quad at z = 0.5 showing its back face to +z,
  * in front of a wall at z = 0): a camera ray from +z passes the single-sided quad and stops at the
  * wall, and stops at the double-sided one; the light tracer's connection to an eye on +z agrees.
@@ -508,6 +542,7 @@ int main(void)
         cmocka_unit_test(texture_transform_and_second_uv_set),
         cmocka_unit_test(alpha_mask_lets_rays_through_the_holes),
         cmocka_unit_test(single_sided_surfaces_are_seen_from_the_front_only),
+        cmocka_unit_test(mirrored_nodes_turn_the_front_face),
         cmocka_unit_test(occlusion_textures_are_read),
         cmocka_unit_test(blend_is_stochastic_transparency_in_the_tracer),
     };
