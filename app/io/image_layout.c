@@ -34,6 +34,35 @@ static int check_png(FILE *f, const char *path, long long size, gk_err *e)
     return 0; /* ends without IEND: libpng says what is missing */
 }
 
+/* Scan lines per chunk of each OpenEXR compression (NONE, RLE, ZIPS, ZIP, PIZ, PXR24, B44, B44A,
+ * DWAA, DWAB); an unknown one OpenEXR refuses itself. */
+static int exr_lines_per_chunk(int compression)
+{
+    static const int lines[] = {1, 1, 1, 16, 32, 16, 32, 32, 32, 256};
+    return compression >= 0 && compression < (int)(sizeof lines / sizeof lines[0]) ? lines[compression] : 256;
+}
+
+/* The part's dataWindow, checked before OpenEXR sizes anything by it: OpenEXR allocates a scan-line
+ * image's line-offset table (8 bytes a chunk) from the window as it opens the file, so a 400-byte file
+ * claiming 1.7e9 lines made the reader use 2 GB before it failed (tests/fuzz/fuzz_image.c). The window
+ * must be non-empty, within the readers' pixel cap (gk_image_alloc's 2^28), and a single-part scan-line
+ * file must hold its offset table. */
+static int check_exr_window(const char *path, const int32_t box[4], int compression, bool offsets_follow,
+                            long long left, gk_err *e)
+{
+    long long w = (long long)box[2] - box[0] + 1, h = (long long)box[3] - box[1] + 1;
+    if (w <= 0 || h <= 0)
+        return gk_fail(e, GK_EINPUT, "%s: corrupt OpenEXR: its dataWindow (%d,%d)-(%d,%d) is empty", path, box[0],
+                       box[1], box[2], box[3]);
+    if (w * h > (1LL << 28))
+        return gk_fail(e, GK_EINPUT, "%s: image too large (%lldx%lld in its OpenEXR dataWindow)", path, w, h);
+    long long lpc = exr_lines_per_chunk(compression), table = (h + lpc - 1) / lpc * 8;
+    if (offsets_follow && table > left)
+        return gk_fail(e, GK_EINPUT, "%s: corrupt OpenEXR: its dataWindow (%lldx%lld) needs a %lld-byte line-offset "
+                       "table, the file has %lld bytes left", path, w, h, table, left);
+    return 0;
+}
+
 /* OpenEXR (file layout, "Header"): magic, version (flags in bytes 5..7), then attributes
  * `name\0 type\0 size(int32 LE) value[size]` up to an empty name; a multi-part file has one such
  * header per part and an empty header after the last. */
@@ -43,6 +72,10 @@ static int check_exr(FILE *f, const char *path, long long size, gk_err *e)
     if (fseeko(f, 4, SEEK_SET) != 0 || fread(version, 1, 4, f) != 4)
         return gk_fail(e, GK_EINPUT, "%s: corrupt OpenEXR: the file ends in its version field", path);
     bool multipart = (version[1] & 0x10) != 0; /* flag bit 12 */
+    bool tiled = (version[1] & 0x02) != 0;     /* flag bit 9: a single tiled part */
+    int32_t box[4] = {0, 0, 0, 0};
+    bool have_window = false;
+    int compression = 0;
     long long at = 8;
     for (;;) {
         int c = fgetc(f);
@@ -50,6 +83,10 @@ static int check_exr(FILE *f, const char *path, long long size, gk_err *e)
             return gk_fail(e, GK_EINPUT, "%s: corrupt OpenEXR: the file ends inside its header", path);
         at++;
         if (c == 0) { /* an empty name: the end of a header (in a multi-part file, of one part's) */
+            /* a multi-part file's offset tables follow all the headers: only the window's size is checked */
+            if (have_window && check_exr_window(path, box, compression, !multipart && !tiled, size - at, e))
+                return -1;
+            have_window = false;
             if (!multipart)
                 return 0;
             int next = fgetc(f);
@@ -80,6 +117,16 @@ static int check_exr(FILE *f, const char *path, long long size, gk_err *e)
         if (len < 0 || at + len > size)
             return gk_fail(e, GK_EINPUT, "%s: corrupt OpenEXR: header attribute '%s' (%s) claims %d bytes, the file has "
                            "%lld left", path, name, type, len, size - at);
+        unsigned char v[16];
+        if (strcmp(name, "dataWindow") == 0 && strcmp(type, "box2i") == 0 && len == 16 && fread(v, 1, 16, f) == 16) {
+            for (int i = 0; i < 4; i++)
+                box[i] = (int32_t)((uint32_t)v[4 * i] | (uint32_t)v[4 * i + 1] << 8 | (uint32_t)v[4 * i + 2] << 16 |
+                                   (uint32_t)v[4 * i + 3] << 24);
+            have_window = true;
+        } else if (strcmp(name, "compression") == 0 && strcmp(type, "compression") == 0 && len == 1 &&
+                   fread(v, 1, 1, f) == 1) {
+            compression = v[0];
+        }
         if (fseeko(f, (off_t)(at + len), SEEK_SET) != 0)
             return gk_fail(e, GK_EINPUT, "%s: cannot read the OpenEXR header", path);
         at += len;

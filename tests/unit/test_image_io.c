@@ -275,6 +275,50 @@ static void lengths_beyond_the_file_are_refused_before_reading(void **state)
     gk_image_free(&a);
 }
 
+/* The EXR's dataWindow is checked before OpenEXR sizes its line-offset table by it (found by
+ * tests/fuzz/fuzz_image.c: a 400-byte EXR whose dataWindow claimed 1.68e9 x 1.70e9 pixels made the
+ * reader use 2 GB before it failed): a window over the pixel cap is refused as too large, one whose
+ * offset table cannot fit in the file as corrupt; the file with its own window reads. */
+static void exr_data_window_is_checked_before_reading(void **state)
+{
+    gk_image a, b = {0};
+    assert_int_equal(gk_image_alloc(&a, 4, 4, 3), 0);
+    fill_gradient(&a, 1.0f);
+    gk_err e = {0};
+    const char *exr = tmp_path(state, "window.exr");
+    assert_int_equal(gk_image_write(exr, &a, NULL, &e), 0);
+    assert_int_equal(gk_image_read(exr, &b, &e), 0);
+    gk_image_free(&b);
+    FILE *f = fopen(exr, "rb");
+    assert_non_null(f);
+    char head[512];
+    size_t got = fread(head, 1, sizeof head, f);
+    fclose(f);
+    const char key[] = "dataWindow\0box2i";
+    const char *at = memmem(head, got, key, sizeof key);
+    assert_non_null(at);
+    long value = (long)(at - head) + (long)sizeof key + 4; /* after `name\0type\0` and the size */
+    /* ymax 2^20 - 1: 4 x 2^20 pixels (under the cap), a 512 KB offset table in a file of a few hundred bytes */
+    patch4(exr, value + 12, (const unsigned char[4]){0xff, 0xff, 0x0f, 0x00});
+    assert_int_equal(gk_image_read(exr, &b, &e), -1);
+    assert_int_equal(e.code, GK_EINPUT);
+    assert_non_null(strstr(e.msg, "window.exr: corrupt OpenEXR: its dataWindow (4x1048576) needs a 524288-byte line-offset table"));
+    assert_null(b.pixels);
+    /* the fuzzer's window: 1684957528 x 1698920304 (xmax, ymax as its bytes read) */
+    patch4(exr, value + 8, (const unsigned char[4]){0x57, 0x69, 0x6e, 0x64});
+    patch4(exr, value + 12, (const unsigned char[4]){0x6f, 0x77, 0x43, 0x65});
+    gk_err e2 = {0};
+    assert_int_equal(gk_image_read(exr, &b, &e2), -1);
+    assert_int_equal(e2.code, GK_EINPUT);
+    assert_non_null(strstr(e2.msg, "window.exr: image too large (1684957528x1698920304 in its OpenEXR dataWindow)"));
+    /* an inverted window */
+    patch4(exr, value + 8, (const unsigned char[4]){0xfe, 0xff, 0xff, 0xff});
+    gk_err e3 = {0};
+    assert_int_equal(gk_image_read(exr, &b, &e3), -1);
+    assert_non_null(strstr(e3.msg, "corrupt OpenEXR: its dataWindow (0,0)-(-2,1698920303) is empty"));
+    gk_image_free(&a);
+}
+
 static void write_errors(void **state)
 {
     gk_image a;
@@ -311,6 +355,7 @@ int main(void)
         cmocka_unit_test(top_row_first),
         cmocka_unit_test(exr_metadata_round_trip),
         cmocka_unit_test(png_metadata_round_trip),
+        cmocka_unit_test(exr_data_window_is_checked_before_reading),
         cmocka_unit_test(missing_file_is_input_error_naming_it),
         cmocka_unit_test(corrupt_file_is_input_error),
         cmocka_unit_test(lengths_beyond_the_file_are_refused_before_reading),
