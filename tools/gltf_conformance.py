@@ -127,6 +127,16 @@ def textured_quad(image, uvs=QUAD_UV):
     return d
 
 
+def add_corner_sun(d):
+    """The sun of the corner files (occlusion-gi-*, alpha-*-gi): a directional light of 3 lux, its
+    -Z turned 50 degrees down about x and 20 about y, so it lights the wall and the floor."""
+    d.j["nodes"].append({"name": "sun", "rotation": [-0.4162, 0.1574, 0.0734, 0.8925],
+                         "extensions": {"KHR_lights_punctual": {"light": 0}}})
+    d.j["scenes"][0]["nodes"].append(len(d.j["nodes"]) - 1)
+    d.j["extensionsUsed"] = ["KHR_lights_punctual"]
+    d.j["extensions"] = {"KHR_lights_punctual": {"lights": [{"type": "directional", "intensity": 3.0}]}}
+
+
 def main():
     os.makedirs(OUT, exist_ok=True)
 
@@ -378,12 +388,36 @@ def main():
         d.mesh_node([{"attributes": {"POSITION": wall, "TEXCOORD_0": uv}, "indices": idx, "material": 0},
                      {"attributes": {"POSITION": floor, "TEXCOORD_0": uv}, "indices": idx, "material": 0}],
                     "corner")
-        # the sun's -Z turned 50 degrees down about x and 20 about y: it lights wall and floor
-        d.j["nodes"].append({"name": "sun", "rotation": [-0.4162, 0.1574, 0.0734, 0.8925],
-                             "extensions": {"KHR_lights_punctual": {"light": 0}}})
-        d.j["scenes"][0]["nodes"].append(1)
-        d.j["extensionsUsed"] = ["KHR_lights_punctual"]
-        d.j["extensions"] = {"KHR_lights_punctual": {"lights": [{"type": "directional", "intensity": 3.0}]}}
+        add_corner_sun(d)
+        d.write_glb(name)
+
+    # alphaMode MASK on the GI methods' light: occlusion-gi-none's white corner under its sun, and
+    # the holes quad of alpha-mask.glb (red, double-sided) held level 0.8 m above the floor
+    # between the sun and the floor. Through the holes the sun reaches the white floor, whose
+    # bounce lights the wall white; solid (the control, alphaMode OPAQUE), the quad shades the
+    # floor and its lit top bleeds twice as much red onto the wall. A GI method whose own scene
+    # pass (RSM, voxels) sees the quad solid gives the masked file the control's indirect light.
+    for name, mode in (("alpha-mask-gi", "MASK"), ("alpha-opaque-gi", "OPAQUE")):
+        d = Doc()
+        wall = d.accessor("fff", QUAD_POS, FLOAT, "VEC3", minmax=True)
+        floor = d.accessor("fff", [(x, -1.0, 1.0 - y) for x, y, _ in QUAD_POS], FLOAT, "VEC3", minmax=True)
+        shade = d.accessor("fff", [(x, -0.2, 1.0 - 0.6 * y) for x, y, _ in QUAD_POS], FLOAT, "VEC3", minmax=True)
+        uv = d.accessor("ff", QUAD_UV, FLOAT, "VEC2")
+        idx = d.accessor("H", QUAD_IDX, USHORT, "SCALAR")
+        d.j["images"] = [{"bufferView": d.view(holes), "mimeType": "image/png"}]
+        d.j["textures"] = [{"source": 0}]
+        cut = {"name": "holes", "doubleSided": True, "alphaMode": mode, "pbrMetallicRoughness": {
+            "baseColorFactor": [0.9, 0.1, 0.1, 1.0], "baseColorTexture": {"index": 0},
+            "metallicFactor": 0.0, "roughnessFactor": 1.0}}
+        if mode == "MASK":
+            cut["alphaCutoff"] = 0.5
+        d.j["materials"] = [{"name": "white", "pbrMetallicRoughness": {
+            "baseColorFactor": [0.8, 0.8, 0.8, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0}}, cut]
+        d.mesh_node([{"attributes": {"POSITION": wall}, "indices": idx, "material": 0},
+                     {"attributes": {"POSITION": floor}, "indices": idx, "material": 0},
+                     {"attributes": {"POSITION": shade, "TEXCOORD_0": uv}, "indices": idx, "material": 1}],
+                    "corner")
+        add_corner_sun(d)
         d.write_glb(name)
 
     # alphaMode BLEND: a red quad of alpha 0.5 (base colour factor) 0.5 m in front of a white wall,

@@ -196,6 +196,11 @@ static int draw_scene_cb(void *ctx, unsigned program, gk_err *e)
        (a method calls it once per map face when its scene changes, not per pixel or per mesh). */
     gk_draw_uniforms du = *u;
     du.u_glass = glGetUniformLocation(program, "u_glass");
+    /* ... and so are what common/alpha_mask.glsl reads (vpl's RSMs, lgv's cube maps cut the holes) */
+    du.u_base_tex = glGetUniformLocation(program, "u_base_tex");
+    du.u_alpha_cutoff = glGetUniformLocation(program, "u_alpha_cutoff");
+    du.u_tex_xf = glGetUniformLocation(program, "u_tex_xf");
+    du.u_tex_uv1 = glGetUniformLocation(program, "u_tex_uv1");
     gk_scene_gpu_draw(&r->gpu, r->scene, &du, GK_DRAW_MATERIALS | GK_DRAW_SKIP_PROXIES);
     return 0;
 }

@@ -3,8 +3,6 @@
 // pass of alpha-blended surfaces (blend/forward.frag). The includer declares u_eye (the camera).
 in vec3 v_world;
 in vec3 v_normal;
-in vec2 v_uv;
-in vec2 v_uv1;
 in vec4 v_color;
 in vec4 v_tangent;
 uniform vec4 u_base_color;
@@ -21,18 +19,7 @@ uniform mediump sampler2D u_normal_tex;
 uniform float u_normal_scale;
 uniform mediump sampler2D u_occlusion_tex;
 uniform float u_occlusion_strength;
-// Each texture slot's UVs (app/scene/scene.h gk_tex_uv): rows of its KHR_texture_transform 2x3
-// matrix, and bit k of u_tex_uv1 when slot k reads TEXCOORD_1.
-const int SLOT_BASE = 0, SLOT_MR = 1, SLOT_EMISSIVE = 2, SLOT_NORMAL = 3, SLOT_SPECULAR = 4, SLOT_SPECULAR_COLOR = 5,
-          SLOT_OCCLUSION = 6;
-uniform vec3 u_tex_xf[14];
-uniform int u_tex_uv1;
-
-vec2 slot_uv(int slot)
-{
-    vec3 uv = vec3((u_tex_uv1 & (1 << slot)) != 0 ? v_uv1 : v_uv, 1.0);
-    return vec2(dot(u_tex_xf[2 * slot], uv), dot(u_tex_xf[2 * slot + 1], uv));
-}
+#include "common/tex_uv.glsl"
 const int MAT_BASE_TEX = 1;
 const int MAT_MR_TEX = 2;
 const int MAT_LIGHT_PROXY = 4;

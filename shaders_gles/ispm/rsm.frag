@@ -14,6 +14,7 @@ uniform vec2 u_metallic_roughness;
 uniform vec4 u_specular;       // rgb ((ior-1)/(ior+1))^2 specularColorFactor, a specularFactor (KHR_materials_specular)
 uniform vec3 u_emissive;
 uniform int u_mat_flags;
+#include "common/alpha_mask.glsl"
 uniform mat4 u_model;          // declared for draw_scene (gi.h); used by rsm.vert
 uniform vec3 u_light_pos;
 layout(location = 0) out vec4 o_nrm;
@@ -25,6 +26,9 @@ const int MAT_LIGHT_PROXY = 4;
 void main()
 {
     if ((u_mat_flags & MAT_LIGHT_PROXY) != 0)
+        discard;
+    // glTF alphaMode MASK: a hole emits no photon, the light passes to what is behind it
+    if (gk_alpha_cut())
         discard;
     vec3 n = normalize(v_normal);
     if (dot(n, u_light_pos - v_world) < 0.0)

@@ -10,6 +10,7 @@ uniform vec4 u_base_color;
 uniform vec2 u_metallic_roughness;
 uniform vec3 u_emissive;
 uniform int u_mat_flags;
+#include "common/alpha_mask.glsl"
 uniform vec4 u_specular;
 uniform vec2 u_glass;
 uniform int u_refractor;
@@ -18,6 +19,9 @@ layout(location = 1) out mediump vec4 o_normal;
 layout(location = 2) out mediump vec4 o_albedo;
 void main()
 {
+    // glTF alphaMode MASK: through a hole the map sees what is behind it
+    if (gk_alpha_cut())
+        discard;
     o_dist = floatBitsToUint(length(v_world - u_centre));
     vec3 n = normalize(v_normal);
     o_normal = vec4(n * 0.5 + 0.5, 1.0);
@@ -28,6 +32,6 @@ void main()
     } else if (u_metallic_roughness.x > 0.5 && u_metallic_roughness.y < 0.2) {
         code = 1.0;
     }
-    // u_emissive, u_mat_flags, u_specular: declared for draw_scene (gi.h), not used here
+    // u_emissive, u_specular: declared for draw_scene (gi.h), not used here
     o_albedo = vec4(u_base_color.rgb, code / 255.0);
 }

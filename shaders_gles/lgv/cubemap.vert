@@ -4,7 +4,7 @@ precision highp float;
 #include "lgv/common.glsl"
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
-layout(location = 2) in vec2 a_uv;
+#include "common/alpha_mask_vs.glsl"
 uniform mat4 u_model;
 uniform vec3 u_centre;
 uniform int u_face;
@@ -13,6 +13,7 @@ out vec3 v_world;
 out vec3 v_normal;
 void main()
 {
+    gk_alpha_mask_pass();
     vec4 w = u_model * vec4(a_position, 1.0);
     v_world = w.xyz;
     v_normal = mat3(u_model) * a_normal; // the tracer needs its direction only; scenes scale uniformly

@@ -14,12 +14,20 @@
 //   AVERAGE_CAS=1 (thesis): the moving average A_{n+1} = (n A_n + x_{n+1})/(n+1) in packed RGBA8
 //                 through a compare-and-swap loop with the 4-bit counter in the byte LSBs and the
 //                 16-retry cap of the thesis code, defects included (counter wraps at 16).
+// alphaMode MASK (glTF: alpha = base colour factor x texture x COLOR_0, below alphaCutoff no
+// surface): one sample per voxel-triangle overlap, at the voxel's point on the triangle (the voxel
+// centre projected on its plane, or the column's centre at the triangle's depth), its barycentrics
+// clamped to the triangle; below the cutoff the triangle leaves that voxel empty. A voxel part
+// covered by a hole and part by the surface is all of one or the other, as its sample says.
 // SSBO atomics are core in GLES 3.1 compute (image atomics need OES_shader_image_atomic there),
 // so the scratch is one SSBO rather than r32ui images.
 #include "vct/common.glsl"
 layout(local_size_x = 64) in;
 
-struct Tri { vec4 p0; vec4 p1; vec4 p2; vec4 albedo; vec4 emission; };
+// p0..p2: xyz world position, w the vertex's alpha (factor x COLOR_0); uv01, uv2_mask.xy: the
+// vertices' base-colour UVs (KHR_texture_transform applied); uv2_mask.z: the material's layer of
+// u_alpha_tex (-1: none), .w its alphaCutoff (-1: not masked). app/gi/vct/vct_tris.c.
+struct Tri { vec4 p0; vec4 p1; vec4 p2; vec4 albedo; vec4 emission; vec4 uv01; vec4 uv2_mask; };
 layout(std430, binding = 0) readonly buffer Tris { Tri tris[]; };
 layout(std430, binding = 1) coherent buffer Scratch { uint s[]; };
 
@@ -30,6 +38,26 @@ uniform int u_tri_count;
 uniform ivec3 u_region_lo;    // voxels outside [lo, hi] are not written (dirty-region update)
 uniform ivec3 u_region_hi;
 uniform float u_emission_scale;  // 1 / max emission of the scene
+uniform mediump sampler2DArray u_alpha_tex;  // masked materials' base-colour alpha (vct_alpha.c)
+
+// true where the masked triangle T (vertices v0..v2, voxel units) has a hole at its point p
+bool alpha_cut(Tri T, vec3 v0, vec3 v1, vec3 v2, vec3 p)
+{
+    if (T.uv2_mask.w < 0.0)
+        return false;
+    vec3 d0 = v1 - v0, d1 = v2 - v0, d2 = p - v0;
+    float d00 = dot(d0, d0), d01 = dot(d0, d1), d11 = dot(d1, d1), d20 = dot(d2, d0), d21 = dot(d2, d1);
+    float den = d00 * d11 - d01 * d01;
+    vec2 b12 = vec2(d11 * d20 - d01 * d21, d00 * d21 - d01 * d20) / den;
+    vec3 b = clamp(vec3(1.0 - b12.x - b12.y, b12), 0.0, 1.0);
+    b /= max(b.x + b.y + b.z, 1e-6);
+    float a = dot(b, vec3(T.p0.w, T.p1.w, T.p2.w));
+    if (T.uv2_mask.z >= 0.0) {
+        vec2 uv = b.x * T.uv01.xy + b.y * T.uv01.zw + b.z * T.uv2_mask.xy;
+        a *= textureLod(u_alpha_tex, vec3(uv, T.uv2_mask.z), 0.0).r;
+    }
+    return a < T.uv2_mask.w;
+}
 
 uint pack8(vec4 v) { uvec4 u = uvec4(clamp(v, 0.0, 255.0)); return (u.w << 24) | (u.z << 16) | (u.y << 8) | u.x; }
 vec4 vct_unpack8(uint v) { return vec4(float(v & 0xFFu), float((v >> 8) & 0xFFu), float((v >> 16) & 0xFFu), float(v >> 24)); }
@@ -147,6 +175,7 @@ void main()
                 if (dot(nzx0, p.zx) + dzx0 < 0.0 || dot(nzx1, p.zx) + dzx1 < 0.0 || dot(nzx2, p.zx) + dzx2 < 0.0) continue;
                 vec3 pc = p + 0.5;
                 pc -= nn * dot(nn, pc - v0);                   // voxel centre projected on the plane
+                if (alpha_cut(T, v0, v1, v2, pc)) continue;
                 write_voxel(c, T.albedo.rgb, nn, pc - p, emi);
             }
         }
@@ -165,6 +194,7 @@ void main()
             if (zi < int(lo3.z) || zi > int(hi3.z)) continue;
             ivec3 c = from_axis(ivec3(a, b, zi), axis);
             vec3 frac = from_axis_f(vec3(0.5, 0.5, z - float(zi)), axis);
+            if (alpha_cut(T, v0, v1, v2, vec3(c) + frac)) continue;
             write_voxel(c, T.albedo.rgb, nn, frac, emi);
         }
 #endif

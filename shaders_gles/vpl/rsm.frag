@@ -1,7 +1,8 @@
 // RSM texel: world position (+ the surface area the texel covers), normal facing the light, and
 // the reflected flux Φ = ρ_d · I(ω) · ΔΩ_texel (ρ_d = π × the BRDF's diffuse part reflected to the
 // whole hemisphere, (1 − metallic)(1 − w max(Fd))·base with Fd's Schlick weight averaged as
-// brdf.glsl's gk_brdf_diffuse_gathered at μ = n·l, brdf_spec.md; textures are not sampled here).
+// brdf.glsl's gk_brdf_diffuse_gathered at μ = n·l, brdf_spec.md; textures are not sampled here but
+// for alphaMode MASK's holes, common/alpha_mask.glsl).
 // ΔΩ_texel = (2 tanΘ / R)² / (1 + u² + v²)^{3/2} for a perspective face (photon-mapping §A.1.3).
 precision highp float;
 in vec3 v_world;
@@ -11,6 +12,7 @@ uniform vec2 u_metallic_roughness;
 uniform vec4 u_specular;       // rgb ((ior-1)/(ior+1))^2 specularColorFactor, a specularFactor
 uniform vec3 u_emissive;
 uniform int u_mat_flags;
+#include "common/alpha_mask.glsl"
 uniform vec3 u_light_pos;
 uniform vec3 u_light_dir;      // emission axis
 uniform vec3 u_radiant;        // colour · intensity (cd)
@@ -32,6 +34,9 @@ void main()
 {
     // A light proxy stands where the light is: the path tracer does not see it, neither do we.
     if ((u_mat_flags & MAT_LIGHT_PROXY) != 0 || dot(u_emissive, vec3(1.0)) > 0.0)
+        discard;
+    // glTF alphaMode MASK: a hole reflects nothing and lets the light through to what is behind it
+    if (gk_alpha_cut())
         discard;
     vec3 L = u_light_pos - v_world;
     float d2 = max(dot(L, L), 1e-8);

@@ -39,8 +39,9 @@ static void memory_matches_formula_per_budget(void **state)
     (void)state;
     /* Hand-computed once: 64^3, aniso, 10 channels, 32x32 trace target, 2 triangles:
        scratch 10*4*262144 = 10485760; level 0 8*262144 = 2097152; six chains 32^3..2^3:
-       6*8*(32768+4096+512+64+8) = 1797504; trace 2*8*1024 = 16384; triangles 2*80 = 160. */
-    assert_int_equal(gk_vct_memory_formula(64, true, 10, 32, 32, 2), 10485760L + 2097152 + 1797504 + 16384 + 160);
+       6*8*(32768+4096+512+64+8) = 1797504; trace 2*8*1024 = 16384; triangles 2*112 = 224 (7 vec4:
+       position and alpha x3, albedo, emission, the alpha mask's UVs, layer and cutoff). */
+    assert_int_equal(gk_vct_memory_formula(64, true, 10, 32, 32, 2), 10485760L + 2097152 + 1797504 + 16384 + 224);
     vt_scene sc;
     gk_gi_light L = unit_floor(&sc);
     vt_frame f;

@@ -253,7 +253,7 @@ int vct_update(gk_vct *v, const gk_gi_frame *f, vct_budget *bp, gk_err *e)
 
     if (!v->tris.data || s != v->scene) {           /* first frame of a scene: node matrices are valid now */
         v->scene = s;
-        if (vct_tris_build(&v->tris, s, e) != 0)
+        if (vct_tris_build(&v->tris, s, e) != 0 || vct_alpha_upload(v, s, e) != 0)
             return -1;
         v->emissive = v->tris.max_emission > 0.0f;
         v->allocated = false;
@@ -395,6 +395,8 @@ static void vct_destroy(void *self)
     vct_free_gpu(v);
     glDeleteBuffers(1, &v->tri_ssbo);
     glDeleteBuffers(1, &v->counter_ssbo);
+    if (v->alpha_tex)
+        glDeleteTextures(1, &v->alpha_tex);
     if (v->trace_diffuse)
         glDeleteTextures(1, &v->trace_diffuse);
     if (v->trace_spec)

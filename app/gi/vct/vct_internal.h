@@ -8,7 +8,10 @@
 
 #define VCT_MAX_LIGHTS 4
 #define VCT_MAX_CONES 9
-#define VCT_TRI_FLOATS 20 /* p0, p1, p2, albedo, emission: 5 vec4 */
+/* p0, p1, p2 (w: the vertex's alpha, base colour factor x COLOR_0), albedo, emission, uv01 (the
+   base-colour UVs of vertices 0 and 1, KHR_texture_transform applied), uv2_mask (vertex 2's UVs,
+   the material's alpha-mask layer or -1, its alphaCutoff or -1 when not masked): 7 vec4 */
+#define VCT_TRI_FLOATS 28
 
 typedef struct vct_budget {
     int res;            /* vct_res */
@@ -34,6 +37,7 @@ typedef struct vct_tris {
     float max_emission;          /* largest emission component (nits), 0 if none */
     vec3 dyn_bmin, dyn_bmax;     /* world bounds of the dynamic triangles at their last upload */
     float *dyn_world;            /* last world matrices of animated nodes (16 per node, n_nodes) */
+    int *mask_layer;             /* per material: its layer of gk_vct.alpha_tex, -1 (vct_alpha_layers) */
 } vct_tris;
 
 typedef struct gk_vct {
@@ -54,6 +58,7 @@ typedef struct gk_vct {
     bool mips_ran;               /* this frame rebuilt the mips (vct_work.c counts their fetches) */
     /* GL objects */
     GLuint tri_ssbo, scratch_ssbo, counter_ssbo;
+    GLuint alpha_tex;            /* R8 2D array: masked materials' base-colour alpha (vct_alpha.c) */
     GLuint vox0;                 /* level-0 radiance (iso: with its mip chain) */
     /* The six directional chains from level 1 (aniso), packed per axis: voxp[a] is (res/2, res/2, res)
        at its level 0, view 2a (+axis, sampled by cones with d_a < 0) in z < 1/2 of every level, view
@@ -90,6 +95,12 @@ int vct_ensure_trace_targets(gk_vct *v, int full_w, int full_h, float scale, gk_
 int vct_max_res_allowed(int channels);
 /* The second-bounce level 0 (vox_bounce), made on first use at the grid's storage. */
 int vct_ensure_bounce_target(gk_vct *v, gk_err *e);
+
+/* vct_alpha.c: each material's layer of the alpha-mask array (-1: not masked, or masked by its
+   factor and COLOR_0 alone) into layer[n_materials]; returns the number of layers. */
+int vct_alpha_layers(const gk_scene *s, int *layer);
+/* (Re)makes v->alpha_tex for scene s. */
+int vct_alpha_upload(gk_vct *v, const gk_scene *s, gk_err *e);
 
 /* vct_tris.c */
 int vct_tris_build(vct_tris *t, const gk_scene *s, gk_err *e);

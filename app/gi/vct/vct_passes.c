@@ -25,13 +25,15 @@ static const gk_uniform_field clear_fields[] = {
 
 /* vct/voxelize.comp */
 typedef struct voxelize_uniforms {
-    GLint u_res, u_grid_origin, u_voxel_size, u_region_lo, u_region_hi, u_emission_scale, u_tri_first, u_tri_count;
+    GLint u_res, u_grid_origin, u_voxel_size, u_region_lo, u_region_hi, u_emission_scale, u_tri_first, u_tri_count,
+        u_alpha_tex;
 } voxelize_uniforms;
 static const gk_uniform_field voxelize_fields[] = {
     GK_UNIFORM(voxelize_uniforms, u_res),          GK_UNIFORM(voxelize_uniforms, u_grid_origin),
     GK_UNIFORM(voxelize_uniforms, u_voxel_size),   GK_UNIFORM(voxelize_uniforms, u_region_lo),
     GK_UNIFORM(voxelize_uniforms, u_region_hi),    GK_UNIFORM(voxelize_uniforms, u_emission_scale),
-    GK_UNIFORM(voxelize_uniforms, u_tri_first),    GK_UNIFORM(voxelize_uniforms, u_tri_count)};
+    GK_UNIFORM(voxelize_uniforms, u_tri_first),    GK_UNIFORM(voxelize_uniforms, u_tri_count),
+    GK_UNIFORM(voxelize_uniforms, u_alpha_tex)};
 
 /* vct/inject.comp (arrays: the location of element 0, set with glUniform*v) */
 typedef struct inject_uniforms {
@@ -186,6 +188,9 @@ int vct_pass_voxelize(gk_vct *v, const int lo[3], const int hi[3], gk_err *e)
     glUniform3i(uv->u_region_lo, lo[0], lo[1], lo[2]);
     glUniform3i(uv->u_region_hi, hi[0], hi[1], hi[2]);
     glUniform1f(uv->u_emission_scale, v->tris.max_emission > 0 ? 1.0f / v->tris.max_emission : 0.0f);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, v->alpha_tex);
+    glUniform1i(uv->u_alpha_tex, 0);
     /* at most 65535 groups of 64 per dispatch */
     for (int first = 0; first < v->tris.n; first += 65535 * 64) {
         int count = v->tris.n - first < 65535 * 64 ? v->tris.n - first : 65535 * 64;

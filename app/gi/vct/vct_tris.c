@@ -1,5 +1,7 @@
 /* The triangle list the compute voxelizer reads: world space, one albedo and emission per triangle
- * (base colour x the base-colour texture at the triangle's centroid). Static triangles first, then
+ * (base colour x the base-colour texture at the triangle's centroid), and what the voxelizer needs
+ * to cut an alphaMode MASK material's holes: the vertices' alpha and base-colour UVs, the
+ * material's layer of the alpha-mask array (vct_alpha.c) and cutoff. Static triangles first, then
  * those of animated nodes, which are re-transformed when their node moves. Light-proxy meshes are
  * left out: the area light they stand for is already the direct light, and the path tracer does not
  * intersect them either. */
@@ -40,9 +42,12 @@ static bool mesh_skipped(const gk_scene *s, const gk_mesh *m)
     return m->material >= 0 && m->material < s->n_materials && s->materials[m->material].light_proxy;
 }
 
-static void emit_tri(const gk_scene *s, const gk_node *node, const gk_mesh *m, uint32_t t, float *out)
+static void emit_tri(const vct_tris *tris, const gk_scene *s, const gk_node *node, const gk_mesh *m, uint32_t t,
+                     float *out)
 {
     const gk_material *mat = (m->material >= 0 && m->material < s->n_materials) ? &s->materials[m->material] : NULL;
+    int layer = mat ? tris->mask_layer[m->material] : -1;
+    float *uv = out + 20;
     vec3 alb = mat ? v3(mat->base_color[0], mat->base_color[1], mat->base_color[2]) : v3(0.8f, 0.8f, 0.8f);
     vec3 emi = mat ? v3(mat->emissive[0], mat->emissive[1], mat->emissive[2]) : v3(0, 0, 0);
     float uc = 0, vc = 0;
@@ -53,13 +58,20 @@ static void emit_tri(const gk_scene *s, const gk_node *node, const gk_mesh *m, u
         out[k * 4 + 0] = w.x;
         out[k * 4 + 1] = w.y;
         out[k * 4 + 2] = w.z;
-        out[k * 4 + 3] = 1.0f;
+        /* glTF: alpha = base colour factor x texture x COLOR_0 (the texture: the voxelizer's) */
+        out[k * 4 + 3] = (mat ? mat->base_color[3] : 1.0f) * (m->colors ? m->colors[idx * 4 + 3] : 1.0f);
         const float *set = mat && mat->tex_uv[GK_SLOT_BASE].texcoord == 1 && m->uvs1 ? m->uvs1 : m->uvs;
+        uv[2 * k] = uv[2 * k + 1] = 0.0f;
         if (set) {
             uc += set[idx * 2] / 3.0f;
             vc += set[idx * 2 + 1] / 3.0f;
+            /* the transform is affine: transformed at the vertices, interpolated on the GPU */
+            if (mat)
+                gk_tex_uv_apply(&mat->tex_uv[GK_SLOT_BASE], set[idx * 2], set[idx * 2 + 1], &uv[2 * k], &uv[2 * k + 1]);
         }
     }
+    uv[6] = (float)layer;
+    uv[7] = mat && mat->alpha_mask ? mat->alpha_cutoff : -1.0f;
     if (mat && mat->base_color_tex >= 0 && mat->base_color_tex < s->n_textures && m->uvs) {
         gk_tex_uv_apply(&mat->tex_uv[GK_SLOT_BASE], uc, vc, &uc, &vc);
         alb = v3_mul(alb, tex_sample(&s->textures[mat->base_color_tex], uc, vc));
@@ -78,6 +90,7 @@ void vct_tris_free(vct_tris *t)
     free(t->dyn_mesh);
     free(t->dyn_tri);
     free(t->dyn_world);
+    free(t->mask_layer);
     memset(t, 0, sizeof *t);
 }
 
@@ -94,10 +107,12 @@ int vct_tris_build(vct_tris *t, const gk_scene *s, gk_err *e)
     t->dyn_mesh = calloc((size_t)(total ? total : 1), sizeof(int));
     t->dyn_tri = calloc((size_t)(total ? total : 1), sizeof(int));
     t->dyn_world = calloc((size_t)(s->n_nodes ? s->n_nodes : 1), 16 * sizeof(float));
-    if (!t->data || !t->dyn_node || !t->dyn_mesh || !t->dyn_tri || !t->dyn_world) {
+    t->mask_layer = calloc((size_t)(s->n_materials ? s->n_materials : 1), sizeof(int));
+    if (!t->data || !t->dyn_node || !t->dyn_mesh || !t->dyn_tri || !t->dyn_world || !t->mask_layer) {
         vct_tris_free(t);
         return gk_fail(e, GK_ERUNTIME, "vct: out of memory for %ld triangles", total);
     }
+    vct_alpha_layers(s, t->mask_layer);
     int n = 0;
     for (int pass = 0; pass < 2; pass++) {          /* 0: static nodes, 1: animated nodes */
         if (pass == 1)
@@ -112,7 +127,7 @@ int vct_tris_build(vct_tris *t, const gk_scene *s, gk_err *e)
                 if (mesh_skipped(s, m))
                     continue;
                 for (uint32_t tri = 0; tri < m->n_triangles; tri++) {
-                    emit_tri(s, node, m, tri, t->data + (size_t)n * VCT_TRI_FLOATS);
+                    emit_tri(t, s, node, m, tri, t->data + (size_t)n * VCT_TRI_FLOATS);
                     if (pass == 1) {
                         t->dyn_node[n - t->n_static] = ni;
                         t->dyn_mesh[n - t->n_static] = mi;
@@ -151,7 +166,7 @@ bool vct_tris_update(vct_tris *t, const gk_scene *s, vec3 *bmin, vec3 *bmax)
             continue;
         float *tri = t->data + (size_t)i * VCT_TRI_FLOATS;
         grow(&lo, &hi, tri);                                  /* where it was */
-        emit_tri(s, node, &s->meshes[t->dyn_mesh[i - t->n_static]], (uint32_t)t->dyn_tri[i - t->n_static], tri);
+        emit_tri(t, s, node, &s->meshes[t->dyn_mesh[i - t->n_static]], (uint32_t)t->dyn_tri[i - t->n_static], tri);
         grow(&lo, &hi, tri);                                  /* where it is */
         moved = true;
     }
