@@ -124,6 +124,17 @@ int vct_pass_compose(gk_vct *v, const gk_gi_frame *f, gk_err *e);
 int vct_skip_top(const gk_vct *v);
 /* Binds the voxel map's textures (units 0..6) for a cone-tracing program. */
 void vct_bind_map(const gk_vct *v, GLint vox0, const GLint voxp[3], const GLint voxp_l0[3], GLint dir_levels);
+
+/* The uniform-table entries every cone-tracing program shares (trace, bounce, shadow cone): the voxel
+   map vct_bind_map binds and cone_lib.glsl's march parameters. The program's uniform struct declares
+   members of these names; its field table lists VCT_CONE_FIELDS(its type) beside its own. */
+#define VCT_CONE_FIELDS(type)                                                                                  \
+    GK_UNIFORM(type, u_vox0), GK_UNIFORM_AS(type, u_voxp[0], "u_voxp0"), GK_UNIFORM_AS(type, u_voxp[1], "u_voxp1"), \
+        GK_UNIFORM_AS(type, u_voxp[2], "u_voxp2"), GK_UNIFORM_AS(type, u_voxp_l0[0], "u_voxp0_l0"),           \
+        GK_UNIFORM_AS(type, u_voxp_l0[1], "u_voxp1_l0"), GK_UNIFORM_AS(type, u_voxp_l0[2], "u_voxp2_l0"),     \
+        GK_UNIFORM(type, u_dir_levels), GK_UNIFORM(type, u_res), GK_UNIFORM(type, u_res_f),                   \
+        GK_UNIFORM(type, u_step_mul), GK_UNIFORM(type, u_ao_lambda), GK_UNIFORM(type, u_max_dist),            \
+        GK_UNIFORM(type, u_apex_offset), GK_UNIFORM(type, u_footprint_clamp)
 /* The cone set for n cones (4, 6 or 9) in the tangent frame (t, n, b); weights calibrated or the
    thesis code's. Returns the number of cones. */
 int vct_cone_set(int n, bool faithful, float dir[][3], float aperture[], float weight[]);
