@@ -48,8 +48,8 @@ fi
 if "$BIN" scenes | grep -q 'ispm'; then
     run ispm --scenes caustic-ring --methods none,vct,vpl,ispm --sweep 'ispm_photons=1024,4096,16384,65536;ispm_trace=64,128,256'
     # the seed's behaviour against the improvements behind its switches (specular chains, splat radius
-    # from the hits' density), each measured inside the caustic mask (speed-caustic-caustic-ring.png)
-    run ispm-switches --scenes caustic-ring --methods ispm --sweep 'ispm_bounces=1,2,3;ispm_radius=seed,density'
+X
+    run ispm-switches --scenes caustic-ring --methods ispm --sweep 'ispm_bounces=1,2,3;ispm_radius=seed,density,footprint'
 fi
 # Hierarchical radiosity with implicit visibility: bin resolution (the seed's Table 4.1: 6x16²
 # closest to the reference, cost rising) and bounces, each against the full reference (multi-bounce);

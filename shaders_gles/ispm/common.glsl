@@ -13,8 +13,9 @@
 // Photon : first hit on a specular RSM texel after reflection: origin (w = 1 valid, 0 absorbed),
 //          direction (w = the photon's random-number key as a float, exact below 2^24: its RSM block or slot),
 //          reflected power (w = light→reflector distance).
-// Hit    : the photon's last hit (the second with the seed's one bounce): position (w = 1 valid),
-//          receiver normal (w = splat radius h), power (w = total path length light→…→receiver).
+// Hit    : the photon's last hit (the second with the seed's one bounce): position (w = the specular
+//          bounces on its path, 1 with the seed's, 0 = no hit; footprint.comp pairs only hits
+//          with as many), receiver normal (w = splat radius h), power (w = total path length light→…→receiver).
 struct Node { highp float depth; highp uint nrm; highp int next; highp uint spec; highp uint shape; };
 struct Pixel { highp int head; highp uint zmin; highp uint zmax; highp uint count; };
 struct Photon { highp vec4 org; highp vec4 dir; highp vec4 pow_d1; };

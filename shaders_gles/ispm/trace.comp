@@ -207,7 +207,7 @@ void main()
         float cos_t = abs(dot(nh, r));
         float omega = u_omega_texel * float(1u << (2u * ph_level));
         float h = clamp(u_c0 * dist * sqrt(omega / max(cos_t, u_cos_min)), u_h_min, u_h_max);
-        hits[i].pos_valid = vec4(x, 1.0);
+        hits[i].pos_valid = vec4(x, float(bounce));   // w: the specular bounces on its path
         hits[i].nrm_h = vec4(dot(nh, r) < 0.0 ? nh : -nh, h);
         hits[i].pow_dist = vec4(power, dist);
         atomicAdd(ph_hits, 1u);

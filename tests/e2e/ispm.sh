@@ -22,16 +22,20 @@ for gles in 3.2 3.1; do
     check "lists and peeling agree on caustic-ring at --gles $gles (rel_rmse $err)" \
         awk -v e="$err" 'BEGIN { exit !(e < 0.03) }'
 done
-# The switches beyond the seed (specular chains, density-sized splats) run from the command line
-# and appear in the stats' budget; values outside their lists exit 2 naming the allowed ones.
-d="$TMP/switches"
-expect_exit 0 "run ispm with ispm_bounces=3,ispm_radius=density" "$GIKIOSK" run --platform mock --size 160x120 \
-    --scene caustic-ring --method ispm --frames 2 --budget "ispm_bounces=3,ispm_radius=density" --capture "$d" --hdr
-check "the switches' run has an HDR capture" test -s "$d/000001-caustic-ring-ispm.exr"
+# The switches beyond the seed (specular chains, density-sized splats, footprint ellipses) run from
+# the command line and appear in the stats' budget; values outside their lists exit 2 naming the
+# allowed ones. At --gles 3.1: footprint.comp binds four storage blocks, the floor's guarantee.
+for radius in density footprint; do
+    d="$TMP/switches-$radius"
+    expect_exit 0 "run ispm with ispm_bounces=3,ispm_radius=$radius" "$GIKIOSK" run --platform mock --size 160x120 \
+        --scene caustic-ring --method ispm --frames 2 --gles 3.1 --budget "ispm_bounces=3,ispm_radius=$radius" \
+        --capture "$d" --hdr
+    check "the switches' run ($radius) has an HDR capture" test -s "$d/000001-caustic-ring-ispm.exr"
+done
 expect_exit 2 "ispm_bounces=5 is refused" "$GIKIOSK" run --platform mock --size 160x120 --scene caustic-ring \
     --method ispm --frames 1 --budget ispm_bounces=5
 stderr_has "allowed: 1, 2, 3" "the refusal names ispm_bounces' values"
 expect_exit 2 "ispm_radius=knn is refused" "$GIKIOSK" run --platform mock --size 160x120 --scene caustic-ring \
     --method ispm --frames 1 --budget ispm_radius=knn
-stderr_has "allowed: seed, density" "the refusal names ispm_radius' values"
+stderr_has "allowed: seed, density, footprint" "the refusal names ispm_radius' values"
 finish

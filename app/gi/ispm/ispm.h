@@ -72,6 +72,7 @@ const gk_ispm_stats *gk_ispm_get_stats(const void *self);
 /* Test access to the last frame's GPU data (reads back synchronously; buffers as in
  * shaders_gles/ispm/common.glsl). Each returns the element count copied (≤ cap), -1 on error. */
 typedef struct gk_ispm_photon { float org[4], dir[4], pow_d1[4]; } gk_ispm_photon;
+/* a hit's pos_valid[3]: its path's specular bounces (1 … ispm_bounces), 0 = none */
 typedef struct gk_ispm_hit { float pos_valid[4], nrm_h[4], pow_dist[4]; } gk_ispm_hit;
 typedef struct gk_ispm_pixel { int head; unsigned zmin, zmax, count; } gk_ispm_pixel;
 int gk_ispm_read_photons(void *self, gk_ispm_photon *out, int cap);

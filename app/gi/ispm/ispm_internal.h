@@ -12,6 +12,9 @@
 #define ISPM_NODE_BYTES 20   /* Node in shaders_gles/ispm/common.glsl */
 #define ISPM_PHOTON_BYTES 48
 #define ISPM_HIT_BYTES 48
+#define ISPM_FOOT_BYTES 32   /* ispm_radius=footprint's ellipse per hit: two (axis, semi-axis) vec4s */
+/* "Same surface" for a splat and for a footprint's neighbours (research A.1.12): normals within 37° */
+#define ISPM_SAME_SURFACE_COS 0.8f
 /* Header of the photon buffer (ISPM_PHOTON_HEADER in common.glsl), in uints. */
 enum {
     ISPM_PH_COUNT = 0, ISPM_PH_LEVEL = 1, ISPM_PH_OVERFLOW = 2, ISPM_PH_TOP = 3, ISPM_PH_NONZERO = 4,
@@ -21,6 +24,10 @@ enum {
 enum { ISPM_LL_COUNT = 0, ISPM_LL_CAPACITY = 1, ISPM_LL_OVERFLOW = 2 };
 
 #define ISPM_KNOBS 7
+
+/* ispm_radius's levels: the seed's disk, a disk from the hits' density, an ellipse from the photons'
+   neighbours (round where they are missing: the density's disk) */
+enum { ISPM_RADIUS_SEED = 0, ISPM_RADIUS_DENSITY = 1, ISPM_RADIUS_FOOTPRINT = 2 };
 
 /* The light as the photon passes see it this frame (ispm_photons.c). */
 typedef struct ispm_light {
@@ -45,7 +52,7 @@ typedef struct ispm_state {
     void *vpl_self;
     /* budget this frame */
     int photons, trace_res, tier, bounces;
-    bool density_radius;     /* ispm_radius=density */
+    int radius;              /* ispm_radius: ISPM_RADIUS_SEED, _DENSITY or _FOOTPRINT */
     float splat_scale;
     long pool_bytes;
     /* scene */
@@ -66,6 +73,9 @@ typedef struct ispm_state {
     GLuint splat_fbo, splat_tex, splat_vao, empty_vao;
     GLuint grid_ssbo;        /* ispm_density.c's photon counts per screen cell */
     long grid_cap;
+    GLuint block_ssbo;       /* ispm_footprint.c's RSM block -> photon slot map (RSM_RES² ints) */
+    GLuint foot_buf;         /* its ellipses, ISPM_FOOT_BYTES per photon slot */
+    int foot_cap;
     GLenum splat_fmt;        /* RGBA32F with EXT_color_buffer_float + EXT_float_blend, else RGBA16F */
     int splat_w, splat_h;
     /* view of the last frame's lists (tests) */
@@ -88,8 +98,12 @@ int ispm_build_lists(ispm_state *s, const gk_gi_frame *f, gk_err *e);
 int ispm_trace(ispm_state *s, const gk_gi_frame *f, gk_err *e);
 int ispm_splat(ispm_state *s, const gk_gi_frame *f, gk_err *e);
 int ispm_upsample(ispm_state *s, const gk_gi_frame *f, gk_err *e);
+/* The splat target's size for this frame (the full frame times ispm_splat, at least 1×1). */
+void ispm_splat_size(const ispm_state *s, const gk_gi_frame *f, int *w, int *h);
 /* ispm_density.c: the splat radii from the hits' density (between trace and splat). */
 int ispm_density_radius(ispm_state *s, const gk_gi_frame *f, gk_err *e);
+/* ispm_footprint.c: the splat ellipses from the photons' neighbours (after the density radius). */
+int ispm_footprint(ispm_state *s, const gk_gi_frame *f, gk_err *e);
 void ispm_free_gpu(ispm_state *s);
 
 #endif

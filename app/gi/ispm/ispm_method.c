@@ -21,7 +21,9 @@
  *                 L7), never moved by the scheduler; a further bounce marches again the photons that
  *                 met a mirror (on caustic-ring about a quarter of them)   -> 1, 1.25, 1.3
  *   ispm_radius:  a switch (seed = the seed's splat radius, density = from the hits' density,
- *                 ispm_density.c), never moved by the scheduler; two passes over the hits -> 1, 1.05 */
+ *                 ispm_density.c, footprint = ellipses from the photons' neighbours after the
+ *                 density's passes, ispm_footprint.c), never moved by the scheduler; two passes
+ *                 over the hits, three more                         -> 1, 1.05, 1.1 */
 enum { K_PHOTONS, K_TRACE, K_SPLAT, K_POOL, K_TIER, K_BOUNCES, K_RADIUS, K_COUNT };
 _Static_assert(K_COUNT == ISPM_KNOBS, "ispm_internal.h's ISPM_KNOBS counts the knobs");
 static const gk_knob_def knobs[K_COUNT] = {
@@ -32,7 +34,7 @@ static const gk_knob_def knobs[K_COUNT] = {
     {"ispm_pool", "ispm", 3, {"2", "8", "20"}, {1.0f, 1.0f, 1.0f}, 2, 0, false, NULL},
     {"ispm_tier", "ispm", 2, {"peel", "lists"}, {1.0f, 1.0f}, 1, 0, .fixed = true},
     {"ispm_bounces", "ispm", 3, {"1", "2", "3"}, {1.0f, 1.25f, 1.3f}, 0, 0, .fixed = true},
-    {"ispm_radius", "ispm", 2, {"seed", "density"}, {1.0f, 1.05f}, 0, 0, .fixed = true},
+    {"ispm_radius", "ispm", 3, {"seed", "density", "footprint"}, {1.0f, 1.05f, 1.1f}, 0, 0, .fixed = true},
 };
 
 static void declare_knobs(gk_budget *b)
@@ -134,7 +136,7 @@ static void read_budget(ispm_state *s, const gk_budget *b)
     s->pool_bytes = (long)(gk_knob_number(b, &s->knob[K_POOL], 20.0f) * 1048576.0f);
     s->bounces = knob_int(s, b, K_BOUNCES, 1);
     s->bounces = s->bounces < 1 ? 1 : s->bounces;
-    s->density_radius = gk_knob_level(b, &s->knob[K_RADIUS], 0) == 1;
+    s->radius = gk_knob_level(b, &s->knob[K_RADIUS], ISPM_RADIUS_SEED);
     int tier = gk_knob_level(b, &s->knob[K_TIER], GK_ISPM_TIER_LISTS);
     if (tier == GK_ISPM_TIER_LISTS && !s->lists_ok) {
         if (!s->logged_tier)
@@ -212,7 +214,8 @@ static int caustics(ispm_state *s, const gk_gi_frame *f, gk_err *e)
         return -1;
     s->st.capacity = s->capacity;
     gk_pass_begin(f->pass, "ispm_splat");
-    rc = s->density_radius ? ispm_density_radius(s, f, e) : 0;
+    rc = s->radius >= ISPM_RADIUS_DENSITY ? ispm_density_radius(s, f, e) : 0;
+    rc = rc ? rc : s->radius == ISPM_RADIUS_FOOTPRINT ? ispm_footprint(s, f, e) : 0;
     rc = rc ? rc : ispm_splat(s, f, e);
     gk_pass_end(f->pass);
     if (rc)
@@ -255,6 +258,8 @@ static long memory_bytes(const void *self)
     if (s->peel_fbo)   /* RGBA32UI layers (depth, normal, Node.spec) + a 32-bit depth buffer */
         b += (long)s->peel_res * s->peel_res * (16 * ISPM_PEEL_LAYERS + 4);
     b += s->grid_cap * 4;   /* ispm_radius=density's counts */
+    if (s->block_ssbo)      /* ispm_radius=footprint's block map and ellipses */
+        b += (long)ISPM_RSM_RES * ISPM_RSM_RES * 4 + (long)s->foot_cap * ISPM_FOOT_BYTES;
     b += (long)s->splat_w * s->splat_h * 8;
     return b;
 }
@@ -268,9 +273,9 @@ void ispm_free_gpu(ispm_state *s)
     glDeleteTextures(ISPM_PEEL_LAYERS, s->peel_tex);
     glDeleteTextures(1, &s->splat_tex);
     glDeleteRenderbuffers(1, &s->peel_depth);
-    GLuint bufs[9] = {s->counts_ssbo, s->photon_ssbo, s->hit_buf, s->nodes_ssbo, s->pixels_ssbo, s->ctr_ssbo,
-                      s->readback[0], s->readback[1], s->grid_ssbo};
-    glDeleteBuffers(9, bufs);
+    GLuint bufs[11] = {s->counts_ssbo, s->photon_ssbo, s->hit_buf, s->nodes_ssbo, s->pixels_ssbo, s->ctr_ssbo,
+                       s->readback[0], s->readback[1], s->grid_ssbo, s->block_ssbo, s->foot_buf};
+    glDeleteBuffers(11, bufs);
     GLuint vaos[2] = {s->splat_vao, s->empty_vao};
     glDeleteVertexArrays(2, vaos);
 }

@@ -23,13 +23,13 @@ static const gk_uniform_field trace_fields[] = {
 typedef struct splat_uniforms {
     gk_gbuffer_uniforms gb;
     GLint u_viewproj, u_cam, u_pixel_angle, u_h_pixels, u_to_full, u_plane_tol, u_normal_cos, u_kernel_norm, u_delta,
-        u_cone;
+        u_cone, u_footprint;
 } splat_uniforms;
 static const gk_uniform_field splat_fields[] = {
     GK_GBUFFER_FIELDS(splat_uniforms, gb),   GK_UNIFORM(splat_uniforms, u_viewproj),   GK_UNIFORM(splat_uniforms, u_cam),
     GK_UNIFORM(splat_uniforms, u_pixel_angle), GK_UNIFORM(splat_uniforms, u_h_pixels), GK_UNIFORM(splat_uniforms, u_to_full),
     GK_UNIFORM(splat_uniforms, u_plane_tol), GK_UNIFORM(splat_uniforms, u_normal_cos), GK_UNIFORM(splat_uniforms, u_kernel_norm),
-    GK_UNIFORM(splat_uniforms, u_delta),     GK_UNIFORM(splat_uniforms, u_cone)};
+    GK_UNIFORM(splat_uniforms, u_delta),     GK_UNIFORM(splat_uniforms, u_cone),     GK_UNIFORM(splat_uniforms, u_footprint)};
 
 typedef struct up_uniforms { gk_gbuffer_uniforms gb; GLint u_low, u_to_low, u_k; } up_uniforms;
 static const gk_uniform_field up_fields[] = {GK_GBUFFER_FIELDS(up_uniforms, gb), GK_UNIFORM(up_uniforms, u_low),
@@ -82,10 +82,16 @@ int ispm_trace(ispm_state *s, const gk_gi_frame *f, gk_err *e)
     return 0;
 }
 
+void ispm_splat_size(const ispm_state *s, const gk_gi_frame *f, int *w, int *h)
+{
+    *w = (int)lroundf((float)f->width * s->splat_scale), *h = (int)lroundf((float)f->height * s->splat_scale);
+    *w = *w < 1 ? 1 : *w, *h = *h < 1 ? 1 : *h;
+}
+
 static int ensure_splat_target(ispm_state *s, const gk_gi_frame *f, gk_err *e)
 {
-    int w = (int)lroundf((float)f->width * s->splat_scale), h = (int)lroundf((float)f->height * s->splat_scale);
-    w = w < 1 ? 1 : w, h = h < 1 ? 1 : h;
+    int w, h;
+    ispm_splat_size(s, f, &w, &h);
     if (s->splat_fbo && w == s->splat_w && h == s->splat_h)
         return 0;
     if (s->splat_fbo) {
@@ -147,10 +153,12 @@ int ispm_splat(ispm_state *s, const gk_gi_frame *f, gk_err *e)
     glUniform1f(u->u_to_full, (float)f->width / (float)s->splat_w);
     /* "Same surface" (research A.1.12): within half a radius of the disk's plane, normals within 37°. */
     glUniform1f(u->u_plane_tol, 0.5f);
-    glUniform1f(u->u_normal_cos, 0.8f);
+    glUniform1f(u->u_normal_cos, ISPM_SAME_SURFACE_COS);
     glUniform1f(u->u_kernel_norm, d->faithful_kernel ? 1.0f / 3.14159265f : 1.0f / kernel_mass(d));
     glUniform1f(u->u_delta, d->delta);
     glUniform1i(u->u_cone, d->cone_kernel);
+    bool feet = s->radius == ISPM_RADIUS_FOOTPRINT;
+    glUniform1i(u->u_footprint, feet);
     if (!s->splat_vao)
         glGenVertexArrays(1, &s->splat_vao);
     glBindVertexArray(s->splat_vao);
@@ -159,6 +167,18 @@ int ispm_splat(ispm_state *s, const gk_gi_frame *f, gk_err *e)
         glEnableVertexAttribArray(a);
         glVertexAttribPointer(a, 4, GL_FLOAT, GL_FALSE, ISPM_HIT_BYTES, (const void *)(uintptr_t)(a * 16));
         glVertexAttribDivisor(a, 1);
+    }
+    /* ispm_radius=footprint: the ellipse's two (axis, semi-axis) from ispm_footprint.c */
+    if (feet) {
+        glBindBuffer(GL_ARRAY_BUFFER, s->foot_buf);
+        for (GLuint a = 3; a < 5; a++) {
+            glEnableVertexAttribArray(a);
+            glVertexAttribPointer(a, 4, GL_FLOAT, GL_FALSE, ISPM_FOOT_BYTES, (const void *)(uintptr_t)((a - 3) * 16));
+            glVertexAttribDivisor(a, 1);
+        }
+    } else {
+        glDisableVertexAttribArray(3);
+        glDisableVertexAttribArray(4);
     }
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
