@@ -9,10 +9,12 @@
 // ellipse M·(disk of radius C0), M = [d_x d_y] in the receiver's tangent plane: semi-axes C0·σ1,
 // C0·σ2 (the singular values of M) along M's left singular vectors. Across a fold both neighbours
 // land on the same side, so the central difference and the ellipse's minor axis shrink to the
-// line's own width. Each semi-axis is that width combined in quadrature with u_h_pixels splat
-// pixels as the camera sees the axis (at least u_h_min), the least a splat may be and still deposit
-// its power on the pixel centres it covers (L15), and clamped at u_h_max (L14); in quadrature rather
-// than max(), so the footprint's measure of the tube still counts where it is near that size. A neighbour counts if it landed after as many specular bounces (Hit.pos_valid.w), on the
+// line's own width. Each semi-axis is that width combined in quadrature with u_h_pixels kernel
+// samples as the camera sees the axis (splat.frag averages these ellipses' kernel over u_samples²
+// points per splat pixel, so u_h_pixels of those samples deposit the power as u_h_pixels pixels do
+// for point-sampled disks, L15), and clamped at u_h_max (L14); in quadrature rather than max(), so
+// the footprint's measure of the tube still counts where it is near that size. No u_h_min: that
+// clamp guards the seed's radius formula (d -> 0, L14); here the samples' size is the least one. A neighbour counts if it landed after as many specular bounces (Hit.pos_valid.w), on the
 // same surface (normals within acos(u_normal_cos), the splats' "same surface") and within u_h_max;
 // a hit with no usable neighbour along an axis keeps the round disk of the radius it has
 // (Hit.nrm_h.w: the seed's or the density's). The kernel stays normalised over the ellipse's area,
@@ -35,7 +37,8 @@ uniform int u_res;              // RSM resolution (the block grid at level 0)
 uniform int u_keyed_by_block;   // 0: keys are slots (debug rng_by_slot), no neighbours known
 uniform vec3 u_cam;
 uniform float u_pixel_angle;    // a splat pixel's size at unit distance
-uniform float u_h_pixels, u_c0, u_h_min, u_h_max, u_normal_cos;
+uniform float u_h_pixels;       // least semi-axis, in kernel samples (h_pixels / samples per side)
+uniform float u_c0, u_h_max, u_normal_cos;
 
 int level_offset(int l)
 {
@@ -79,15 +82,15 @@ bool side(int bx, int by, ivec2 e, int rl, Hit hi, out vec3 d)
     return true;
 }
 
-// The least semi-axis along e: u_h_pixels splat pixels as the camera sees e (foreshortened by the
-// view ray, at most 5x, as the radius' cosθ clamp), at least u_h_min.
+// The least semi-axis along e: u_h_pixels kernel samples as the camera sees e (foreshortened by the
+// view ray, at most 5x, as the radius' cosθ clamp).
 float least_axis(vec3 x, vec3 e)
 {
     vec3 v = x - u_cam;
     float dist = length(v);
     v /= dist;
     float across = max(length(e - v * dot(e, v)), 0.2);
-    return max(u_h_min, u_h_pixels * u_pixel_angle * dist / across);
+    return u_h_pixels * u_pixel_angle * dist / across;
 }
 
 void main()

@@ -6,6 +6,10 @@
 // of ispm_radius=footprint: r² = (x·e1/a1)² + (x·e2/a2)², h = the larger semi-axis).
 // u_kernel_norm = 1/(π·∫κ) deposits Φ (errata A.7 item 3); 1/π is the seed's 1/(πh²), which keeps
 // only 43% (Gaussian δ = 0.25) or 33% (cone) of it.
+// With u_samples > 1 (ispm_radius=footprint) κ is averaged over u_samples² points of the splat pixel,
+// each where its view ray meets the splat's plane: the pixel's integral of the kernel rather than its
+// value at the centre, so an ellipse narrower than a pixel (a caustic line's width) still deposits
+// its Φ and keeps its peak, where a point-sampled one would alias or need widening to a pixel.
 precision highp float;
 #include "common/gbuffer.glsl"
 flat in vec3 v_c;
@@ -16,6 +20,7 @@ flat in vec3 v_pow;
 uniform float u_to_full;       // full-resolution pixels per splat pixel
 uniform float u_plane_tol, u_normal_cos, u_kernel_norm, u_delta;
 uniform int u_cone;
+uniform highp int u_samples;   // kernel samples per splat pixel side (highp: the vertex stage shares it)
 layout(location = 0) out vec4 o_e;
 void main()
 {
@@ -31,10 +36,24 @@ void main()
     float dp = dot(v, v_n);
     if (abs(dp) > u_plane_tol * max(v_e1.w, v_e2.w) || dot(gb_normal(p), v_n) < u_normal_cos)
         discard;
-    vec2 q = vec2(dot(v, v_e1.xyz), dot(v, v_e2.xyz));
-    float r = length(q);
-    if (r >= 1.0)
+    // the kernel averaged over the splat pixel: u_samples² view rays through it, each met with the
+    // splat's plane (1: the pixel centre's point alone)
+    float k = 0.0;
+    float ns = float(u_samples);
+    for (int sy = 0; sy < u_samples; sy++)
+        for (int sx = 0; sx < u_samples; sx++) {
+            vec2 sub = floor(gl_FragCoord.xy) + (vec2(float(sx), float(sy)) + 0.5) / ns;
+            vec3 w = u_samples == 1 ? x : gb_world_at(sub * u_to_full / u_viewport, depth);
+            vec3 dir = w - u_eye;
+            float den = dot(dir, v_n);
+            vec3 y = u_samples == 1 || abs(den) < 1e-9 ? w : u_eye + dir * (dot(v_c - u_eye, v_n) / den);
+            vec3 vy = y - v_c;
+            float r = length(vec2(dot(vy, v_e1.xyz), dot(vy, v_e2.xyz)));
+            if (r < 1.0)
+                k += u_cone == 1 ? 1.0 - r : exp(-r * r / (2.0 * u_delta));
+        }
+    k /= ns * ns;
+    if (k <= 0.0)
         discard;
-    float k = u_cone == 1 ? 1.0 - r : exp(-r * r / (2.0 * u_delta));
     o_e = vec4(v_pow * (k * u_kernel_norm / (v_e1.w * v_e2.w)), 1.0);
 }

@@ -126,9 +126,10 @@ static void measure(const char *budget, void (*edit)(gk_ispm_debug *), const cha
    0.973, IoU 0.791, rel. RMSE 0.133 inside the mask (before the plane hit test: 4.7% of the photon
    power went through the ring's wall). The reference's own floor inside its mask is in
    noise-regions.csv (caustic-ring-caustics1.exr), far below these margins. The footprint ellipses
-   (ispm_radius=footprint) draw the single bounce's caustic sharper: energy 0.970, IoU 0.883, rel.
-   RMSE 0.122 inside / 0.241 whole (the seed's disks 0.312 whole), the peak 1.209 against the
-   reference's 1.213 (the seed's disks 1.329). */
+   (ispm_radius=footprint, kernel averaged over 4x4 points per pixel): energy 0.975, IoU 0.801, rel.
+   RMSE 0.128 inside / 0.255 whole (the seed's disks 0.312 whole). Under light moves of 0.5–3 mm
+   (six positions, by hand) the IoU ranges over 0.801–0.815 (seed 0.790–0.810: no difference
+   asserted), rel. RMSE inside over 0.126–0.129 (seed 0.131–0.133). */
 static void test_single_bounce_against_its_reference(void **state)
 {
     (void)state;
@@ -144,8 +145,8 @@ static void test_single_bounce_against_its_reference(void **state)
         assert_true(fabs(row[i]->energy - 1.0) < 0.15);
         assert_true(row[i]->iou >= 0.7);
     }
-    /* better on every measure but the energy, which stays within 0.5% */
-    assert_true(foot.iou > r.iou && foot.rel_in < r.rel_in && foot.rel_all < r.rel_all);
+    /* less error in and out of the mask, the energy the same within 0.5% */
+    assert_true(foot.rel_in < r.rel_in && foot.rel_all < r.rel_all);
     assert_true(fabs(foot.energy - r.energy) < 0.005);
 }
 
@@ -157,7 +158,8 @@ static void test_single_bounce_against_its_reference(void **state)
    Measured on llvmpipe (shape operator / flat normal):
      ispm_bounces=3:                     energy 0.922 / 0.916, IoU 0.549 / 0.517, rel. RMSE inside 0.200 / 0.261
      ispm_bounces=3, ispm_radius=density: energy 0.913 / 0.908, IoU 0.673 / 0.586, rel. RMSE inside 0.210 / 0.272
-   The issue's targets: energy ±15% is met; IoU ≥ 0.7 is NOT (best 0.673). The ruler's noise is far
+   The issue's targets: energy ±15% is met; IoU ≥ 0.7 is NOT with disks (best 0.673; the footprint
+   ellipses below meet it). The ruler's noise is far
    below both: an independent 512-spp render of the same caustic (seed 2) has energy 0.998 and IoU
    0.906 against this 2048-spp mask (the reference's floor inside it is 0.013, noise-regions.csv).
    Nor does the three-bounce limit forbid it: the tracer's own caustic cut at three specular vertices (--caustic-specular 3, 512 spp) has
@@ -175,15 +177,16 @@ static void test_single_bounce_against_its_reference(void **state)
    immaterial changes (above; density k = 24/32 gave 0.634/0.671 with the shape operator in two halves).
    Moving the light by 0.5–3 mm (six positions, by hand) moves the density radius' IoU over
    0.622–0.684 and its peak over 2.44–2.69: the ¼-of-peak cut follows one pixel's value.
-   ispm_radius=footprint (ellipses from the photons' neighbours): energy 0.910, IoU 0.518, rel. RMSE
-   inside 0.195, whole 0.348: the least error of the three radii in and out of the mask, and the
-   steadiest IoU (0.503–0.518 under the same light moves), but not the best: the ellipses are at
-   least 1.5 splat pixels across as the camera sees them (foreshortening counted, so that a splat
-   deposits its Φ, L15), and the cusp's two-pixel peak comes out 2.16 against 2.86, where the
-   density's round disks, narrower on screen along the floor's foreshortened axis, reach 2.55.
-   It is not the trace: within a pixel of the cusp ispm's hits carry the power the reference
-   tracer's own paths of the same photons bring there (test_cusp_power_against_the_tracer). Bound
-   for the footprint 0.50: the measurement less its spread under the light moves. */
+   ispm_radius=footprint (ellipses from the photons' neighbours, their kernel averaged over 4x4
+   points of each splat pixel): energy 0.937, IoU 0.709, rel. RMSE inside 0.158, whole 0.317, peak
+   2.71: better than both disks on every measure, and the issue's IoU >= 0.7 met at this view, but
+   narrowly: under the same light moves its IoU ranges over 0.696–0.711 (peak 2.64–2.71). Point-
+   sampled at the pixel centre (pixel_samples = 1) the ellipses must be 1.5 pixels wide on screen
+   to deposit their power (L15), and give 0.518 (peak 2.16); 2/3/6/8 samples per side give
+   0.672/0.696/0.715/0.719. It is not the trace: within a pixel of the cusp ispm's hits carry the
+   power the reference tracer's own paths of the same photons bring there
+   (test_cusp_power_against_the_tracer); the peak is the splats' reconstruction of it. Bound for the
+   footprint 0.69: 0.709 less the 0.015 its IoU moves under the light moves. */
 static void test_reference_mask(void **state)
 {
     (void)state;
@@ -210,7 +213,7 @@ static void test_reference_mask(void **state)
     assert_true(chains.rel_in < one.rel_in && chains.rel_all < one.rel_all);
     assert_true(chains.iou > chains_flat.iou && chains.rel_in < chains_flat.rel_in);
     assert_true(dens.iou > dens_flat.iou && dens.rel_in < dens_flat.rel_in);
-    assert_true(chains.iou > 0.5 && dens.iou > 0.62 && foot.iou > 0.50);
+    assert_true(chains.iou > 0.5 && dens.iou > 0.62 && foot.iou > 0.69);
     /* the footprint ellipses: the energy target, and the least error in and out of the mask */
     assert_true(fabs(foot.energy - 1.0) < 0.15);
     assert_true(foot.rel_in < fmin(chains.rel_in, dens.rel_in) && foot.rel_all < fmin(chains.rel_all, dens.rel_all));

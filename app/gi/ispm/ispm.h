@@ -37,7 +37,9 @@ typedef struct gk_ispm_debug {
     float c0;                /* splat radius constant C0 */
     float cos_min;           /* L14: cosθ clamp in the radius */
     float h_min_rel, h_max_rel; /* L14: radius clamps, fractions of the scene diameter */
-    float h_pixels;          /* least radius in splat pixels */
+    float h_pixels;          /* least radius in splat pixels (in kernel samples with ispm_radius=footprint) */
+    int pixel_samples;       /* ispm_radius=footprint: its kernel averaged over n x n points per splat
+                                pixel (the seed's and the density's disks: at the pixel centre) */
     float eps_abs_rel;       /* hit threshold: constant part, fraction of the scene diameter */
     float eps_slope;         /* hit threshold: multiple of the ray's depth step (0: the seed's constant ε) */
     float upsample_k;        /* normal exponent of the bilateral weights */

@@ -1,6 +1,7 @@
 /* Splat ellipses from the photons' neighbours (ispm_radius=footprint; shaders_gles/ispm/
  * footprint.comp): the hit of each photon's neighbouring RSM blocks spans its flux tube on the
- * receiver, and the splat takes that shape, narrow across a caustic line and long along it. Runs
+ * receiver, and the splat takes that shape, narrow across a caustic line and long along it (and
+ * averages its kernel over each splat pixel, ispm_splat.c, so that it may be narrower than one). Runs
  * after the density radius (which the hits without neighbours keep) and before the splats, which
  * read the ellipses as two more instance attributes. */
 #include <math.h>
@@ -8,16 +9,14 @@
 #include "ispm_internal.h"
 
 typedef struct footprint_uniforms {
-    GLint u_phase, u_capacity, u_res, u_keyed_by_block, u_cam, u_pixel_angle, u_h_pixels, u_c0, u_h_min, u_h_max,
-        u_normal_cos;
+    GLint u_phase, u_capacity, u_res, u_keyed_by_block, u_cam, u_pixel_angle, u_h_pixels, u_c0, u_h_max, u_normal_cos;
 } footprint_uniforms;
 static const gk_uniform_field footprint_fields[] = {
     GK_UNIFORM(footprint_uniforms, u_phase),       GK_UNIFORM(footprint_uniforms, u_capacity),
     GK_UNIFORM(footprint_uniforms, u_res),         GK_UNIFORM(footprint_uniforms, u_keyed_by_block),
     GK_UNIFORM(footprint_uniforms, u_cam),         GK_UNIFORM(footprint_uniforms, u_pixel_angle),
     GK_UNIFORM(footprint_uniforms, u_h_pixels),    GK_UNIFORM(footprint_uniforms, u_c0),
-    GK_UNIFORM(footprint_uniforms, u_h_min),       GK_UNIFORM(footprint_uniforms, u_h_max),
-    GK_UNIFORM(footprint_uniforms, u_normal_cos)};
+    GK_UNIFORM(footprint_uniforms, u_h_max),       GK_UNIFORM(footprint_uniforms, u_normal_cos)};
 
 static void ensure_buffers(ispm_state *s)
 {
@@ -51,9 +50,9 @@ int ispm_footprint(ispm_state *s, const gk_gi_frame *f, gk_err *e)
     glUniform1i(u->u_keyed_by_block, !d->rng_by_slot);
     glUniform3f(u->u_cam, f->eye.x, f->eye.y, f->eye.z);
     glUniform1f(u->u_pixel_angle, 2.0f / f->proj.m[5] / (float)sh);
-    glUniform1f(u->u_h_pixels, d->h_pixels);
+    /* the least semi-axis in kernel samples: the splat averages its kernel over each pixel */
+    glUniform1f(u->u_h_pixels, d->h_pixels / (float)(d->pixel_samples > 1 ? d->pixel_samples : 1));
     glUniform1f(u->u_c0, d->c0);
-    glUniform1f(u->u_h_min, d->h_min_rel * s->diam);
     glUniform1f(u->u_h_max, d->h_max_rel * s->diam);
     glUniform1f(u->u_normal_cos, ISPM_SAME_SURFACE_COS);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, s->photon_ssbo);

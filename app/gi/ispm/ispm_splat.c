@@ -23,13 +23,14 @@ static const gk_uniform_field trace_fields[] = {
 typedef struct splat_uniforms {
     gk_gbuffer_uniforms gb;
     GLint u_viewproj, u_cam, u_pixel_angle, u_h_pixels, u_to_full, u_plane_tol, u_normal_cos, u_kernel_norm, u_delta,
-        u_cone, u_footprint;
+        u_cone, u_footprint, u_samples;
 } splat_uniforms;
 static const gk_uniform_field splat_fields[] = {
     GK_GBUFFER_FIELDS(splat_uniforms, gb),   GK_UNIFORM(splat_uniforms, u_viewproj),   GK_UNIFORM(splat_uniforms, u_cam),
     GK_UNIFORM(splat_uniforms, u_pixel_angle), GK_UNIFORM(splat_uniforms, u_h_pixels), GK_UNIFORM(splat_uniforms, u_to_full),
     GK_UNIFORM(splat_uniforms, u_plane_tol), GK_UNIFORM(splat_uniforms, u_normal_cos), GK_UNIFORM(splat_uniforms, u_kernel_norm),
-    GK_UNIFORM(splat_uniforms, u_delta),     GK_UNIFORM(splat_uniforms, u_cone),     GK_UNIFORM(splat_uniforms, u_footprint)};
+    GK_UNIFORM(splat_uniforms, u_delta),     GK_UNIFORM(splat_uniforms, u_cone),     GK_UNIFORM(splat_uniforms, u_footprint),
+    GK_UNIFORM(splat_uniforms, u_samples)};
 
 typedef struct up_uniforms { gk_gbuffer_uniforms gb; GLint u_low, u_to_low, u_k; } up_uniforms;
 static const gk_uniform_field up_fields[] = {GK_GBUFFER_FIELDS(up_uniforms, gb), GK_UNIFORM(up_uniforms, u_low),
@@ -159,6 +160,7 @@ int ispm_splat(ispm_state *s, const gk_gi_frame *f, gk_err *e)
     glUniform1i(u->u_cone, d->cone_kernel);
     bool feet = s->radius == ISPM_RADIUS_FOOTPRINT;
     glUniform1i(u->u_footprint, feet);
+    glUniform1i(u->u_samples, feet && d->pixel_samples > 1 ? d->pixel_samples : 1);
     if (!s->splat_vao)
         glGenVertexArrays(1, &s->splat_vao);
     glBindVertexArray(s->splat_vao);
