@@ -3,8 +3,9 @@
 // machine's fetch rate for that kind of fetch:
 //   TEX3D  textureLod of a 3D texture at a fractional LOD with LINEAR_MIPMAP_LINEAR: a trilinear
 //          fetch between two mips, as a cone-trace sample (vct_trace) does it;
-//   TEX2D  textureLod of a 2D texture at a fractional LOD (trilinear between two mips), or with
-//          NEAREST filtering when the format is not filterable (RGBA32F, a summed-area table);
+//   TEX2D  textureLod of a 2D texture at a fractional LOD (trilinear between two mips), or
+//          texelFetch (NEAREST) where the format is not filterable or the pass reads it unfiltered
+//          (RGBA32F tables, a depth map, R32F min/max mips, R32UI summed-area tables: FORMAT_UINT);
 //   IMAGE3D imageLoad of a 3D image, as the voxel passes read their volumes.
 // Each invocation walks a line through the texture, one texel per step at the fetched level, so
 // neighbouring invocations read neighbouring texels, as a screen of cones does. The sum is stored
@@ -14,6 +15,7 @@
 // @variant TEX3D FORMAT_RGBA8
 // @variant TEX2D
 // @variant TEX2D NEAREST
+// @variant TEX2D NEAREST FORMAT_UINT
 // @variant IMAGE3D
 // @variant IMAGE3D FORMAT_RGBA8
 precision highp float;
@@ -26,6 +28,8 @@ uniform float u_lod;     // level fetched (fractional: trilinear)
 uniform int u_size;      // the texture's level-0 side in texels
 #if defined(TEX3D)
 uniform highp sampler3D u_tex;
+#elif defined(TEX2D) && defined(FORMAT_UINT)
+uniform highp usampler2D u_tex;
 #elif defined(TEX2D)
 uniform highp sampler2D u_tex;
 #elif defined(IMAGE3D)
@@ -52,7 +56,7 @@ void main()
 #if defined(TEX3D)
         sum += textureLod(u_tex, p / float(u_size), u_lod);
 #elif defined(TEX2D) && defined(NEAREST)
-        sum += texelFetch(u_tex, ivec2(mod(p.xy, float(u_size))), 0);
+        sum += vec4(texelFetch(u_tex, ivec2(mod(p.xy, float(u_size))), 0));
 #elif defined(TEX2D)
         sum += textureLod(u_tex, p.xy / float(u_size), u_lod);
 #elif defined(IMAGE3D)
