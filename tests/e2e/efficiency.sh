@@ -23,8 +23,10 @@ tex2d_r16f_nearest,r16f,512,1000000,4,2.5e+08
 image3d_rgba16f_load,rgba16f,64,1000000,4,2.5e+08
 raster_r16f_depth_fill,r16f,512,1000000,2,5e+08
 CSV
+# --rebuild-gi: every frame voxelizes, injects and builds the mips again, so those passes are timed
 expect_exit 0 "bench --roofline-csv: vct at two cone counts" sh -c "'$GIKIOSK' bench --scenes cornell --methods vct \
-    --size 80x60 --frames 1 --warmup 1 --sweep 'vct_cones=4,9' --roofline-csv '$TMP/roofline.csv' --out '$TMP/b' 2>'$TMP/b.log'"
+    --size 80x60 --frames 1 --warmup 1 --sweep 'vct_cones=4,9' --rebuild-gi --roofline-csv '$TMP/roofline.csv' \
+    --out '$TMP/b' 2>'$TMP/b.log'"
 EFF=$TMP/b/efficiency.csv
 check "efficiency.csv: the header ends with the efficiency columns" \
     sh -c "head -1 '$EFF' | grep -q ',pass,kind,fetches,pass_ms,fetches_per_s,limit_fetches_per_s,efficiency\$'"
@@ -55,8 +57,13 @@ check "efficiency.csv: vct's passes and the direct pass's kind" python3 - "$EFF"
 import csv, sys
 eff = list(csv.DictReader(open(sys.argv[1])))
 passes = {(e["vct_cones"], e["pass"]) for e in eff}
-# each row: the cone trace, and the direct pass's shadow lookups (cornell's light is shadowed)
-assert passes == {(c, p) for c in ("4", "9") for p in ("gi.vct_trace", "direct")}, passes
+# each row: the cone trace, the injection's shadow fetches and the mips' loads (rebuilt each frame),
+# and the direct pass's shadow lookups (cornell's light is shadowed)
+assert passes == {(c, p) for c in ("4", "9") for p in ("gi.vct_trace", "gi.vct_inject", "gi.vct_mips", "direct")}, passes
+# the cones do not change the voxels: the same injection and mips at both counts
+for p in ("gi.vct_inject", "gi.vct_mips"):
+    f = {e["vct_cones"]: float(e["fetches"]) for e in eff if e["pass"] == p}
+    assert f["4"] == f["9"] > 0, (p, f)
 # the default shadows (PCSS) read the depth map only, at the depth kind's limit
 assert {e["kind"] for e in eff if e["pass"] == "direct"} == {"tex2d_depth32f_nearest"}, eff
 # more cones, more samples: 9 cones fetch more than 4 at the same resolution
@@ -66,7 +73,7 @@ PY
 if command -v gnuplot >/dev/null 2>&1; then
     check "efficiency-cornell.png and .svg drawn" sh -c "[ -s '$TMP/b/efficiency-cornell.png' ] && [ -s '$TMP/b/efficiency-cornell.svg' ]"
     check "the chart's data: a bar per row and pass" \
-        sh -c "[ \"\$(grep -c 'gi.vct_trace' '$TMP/b/efficiency-cornell.dat')\" -eq 2 ] && [ \"\$(wc -l <'$TMP/b/efficiency-cornell.dat')\" -eq \"\$(( \$(wc -l <'$EFF') - 1 ))\" ]"
+        sh -c "[ \"\$(grep -c 'gi.vct_trace' '$TMP/b/efficiency-cornell.dat')\" -eq 2 ] && [ \"\$(grep -c 'gi.vct_inject' '$TMP/b/efficiency-cornell.dat')\" -eq 2 ] && [ \"\$(wc -l <'$TMP/b/efficiency-cornell.dat')\" -eq \"\$(( \$(wc -l <'$EFF') - 1 ))\" ]"
 fi
 # vpl's gather counts (app/gi/vpl/vpl_work.c) checked against each other: VSM and CSSM visibility
 # share the VPLs and their clusters, so the unfiltered fetches (VPL and VAL tables) are equal; per VPL

@@ -1,6 +1,7 @@
 /* vct direct-light injection on llvmpipe: the voxels' radiance against the formula
  * L_o = rho / pi * I cos / d^2 (inject.comp), and shadowing from the light's shadow map
- * (gk_gi_light.shadow_depth_tex / shadow_view_proj) versus no shadow map. */
+ * (gk_gi_light.shadow_depth_tex / shadow_view_proj) versus no shadow map; the injection's work
+ * model (app/gi/vct/vct_work.c) against a hand count of the occupied voxels. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -129,10 +130,86 @@ static void injection_matches_formula_and_uses_the_shadow_map(void **state)
     vt_scene_free(&sc);
 }
 
+/* the gi.vct_inject entry of the last frame's work, or -1 */
+static double inject_fetches(void *vct)
+{
+    gk_pass_work w[GK_MAX_PASS_WORK];
+    int n = gk_gi_vct.pass_work(vct, w, GK_MAX_PASS_WORK);
+    for (int i = 0; i < n; i++)
+        if (!strcmp(w[i].pass, "gi.vct_inject")) {
+            assert_string_equal(w[i].kind, "tex2d_depth32f_nearest");
+            return w[i].fetches;
+        }
+    return -1.0;
+}
+
+/* A floor and an occluder under a point light whose shadow map sees all of both: every occupied
+   voxel's lookup lands in the map, so the injection fetches 9 depth texels (3x3 PCF) per occupied
+   voxel, counted here from the injected level 0 (alpha 1 where occupied). Without a shadow map it
+   fetches none; outside a counting frame nothing is counted; a frame that does not re-inject
+   reports no injection. */
+static void injection_fetches_nine_per_occupied_voxel(void **state)
+{
+    (void)state;
+    vt_scene sc;
+    vt_scene_init(&sc);
+    vt_add_quad(&sc, v3(0, 0, 0), v3(0, 0, 1), v3(1, 0, 0), v3(0.6f, 0.6f, 0.6f));                /* floor */
+    vt_add_quad(&sc, v3(0.1f, 0.5f, 0.1f), v3(0, 0, 0.3f), v3(0.3f, 0, 0), v3(0.5f, 0.5f, 0.5f)); /* occluder */
+    vt_scene_finish(&sc);
+    vec3 lp = v3(0.5f, 0.9f, 0.5f);
+    gk_gi_light L = vt_light(&sc, GK_LIGHT_POINT, lp, v3(0, -1, 0), v3(3, 3, 3), 1);
+    mat4 view = m4_look_at(lp, v3(lp.x, 0, lp.z), v3(0, 0, -1));
+    /* 126 degrees: the floor's corners are 38 degrees off the axis */
+    L.shadow_view_proj = m4_mul(m4_perspective(2.2f, 1.0f, 0.05f, 3.0f), view);
+    L.shadow_is_perspective = true;
+    GLuint depth = shadow_map(&sc, L.shadow_view_proj, 256);
+    vt_frame f;
+    vt_frame_create(&f, 16, 16, v3(0.5f, 1.5f, 0.51f), v3(0.5f, 0, 0.5f), v3(0, 0, -1), 0.5f);
+    vt_gbuffer(&g, &f, &sc);
+    gk_budget b;
+    vt_budget(&b, "vct_res=32,vct_trace_scale=1");
+    for (int with_map = 0; with_map < 2; with_map++) {
+        L.shadow_depth_tex = with_map ? depth : 0;
+        void *vct = vt_create(&g);
+        f.count_work = false;
+        assert_int_equal(vt_render(vct, &f, &sc, &b, &L, 1, NULL, NULL), 0);
+        assert_true(inject_fetches(vct) < 0.0); /* injected, not counted */
+        gk_gi_vct.invalidate(vct);               /* re-voxelize and re-inject, counting */
+        f.count_work = true;
+        assert_int_equal(vt_render(vct, &f, &sc, &b, &L, 1, NULL, NULL), 0);
+        double counted = inject_fetches(vct);
+        gk_vct_stats st;
+        gk_vct_get_stats(vct, &st);
+        float *slice = malloc(sizeof(float) * 4 * st.res * st.res);
+        long occupied = 0;
+        for (int z = 0; z < st.res; z++) {
+            read_slice(vct, st.res, z, slice);
+            for (long i = 0; i < (long)st.res * st.res; i++)
+                occupied += slice[i * 4 + 3] > 0.5f;
+        }
+        free(slice);
+        printf("# injection %s shadow map: %ld occupied voxels of %d^3, %.0f shadow fetches counted\n",
+               with_map ? "with" : "without", occupied, st.res, counted);
+        assert_true(occupied > st.res * st.res / 2); /* the floor's layer at least */
+        if (with_map)
+            assert_true(counted == 9.0 * (double)occupied);
+        else
+            assert_true(counted < 0.0); /* no map, no fetches: no entry */
+        f.count_work = true;            /* a counting frame that does not re-inject: no entry */
+        assert_int_equal(vt_render(vct, &f, &sc, &b, &L, 1, NULL, NULL), 0);
+        assert_true(inject_fetches(vct) < 0.0);
+        gk_gi_vct.destroy(vct);
+    }
+    glDeleteTextures(1, &depth);
+    vt_frame_destroy(&f);
+    vt_scene_free(&sc);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(injection_matches_formula_and_uses_the_shadow_map),
+        cmocka_unit_test(injection_fetches_nine_per_occupied_voxel),
     };
     return cmocka_run_group_tests_name("vct_inject", tests, group_setup, group_teardown);
 }
