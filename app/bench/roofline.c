@@ -11,7 +11,7 @@
 #include "gl/frame_report.h"
 #include "gl/gl_timing.h"
 
-typedef enum { KIND_TEX3D, KIND_TEX2D, KIND_IMAGE3D, KIND_RASTER } fetch_kind;
+typedef enum { KIND_TEX3D, KIND_TEX2D, KIND_IMAGE3D, KIND_SSBO, KIND_RASTER } fetch_kind;
 
 typedef struct roofline_case {
     const char *name;
@@ -25,7 +25,8 @@ typedef struct roofline_case {
 /* The single-channel nearest kinds are what the shadow lookups and vpl's exact visibility read
    (app/render/render_work.c, app/gi/vpl/vpl_work.c): a 32-bit depth map, VSSM's min/max mips and
    CSSM's range (R32F), the summed-area tables (R32UI), vpl's paraboloid depths (R16F). The
-   raster kind is fragments, not fetches: the rate at which a flat shader fills an R16F target with
+   storage-buffer kind is vec4 loads from a buffer of size³ of them, as radiosity's bounces gather
+   their links' radiance (app/gi/radiosity/rad_work.c). The raster kind is fragments, not fetches: the rate at which a flat shader fills an R16F target with
    a depth test, as the passes that rasterize (vpl's VAL maps) do. */
 static const roofline_case cases[] = {
     {.name = "tex3d_rgba8_trilinear", .format = "rgba8", .kind = KIND_TEX3D, .internal_format = GL_RGBA8, .size = 64},
@@ -47,6 +48,7 @@ static const roofline_case cases[] = {
     {.name = "image3d_rgba8_load", .format = "rgba8", .kind = KIND_IMAGE3D, .internal_format = GL_RGBA8, .size = 64},
     {.name = "image3d_rgba16f_load", .format = "rgba16f", .kind = KIND_IMAGE3D, .internal_format = GL_RGBA16F,
      .size = 64},
+    {.name = "ssbo_rgba32f_load", .format = "rgba32f", .kind = KIND_SSBO, .internal_format = GL_RGBA32F, .size = 64},
     {.name = "raster_r16f_depth_fill", .format = "r16f", .kind = KIND_RASTER, .internal_format = GL_R16F, .size = 64},
 };
 
@@ -129,6 +131,23 @@ static GLuint make_texture(const roofline_case *c)
     return tex;
 }
 
+/* The storage-buffer case's source: size³ vec4s of the same pattern. */
+static GLuint make_buffer(const roofline_case *c)
+{
+    size_t n = (size_t)c->size * c->size * c->size * 4;
+    float *data = malloc(n * sizeof(float));
+    if (!data)
+        return 0;
+    for (size_t i = 0; i < n; i++)
+        data[i] = (float)((i * 2654435761u) >> 24 & 255) / 255.0f;
+    GLuint buf;
+    glGenBuffers(1, &buf);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, buf);
+    glBufferData(GL_SHADER_STORAGE_BUFFER, (GLsizeiptr)(n * sizeof(float)), data, GL_STATIC_DRAW);
+    free(data);
+    return buf;
+}
+
 static int cmp_double(const void *a, const void *b)
 {
     double x = *(const double *)a, y = *(const double *)b;
@@ -198,14 +217,17 @@ static int measure_case(gk_program_cache *programs, const gk_roofline_opts *o, c
         return gk_roofline_fill(programs, o, c->name, c->format, r, e);
     char defines[160];
     snprintf(defines, sizeof defines, "#define %s 1\n%s%s%s",
-             c->kind == KIND_TEX3D ? "TEX3D" : c->kind == KIND_TEX2D ? "TEX2D" : "IMAGE3D",
+             c->kind == KIND_TEX3D   ? "TEX3D"
+             : c->kind == KIND_TEX2D ? "TEX2D"
+             : c->kind == KIND_SSBO  ? "SSBO"
+                                     : "IMAGE3D",
              c->nearest ? "#define NEAREST 1\n" : "",
              c->internal_format == GL_RGBA8 ? "#define FORMAT_RGBA8 1\n" : "",
              c->internal_format == GL_R32UI ? "#define FORMAT_UINT 1\n" : "");
     GLuint prog = gk_program_get_compute(programs, "bench/roofline.comp", defines, e);
     if (!prog)
         return -1;
-    GLuint tex = make_texture(c);
+    GLuint tex = c->kind == KIND_SSBO ? make_buffer(c) : make_texture(c);
     if (!tex)
         return gk_fail(e, GK_ERUNTIME, "roofline: out of memory for the %s texture", c->name);
     GLuint bufs[2];
@@ -218,8 +240,10 @@ static int measure_case(gk_program_cache *programs, const gk_roofline_opts *o, c
     gk_uniform_1i(prog, "u_fetches", o->fetches);
     gk_uniform_1i(prog, "u_size", c->size);
     /* between levels 1 and 2: a trilinear blend of two mips, as a cone sample a few voxels wide */
-    gk_uniform_1f(prog, "u_lod", c->kind == KIND_IMAGE3D || c->nearest ? 0.0f : 1.5f);
-    if (c->kind == KIND_IMAGE3D) {
+    gk_uniform_1f(prog, "u_lod", c->kind == KIND_IMAGE3D || c->kind == KIND_SSBO || c->nearest ? 0.0f : 1.5f);
+    if (c->kind == KIND_SSBO) {
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, tex);
+    } else if (c->kind == KIND_IMAGE3D) {
         glBindImageTexture(0, tex, 0, GL_TRUE, 0, GL_READ_ONLY, c->internal_format);
     } else {
         glActiveTexture(GL_TEXTURE0);
@@ -233,7 +257,10 @@ static int measure_case(gk_program_cache *programs, const gk_roofline_opts *o, c
     r->counted = counted ? *counted : 0;
     glUnmapBuffer(GL_SHADER_STORAGE_BUFFER);
     glDeleteBuffers(2, bufs);
-    glDeleteTextures(1, &tex);
+    if (c->kind == KIND_SSBO)
+        glDeleteBuffers(1, &tex);
+    else
+        glDeleteTextures(1, &tex);
     GLenum err = glGetError();
     if (err != GL_NO_ERROR)
         return gk_fail(e, GK_ERUNTIME, "roofline: %s: GL error 0x%04x", c->name, err);

@@ -6,7 +6,9 @@
 //   TEX2D  textureLod of a 2D texture at a fractional LOD (trilinear between two mips), or
 //          texelFetch (NEAREST) where the format is not filterable or the pass reads it unfiltered
 //          (RGBA32F tables, a depth map, R32F min/max mips, R32UI summed-area tables: FORMAT_UINT);
-//   IMAGE3D imageLoad of a 3D image, as the voxel passes read their volumes.
+//   IMAGE3D imageLoad of a 3D image, as the voxel passes read their volumes;
+//   SSBO   a vec4 load from a storage buffer of size³ of them (indexed as the 3D walk's texel), as
+//          radiosity's bounces read their links' radiance.
 // Each invocation walks a line through the texture, one texel per step at the fetched level, so
 // neighbouring invocations read neighbouring texels, as a screen of cones does. The sum is stored
 // so the compiler keeps every fetch; the loop's own count goes to u_counted (one atomic add per
@@ -18,6 +20,7 @@
 // @variant TEX2D NEAREST FORMAT_UINT
 // @variant IMAGE3D
 // @variant IMAGE3D FORMAT_RGBA8
+// @variant SSBO
 precision highp float;
 precision highp int;
 layout(local_size_x = 64) in;
@@ -32,6 +35,8 @@ uniform highp sampler3D u_tex;
 uniform highp usampler2D u_tex;
 #elif defined(TEX2D)
 uniform highp sampler2D u_tex;
+#elif defined(SSBO)
+layout(std430, binding = 2) readonly buffer Source { vec4 source[]; };
 #elif defined(IMAGE3D)
 #ifdef FORMAT_RGBA8
 layout(rgba8, binding = 0) readonly uniform highp image3D u_img;
@@ -61,6 +66,9 @@ void main()
         sum += textureLod(u_tex, p.xy / float(u_size), u_lod);
 #elif defined(IMAGE3D)
         sum += imageLoad(u_img, ivec3(mod(p, float(u_size))));
+#elif defined(SSBO)
+        ivec3 q = ivec3(mod(p, float(u_size)));
+        sum += source[(q.z * u_size + q.y) * u_size + q.x];
 #endif
         done++;
     }
