@@ -21,6 +21,7 @@ tex2d_r32f_nearest,r32f,512,1000000,4,2.5e+08
 tex2d_r32ui_nearest,r32ui,512,1000000,4,2.5e+08
 tex2d_r16f_nearest,r16f,512,1000000,4,2.5e+08
 image3d_rgba16f_load,rgba16f,64,1000000,4,2.5e+08
+ssbo_rgba32f_load,rgba32f,64,1000000,4,2.5e+08
 raster_r16f_depth_fill,r16f,512,1000000,2,5e+08
 CSV
 # --rebuild-gi: every frame voxelizes, injects and builds the mips again, so those passes are timed
@@ -99,6 +100,19 @@ u, h = "tex2d_rgba32f_nearest", "tex2d_rgba16f_trilinear"
 assert f[("vsm", u)] > 0 and f[("vsm", u)] == f[("cssm", u)], f
 assert f[("vsm", h)] > 0 and f[("vsm", h)] == f[("cssm", "tex2d_rgba8_trilinear")] - 2 * f[("cssm", h)] / 3, f
 assert f[("vsm", "valsm")] > 64 * 64 and f[("vsm", "valsm")] == f[("cssm", "valsm")], f
+PY
+# radiosity's bounces (app/gi/radiosity/rad_work.c): one radiance load per link per bounce, so with
+# the same links (lockstep: the worker's first link set in both rows) 4 bounces load twice what 2 do
+expect_exit 0 "bench --roofline-csv: radiosity at 2 and 4 bounces" sh -c "'$GIKIOSK' bench --scenes cornell \
+    --methods radiosity --size 80x60 --frames 1 --warmup 1 --budget radiosity_sync=lockstep \
+    --sweep 'radiosity_bounces=2,4' --roofline-csv '$TMP/roofline.csv' --out '$TMP/r' 2>'$TMP/r.log'"
+check "radiosity's efficiency.csv: every number recomputed" \
+    python3 "$TMP/recompute.py" "$TMP/r/bench.csv" "$TMP/r/efficiency.csv" "$TMP/roofline.csv" radiosity_bounces
+check "radiosity_bounce: twice the loads at twice the bounces" python3 - "$TMP/r/efficiency.csv" <<'PY'
+import csv, sys
+f = {e["radiosity_bounces"]: float(e["fetches"]) for e in csv.DictReader(open(sys.argv[1]))
+     if e["pass"] == "gi.radiosity_bounce" and e["kind"] == "ssbo_rgba32f_load"}
+assert f["2"] > 0 and f["4"] == 2 * f["2"], f
 PY
 printf 'name,format,size,fetches,median_ms,fetches_per_s\ntex3d_rgba16f_trilinear,rgba16f,64,1,1,fast\n' >"$TMP/bad.csv"
 expect_exit 2 "a roofline.csv with a rate that is not a number" "$GIKIOSK" bench --scenes cornell --methods vct \
