@@ -7,7 +7,7 @@
 //          texelFetch (NEAREST) where the format is not filterable or the pass reads it unfiltered
 //          (RGBA32F tables, a depth map, R32F min/max mips, R32UI summed-area tables: FORMAT_UINT);
 //   IMAGE3D imageLoad of a 3D image, as the voxel passes read their volumes;
-//   SSBO   a vec4 load from a storage buffer of size³ of them (indexed as the 3D walk's texel), as
+//   SSBO   a vec4 load from a storage buffer of size³ of them (a diagonal walk, integer-indexed), as
 //          radiosity's bounces read their links' radiance.
 // Each invocation walks a line through the texture, one texel per step at the fetched level, so
 // neighbouring invocations read neighbouring texels, as a screen of cones does. The sum is stored
@@ -67,8 +67,10 @@ void main()
 #elif defined(IMAGE3D)
         sum += imageLoad(u_img, ivec3(mod(p, float(u_size))));
 #elif defined(SSBO)
-        ivec3 q = ivec3(mod(p, float(u_size)));
-        sum += source[(q.z * u_size + q.y) * u_size + q.x];
+        // integer addressing, as a gather indexes its links (the float walk's mod and conversions
+        // cost more than the load on llvmpipe): one step of the diagonal (1, 1, 1) of the size³
+        // grid per fetch, size³ a power of two
+        sum += source[(id + uint(i) * uint(u_size * u_size + u_size + 1)) & uint(u_size * u_size * u_size - 1)];
 #endif
         done++;
     }
