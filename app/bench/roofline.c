@@ -26,7 +26,8 @@ typedef struct roofline_case {
    (app/render/render_work.c, app/gi/vpl/vpl_work.c): a 32-bit depth map, VSSM's min/max mips and
    CSSM's range (R32F), the summed-area tables (R32UI), vpl's paraboloid depths (R16F). The
    storage-buffer kind is vec4 loads from a buffer of size³ of them, as radiosity's bounces gather
-   their links' radiance (app/gi/radiosity/rad_work.c). The raster kind is fragments, not fetches: the rate at which a flat shader fills an R16F target with
+   their links' radiance (app/gi/radiosity/rad_work.c), and atomicAdd to a buffer of size³ uints, as
+   vct's voxelizer sums its fragments into the scratch buffer (vct_work.c). The raster kind is fragments, not fetches: the rate at which a flat shader fills an R16F target with
    a depth test, as the passes that rasterize (vpl's VAL maps) do. */
 static const roofline_case cases[] = {
     {.name = "tex3d_rgba8_trilinear", .format = "rgba8", .kind = KIND_TEX3D, .internal_format = GL_RGBA8, .size = 64},
@@ -50,6 +51,7 @@ static const roofline_case cases[] = {
      .size = 64},
     /* size³ a power of two: roofline.comp wraps its index with a mask */
     {.name = "ssbo_rgba32f_load", .format = "rgba32f", .kind = KIND_SSBO, .internal_format = GL_RGBA32F, .size = 64},
+    {.name = "ssbo_r32ui_atomic", .format = "r32ui", .kind = KIND_SSBO, .internal_format = GL_R32UI, .size = 64},
     {.name = "raster_r16f_depth_fill", .format = "r16f", .kind = KIND_RASTER, .internal_format = GL_R16F, .size = 64},
 };
 
@@ -135,16 +137,22 @@ static GLuint make_texture(const roofline_case *c)
 /* The storage-buffer case's source: size³ vec4s of the same pattern. */
 static GLuint make_buffer(const roofline_case *c)
 {
-    size_t n = (size_t)c->size * c->size * c->size * 4;
+    /* vec4s of the pattern, or size³ uints (the atomic kind) of it */
+    size_t n = (size_t)c->size * c->size * c->size * (c->internal_format == GL_R32UI ? 1 : 4);
     float *data = malloc(n * sizeof(float));
     if (!data)
         return 0;
-    for (size_t i = 0; i < n; i++)
-        data[i] = (float)((i * 2654435761u) >> 24 & 255) / 255.0f;
+    for (size_t i = 0; i < n; i++) {
+        unsigned v = (unsigned)((i * 2654435761u) >> 24 & 255);
+        if (c->internal_format == GL_R32UI)
+            ((GLuint *)data)[i] = v;
+        else
+            data[i] = (float)v / 255.0f;
+    }
     GLuint buf;
     glGenBuffers(1, &buf);
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, buf);
-    glBufferData(GL_SHADER_STORAGE_BUFFER, (GLsizeiptr)(n * sizeof(float)), data, GL_STATIC_DRAW);
+    glBufferData(GL_SHADER_STORAGE_BUFFER, (GLsizeiptr)(n * sizeof(float)), data, GL_DYNAMIC_COPY);
     free(data);
     return buf;
 }

@@ -8,7 +8,8 @@
 //          (RGBA32F tables, a depth map, R32F min/max mips, R32UI summed-area tables: FORMAT_UINT);
 //   IMAGE3D imageLoad of a 3D image, as the voxel passes read their volumes;
 //   SSBO   a vec4 load from a storage buffer of size³ of them (a diagonal walk, integer-indexed), as
-//          radiosity's bounces read their links' radiance.
+//          radiosity's bounces read their links' radiance; with FORMAT_UINT an atomicAdd to a
+//          buffer of size³ uints on the same walk, as vct's voxelizer sums into its scratch buffer.
 // Each invocation walks a line through the texture, one texel per step at the fetched level, so
 // neighbouring invocations read neighbouring texels, as a screen of cones does. The sum is stored
 // so the compiler keeps every fetch; the loop's own count goes to u_counted (one atomic add per
@@ -21,6 +22,7 @@
 // @variant IMAGE3D
 // @variant IMAGE3D FORMAT_RGBA8
 // @variant SSBO
+// @variant SSBO FORMAT_UINT
 precision highp float;
 precision highp int;
 layout(local_size_x = 64) in;
@@ -35,6 +37,8 @@ uniform highp sampler3D u_tex;
 uniform highp usampler2D u_tex;
 #elif defined(TEX2D)
 uniform highp sampler2D u_tex;
+#elif defined(SSBO) && defined(FORMAT_UINT)
+layout(std430, binding = 2) buffer Target { uint target[]; };
 #elif defined(SSBO)
 layout(std430, binding = 2) readonly buffer Source { vec4 source[]; };
 #elif defined(IMAGE3D)
@@ -66,6 +70,8 @@ void main()
         sum += textureLod(u_tex, p.xy / float(u_size), u_lod);
 #elif defined(IMAGE3D)
         sum += imageLoad(u_img, ivec3(mod(p, float(u_size))));
+#elif defined(SSBO) && defined(FORMAT_UINT)
+        sum.x += float(atomicAdd(target[(id + uint(i) * uint(u_size * u_size + u_size + 1)) & uint(u_size * u_size * u_size - 1)], 1u));
 #elif defined(SSBO)
         // integer addressing, as a gather indexes its links (the float walk's mod and conversions
         // cost more than the load on llvmpipe): one step of the diagonal (1, 1, 1) of the size³

@@ -22,6 +22,7 @@ tex2d_r32ui_nearest,r32ui,512,1000000,4,2.5e+08
 tex2d_r16f_nearest,r16f,512,1000000,4,2.5e+08
 image3d_rgba16f_load,rgba16f,64,1000000,4,2.5e+08
 ssbo_rgba32f_load,rgba32f,64,1000000,4,2.5e+08
+ssbo_r32ui_atomic,r32ui,64,1000000,10,1e+08
 raster_r16f_depth_fill,r16f,512,1000000,2,5e+08
 CSV
 # --rebuild-gi: every frame voxelizes, injects and builds the mips again, so those passes are timed
@@ -58,11 +59,12 @@ check "efficiency.csv: vct's passes and the direct pass's kind" python3 - "$EFF"
 import csv, sys
 eff = list(csv.DictReader(open(sys.argv[1])))
 passes = {(e["vct_cones"], e["pass"]) for e in eff}
-# each row: the cone trace, the injection's shadow fetches and the mips' loads (rebuilt each frame),
-# and the direct pass's shadow lookups (cornell's light is shadowed)
-assert passes == {(c, p) for c in ("4", "9") for p in ("gi.vct_trace", "gi.vct_inject", "gi.vct_mips", "direct")}, passes
-# the cones do not change the voxels: the same injection and mips at both counts
-for p in ("gi.vct_inject", "gi.vct_mips"):
+# each row: the cone trace, the voxelizer's atomics, the injection's shadow fetches and the mips'
+# loads (rebuilt each frame), and the direct pass's shadow lookups (cornell's light is shadowed)
+assert passes == {(c, p) for c in ("4", "9")
+                  for p in ("gi.vct_trace", "gi.vct_voxelize", "gi.vct_inject", "gi.vct_mips", "direct")}, passes
+# the cones do not change the voxels: the same voxelization, injection and mips at both counts
+for p in ("gi.vct_voxelize", "gi.vct_inject", "gi.vct_mips"):
     f = {e["vct_cones"]: float(e["fetches"]) for e in eff if e["pass"] == p}
     assert f["4"] == f["9"] > 0, (p, f)
 # the default shadows (PCSS) read the depth map only, at the depth kind's limit

@@ -44,7 +44,7 @@ static void every_kind_does_the_fetches_it_is_asked(void **state)
     int n = gk_roofline_measure(P, &o, r, GK_ROOFLINE_MAX_CASES, &e);
     if (n < 0)
         fail_msg("%s", e.msg);
-    assert_int_equal(n, 13);
+    assert_int_equal(n, 14);
     int tex3d = 0, raster = 0;
     for (int i = 0; i < n; i++) {
         bool fill = strncmp(r[i].name, "raster_", 7) == 0;

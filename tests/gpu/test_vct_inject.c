@@ -130,24 +130,28 @@ static void injection_matches_formula_and_uses_the_shadow_map(void **state)
     vt_scene_free(&sc);
 }
 
-/* the gi.vct_inject entry of the last frame's work, or -1 */
-static double inject_fetches(void *vct)
+/* the `pass` entry of the last frame's work (of kind `kind`), or -1 */
+static double work_of(void *vct, const char *pass, const char *kind)
 {
     gk_pass_work w[GK_MAX_PASS_WORK];
     int n = gk_gi_vct.pass_work(vct, w, GK_MAX_PASS_WORK);
     for (int i = 0; i < n; i++)
-        if (!strcmp(w[i].pass, "gi.vct_inject")) {
-            assert_string_equal(w[i].kind, "tex2d_depth32f_nearest");
+        if (!strcmp(w[i].pass, pass)) {
+            assert_string_equal(w[i].kind, kind);
             return w[i].fetches;
         }
     return -1.0;
 }
 
+static double inject_fetches(void *vct) { return work_of(vct, "gi.vct_inject", "tex2d_depth32f_nearest"); }
+static double voxelize_atomics(void *vct) { return work_of(vct, "gi.vct_voxelize", "ssbo_r32ui_atomic"); }
+
 /* A floor and an occluder under a point light whose shadow map sees all of both: every occupied
    voxel's lookup lands in the map, so the injection fetches 9 depth texels (3x3 PCF) per occupied
    voxel, counted here from the injected level 0 (alpha 1 where occupied). Without a shadow map it
    fetches none; outside a counting frame nothing is counted; a frame that does not re-inject
-   reports no injection. */
+   reports no injection. The voxelizer's atomics (vct_work.c): 10 per voxel a triangle wrote (the
+   count and 3 x albedo, normal, position), so 10 x the sum of the scratch's count channel. */
 static void injection_fetches_nine_per_occupied_voxel(void **state)
 {
     (void)state;
@@ -173,13 +177,22 @@ static void injection_fetches_nine_per_occupied_voxel(void **state)
         void *vct = vt_create(&g);
         f.count_work = false;
         assert_int_equal(vt_render(vct, &f, &sc, &b, &L, 1, NULL, NULL), 0);
-        assert_true(inject_fetches(vct) < 0.0); /* injected, not counted */
+        assert_true(inject_fetches(vct) < 0.0 && voxelize_atomics(vct) < 0.0); /* ran, not counted */
         gk_gi_vct.invalidate(vct);               /* re-voxelize and re-inject, counting */
         f.count_work = true;
         assert_int_equal(vt_render(vct, &f, &sc, &b, &L, 1, NULL, NULL), 0);
-        double counted = inject_fetches(vct);
+        double counted = inject_fetches(vct), atomics = voxelize_atomics(vct);
         gk_vct_stats st;
         gk_vct_get_stats(vct, &st);
+        long n_scratch = 0;
+        unsigned *scratch = vt_read_scratch(vct, &n_scratch);
+        assert_non_null(scratch);
+        double written = 0.0; /* channel 0 (CH_COUNT, vct/common.glsl): a voxel's writes */
+        for (long i = 0; i < (long)st.res * st.res * st.res; i++)
+            written += scratch[i];
+        free(scratch);
+        printf("# voxelize: %.0f voxel writes, %.0f atomics counted\n", written, atomics);
+        assert_true(written > 0.0 && atomics == 10.0 * written);
         float *slice = malloc(sizeof(float) * 4 * st.res * st.res);
         long occupied = 0;
         for (int z = 0; z < st.res; z++) {
@@ -197,7 +210,7 @@ static void injection_fetches_nine_per_occupied_voxel(void **state)
             assert_true(counted < 0.0); /* no map, no fetches: no entry */
         f.count_work = true;            /* a counting frame that does not re-inject: no entry */
         assert_int_equal(vt_render(vct, &f, &sc, &b, &L, 1, NULL, NULL), 0);
-        assert_true(inject_fetches(vct) < 0.0);
+        assert_true(inject_fetches(vct) < 0.0 && voxelize_atomics(vct) < 0.0);
         gk_gi_vct.destroy(vct);
     }
     glDeleteTextures(1, &depth);

@@ -58,7 +58,10 @@ typedef struct gk_vct {
     int res, levels;
     bool mips_ran;               /* this frame rebuilt the mips (vct_work.c counts their fetches) */
     bool inject_ran;             /* and injected the light (vct_work.c) */
-    gk_counters inject_fetches;  /* the bench's count of the injection's shadow fetches (vct_work.c) */
+    bool voxelize_ran;           /* and voxelized (all or a moved object's region) */
+    bool count_work;             /* this frame is the bench's counting frame (gk_gi_frame.count_work) */
+    gk_counters inject_fetches;  /* the bench's counts (vct_work.c): the injection's shadow fetches, */
+    gk_counters voxelize_atomics; /* the voxelizer's scratch-buffer atomics */
     /* GL objects */
     GLuint tri_ssbo, scratch_ssbo, counter_ssbo;
     GLuint alpha_tex;            /* R8 2D array: masked materials' base-colour alpha (vct_alpha.c) */
@@ -147,6 +150,9 @@ int vct_pass_work(void *self, gk_pass_work *out, int max);
    (returns the define inject.comp adds, "" when not counting), read it back; free it. */
 const char *vct_work_inject_begin(gk_vct *v, bool count_work);
 void vct_work_inject_end(gk_vct *v);
+/* The same around the voxelizer's dispatches (the define voxelize.comp adds). */
+const char *vct_work_voxelize_begin(gk_vct *v);
+void vct_work_voxelize_end(gk_vct *v);
 void vct_work_free(gk_vct *v);
 
 #endif

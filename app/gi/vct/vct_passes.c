@@ -133,10 +133,11 @@ static const gk_uniform_field compose_fields[] = {
 
 int vct_pass_voxelize(gk_vct *v, const int lo[3], const int hi[3], gk_err *e)
 {
-    char defs[256];
+    char defs[256], vox_defs[320];
     defines_common(v, defs, sizeof defs);
+    snprintf(vox_defs, sizeof vox_defs, "%s%s", defs, vct_work_voxelize_begin(v));
     GLuint clear = gk_program_get_compute(v->ctx.programs, "vct/clear.comp", defs, e);
-    GLuint vox = clear ? gk_program_get_compute(v->ctx.programs, "vct/voxelize.comp", defs, e) : 0;
+    GLuint vox = clear ? gk_program_get_compute(v->ctx.programs, "vct/voxelize.comp", vox_defs, e) : 0;
     const clear_uniforms *uc = vox ? gk_program_uniforms(v->ctx.programs, clear, GK_FIELDS(clear_fields), sizeof *uc, e) : NULL;
     const voxelize_uniforms *uv = uc ? gk_program_uniforms(v->ctx.programs, vox, GK_FIELDS(voxelize_fields), sizeof *uv, e) : NULL;
     if (!uv)
@@ -171,6 +172,8 @@ int vct_pass_voxelize(gk_vct *v, const int lo[3], const int hi[3], gk_err *e)
         glDispatchCompute((GLuint)groups(count, 64), 1, 1);
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    vct_work_voxelize_end(v);
+    v->voxelize_ran = true;
     v->stats.voxelize_runs++;
     v->stats.last_voxelized_region = (long)size[0] * size[1] * size[2];
     return 0;
