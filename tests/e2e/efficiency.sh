@@ -103,6 +103,21 @@ assert f[("vsm", u)] > 0 and f[("vsm", u)] == f[("cssm", u)], f
 assert f[("vsm", h)] > 0 and f[("vsm", h)] == f[("cssm", "tex2d_rgba8_trilinear")] - 2 * f[("cssm", h)] / 3, f
 assert f[("vsm", "valsm")] > 64 * 64 and f[("vsm", "valsm")] == f[("cssm", "valsm")], f
 PY
+# ispm's diffuse indirect part is vpl's (its passes by vpl's models): the same at any photon count
+expect_exit 0 "bench --roofline-csv: ispm at two photon counts" sh -c "'$GIKIOSK' bench --scenes caustic-ring \
+    --methods ispm --size 80x60 --frames 1 --warmup 1 --sweep 'ispm_photons=1024,4096' \
+    --roofline-csv '$TMP/roofline.csv' --out '$TMP/i' 2>'$TMP/i.log'"
+check "ispm's efficiency.csv: every number recomputed" \
+    python3 "$TMP/recompute.py" "$TMP/i/bench.csv" "$TMP/i/efficiency.csv" "$TMP/roofline.csv" ispm_photons
+check "ispm: vpl's gather and VAL maps, equal at both photon counts" python3 - "$TMP/i/efficiency.csv" <<'PY'
+import csv, sys
+f = {}
+for e in csv.DictReader(open(sys.argv[1])):
+    f.setdefault((e["pass"], e["kind"]), {})[e["ispm_photons"]] = float(e["fetches"])
+assert ("gi.vpl_valsm", "raster_r16f_depth_fill") in f and ("gi.vpl_gather", "tex2d_rgba32f_nearest") in f, f
+for k, v in f.items():
+    assert v["1024"] == v["4096"] > 0, (k, v)
+PY
 # radiosity's bounces (app/gi/radiosity/rad_work.c): one radiance load per link per bounce, so with
 # the same links (lockstep: the worker's first link set in both rows) 4 bounces load twice what 2 do
 expect_exit 0 "bench --roofline-csv: radiosity at 2 and 4 bounces" sh -c "'$GIKIOSK' bench --scenes cornell \
