@@ -53,28 +53,38 @@ static GLuint shadow_map(const vt_scene *sc, mat4 view_proj, int size)
     return depth;
 }
 
+/* A unit floor of albedo rho, a grey occluder above it (y = 0.5), with `marker` a black speck at
+   y = 1 that stretches the grid's bounds (above the light: outside its map); a point light of
+   intensity I at lp = (0.5, 0.9, 0.5) with a 126-degree perspective shadow map of 256² (the floor's
+   corners are 38 degrees off its axis); a 16² view from above with its G-buffer. Returns the map. */
+static GLuint floor_under_light(vt_scene *sc, float rho, float I, bool marker, gk_gi_light *L, vt_frame *f)
+{
+    vt_scene_init(sc);
+    vt_add_quad(sc, v3(0, 0, 0), v3(0, 0, 1), v3(1, 0, 0), v3(rho, rho, rho));               /* floor */
+    vt_add_quad(sc, v3(0.1f, 0.5f, 0.1f), v3(0, 0, 0.3f), v3(0.3f, 0, 0), v3(0.5f, 0.5f, 0.5f)); /* occluder */
+    if (marker)
+        vt_add_quad(sc, v3(0, 1, 0), v3(0.01f, 0, 0), v3(0, 0, 0.01f), v3(0, 0, 0));
+    vt_scene_finish(sc);
+    vec3 lp = v3(0.5f, 0.9f, 0.5f);
+    *L = vt_light(sc, GK_LIGHT_POINT, lp, v3(0, -1, 0), v3(I, I, I), 1);
+    mat4 view = m4_look_at(lp, v3(lp.x, 0, lp.z), v3(0, 0, -1));
+    L->shadow_view_proj = m4_mul(m4_perspective(2.2f, 1.0f, 0.05f, 3.0f), view);
+    L->shadow_is_perspective = true;
+    GLuint depth = shadow_map(sc, L->shadow_view_proj, 256);
+    vt_frame_create(f, 16, 16, v3(0.5f, 1.5f, 0.51f), v3(0.5f, 0, 0.5f), v3(0, 0, -1), 0.5f);
+    vt_gbuffer(&g, f, sc);
+    return depth;
+}
+
 static void injection_matches_formula_and_uses_the_shadow_map(void **state)
 {
     (void)state;
     vt_scene sc;
-    vt_scene_init(&sc);
-    const float rho = 0.6f;
-    vt_add_quad(&sc, v3(0, 0, 0), v3(0, 0, 1), v3(1, 0, 0), v3(rho, rho, rho));               /* floor */
-    vt_add_quad(&sc, v3(0.1f, 0.5f, 0.1f), v3(0, 0, 0.3f), v3(0.3f, 0, 0), v3(0.5f, 0.5f, 0.5f)); /* occluder */
-    vt_add_quad(&sc, v3(0, 1, 0), v3(0.01f, 0, 0), v3(0, 0, 0.01f), v3(0, 0, 0));               /* bounds marker */
-    vt_scene_finish(&sc);
-    vec3 lp = v3(0.5f, 0.9f, 0.5f);
-    const float I = 3.0f;
-    gk_gi_light L = vt_light(&sc, GK_LIGHT_POINT, lp, v3(0, -1, 0), v3(I, I, I), 1);
-    mat4 view = m4_look_at(lp, v3(lp.x, 0, lp.z), v3(0, 0, -1));
-    mat4 proj = m4_perspective(2.2f, 1.0f, 0.05f, 3.0f);
-    L.shadow_view_proj = m4_mul(proj, view);
-    L.shadow_is_perspective = true;
-    GLuint depth = shadow_map(&sc, L.shadow_view_proj, 256);
-
+    const float rho = 0.6f, I = 3.0f;
+    gk_gi_light L;
     vt_frame f;
-    vt_frame_create(&f, 16, 16, v3(0.5f, 1.5f, 0.51f), v3(0.5f, 0, 0.5f), v3(0, 0, -1), 0.5f);
-    vt_gbuffer(&g, &f, &sc);
+    GLuint depth = floor_under_light(&sc, rho, I, true, &L, &f);
+    vec3 lp = L.position;
     gk_budget b;
     vt_budget(&b, "vct_res=32,vct_trace_scale=1");
     double shadowed[2] = {0, 0}, lit_err = 0;
@@ -156,20 +166,9 @@ static void injection_fetches_nine_per_occupied_voxel(void **state)
 {
     (void)state;
     vt_scene sc;
-    vt_scene_init(&sc);
-    vt_add_quad(&sc, v3(0, 0, 0), v3(0, 0, 1), v3(1, 0, 0), v3(0.6f, 0.6f, 0.6f));                /* floor */
-    vt_add_quad(&sc, v3(0.1f, 0.5f, 0.1f), v3(0, 0, 0.3f), v3(0.3f, 0, 0), v3(0.5f, 0.5f, 0.5f)); /* occluder */
-    vt_scene_finish(&sc);
-    vec3 lp = v3(0.5f, 0.9f, 0.5f);
-    gk_gi_light L = vt_light(&sc, GK_LIGHT_POINT, lp, v3(0, -1, 0), v3(3, 3, 3), 1);
-    mat4 view = m4_look_at(lp, v3(lp.x, 0, lp.z), v3(0, 0, -1));
-    /* 126 degrees: the floor's corners are 38 degrees off the axis */
-    L.shadow_view_proj = m4_mul(m4_perspective(2.2f, 1.0f, 0.05f, 3.0f), view);
-    L.shadow_is_perspective = true;
-    GLuint depth = shadow_map(&sc, L.shadow_view_proj, 256);
+    gk_gi_light L;
     vt_frame f;
-    vt_frame_create(&f, 16, 16, v3(0.5f, 1.5f, 0.51f), v3(0.5f, 0, 0.5f), v3(0, 0, -1), 0.5f);
-    vt_gbuffer(&g, &f, &sc);
+    GLuint depth = floor_under_light(&sc, 0.6f, 3.0f, false, &L, &f); /* no marker: all inside the map */
     gk_budget b;
     vt_budget(&b, "vct_res=32,vct_trace_scale=1");
     for (int with_map = 0; with_map < 2; with_map++) {
