@@ -25,10 +25,11 @@ typedef struct roofline_case {
 /* The single-channel nearest kinds are what the shadow lookups and vpl's exact visibility read
    (app/render/render_work.c, app/gi/vpl/vpl_work.c): a 32-bit depth map, VSSM's min/max mips and
    CSSM's range (R32F), the summed-area tables (R32UI), vpl's paraboloid depths (R16F). The
-   storage-buffer kind is vec4 loads from a buffer of size³ of them, as radiosity's bounces gather
+   storage-buffer kinds are vec4 loads from a buffer of size³ of them, as radiosity's bounces gather
    their links' radiance (app/gi/radiosity/rad_work.c), and atomicAdd to a buffer of size³ uints, as
-   vct's voxelizer sums its fragments into the scratch buffer (vct_work.c). The raster kind is fragments, not fetches: the rate at which a flat shader fills an R16F target with
-   a depth test, as the passes that rasterize (vpl's VAL maps) do. */
+   vct's voxelizer sums its fragments into the scratch buffer (vct_work.c). The raster kind is
+   fragments, not fetches: the rate at which a flat shader fills an R16F target with a depth test,
+   as the passes that rasterize (vpl's VAL maps) do; its size is the fill's (roofline_fill.c). */
 static const roofline_case cases[] = {
     {.name = "tex3d_rgba8_trilinear", .format = "rgba8", .kind = KIND_TEX3D, .internal_format = GL_RGBA8, .size = 64},
     {.name = "tex3d_rgba16f_trilinear", .format = "rgba16f", .kind = KIND_TEX3D, .internal_format = GL_RGBA16F,
