@@ -1,6 +1,7 @@
 /* The roofline micro-benchmark (roofline.h): one compute dispatch per kind of fetch, timed by the
  * renderer's timer (CPU mode, fence at each pass boundary, as `gikiosk bench` times frames). */
 #include "roofline.h"
+#include "roofline_internal.h"
 
 #include <stdbool.h>
 #include <stdio.h>
@@ -10,17 +11,25 @@
 #include "gl/frame_report.h"
 #include "gl/gl_timing.h"
 
-typedef enum { KIND_TEX3D, KIND_TEX2D, KIND_IMAGE3D } fetch_kind;
+typedef enum { KIND_TEX3D, KIND_TEX2D, KIND_IMAGE3D, KIND_SSBO, KIND_RASTER } fetch_kind;
 
 typedef struct roofline_case {
     const char *name;
     const char *format;
     fetch_kind kind;
     GLenum internal_format;
-    bool nearest;   /* not filterable in GLES 3.1 (RGBA32F): texelFetch */
+    bool nearest;   /* not filterable in GLES 3.1 (32-bit float, integer, depth): texelFetch */
     int size;       /* level-0 side: vct's default 64³ volume; a 512² shadow map / SAT */
 } roofline_case;
 
+/* The single-channel nearest kinds are what the shadow lookups and vpl's exact visibility read
+   (app/render/render_work.c, app/gi/vpl/vpl_work.c): a 32-bit depth map, VSSM's min/max mips and
+   CSSM's range (R32F), the summed-area tables (R32UI), vpl's paraboloid depths (R16F). The
+   storage-buffer kinds are vec4 loads from a buffer of size³ of them, as radiosity's bounces gather
+   their links' radiance (app/gi/radiosity/rad_work.c), and atomicAdd to a buffer of size³ uints, as
+   vct's voxelizer sums its fragments into the scratch buffer (vct_work.c). The raster kind is
+   fragments, not fetches: the rate at which a flat shader fills an R16F target with a depth test,
+   as the passes that rasterize (vpl's VAL maps) do; its size is the fill's (roofline_fill.c). */
 static const roofline_case cases[] = {
     {.name = "tex3d_rgba8_trilinear", .format = "rgba8", .kind = KIND_TEX3D, .internal_format = GL_RGBA8, .size = 64},
     {.name = "tex3d_rgba16f_trilinear", .format = "rgba16f", .kind = KIND_TEX3D, .internal_format = GL_RGBA16F,
@@ -30,9 +39,23 @@ static const roofline_case cases[] = {
      .size = 512},
     {.name = "tex2d_rgba32f_nearest", .format = "rgba32f", .kind = KIND_TEX2D, .internal_format = GL_RGBA32F,
      .nearest = true, .size = 512},
+    {.name = "tex2d_depth32f_nearest", .format = "depth32f", .kind = KIND_TEX2D,
+     .internal_format = GL_DEPTH_COMPONENT32F, .nearest = true, .size = 512},
+    {.name = "tex2d_r32f_nearest", .format = "r32f", .kind = KIND_TEX2D, .internal_format = GL_R32F, .nearest = true,
+     .size = 512},
+    {.name = "tex2d_r32ui_nearest", .format = "r32ui", .kind = KIND_TEX2D, .internal_format = GL_R32UI,
+     .nearest = true, .size = 512},
+    {.name = "tex2d_r16f_nearest", .format = "r16f", .kind = KIND_TEX2D, .internal_format = GL_R16F, .nearest = true,
+     .size = 512},
     {.name = "image3d_rgba8_load", .format = "rgba8", .kind = KIND_IMAGE3D, .internal_format = GL_RGBA8, .size = 64},
     {.name = "image3d_rgba16f_load", .format = "rgba16f", .kind = KIND_IMAGE3D, .internal_format = GL_RGBA16F,
      .size = 64},
+    /* size³ a power of two (roofline.comp wraps its index with a mask); 16³: 64 KB, in cache, as
+       radiosity's node radiance is (64³, 4 MB: 23-76 M loads/s in three rounds, against 104-124 at
+       16³ in three more, load average 8-9, not interleaved) */
+    {.name = "ssbo_rgba32f_load", .format = "rgba32f", .kind = KIND_SSBO, .internal_format = GL_RGBA32F, .size = 16},
+    {.name = "ssbo_r32ui_atomic", .format = "r32ui", .kind = KIND_SSBO, .internal_format = GL_R32UI, .size = 16},
+    {.name = "raster_r16f_depth_fill", .format = "r16f", .kind = KIND_RASTER, .internal_format = GL_R16F, .size = 64},
 };
 
 void gk_roofline_opts_defaults(gk_roofline_opts *o)
@@ -52,12 +75,31 @@ static int levels_of(int size)
     return n;
 }
 
+/* How GLES takes texels of a sized format: RGBA8 as bytes, integers as uints, depth and the float
+   formats as floats (R16F accepts GL_FLOAT). */
+typedef struct upload_format {
+    GLenum format, type;
+    int channels;
+} upload_format;
+
+static upload_format upload_format_of(GLenum internal_format)
+{
+    switch (internal_format) {
+    case GL_RGBA8: return (upload_format){GL_RGBA, GL_UNSIGNED_BYTE, 4};
+    case GL_R32UI: return (upload_format){GL_RED_INTEGER, GL_UNSIGNED_INT, 1};
+    case GL_R32F:
+    case GL_R16F: return (upload_format){GL_RED, GL_FLOAT, 1};
+    case GL_DEPTH_COMPONENT32F: return (upload_format){GL_DEPTH_COMPONENT, GL_FLOAT, 1};
+    default: return (upload_format){GL_RGBA, GL_FLOAT, 4};
+    }
+}
+
 /* A texture of the case's format with every level filled with a non-constant pattern (a constant
  * one would let a clever driver fold the fetches). */
 static GLuint make_texture(const roofline_case *c)
 {
     GLenum target = c->kind == KIND_TEX2D ? GL_TEXTURE_2D : GL_TEXTURE_3D;
-    int levels = c->kind == KIND_IMAGE3D ? 1 : levels_of(c->size);
+    int levels = c->kind == KIND_IMAGE3D || c->nearest ? 1 : levels_of(c->size);
     GLuint tex;
     glGenTextures(1, &tex);
     glBindTexture(target, tex);
@@ -67,26 +109,26 @@ static GLuint make_texture(const roofline_case *c)
     else
         glTexStorage2D(target, levels, c->internal_format, c->size, c->size);
     size_t texels = (size_t)c->size * c->size * depth;
-    /* GLES takes RGBA8 as bytes, the float formats as floats */
-    bool bytes = c->internal_format == GL_RGBA8;
-    GLenum type = bytes ? GL_UNSIGNED_BYTE : GL_FLOAT;
-    void *data = malloc(texels * 4 * (bytes ? 1 : sizeof(float)));
+    upload_format up = upload_format_of(c->internal_format);
+    void *data = malloc(texels * (size_t)up.channels * 4);
     if (!data) {
         glDeleteTextures(1, &tex);
         return 0;
     }
-    for (size_t i = 0; i < texels * 4; i++) {
+    for (size_t i = 0; i < texels * (size_t)up.channels; i++) {
         unsigned v = (unsigned)((i * 2654435761u) >> 24 & 255);
-        if (bytes)
+        if (up.type == GL_UNSIGNED_BYTE)
             ((unsigned char *)data)[i] = (unsigned char)v;
+        else if (up.type == GL_UNSIGNED_INT)
+            ((GLuint *)data)[i] = v;
         else
             ((float *)data)[i] = (float)v / 255.0f;
     }
     for (int l = 0, s = c->size, d = depth; l < levels; l++, s = s > 1 ? s / 2 : 1, d = d > 1 ? d / 2 : 1) {
         if (target == GL_TEXTURE_3D)
-            glTexSubImage3D(target, l, 0, 0, 0, s, s, d, GL_RGBA, type, data);
+            glTexSubImage3D(target, l, 0, 0, 0, s, s, d, up.format, up.type, data);
         else
-            glTexSubImage2D(target, l, 0, 0, s, s, GL_RGBA, type, data);
+            glTexSubImage2D(target, l, 0, 0, s, s, up.format, up.type, data);
     }
     free(data);
     GLenum min = c->nearest ? GL_NEAREST : GL_LINEAR_MIPMAP_LINEAR;
@@ -95,24 +137,109 @@ static GLuint make_texture(const roofline_case *c)
     return tex;
 }
 
+/* The storage-buffer case's source: size³ vec4s of the same pattern. */
+static GLuint make_buffer(const roofline_case *c)
+{
+    /* vec4s of the pattern, or size³ uints (the atomic kind) of it */
+    size_t n = (size_t)c->size * c->size * c->size * (c->internal_format == GL_R32UI ? 1 : 4);
+    float *data = malloc(n * sizeof(float));
+    if (!data)
+        return 0;
+    for (size_t i = 0; i < n; i++) {
+        unsigned v = (unsigned)((i * 2654435761u) >> 24 & 255);
+        if (c->internal_format == GL_R32UI)
+            ((GLuint *)data)[i] = v;
+        else
+            data[i] = (float)v / 255.0f;
+    }
+    GLuint buf;
+    glGenBuffers(1, &buf);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, buf);
+    glBufferData(GL_SHADER_STORAGE_BUFFER, (GLsizeiptr)(n * sizeof(float)), data, GL_DYNAMIC_COPY);
+    free(data);
+    return buf;
+}
+
 static int cmp_double(const void *a, const void *b)
 {
     double x = *(const double *)a, y = *(const double *)b;
     return x < y ? -1 : x > y;
 }
 
+double gk_roofline_time(const gk_roofline_opts *o, void (*run)(void *ctx), void (*after_warmup)(void *ctx), void *ctx)
+{
+    gk_timer *timer = gk_timer_create(false);
+    double ms[64];
+    int reps = o->reps < 64 ? o->reps : 64;
+    for (int i = -1; i < reps; i++) {   /* i = -1: untimed, compiles the JIT code */
+        if (i == 0 && after_warmup)
+            after_warmup(ctx);
+        gk_frame_report rep;
+        gk_timer_frame_begin(timer);
+        gk_timer_pass_begin(timer, "roofline");
+        run(ctx);
+        gk_timer_pass_end(timer);
+        gk_timer_frame_end(timer, &rep);
+        if (i >= 0)
+            ms[i] = gk_frame_report_ms(&rep, "roofline");
+    }
+    gk_timer_destroy(timer);
+    qsort(ms, (size_t)reps, sizeof ms[0], cmp_double);
+    return ms[reps / 2];
+}
+
+void gk_roofline_result_set(gk_roofline_result *r, const char *name, const char *format, int size,
+                            const gk_roofline_opts *o, double median_ms)
+{
+    r->name = name;
+    r->format = format;
+    r->size = size;
+    r->fetches = (double)o->invocations * o->fetches;
+    r->expected = r->fetches * o->reps;
+    r->unit = "fetches";
+    r->median_ms = median_ms;
+    r->fetches_per_s = median_ms > 0.0 ? r->fetches / (median_ms * 1e-3) : 0.0;
+}
+
+struct dispatch {
+    const gk_roofline_opts *o;
+    GLuint counter;
+};
+
+static void dispatch_run(void *ctx)
+{
+    const struct dispatch *d = ctx;
+    glDispatchCompute((GLuint)(d->o->invocations / 64), 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+}
+
+/* the untimed dispatch's count is not the timed ones' */
+static void dispatch_zero_counter(void *ctx)
+{
+    const struct dispatch *d = ctx;
+    const GLuint zero = 0;
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, d->counter);
+    glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof zero, &zero);
+}
+
 static int measure_case(gk_program_cache *programs, const gk_roofline_opts *o, const roofline_case *c,
                         gk_roofline_result *r, gk_err *e)
 {
-    char defines[128];
-    snprintf(defines, sizeof defines, "#define %s 1\n%s%s",
-             c->kind == KIND_TEX3D ? "TEX3D" : c->kind == KIND_TEX2D ? "TEX2D" : "IMAGE3D",
+    if (c->kind == KIND_RASTER)
+        return gk_roofline_fill(programs, o, c->name, c->format, r, e);
+    char defines[160];
+    snprintf(defines, sizeof defines, "#define %s 1\n%s%s%s",
+             c->kind == KIND_TEX3D   ? "TEX3D"
+             : c->kind == KIND_TEX2D ? "TEX2D"
+             : c->kind == KIND_SSBO  ? "SSBO"
+                                     : "IMAGE3D",
              c->nearest ? "#define NEAREST 1\n" : "",
-             c->internal_format == GL_RGBA8 ? "#define FORMAT_RGBA8 1\n" : "");
+             c->internal_format == GL_RGBA8 ? "#define FORMAT_RGBA8 1\n" : "",
+             c->internal_format == GL_R32UI ? "#define FORMAT_UINT 1\n" : "");
     GLuint prog = gk_program_get_compute(programs, "bench/roofline.comp", defines, e);
     if (!prog)
         return -1;
-    GLuint tex = make_texture(c);
+    GLuint tex = c->kind == KIND_SSBO ? make_buffer(c) : make_texture(c);
     if (!tex)
         return gk_fail(e, GK_ERUNTIME, "roofline: out of memory for the %s texture", c->name);
     GLuint bufs[2];
@@ -125,50 +252,31 @@ static int measure_case(gk_program_cache *programs, const gk_roofline_opts *o, c
     gk_uniform_1i(prog, "u_fetches", o->fetches);
     gk_uniform_1i(prog, "u_size", c->size);
     /* between levels 1 and 2: a trilinear blend of two mips, as a cone sample a few voxels wide */
-    gk_uniform_1f(prog, "u_lod", c->kind == KIND_IMAGE3D || c->nearest ? 0.0f : 1.5f);
-    if (c->kind == KIND_IMAGE3D) {
+    gk_uniform_1f(prog, "u_lod", c->kind == KIND_IMAGE3D || c->kind == KIND_SSBO || c->nearest ? 0.0f : 1.5f);
+    if (c->kind == KIND_SSBO) {
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, tex);
+    } else if (c->kind == KIND_IMAGE3D) {
         glBindImageTexture(0, tex, 0, GL_TRUE, 0, GL_READ_ONLY, c->internal_format);
     } else {
         glActiveTexture(GL_TEXTURE0);
         glBindTexture(c->kind == KIND_TEX2D ? GL_TEXTURE_2D : GL_TEXTURE_3D, tex);
         gk_uniform_1i(prog, "u_tex", 0);
     }
-    gk_timer *timer = gk_timer_create(false);
-    double ms[64];
-    int reps = o->reps < 64 ? o->reps : 64;
-    const GLuint zero = 0;
-    for (int i = -1; i < reps; i++) {   /* i = -1: untimed, compiles the JIT code */
-        if (i == 0) {
-            glBindBuffer(GL_SHADER_STORAGE_BUFFER, bufs[0]);
-            glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof zero, &zero);
-        }
-        gk_frame_report rep;
-        gk_timer_frame_begin(timer);
-        gk_timer_pass_begin(timer, "roofline");
-        glDispatchCompute((GLuint)(o->invocations / 64), 1, 1);
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-        gk_timer_pass_end(timer);
-        gk_timer_frame_end(timer, &rep);
-        if (i >= 0)
-            ms[i] = gk_frame_report_ms(&rep, "roofline");
-    }
-    gk_timer_destroy(timer);
+    struct dispatch d = {o, bufs[0]};
+    double median = gk_roofline_time(o, dispatch_run, dispatch_zero_counter, &d);
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, bufs[0]);
     const GLuint *counted = glMapBufferRange(GL_SHADER_STORAGE_BUFFER, 0, sizeof(GLuint), GL_MAP_READ_BIT);
     r->counted = counted ? *counted : 0;
     glUnmapBuffer(GL_SHADER_STORAGE_BUFFER);
     glDeleteBuffers(2, bufs);
-    glDeleteTextures(1, &tex);
+    if (c->kind == KIND_SSBO)
+        glDeleteBuffers(1, &tex);
+    else
+        glDeleteTextures(1, &tex);
     GLenum err = glGetError();
     if (err != GL_NO_ERROR)
         return gk_fail(e, GK_ERUNTIME, "roofline: %s: GL error 0x%04x", c->name, err);
-    qsort(ms, (size_t)reps, sizeof ms[0], cmp_double);
-    r->name = c->name;
-    r->format = c->format;
-    r->size = c->size;
-    r->fetches = (double)o->invocations * o->fetches;
-    r->median_ms = ms[reps / 2];
-    r->fetches_per_s = r->median_ms > 0.0 ? r->fetches / (r->median_ms * 1e-3) : 0.0;
+    gk_roofline_result_set(r, c->name, c->format, c->size, o, median);
     return 0;
 }
 

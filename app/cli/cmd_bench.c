@@ -102,9 +102,9 @@ static int bench_roofline(const gk_bench_opts *o)
     int rc = n < 0 ? -1 : gk_roofline_write_csv(res, n, csv, &e);
     if (rc == 0)
         for (int i = 0; i < n; i++)
-            gk_log("bench: roofline %-24s %8.1f M fetches/s (%.0f fetches in %.2f ms; counted %llu of %.0f)",
-                   res[i].name, res[i].fetches_per_s * 1e-6, res[i].fetches, res[i].median_ms,
-                   (unsigned long long)res[i].counted, res[i].fetches * ro.reps);
+            gk_log("bench: roofline %-24s %8.1f M %s/s (%.0f in %.2f ms; counted %llu of %.0f)", res[i].name,
+                   res[i].fetches_per_s * 1e-6, res[i].unit, res[i].fetches, res[i].median_ms,
+                   (unsigned long long)res[i].counted, res[i].expected);
     if (programs)
         gk_program_cache_destroy(programs);
     gk_platform_close(p);

@@ -7,7 +7,7 @@
 
 #include "gl.h"
 
-#define GK_COUNTERS_MAX 4
+#define GK_COUNTERS_MAX 8
 
 typedef struct gk_counters {
     int n;                  /* counters (uints) the shader's buffer block holds */

@@ -6,7 +6,7 @@
 #ifndef GK_PASS_WORK_H
 #define GK_PASS_WORK_H
 
-#define GK_MAX_PASS_WORK 8
+#define GK_MAX_PASS_WORK 16
 
 typedef struct gk_pass_work {
     const char *pass;   /* dotted frame-report path: "gi.vct_trace" (a string literal) */

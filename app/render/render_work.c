@@ -15,7 +15,7 @@ bool gk_renderer_count_work(gk_renderer *r, bool on)
 
 const char *gk_render_work_begin(gk_renderer *r)
 {
-    r->shadow_fetches.n = 2;
+    r->shadow_fetches.n = 5;
     r->shadow_fetches.binding = 6; /* direct/light.frag ShadowFetches */
     return gk_counters_begin(&r->shadow_fetches, r->count_work) ? "#define SHADOW_COUNT_FETCHES 1\n" : "";
 }
@@ -27,10 +27,12 @@ void gk_render_work_destroy(gk_renderer *r) { gk_counters_free(&r->shadow_fetche
 int gk_renderer_pass_work(const gk_renderer *r, const char *method, gk_pass_work *out, int max)
 {
     int n = 0;
-    /* the shadow maps are 32-bit depth and the SATs and min-max mips 32-bit integers, read
-       unfiltered: the roofline's unfiltered 32-bit kind; CSSM's bases are mipmapped RGBA16F */
-    static const char *const kinds[2] = {"tex2d_rgba32f_nearest", "tex2d_rgba16f_trilinear"};
-    for (int k = 0; k < 2 && r->shadow_fetches.counted; k++)
+    /* by the format read, in the order of direct/light.frag's ShadowFetches: the 32-bit depth map,
+       R32F min/max mips and CSSM's range, R32UI SATs, CSSM_SAT's RGBA32UI bases (16-byte texels
+       as RGBA32F's), all unfiltered; CSSM's mipmapped RGBA16F bases */
+    static const char *const kinds[5] = {"tex2d_depth32f_nearest", "tex2d_r32f_nearest", "tex2d_r32ui_nearest",
+                                         "tex2d_rgba32f_nearest", "tex2d_rgba16f_trilinear"};
+    for (int k = 0; k < 5 && r->shadow_fetches.counted; k++)
         if (r->shadow_fetches.value[k] > 0.0 && n < max)
             out[n++] = (gk_pass_work){.pass = "direct", .kind = kinds[k], .fetches = r->shadow_fetches.value[k]};
     return n + gk_render_gi_pass_work(r->gi, method, out + n, max - n);

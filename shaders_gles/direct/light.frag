@@ -34,7 +34,10 @@ out vec4 o_color;
 #ifdef SHADOW_COUNT_FETCHES
 // the bench's count of the shadow lookups' fetches (shadow/common.glsl; fragment-stage storage
 // buffers are capability-checked by the renderer before it asks for this variant)
-layout(std430, binding = 6) buffer ShadowFetches { highp uint nearest; highp uint filtered; } shadow_counted;
+// (app/render/render_work.c reads the five counts in this order)
+layout(std430, binding = 6) buffer ShadowFetches {
+    highp uint depth, r32f, r32ui, rgba32ui, rgba16f;
+} shadow_counted;
 #endif
 
 void main()
@@ -50,8 +53,11 @@ void main()
     // map's tilted normal the receiver sinks behind its own depth in the map and shadows itself.
     radiance *= shadow_visibility(s.p, gb_geom_normal(px));
 #ifdef SHADOW_COUNT_FETCHES
-    atomicAdd(shadow_counted.nearest, gk_shadow_fetches.x);
-    atomicAdd(shadow_counted.filtered, gk_shadow_fetches.y);
+    atomicAdd(shadow_counted.depth, gk_shadow_fetches.depth);
+    atomicAdd(shadow_counted.r32f, gk_shadow_fetches.r32f);
+    atomicAdd(shadow_counted.r32ui, gk_shadow_fetches.r32ui);
+    atomicAdd(shadow_counted.rgba32ui, gk_shadow_fetches.rgba32ui);
+    atomicAdd(shadow_counted.rgba16f, gk_shadow_fetches.rgba16f);
 #endif
     o_color = vec4(radiance, 1.0);
 }

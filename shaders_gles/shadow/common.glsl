@@ -69,20 +69,25 @@ gk_shadow_coord gk_shadow_project(highp vec3 p)
 }
 
 // The bench's counting variant (#21, app/render/render_work.c): with SHADOW_COUNT_FETCHES the shadow
-// lookups add up their fetches per pixel -- x unfiltered 32-bit ones (depth map, SATs, min-max
-// mips; a textureGather counts one), y filtered RGBA16F ones (CSSM's mipmapped bases) -- and
-// direct/light.frag adds them to a buffer once per pixel. Never in the kiosk's frames.
+// lookups add up their fetches per pixel by the texture's format, each the roofline's kind of the
+// same name -- unfiltered: the depth map, R32F (VSSM's min/max mips, CSSM's range), R32UI (the z
+// SATs), RGBA32UI (CSSM_SAT's bases); filtered: RGBA16F (CSSM's mipmapped bases); a textureGather
+// counts one -- and direct/light.frag adds them to a buffer once per pixel. Never in the kiosk's
+// frames.
 #ifdef SHADOW_COUNT_FETCHES
-highp uvec2 gk_shadow_fetches = uvec2(0u);
-#define GK_SHADOW_COUNT(x, y) gk_shadow_fetches += uvec2(uint(x), uint(y))
+struct gk_shadow_counts {
+    highp uint depth, r32f, r32ui, rgba32ui, rgba16f;
+};
+gk_shadow_counts gk_shadow_fetches = gk_shadow_counts(0u, 0u, 0u, 0u, 0u);
+#define GK_SHADOW_COUNT(kind, n) gk_shadow_fetches.kind += uint(n)
 #else
-#define GK_SHADOW_COUNT(x, y)
+#define GK_SHADOW_COUNT(kind, n)
 #endif
 
 // Linear depth of the nearest occluder stored at uv (clamped to the map).
 highp float gk_shadow_fetch(highp vec2 uv, highp float layer)
 {
-    GK_SHADOW_COUNT(1, 0);
+    GK_SHADOW_COUNT(depth, 1);
     return gk_shadow_linear(texture(u_shadow_map, vec3(clamp(uv, 0.0, 1.0), layer)).r);
 }
 

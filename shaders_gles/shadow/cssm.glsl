@@ -74,7 +74,7 @@ uniform highp sampler2DArray u_cssm_range;
 
 highp vec2 cssm_range(int layer)
 {
-    GK_SHADOW_COUNT(2, 0);
+    GK_SHADOW_COUNT(r32f, 2);
     return vec2(texelFetch(u_cssm_range, ivec3(0, 0, layer), 0).r, texelFetch(u_cssm_range, ivec3(1, 0, layer), 0).r);
 }
 
@@ -93,7 +93,7 @@ uniform highp usampler2DArray u_cssm_z2;
 
 highp uvec4 cssm_sat4(highp usampler2DArray s, ivec2 p, int layer)
 {
-    GK_SHADOW_COUNT(any(lessThan(p, ivec2(0))) ? 0 : 1, 0);
+    GK_SHADOW_COUNT(rgba32ui, any(lessThan(p, ivec2(0))) ? 0 : 1);
     return any(lessThan(p, ivec2(0))) ? uvec4(0u) : texelFetch(s, ivec3(p, layer), 0);
 }
 
@@ -155,7 +155,7 @@ cssm_basis cssm_fetch(highp vec2 uv, highp vec2 w, int layer, bool with_z)
     highp vec3 p = vec3(uv, float(layer));
     highp float lod = log2(max(sqrt(w.x * w.y), 1.0));
     cssm_basis b;
-    GK_SHADOW_COUNT(0, with_z ? 5 : 2);
+    GK_SHADOW_COUNT(rgba16f, with_z ? 5 : 2);
     b.c = textureLod(u_cssm_cos, p, lod);
     b.s = textureLod(u_cssm_sin, p, lod);
     b.zc = vec4(0.0);

@@ -117,7 +117,7 @@ highp float vssm_cheb(highp vec2 m, highp float d)
 highp float vssm_z(ivec2 p, int layer)
 {
     p = clamp(p, ivec2(0), ivec2(int(u_shadow_light.w) - 1));
-    GK_SHADOW_COUNT(1, 0);
+    GK_SHADOW_COUNT(r32f, 1);
     return texelFetch(u_vssm_zmin, ivec3(p, layer), 0).r;
 }
 
@@ -163,7 +163,7 @@ highp vec2 vssm_hsm(ivec2 lo, ivec2 hi, int layer)
     for (int j = 0; j < 2; j++)
         for (int i = 0; i < 2; i++) {
             ivec2 p = min(a + ivec2(i, j), b);
-            GK_SHADOW_COUNT(2, 0);
+            GK_SHADOW_COUNT(r32f, 2);
             r.x = min(r.x, texelFetch(u_vssm_zmin, ivec3(p, layer), l).r);
             r.y = max(r.y, texelFetch(u_vssm_zmax, ivec3(p, layer), l).r);
         }
@@ -215,7 +215,7 @@ highp vec2 vssm_blocker(highp vec2 tc, highp vec2 w, int layer, highp float d)
             int x = i == 0 ? lo.x - 1 : vssm_split(lo.x, hi.x, i - 1, m_sub).y;
             int xc = clamp(x, -1, top.x);
             bool inside = xc >= 0 && yc >= 0;
-            GK_SHADOW_COUNT(inside ? 2 : 0, 0);
+            GK_SHADOW_COUNT(r32ui, inside ? 2 : 0);
             cz[i] = inside ? texelFetch(u_vssm_sat_z, ivec3(xc, yc, layer), 0).r : 0u;
             cz2[i] = inside ? texelFetch(u_vssm_sat_z2, ivec3(xc, yc, layer), 0).r : 0u;
             if (i > 0 && j > 0) {

@@ -29,7 +29,7 @@ void gk_soft_box(highp vec2 tc, highp vec2 w, out ivec2 lo, out ivec2 hi)
 
 highp uint gk_sat1(highp usampler2DArray s, ivec2 p, int layer)
 {
-    GK_SHADOW_COUNT(any(lessThan(p, ivec2(0))) ? 0 : 1, 0);
+    GK_SHADOW_COUNT(r32ui, any(lessThan(p, ivec2(0))) ? 0 : 1);
     return any(lessThan(p, ivec2(0))) ? 0u : texelFetch(s, ivec3(p, layer), 0).r;
 }
 
@@ -80,7 +80,7 @@ highp vec2 gk_sat_moments_smooth(highp usampler2DArray sz, highp usampler2DArray
     bvec4 ax_in = bvec4(a.x >= 0, a.x + 1 >= 0, a.x >= 0, a.x + 1 >= 0);
     bvec4 ay_in = bvec4(a.y >= 0, a.y >= 0, a.y + 1 >= 0, a.y + 1 >= 0);
     uvec4 mx = uvec4(ax_in), my = uvec4(ay_in);
-    GK_SHADOW_COUNT(8, 0);
+    GK_SHADOW_COUNT(r32ui, 8);
     uvec4 s1 = textureGather(sz, t_hh, 0).wzxy - textureGather(sz, t_ah, 0).wzxy * mx -
                textureGather(sz, t_ha, 0).wzxy * my + textureGather(sz, t_aa, 0).wzxy * (mx * my);
     uvec4 s2 = textureGather(sz2, t_hh, 0).wzxy - textureGather(sz2, t_ah, 0).wzxy * mx -

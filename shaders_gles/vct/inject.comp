@@ -1,6 +1,7 @@
 // Direct-light injection (thesis §3.1: the voxelization fragment shader's diffuse direct light, here a
 // @variant CONSERVATIVE=1 AVERAGE_CAS=0 EMISSIVE=0
 // @variant CONSERVATIVE=0 AVERAGE_CAS=1 EMISSIVE=1
+// @variant CONSERVATIVE=1 AVERAGE_CAS=0 EMISSIVE=0 INJECT_COUNT_FETCHES=1
 // separate pass so a moving light re-injects without re-voxelizing). Per occupied voxel:
 //   albedo rho, normal n, position x = means over the fragments the voxelizer averaged;
 //   E_i  = irradiance from light i at x on n [lux = lm/m^2]:
@@ -39,6 +40,15 @@ uniform highp sampler2D u_shadow0;
 uniform highp sampler2D u_shadow1;
 uniform highp sampler2D u_shadow2;
 uniform highp sampler2D u_shadow3;
+// The bench's counting variant (app/gi/vct/vct_work.c): the shadow-map fetches each voxel made,
+// added to a buffer once per voxel. Never in the kiosk's frames.
+#ifdef INJECT_COUNT_FETCHES
+layout(std430, binding = 2) buffer InjectFetches { highp uint shadow_fetches; } inject_counted;
+highp uint inject_fetches = 0u;
+#define INJECT_COUNT(n) inject_fetches += uint(n)
+#else
+#define INJECT_COUNT(n)
+#endif
 
 
 float shadow_depth(int i, vec2 uv)   // constant sampler indices only (GLSL ES)
@@ -62,6 +72,7 @@ float visibility(int i, vec3 x)
     if (i == 2) texel = 1.0 / vec2(textureSize(u_shadow2, 0));
     if (i == 3) texel = 1.0 / vec2(textureSize(u_shadow3, 0));
     float lit = 0.0;
+    INJECT_COUNT(9);
     for (int dy = -1; dy <= 1; dy++)
         for (int dx = -1; dx <= 1; dx++)
             lit += (sc.z - u_shadow_bias <= shadow_depth(i, sc.xy + vec2(dx, dy) * texel)) ? 1.0 : 0.0;
@@ -106,6 +117,10 @@ void main()
         if (l >= u_n_lights) break;
         E += irradiance(l, x, nrm) * visibility(l, xs);
     }
+#ifdef INJECT_COUNT_FETCHES
+    if (inject_fetches > 0u)
+        atomicAdd(inject_counted.shadow_fetches, inject_fetches);
+#endif
     vec3 Lo = alb * E * (1.0 / 3.14159265) + emi * u_emission_max;
     imageStore(u_out, c, vec4(Lo, 1.0));
 }

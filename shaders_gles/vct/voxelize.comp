@@ -1,6 +1,7 @@
 // Voxelization without geometry shaders (summary A.7.1 (b)): one invocation per triangle, from a
 // @variant CONSERVATIVE=1 AVERAGE_CAS=0 EMISSIVE=0
 // @variant CONSERVATIVE=0 AVERAGE_CAS=1 EMISSIVE=1
+// @variant CONSERVATIVE=1 AVERAGE_CAS=0 EMISSIVE=0 VOXELIZE_COUNT_ATOMICS=1
 // world-space triangle SSBO. For every voxel column along the triangle's dominant axis
 // (argmax |n|, the axis the thesis's GS projects along) over the triangle's bounding box:
 //   CONSERVATIVE=1: every voxel the triangle touches (Schwarz & Seidel 2010 triangle/box overlap,
@@ -30,6 +31,13 @@ layout(local_size_x = 64) in;
 struct Tri { vec4 p0; vec4 p1; vec4 p2; vec4 albedo; vec4 emission; vec4 uv01; vec4 uv2_mask; };
 layout(std430, binding = 0) readonly buffer Tris { Tri tris[]; };
 layout(std430, binding = 1) coherent buffer Scratch { uint s[]; };
+// The bench's counting variant (app/gi/vct/vct_work.c): the scratch-buffer atomics each triangle
+// did, one per channel of each voxel it wrote (a compare-and-swap average counts once, its retries
+// not), added to a buffer once per triangle. Never in the kiosk's frames.
+#ifdef VOXELIZE_COUNT_ATOMICS
+layout(std430, binding = 2) buffer VoxelizeAtomics { highp uint atomics; } voxelize_counted;
+highp uint voxelize_atomics = 0u;
+#endif
 
 uniform vec3 u_grid_origin;
 uniform float u_voxel_size;
@@ -86,6 +94,11 @@ void write_voxel(ivec3 c, vec3 alb, vec3 n, vec3 frac, vec3 emi)
 {
     if (any(lessThan(c, u_region_lo)) || any(greaterThan(c, u_region_hi))) return;
     int i = vox_index(c), N = vox_count();
+#ifdef VOXELIZE_COUNT_ATOMICS
+    // the channels written below: albedo, normal, position (+ emission) averages, or those three
+    // sums per component and the count
+    voxelize_atomics += uint(AVERAGE_CAS != 0 ? 3 + EMISSIVE : 10 + 3 * EMISSIVE);
+#endif
 #if AVERAGE_CAS
     cas_average(CH_ALB * N + i, vec4(alb, 1.0));
     cas_average(CH_NRM * N + i, vec4(n * 0.5 + 0.5, 1.0));
@@ -197,5 +210,9 @@ void main()
             if (alpha_cut(T, v0, v1, v2, vec3(c) + frac)) continue;
             write_voxel(c, T.albedo.rgb, nn, frac, emi);
         }
+#endif
+#ifdef VOXELIZE_COUNT_ATOMICS
+    if (voxelize_atomics > 0u)
+        atomicAdd(voxelize_counted.atomics, voxelize_atomics);
 #endif
 }

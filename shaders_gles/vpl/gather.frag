@@ -46,15 +46,17 @@ const float PI = 3.14159265;
 
 // The bench's counting variant (#21, app/gi/vpl/vpl_work.c; interleaved gather only, fragment-stage
 // storage buffers capability-checked by the caller): each pixel adds up its fetches -- x unfiltered
-// (the VPL and VAL tables, exact visibility's depth), y filtered RGBA8 (CSSM's cos/sin bases),
-// z filtered 16-bit float (CSSM's z bases and depth, VSM's moments) -- and adds them to the buffer
-// once. Never in the kiosk's frames.
+// RGBA32F (the VPL and VAL tables), y filtered RGBA8 (CSSM's cos/sin bases), z filtered 16-bit
+// float (CSSM's z bases and depth, VSM's moments), w unfiltered R16F (exact visibility's depth) --
+// and adds them to the buffer once. Never in the kiosk's frames.
 #ifdef GATHER_COUNT_FETCHES
-layout(std430, binding = 6) buffer GatherFetches { highp uint unfiltered; highp uint rgba8; highp uint half_float; } gather_counted;
-highp uvec3 gather_fetches = uvec3(0u);
-#define GATHER_COUNT(x, y, z) gather_fetches += uvec3(uint(x), uint(y), uint(z))
+layout(std430, binding = 6) buffer GatherFetches {
+    highp uint unfiltered; highp uint rgba8; highp uint half_float; highp uint depth_r16f;
+} gather_counted;
+highp uvec4 gather_fetches = uvec4(0u);
+#define GATHER_COUNT(x, y, z, w) gather_fetches += uvec4(uint(x), uint(y), uint(z), uint(w))
 #else
-#define GATHER_COUNT(x, y, z)
+#define GATHER_COUNT(x, y, z, w)
 #endif
 
 #if defined(VIS_CSSM)
@@ -89,7 +91,7 @@ float visibility(int k, vec3 x)
 #if defined(VIS_NONE)
     return 1.0;
 #else
-    GATHER_COUNT(4, 0, 0);
+    GATHER_COUNT(4, 0, 0, 0);
     vec4 c0 = texelFetch(u_val, ivec2(k, 0), 0);
     vec4 c1 = texelFetch(u_val, ivec2(k, 1), 0);
     vec4 c2 = texelFetch(u_val, ivec2(k, 2), 0);
@@ -108,7 +110,7 @@ float visibility(int k, vec3 x)
     d -= VSM_OFFSET;
 #endif
 #if defined(VIS_HARD)
-    GATHER_COUNT(1, 0, 0);
+    GATHER_COUNT(0, 0, 0, 1);
     float z = texelFetch(u_bz, ivec3(clamp(ivec2(uv * res), ivec2(0), ivec2(int(res) - 1)), k), 0).r;
     return d <= z + 0.01 ? 1.0 : 0.0;
 #else
@@ -120,17 +122,17 @@ float visibility(int k, vec3 x)
     float li = log2(max(wi * res, 1.0));
     vec3 tc = vec3(uv, layer);
 #if defined(VIS_CSSM)
-    GATHER_COUNT(0, 2, 0);
+    GATHER_COUNT(0, 2, 0, 0);
     float si = csm_lit(textureLod(u_bcos, tc, li) * 2.0 - 1.0, textureLod(u_bsin, tc, li) * 2.0 - 1.0, d);
     float occ = 1.0 - si;
     if (occ < 1e-3)
         return 1.0;   // no blockers in the search kernel
-    GATHER_COUNT(0, 0, 3);
+    GATHER_COUNT(0, 0, 3, 0);
     float znum = 0.5 * textureLod(u_bz, tc, li).r
                + 2.0 * dot(sin(C * d) * textureLod(u_bzcos, tc, li) - cos(C * d) * textureLod(u_bzsin, tc, li), 1.0 / C);
     float zavg = clamp(znum / occ, 1e-4, d);
 #else
-    GATHER_COUNT(0, 0, 1);
+    GATHER_COUNT(0, 0, 1, 0);
     vec2 m = textureLod(u_bmom, tc, li).rg;
     float var = max(m.y - m.x * m.x, 1e-6);
     float md = d - m.x;
@@ -146,12 +148,12 @@ float visibility(int k, vec3 x)
     float w = atan((r - za) * delta / (za * r)) / PI;
     float lf = log2(max(w * res, 1.0));
 #if defined(VIS_CSSM)
-    GATHER_COUNT(0, 2, 0);
+    GATHER_COUNT(0, 2, 0, 0);
     float s = csm_lit(textureLod(u_bcos, tc, lf) * 2.0 - 1.0, textureLod(u_bsin, tc, lf) * 2.0 - 1.0, d);
     s = clamp(ALPHA * (s - 0.5) + 0.5, 0.0, 1.0);
     return SHARP_A > 0.0 ? pow(s, 1.0 + SHARP_A * exp(-SHARP_B * (d - zavg))) : s;
 #else
-    GATHER_COUNT(0, 0, 1);
+    GATHER_COUNT(0, 0, 1, 0);
     vec2 mf = textureLod(u_bmom, tc, lf).rg;
     float vf = max(mf.y - mf.x * mf.x, 1e-6);
     float mdf = d - mf.x;
@@ -217,12 +219,12 @@ void main()
     vec3 E = vec3(0.0);
     float removed = 0.0;
     for (int i = s; i < u_n; i += bb) {
-        GATHER_COUNT(2, 0, 0);
+        GATHER_COUNT(2, 0, 0, 0);
         vec4 p = texelFetch(u_vpl, ivec2(i, 0), 0);
         vec3 flux = texelFetch(u_vpl, ivec2(i, 2), 0).rgb;
         if (p.w < 0.0 || dot(flux, vec3(1.0)) <= 0.0)
             continue;
-        GATHER_COUNT(1, 0, 0);
+        GATHER_COUNT(1, 0, 0, 0);
         vec3 ni = texelFetch(u_vpl, ivec2(i, 1), 0).xyz;
         vec3 L = p.xyz - x;
         float d2 = dot(L, L);
@@ -246,6 +248,7 @@ void main()
     atomicAdd(gather_counted.unfiltered, gather_fetches.x);
     atomicAdd(gather_counted.rgba8, gather_fetches.y);
     atomicAdd(gather_counted.half_float, gather_fetches.z);
+    atomicAdd(gather_counted.depth_r16f, gather_fetches.w);
 #endif
     float scale = float(bb);
     o_ind = min(vec4(E * scale, removed * scale), vec4(u_out_max));

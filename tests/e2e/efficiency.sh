@@ -16,33 +16,59 @@ tex3d_rgba16f_trilinear,rgba16f,64,1000000,20,5e+07
 tex2d_rgba32f_nearest,rgba32f,512,1000000,5,2e+08
 tex2d_rgba16f_trilinear,rgba16f,512,1000000,10,1e+08
 tex2d_rgba8_trilinear,rgba8,512,1000000,8,1.25e+08
+tex2d_depth32f_nearest,depth32f,512,1000000,4,2.5e+08
+tex2d_r32f_nearest,r32f,512,1000000,4,2.5e+08
+tex2d_r32ui_nearest,r32ui,512,1000000,4,2.5e+08
+tex2d_r16f_nearest,r16f,512,1000000,4,2.5e+08
+image3d_rgba16f_load,rgba16f,64,1000000,4,2.5e+08
+ssbo_rgba32f_load,rgba32f,64,1000000,4,2.5e+08
+ssbo_r32ui_atomic,r32ui,64,1000000,10,1e+08
+raster_r16f_depth_fill,r16f,512,1000000,2,5e+08
 CSV
+# --rebuild-gi: every frame voxelizes, injects and builds the mips again, so those passes are timed
 expect_exit 0 "bench --roofline-csv: vct at two cone counts" sh -c "'$GIKIOSK' bench --scenes cornell --methods vct \
-    --size 80x60 --frames 1 --warmup 1 --sweep 'vct_cones=4,9' --roofline-csv '$TMP/roofline.csv' --out '$TMP/b' 2>'$TMP/b.log'"
+    --size 80x60 --frames 1 --warmup 1 --sweep 'vct_cones=4,9' --rebuild-gi --roofline-csv '$TMP/roofline.csv' \
+    --out '$TMP/b' 2>'$TMP/b.log'"
 EFF=$TMP/b/efficiency.csv
 check "efficiency.csv: the header ends with the efficiency columns" \
     sh -c "head -1 '$EFF' | grep -q ',pass,kind,fetches,pass_ms,fetches_per_s,limit_fetches_per_s,efficiency\$'"
 check "efficiency.csv: the cone trace's line in each row" [ "$(grep -c ',gi.vct_trace,tex3d_rgba16f_trilinear,' "$EFF")" -eq 2 ]
-check "efficiency.csv: every number recomputed from bench.csv and roofline.csv" python3 - "$TMP/b/bench.csv" "$EFF" "$TMP/roofline.csv" <<'PY'
+# every number of an efficiency.csv recomputed from its bench.csv and the roofline; argv[4]: the
+# swept knob that tells the bench's two rows apart
+cat >"$TMP/recompute.py" <<'PY'
 import csv, sys
 bench = list(csv.DictReader(open(sys.argv[1])))
 eff = list(csv.DictReader(open(sys.argv[2])))
 limits = {r["name"]: float(r["fetches_per_s"]) for r in csv.DictReader(open(sys.argv[3]))}
+key = sys.argv[4]
 close = lambda a, b: abs(a - b) <= 1e-5 * abs(b)   # the CSVs print %.6g
 assert len(bench) == 2, len(bench)
-row = {b["vct_cones"]: b for b in bench}           # the two rows differ in vct_cones only
-passes = set()
+row = {b[key]: b for b in bench}                   # the two rows differ in the swept knob only
 for e in eff:
-    b = row[e["vct_cones"]]
+    b = row[e[key]]
     assert e["scene"] == b["scene"] and e["shadow"] == b["shadow"]
-    passes.add((e["vct_cones"], e["pass"]))
     fetches, ms = float(e["fetches"]), float(b[e["pass"] + "_ms"])
     assert fetches > 0 and close(float(e["pass_ms"]), ms), (e, ms)
     assert close(float(e["limit_fetches_per_s"]), limits[e["kind"]]), e
     assert close(float(e["fetches_per_s"]), fetches / (ms * 1e-3)), e
     assert close(float(e["efficiency"]), fetches / (ms * 1e-3) / limits[e["kind"]]), e
-# each row: the cone trace, and the direct pass's shadow lookups (cornell's light is shadowed)
-assert passes == {(c, p) for c in ("4", "9") for p in ("gi.vct_trace", "direct")}, passes
+PY
+check "efficiency.csv: every number recomputed from bench.csv and roofline.csv" \
+    python3 "$TMP/recompute.py" "$TMP/b/bench.csv" "$EFF" "$TMP/roofline.csv" vct_cones
+check "efficiency.csv: vct's passes and the direct pass's kind" python3 - "$EFF" <<'PY'
+import csv, sys
+eff = list(csv.DictReader(open(sys.argv[1])))
+passes = {(e["vct_cones"], e["pass"]) for e in eff}
+# each row: the cone trace, the voxelizer's atomics, the injection's shadow fetches and the mips'
+# loads (rebuilt each frame), and the direct pass's shadow lookups (cornell's light is shadowed)
+assert passes == {(c, p) for c in ("4", "9")
+                  for p in ("gi.vct_trace", "gi.vct_voxelize", "gi.vct_inject", "gi.vct_mips", "direct")}, passes
+# the cones do not change the voxels: the same voxelization, injection and mips at both counts
+for p in ("gi.vct_voxelize", "gi.vct_inject", "gi.vct_mips"):
+    f = {e["vct_cones"]: float(e["fetches"]) for e in eff if e["pass"] == p}
+    assert f["4"] == f["9"] > 0, (p, f)
+# the default shadows (PCSS) read the depth map only, at the depth kind's limit
+assert {e["kind"] for e in eff if e["pass"] == "direct"} == {"tex2d_depth32f_nearest"}, eff
 # more cones, more samples: 9 cones fetch more than 4 at the same resolution
 by = {e["vct_cones"]: float(e["fetches"]) for e in eff if e["pass"] == "gi.vct_trace"}
 assert by["9"] > by["4"], by
@@ -50,7 +76,7 @@ PY
 if command -v gnuplot >/dev/null 2>&1; then
     check "efficiency-cornell.png and .svg drawn" sh -c "[ -s '$TMP/b/efficiency-cornell.png' ] && [ -s '$TMP/b/efficiency-cornell.svg' ]"
     check "the chart's data: a bar per row and pass" \
-        sh -c "[ \"\$(grep -c 'gi.vct_trace' '$TMP/b/efficiency-cornell.dat')\" -eq 2 ] && [ \"\$(wc -l <'$TMP/b/efficiency-cornell.dat')\" -eq \"\$(( \$(wc -l <'$EFF') - 1 ))\" ]"
+        sh -c "[ \"\$(grep -c 'gi.vct_trace' '$TMP/b/efficiency-cornell.dat')\" -eq 2 ] && [ \"\$(grep -c 'gi.vct_inject' '$TMP/b/efficiency-cornell.dat')\" -eq 2 ] && [ \"\$(wc -l <'$TMP/b/efficiency-cornell.dat')\" -eq \"\$(( \$(wc -l <'$EFF') - 1 ))\" ]"
 fi
 # vpl's gather counts (app/gi/vpl/vpl_work.c) checked against each other: VSM and CSSM visibility
 # share the VPLs and their clusters, so the unfiltered fetches (VPL and VAL tables) are equal; per VPL
@@ -59,15 +85,51 @@ fi
 expect_exit 0 "bench --roofline-csv: vpl with VSM and CSSM visibility" sh -c "'$GIKIOSK' bench --scenes cornell \
     --methods vpl --size 80x60 --frames 1 --warmup 1 --sweep 'vpl_vis=vsm,cssm' --roofline-csv '$TMP/roofline.csv' \
     --out '$TMP/v' 2>'$TMP/v.log'"
+check "vpl's efficiency.csv: every number recomputed" \
+    python3 "$TMP/recompute.py" "$TMP/v/bench.csv" "$TMP/v/efficiency.csv" "$TMP/roofline.csv" vpl_vis
 check "vpl_gather: VSM's and CSSM's counts agree" python3 - "$TMP/v/efficiency.csv" <<'PY'
 import csv, sys
 f = {}
 for e in csv.DictReader(open(sys.argv[1])):
     if e["pass"] == "gi.vpl_gather":
         f[(e["vpl_vis"], e["kind"])] = float(e["fetches"])
+    # the VAL maps: fragments at the fill rate, their depth draws' (counted) and the basis pass's
+    # (res^2 per map), the same maps under both visibilities (tests/gpu/test_vpl_work.c replays them)
+    if e["pass"] == "gi.vpl_valsm":
+        assert e["kind"] == "raster_r16f_depth_fill", e
+        f[(e["vpl_vis"], "valsm")] = float(e["fetches"])
 u, h = "tex2d_rgba32f_nearest", "tex2d_rgba16f_trilinear"
 assert f[("vsm", u)] > 0 and f[("vsm", u)] == f[("cssm", u)], f
 assert f[("vsm", h)] > 0 and f[("vsm", h)] == f[("cssm", "tex2d_rgba8_trilinear")] - 2 * f[("cssm", h)] / 3, f
+assert f[("vsm", "valsm")] > 64 * 64 and f[("vsm", "valsm")] == f[("cssm", "valsm")], f
+PY
+# ispm's diffuse indirect part is vpl's (its passes by vpl's models): the same at any photon count
+expect_exit 0 "bench --roofline-csv: ispm at two photon counts" sh -c "'$GIKIOSK' bench --scenes caustic-ring \
+    --methods ispm --size 80x60 --frames 1 --warmup 1 --sweep 'ispm_photons=1024,4096' \
+    --roofline-csv '$TMP/roofline.csv' --out '$TMP/i' 2>'$TMP/i.log'"
+check "ispm's efficiency.csv: every number recomputed" \
+    python3 "$TMP/recompute.py" "$TMP/i/bench.csv" "$TMP/i/efficiency.csv" "$TMP/roofline.csv" ispm_photons
+check "ispm: vpl's gather and VAL maps, equal at both photon counts" python3 - "$TMP/i/efficiency.csv" <<'PY'
+import csv, sys
+f = {}
+for e in csv.DictReader(open(sys.argv[1])):
+    f.setdefault((e["pass"], e["kind"]), {})[e["ispm_photons"]] = float(e["fetches"])
+assert ("gi.vpl_valsm", "raster_r16f_depth_fill") in f and ("gi.vpl_gather", "tex2d_rgba32f_nearest") in f, f
+for k, v in f.items():
+    assert v["1024"] == v["4096"] > 0, (k, v)
+PY
+# radiosity's bounces (app/gi/radiosity/rad_work.c): one radiance load per link per bounce, so with
+# the same links (lockstep: the worker's first link set in both rows) 4 bounces load twice what 2 do
+expect_exit 0 "bench --roofline-csv: radiosity at 2 and 4 bounces" sh -c "'$GIKIOSK' bench --scenes cornell \
+    --methods radiosity --size 80x60 --frames 1 --warmup 1 --budget radiosity_sync=lockstep \
+    --sweep 'radiosity_bounces=2,4' --roofline-csv '$TMP/roofline.csv' --out '$TMP/r' 2>'$TMP/r.log'"
+check "radiosity's efficiency.csv: every number recomputed" \
+    python3 "$TMP/recompute.py" "$TMP/r/bench.csv" "$TMP/r/efficiency.csv" "$TMP/roofline.csv" radiosity_bounces
+check "radiosity_bounce: twice the loads at twice the bounces" python3 - "$TMP/r/efficiency.csv" <<'PY'
+import csv, sys
+f = {e["radiosity_bounces"]: float(e["fetches"]) for e in csv.DictReader(open(sys.argv[1]))
+     if e["pass"] == "gi.radiosity_bounce" and e["kind"] == "ssbo_rgba32f_load"}
+assert f["2"] > 0 and f["4"] == 2 * f["2"], f
 PY
 printf 'name,format,size,fetches,median_ms,fetches_per_s\ntex3d_rgba16f_trilinear,rgba16f,64,1,1,fast\n' >"$TMP/bad.csv"
 expect_exit 2 "a roofline.csv with a rate that is not a number" "$GIKIOSK" bench --scenes cornell --methods vct \

@@ -9,19 +9,22 @@ expect_exit 0 "bench --roofline" sh -c "'$GIKIOSK' bench --roofline --out '$TMP/
 CSV=$TMP/r/roofline.csv
 check "roofline.csv header" sh -c "head -1 '$CSV' | grep -qx 'name,format,size,fetches,median_ms,fetches_per_s'"
 for kind in tex3d_rgba8_trilinear tex3d_rgba16f_trilinear tex2d_rgba8_trilinear tex2d_rgba16f_trilinear \
-    tex2d_rgba32f_nearest image3d_rgba8_load image3d_rgba16f_load; do
+    tex2d_rgba32f_nearest tex2d_depth32f_nearest tex2d_r32f_nearest tex2d_r32ui_nearest tex2d_r16f_nearest \
+    image3d_rgba8_load image3d_rgba16f_load ssbo_rgba32f_load ssbo_r32ui_atomic raster_r16f_depth_fill; do
     check "roofline.csv: a row for $kind" grep -q "^$kind," "$CSV"
 done
-check "roofline.csv: seven kinds" [ "$(wc -l <"$CSV")" -eq 8 ]
+check "roofline.csv: fourteen kinds" [ "$(wc -l <"$CSV")" -eq 15 ]
 # the rate is fetches / time: recomputed from the row's own columns (within the %.6g print)
 check "roofline.csv: fetches_per_s = fetches / median_ms, positive" \
     sh -c "awk -F, 'NR > 1 { r = \$4 / (\$5 * 1e-3); if (!(\$6 > 0) || (\$6 - r) > 1e-4 * r || (r - \$6) > 1e-4 * r) bad = 1 } END { exit bad }' '$CSV'"
-# 64^3 invocations x 64 fetches per dispatch, 5 timed dispatches: the shader counted each one
-check "the shader counted 5 x 64^3 x 64 fetches per kind" \
-    sh -c "[ \"\$(grep -c 'counted 83886080 of 83886080)' '$TMP/r.log')\" -eq 7 ]"
+# 64^3 invocations x 64 fetches per dispatch, 5 timed dispatches: the shader counted each one; the
+# raster kind's counting run: 64 triangles over a 512x512 target, once
+check "the shader counted 5 x 64^3 x 64 fetches per fetch kind" \
+    sh -c "[ \"\$(grep -c 'counted 83886080 of 83886080)' '$TMP/r.log')\" -eq 13 ]"
+check "the fill's counting run counted 64 x 512^2 fragments" grep -q 'raster_r16f_depth_fill .*M fragments/s .*counted 16777216 of 16777216)' "$TMP/r.log"
 check "roofline.csv: the log prints the CSV's rates" \
     sh -c "awk -F, 'NR > 1 { printf \"%s %.1f\\n\", \$1, \$6 * 1e-6 }' '$CSV' >'$TMP/csv_rates' &&
-           sed -n 's/.*roofline \\([a-z0-9_]*\\) *\\([0-9.]*\\) M fetches.*/\\1 \\2/p' '$TMP/r.log' >'$TMP/log_rates' &&
+           sed -n 's/.*roofline \\([a-z0-9_]*\\) *\\([0-9.]*\\) M f[a-z]*\\/s.*/\\1 \\2/p' '$TMP/r.log' >'$TMP/log_rates' &&
            cmp -s '$TMP/csv_rates' '$TMP/log_rates'"
 expect_exit 2 "bench --roofline without --out" "$GIKIOSK" bench --roofline
 : >"$TMP/a-file"

@@ -1,7 +1,7 @@
 /* The radiosity method's GPU bounces (shaders_gles/radiosity/gather.comp, pullup.comp, driven by
  * app/gi/radiosity/rad_gpu.c) against the CPU oracle (rad_solve_cpu) on the same geometry and the
  * same initial radiance: cornell at the method's defaults (2,983 surfels, 6x12² bins), 1, 2 and 4
- * bounces, on the GLES 3.1 path. The GPU sums in float in link order, the CPU in double: the
+ * bounces, on the GLES 3.1 path (and the bounces' work model: links x bounces). The GPU sums in float in link order, the CPU in double: the
  * per-leaf difference is rounding (bound below, from measurement). Also: the worker publishes
  * nothing new for a request that changes nothing (static scene: one geometry build, one direct
  * update over many requests). A moving mesh (cornell's short block made animated, moved twice, links
@@ -80,6 +80,12 @@ static void test_gpu_bounces_match_cpu(void **state)
     for (int bi = 0; bi < 3; bi++) {
         gk_gi_frame f = {0};
         assert_int_equal(rad_gpu_bounce(s, &f, bounces[bi], &e), 0);
+        /* the bounces' work model (rad_work.c): one radiance load per link per bounce, against the
+           oracle's own link set */
+        gk_pass_work w[GK_MAX_PASS_WORK];
+        assert_int_equal(gk_gi_radiosity.pass_work(s, w, GK_MAX_PASS_WORK), 1);
+        assert_string_equal(w[0].pass, "gi.radiosity_bounce");
+        assert_true(w[0].fetches == (double)bounces[bi] * (double)g.links.offset[nl]);
         assert_int_equal(gk_radiosity_read_irradiance(s, gpu, nl), nl);
         assert_int_equal(rad_solve_cpu(&g, b0, bounces[bi], cpu), 0);
         double worst = 0.0, top = 0.0, sum_g = 0.0, sum_c = 0.0;

@@ -1,11 +1,13 @@
 /* The roofline micro-benchmark (app/bench/roofline.c) on llvmpipe: every kind of fetch runs, the
  * shader's own count of the fetches it did equals invocations x fetches x timed dispatches (so a
- * wrong dispatch size, loop bound or counter reset shows), the rate is that count over the time,
+ * wrong dispatch size, loop bound or counter reset shows; the raster kind's counting run counts
+ * each fragment it shaded: pixels x triangles, once), the rate is that count over the time,
  * and bad options are refused. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <cmocka.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -42,16 +44,21 @@ static void every_kind_does_the_fetches_it_is_asked(void **state)
     int n = gk_roofline_measure(P, &o, r, GK_ROOFLINE_MAX_CASES, &e);
     if (n < 0)
         fail_msg("%s", e.msg);
-    assert_int_equal(n, 7);
-    int tex3d = 0;
+    assert_int_equal(n, 14);
+    int tex3d = 0, raster = 0;
     for (int i = 0; i < n; i++) {
-        assert_int_equal(r[i].counted, 64ull * 37 * 13 * 3);
+        bool fill = strncmp(r[i].name, "raster_", 7) == 0;
+        raster += fill;
+        /* the fill: a 64 x 37 target, 13 triangles each covering it, counted in one run */
+        assert_int_equal(r[i].counted, fill ? 64ull * 37 * 13 : 64ull * 37 * 13 * 3);
+        assert_true(r[i].expected == (double)r[i].counted);
         assert_true(r[i].fetches == 64.0 * 37 * 13);
         assert_true(r[i].median_ms > 0.0);
         assert_float_equal(r[i].fetches_per_s, r[i].fetches / (r[i].median_ms * 1e-3), 1e-6 * r[i].fetches_per_s);
         tex3d += strncmp(r[i].name, "tex3d_", 6) == 0;
     }
     assert_int_equal(tex3d, 2);   /* rgba8 and rgba16f: the voxel volumes' formats */
+    assert_int_equal(raster, 1);
 }
 
 static void a_partial_workgroup_is_refused(void **state)

@@ -3,8 +3,11 @@
  * inside the map, and PCSS (PCSS_BLOCKER_N 6, adaptive PCF of 2..12 a side, shaders_gles/shadow/
  * pcss.glsl) 36 blocker-search fetches for each of those same pixels plus 4..144 PCF fetches where
  * it found a blocker -- so its count is 36 x hard's plus a part that the box's shadows make positive
- * and that is at most 144 x hard's. VSSM counts unfiltered fetches only; CSSM filtered ones (its
- * bases) and two unfiltered ones per shaded pixel (its depth range, cssm_range), 2 x hard's. */
+ * and that is at most 144 x hard's, all of the depth map. Each count goes to the roofline's kind of
+ * the format it reads: VSSM reads its R32F min/max mips and R32UI SATs, not the depth map; CSSM its
+ * mipmapped RGBA16F bases and two R32F texels per shaded pixel (its depth range, cssm_range),
+ * 2 x hard's; CSSM_SAT (shadow=cssm_sat) its RGBA32UI bases' SATs, 4 corners x 4 boxes x 2 bases,
+ * and where it finds blockers also the z bases and the R32UI z SATs' 8 gathers. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -36,9 +39,21 @@ static int teardown(void **state)
     return 0;
 }
 
-/* One frame of method none at `pins`, counting or not; the direct pass's fetches by kind
-   ([0] unfiltered 32-bit, [1] filtered RGBA16F) and the number of `direct` entries. */
-static int direct_fetches(const char *pins, bool count, double fetches[2])
+/* the renderer's shadow knob plus the diagnostic cssm_sat (added first, so the renderer keeps it) */
+static const gk_knob_def knob_shadow = {
+    .name = "shadow", .owner = "test", .n_values = 5,
+    .values = {"hard", "pcss", "vssm", "cssm", "cssm_sat"}, .cost = {1, 1, 1, 1, 1}, .default_level = 0,
+};
+
+/* the direct pass's kinds (app/render/render_work.c), the index of fetches[] below */
+enum { DEPTH, R32F, R32UI, RGBA32UI, RGBA16F, N_KINDS };
+static const char *const kind_names[N_KINDS] = {"tex2d_depth32f_nearest", "tex2d_r32f_nearest",
+                                                 "tex2d_r32ui_nearest", "tex2d_rgba32f_nearest",
+                                                 "tex2d_rgba16f_trilinear"};
+
+/* One frame of method none at `pins`, counting or not; the direct pass's fetches by kind and the
+   number of `direct` entries. */
+static int direct_fetches(const char *pins, bool count, double fetches[N_KINDS])
 {
     gk_err e = {0};
     gk_render_opts o = {.width = W, .height = H, .gles_version = 31, .shader_dir = getenv("GK_SHADER_DIR")};
@@ -47,6 +62,7 @@ static int direct_fetches(const char *pins, bool count, double fetches[2])
     assert_int_equal(gk_renderer_set_scene(r, T.scene, &e), 0);
     gk_budget b;
     gk_budget_init(&b);
+    gk_budget_add(&b, &knob_shadow);
     gk_renderer_declare_knobs(r, &b);
     assert_true(gk_budget_pin_list(&b, pins, &e) >= 0);
     assert_true(gk_renderer_count_work(r, count));
@@ -56,14 +72,20 @@ static int direct_fetches(const char *pins, bool count, double fetches[2])
         fail_msg("%s: %s", pins, e.msg);
     gk_pass_work w[GK_MAX_PASS_WORK];
     int n = gk_renderer_pass_work(r, "none", w, GK_MAX_PASS_WORK), direct = 0;
-    fetches[0] = fetches[1] = 0.0;
+    for (int k = 0; k < N_KINDS; k++)
+        fetches[k] = 0.0;
     for (int i = 0; i < n; i++) {
         assert_string_equal(w[i].pass, "direct");
-        fetches[strcmp(w[i].kind, "tex2d_rgba32f_nearest") == 0 ? 0 : 1] += w[i].fetches;
+        int k = 0;
+        while (k < N_KINDS && strcmp(w[i].kind, kind_names[k]))
+            k++;
+        assert_true(k < N_KINDS);
+        fetches[k] += w[i].fetches;
         direct++;
     }
-    printf("# %s%s: %.0f unfiltered, %.0f filtered fetches\n", pins, count ? "" : " (not counting)", fetches[0],
-           fetches[1]);
+    printf("# %s%s: depth %.0f, r32f %.0f, r32ui %.0f, rgba32ui %.0f, rgba16f %.0f\n", pins,
+           count ? "" : " (not counting)", fetches[DEPTH], fetches[R32F], fetches[R32UI], fetches[RGBA32UI],
+           fetches[RGBA16F]);
     gk_renderer_destroy(r);
     return direct;
 }
@@ -71,34 +93,44 @@ static int direct_fetches(const char *pins, bool count, double fetches[2])
 static void nothing_counted_unless_asked(void **state)
 {
     (void)state;
-    double f[2];
+    double f[N_KINDS];
     assert_int_equal(direct_fetches("shadow=pcss", false, f), 0);
 }
 
 static void pcss_is_36_fetches_per_hard_fetch_plus_its_pcf(void **state)
 {
     (void)state;
-    double hard[2], pcss[2];
+    double hard[N_KINDS], pcss[N_KINDS];
     direct_fetches("shadow=hard", true, hard);
     direct_fetches("shadow=pcss", true, pcss);
     /* the box's ceiling light shades about half of the 96x72 pixels inside its map (3555 measured) */
-    assert_true(hard[0] > 0.25 * W * H && hard[0] <= (double)W * H);
-    assert_true(hard[1] == 0.0 && pcss[1] == 0.0);
-    double pcf = pcss[0] - 36.0 * hard[0];
-    printf("# PCF fetches %.0f = %.2f per shaded pixel\n", pcf, pcf / hard[0]);
-    assert_true(pcf > 0.0);                /* the boxes' shadows: blockers found */
-    assert_true(pcf <= 144.0 * hard[0]);   /* at most 12x12 per pixel */
+    assert_true(hard[DEPTH] > 0.25 * W * H && hard[DEPTH] <= (double)W * H);
+    for (int k = R32F; k < N_KINDS; k++) /* both read the depth map only */
+        assert_true(hard[k] == 0.0 && pcss[k] == 0.0);
+    double pcf = pcss[DEPTH] - 36.0 * hard[DEPTH];
+    printf("# PCF fetches %.0f = %.2f per shaded pixel\n", pcf, pcf / hard[DEPTH]);
+    assert_true(pcf > 0.0);                    /* the boxes' shadows: blockers found */
+    assert_true(pcf <= 144.0 * hard[DEPTH]);   /* at most 12x12 per pixel */
 }
 
 static void vssm_and_cssm_count_their_kinds(void **state)
 {
     (void)state;
-    double hard[2], vssm[2], cssm[2];
+    double hard[N_KINDS], vssm[N_KINDS], cssm[N_KINDS], sat[N_KINDS];
     direct_fetches("shadow=hard", true, hard);
     direct_fetches("shadow=vssm", true, vssm);
     direct_fetches("shadow=cssm", true, cssm);
-    assert_true(vssm[0] > hard[0] && vssm[1] == 0.0);
-    assert_true(cssm[0] == 2.0 * hard[0] && cssm[1] > 0.0);
+    direct_fetches("shadow=cssm_sat", true, sat);
+    assert_true(vssm[DEPTH] == 0.0 && vssm[R32F] > 0.0 && vssm[R32UI] > 0.0);
+    assert_true(vssm[RGBA32UI] == 0.0 && vssm[RGBA16F] == 0.0);
+    assert_true(cssm[R32F] == 2.0 * hard[DEPTH] && cssm[RGBA16F] > 0.0);
+    assert_true(cssm[DEPTH] == 0.0 && cssm[R32UI] == 0.0 && cssm[RGBA32UI] == 0.0);
+    /* the SAT form: per shaded pixel the range, then the search kernel's cos/sin boxes (32 corners),
+       then for the pixels that found blockers the z bases' 32 and the z SATs' 8 gathers, then the
+       penumbra kernel's cos/sin 32 again */
+    assert_true(sat[R32F] == 2.0 * hard[DEPTH] && sat[RGBA16F] == 0.0 && sat[DEPTH] == 0.0);
+    assert_true(sat[RGBA32UI] >= 32.0 * hard[DEPTH] && sat[RGBA32UI] <= 96.0 * hard[DEPTH]);
+    assert_true(sat[R32UI] > 0.0 && sat[R32UI] <= 8.0 * hard[DEPTH]);
 }
 
 int main(void)

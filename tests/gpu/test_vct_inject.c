@@ -1,6 +1,7 @@
 /* vct direct-light injection on llvmpipe: the voxels' radiance against the formula
  * L_o = rho / pi * I cos / d^2 (inject.comp), and shadowing from the light's shadow map
- * (gk_gi_light.shadow_depth_tex / shadow_view_proj) versus no shadow map. */
+ * (gk_gi_light.shadow_depth_tex / shadow_view_proj) versus no shadow map; the injection's work
+ * model (app/gi/vct/vct_work.c) against a hand count of the occupied voxels. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -52,28 +53,38 @@ static GLuint shadow_map(const vt_scene *sc, mat4 view_proj, int size)
     return depth;
 }
 
+/* A unit floor of albedo rho, a grey occluder above it (y = 0.5), with `marker` a black speck at
+   y = 1 that stretches the grid's bounds (above the light: outside its map); a point light of
+   intensity I at lp = (0.5, 0.9, 0.5) with a 126-degree perspective shadow map of 256² (the floor's
+   corners are 38 degrees off its axis); a 16² view from above with its G-buffer. Returns the map. */
+static GLuint floor_under_light(vt_scene *sc, float rho, float I, bool marker, gk_gi_light *L, vt_frame *f)
+{
+    vt_scene_init(sc);
+    vt_add_quad(sc, v3(0, 0, 0), v3(0, 0, 1), v3(1, 0, 0), v3(rho, rho, rho));               /* floor */
+    vt_add_quad(sc, v3(0.1f, 0.5f, 0.1f), v3(0, 0, 0.3f), v3(0.3f, 0, 0), v3(0.5f, 0.5f, 0.5f)); /* occluder */
+    if (marker)
+        vt_add_quad(sc, v3(0, 1, 0), v3(0.01f, 0, 0), v3(0, 0, 0.01f), v3(0, 0, 0));
+    vt_scene_finish(sc);
+    vec3 lp = v3(0.5f, 0.9f, 0.5f);
+    *L = vt_light(sc, GK_LIGHT_POINT, lp, v3(0, -1, 0), v3(I, I, I), 1);
+    mat4 view = m4_look_at(lp, v3(lp.x, 0, lp.z), v3(0, 0, -1));
+    L->shadow_view_proj = m4_mul(m4_perspective(2.2f, 1.0f, 0.05f, 3.0f), view);
+    L->shadow_is_perspective = true;
+    GLuint depth = shadow_map(sc, L->shadow_view_proj, 256);
+    vt_frame_create(f, 16, 16, v3(0.5f, 1.5f, 0.51f), v3(0.5f, 0, 0.5f), v3(0, 0, -1), 0.5f);
+    vt_gbuffer(&g, f, sc);
+    return depth;
+}
+
 static void injection_matches_formula_and_uses_the_shadow_map(void **state)
 {
     (void)state;
     vt_scene sc;
-    vt_scene_init(&sc);
-    const float rho = 0.6f;
-    vt_add_quad(&sc, v3(0, 0, 0), v3(0, 0, 1), v3(1, 0, 0), v3(rho, rho, rho));               /* floor */
-    vt_add_quad(&sc, v3(0.1f, 0.5f, 0.1f), v3(0, 0, 0.3f), v3(0.3f, 0, 0), v3(0.5f, 0.5f, 0.5f)); /* occluder */
-    vt_add_quad(&sc, v3(0, 1, 0), v3(0.01f, 0, 0), v3(0, 0, 0.01f), v3(0, 0, 0));               /* bounds marker */
-    vt_scene_finish(&sc);
-    vec3 lp = v3(0.5f, 0.9f, 0.5f);
-    const float I = 3.0f;
-    gk_gi_light L = vt_light(&sc, GK_LIGHT_POINT, lp, v3(0, -1, 0), v3(I, I, I), 1);
-    mat4 view = m4_look_at(lp, v3(lp.x, 0, lp.z), v3(0, 0, -1));
-    mat4 proj = m4_perspective(2.2f, 1.0f, 0.05f, 3.0f);
-    L.shadow_view_proj = m4_mul(proj, view);
-    L.shadow_is_perspective = true;
-    GLuint depth = shadow_map(&sc, L.shadow_view_proj, 256);
-
+    const float rho = 0.6f, I = 3.0f;
+    gk_gi_light L;
     vt_frame f;
-    vt_frame_create(&f, 16, 16, v3(0.5f, 1.5f, 0.51f), v3(0.5f, 0, 0.5f), v3(0, 0, -1), 0.5f);
-    vt_gbuffer(&g, &f, &sc);
+    GLuint depth = floor_under_light(&sc, rho, I, true, &L, &f);
+    vec3 lp = L.position;
     gk_budget b;
     vt_budget(&b, "vct_res=32,vct_trace_scale=1");
     double shadowed[2] = {0, 0}, lit_err = 0;
@@ -129,10 +140,88 @@ static void injection_matches_formula_and_uses_the_shadow_map(void **state)
     vt_scene_free(&sc);
 }
 
+/* the `pass` entry of the last frame's work (of kind `kind`), or -1 */
+static double work_of(void *vct, const char *pass, const char *kind)
+{
+    gk_pass_work w[GK_MAX_PASS_WORK];
+    int n = gk_gi_vct.pass_work(vct, w, GK_MAX_PASS_WORK);
+    for (int i = 0; i < n; i++)
+        if (!strcmp(w[i].pass, pass)) {
+            assert_string_equal(w[i].kind, kind);
+            return w[i].fetches;
+        }
+    return -1.0;
+}
+
+static double inject_fetches(void *vct) { return work_of(vct, "gi.vct_inject", "tex2d_depth32f_nearest"); }
+static double voxelize_atomics(void *vct) { return work_of(vct, "gi.vct_voxelize", "ssbo_r32ui_atomic"); }
+
+/* A floor and an occluder under a point light whose shadow map sees all of both: every occupied
+   voxel's lookup lands in the map, so the injection fetches 9 depth texels (3x3 PCF) per occupied
+   voxel, counted here from the injected level 0 (alpha 1 where occupied). Without a shadow map it
+   fetches none; outside a counting frame nothing is counted; a frame that does not re-inject
+   reports no injection. The voxelizer's atomics (vct_work.c): 10 per voxel a triangle wrote (the
+   count and 3 x albedo, normal, position), so 10 x the sum of the scratch's count channel. */
+static void injection_fetches_nine_per_occupied_voxel(void **state)
+{
+    (void)state;
+    vt_scene sc;
+    gk_gi_light L;
+    vt_frame f;
+    GLuint depth = floor_under_light(&sc, 0.6f, 3.0f, false, &L, &f); /* no marker: all inside the map */
+    gk_budget b;
+    vt_budget(&b, "vct_res=32,vct_trace_scale=1");
+    for (int with_map = 0; with_map < 2; with_map++) {
+        L.shadow_depth_tex = with_map ? depth : 0;
+        void *vct = vt_create(&g);
+        f.count_work = false;
+        assert_int_equal(vt_render(vct, &f, &sc, &b, &L, 1, NULL, NULL), 0);
+        assert_true(inject_fetches(vct) < 0.0 && voxelize_atomics(vct) < 0.0); /* ran, not counted */
+        gk_gi_vct.invalidate(vct);               /* re-voxelize and re-inject, counting */
+        f.count_work = true;
+        assert_int_equal(vt_render(vct, &f, &sc, &b, &L, 1, NULL, NULL), 0);
+        double counted = inject_fetches(vct), atomics = voxelize_atomics(vct);
+        gk_vct_stats st;
+        gk_vct_get_stats(vct, &st);
+        long n_scratch = 0;
+        unsigned *scratch = vt_read_scratch(vct, &n_scratch);
+        assert_non_null(scratch);
+        double written = 0.0; /* channel 0 (CH_COUNT, vct/common.glsl): a voxel's writes */
+        for (long i = 0; i < (long)st.res * st.res * st.res; i++)
+            written += scratch[i];
+        free(scratch);
+        printf("# voxelize: %.0f voxel writes, %.0f atomics counted\n", written, atomics);
+        assert_true(written > 0.0 && atomics == 10.0 * written);
+        float *slice = malloc(sizeof(float) * 4 * st.res * st.res);
+        long occupied = 0;
+        for (int z = 0; z < st.res; z++) {
+            read_slice(vct, st.res, z, slice);
+            for (long i = 0; i < (long)st.res * st.res; i++)
+                occupied += slice[i * 4 + 3] > 0.5f;
+        }
+        free(slice);
+        printf("# injection %s shadow map: %ld occupied voxels of %d^3, %.0f shadow fetches counted\n",
+               with_map ? "with" : "without", occupied, st.res, counted);
+        assert_true(occupied > st.res * st.res / 2); /* the floor's layer at least */
+        if (with_map)
+            assert_true(counted == 9.0 * (double)occupied);
+        else
+            assert_true(counted < 0.0); /* no map, no fetches: no entry */
+        f.count_work = true;            /* a counting frame that does not re-inject: no entry */
+        assert_int_equal(vt_render(vct, &f, &sc, &b, &L, 1, NULL, NULL), 0);
+        assert_true(inject_fetches(vct) < 0.0 && voxelize_atomics(vct) < 0.0);
+        gk_gi_vct.destroy(vct);
+    }
+    glDeleteTextures(1, &depth);
+    vt_frame_destroy(&f);
+    vt_scene_free(&sc);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(injection_matches_formula_and_uses_the_shadow_map),
+        cmocka_unit_test(injection_fetches_nine_per_occupied_voxel),
     };
     return cmocka_run_group_tests_name("vct_inject", tests, group_setup, group_teardown);
 }

@@ -90,6 +90,7 @@ typedef struct vt_frame {
     gk_target gbuf, hdr;
     mat4 view, proj, view_proj, inv_view_proj;
     vec3 eye;
+    bool count_work;   /* frames are the bench's counting frames (gk_gi_frame.count_work) */
 } vt_frame;
 
 static const GLenum vt_gbuf_formats[4] = {GL_RGBA32F, GL_RGBA16F, GL_RGBA8, GL_RGBA8};
@@ -207,6 +208,7 @@ static inline gk_gi_frame vt_gi_frame(vt_frame *f, const vt_scene *v, const gk_b
     fr.n_lights = n_lights;
     fr.lights = lights;
     fr.budget = b;
+    fr.count_work = f->count_work;
     return fr;
 }
 

@@ -33,6 +33,7 @@ typedef struct vpl_h {
     void *self;
     float *img;          /* w*h*4 indirect radiance of the last frame */
     gk_frame_report times; /* the method's pass timings of the last frame */
+    bool count_work;     /* frames are the bench's counting frames (gk_gi_frame.count_work) */
 } vpl_h;
 
 static inline int h_draw_scene(void *ctx, unsigned prog, gk_err *e)
@@ -187,6 +188,7 @@ static inline int h_frame(vpl_h *h, double t)
     f.hdr_fbo = h->hdr.fbo;
     f.n_lights = 1, f.lights = &h->gl_light, f.budget = &h->budget;
     f.draw_scene = h_draw_scene, f.draw_ctx = h;
+    f.count_work = h->count_work;
     glBindFramebuffer(GL_FRAMEBUFFER, h->hdr.fbo);
     const GLenum b1[1] = {GL_COLOR_ATTACHMENT0};
     glDrawBuffers(1, b1);

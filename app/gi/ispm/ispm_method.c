@@ -268,6 +268,17 @@ static long memory_bytes(const void *self)
     return b;
 }
 
+/* gk_gi_method.pass_work (#21): the diffuse indirect part's passes, vpl's gather and VAL maps (their
+   names are vpl's under `gi`), by vpl's own models (app/gi/vpl/vpl_work.c); the caustic passes have
+   none yet. */
+static int pass_work(void *self, gk_pass_work *out, int max)
+{
+    const ispm_state *s = self;
+    if (s->dbg.caustics_only || !s->vpl_self || !s->vpl->pass_work)
+        return 0;
+    return s->vpl->pass_work(s->vpl_self, out, max);
+}
+
 void ispm_free_gpu(ispm_state *s)
 {
     GLuint fbos[4] = {s->rsm_fbo, s->ll_fbo, s->peel_fbo, s->splat_fbo};
@@ -368,5 +379,6 @@ const gk_gi_method gk_gi_ispm = {
     .set_scene = set_scene,
     .render = render,
     .memory_bytes = memory_bytes,
+    .pass_work = pass_work,
     .destroy = destroy,
 };

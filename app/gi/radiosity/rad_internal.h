@@ -56,5 +56,7 @@ int rad_gpu_bounce(rad_state *s, const gk_gi_frame *f, int bounces, gk_err *e);
 int rad_gpu_display(rad_state *s, const gk_gi_frame *f, gk_err *e);
 void rad_gpu_free(rad_gpu *g);
 long rad_gpu_memory(const rad_gpu *g);
+/* rad_work.c: gk_gi_method.pass_work, the last frame's bounces' link gathers */
+int rad_pass_work(void *self, gk_pass_work *out, int max);
 
 #endif

@@ -264,5 +264,6 @@ const gk_gi_method gk_gi_radiosity = {
     .render = render,
     .memory_bytes = memory_bytes,
     .invalidate = invalidate,
+    .pass_work = rad_pass_work,
     .destroy = destroy,
 };

@@ -281,7 +281,8 @@ int vct_update(gk_vct *v, const gk_gi_frame *f, vct_budget *bp, gk_err *e)
     v->stats.n_dynamic_triangles = v->tris.n - v->tris.n_static;
 
     int lo[3] = {0, 0, 0}, hi[3] = {v->res - 1, v->res - 1, v->res - 1};
-    v->mips_ran = false;
+    v->mips_ran = v->inject_ran = v->voxelize_ran = false;
+    v->count_work = f->count_work;
     /* Each pass of the thesis is a pass of the renderer's clock (nested under `gi`); a pass that
        has nothing to do this frame (static voxels, unchanged light) is not begun, so its column
        is empty rather than a measured zero. */
@@ -318,6 +319,7 @@ int vct_update(gk_vct *v, const gk_gi_frame *f, vct_budget *bp, gk_err *e)
         gk_pass_end(f->pass);
         if (rc != 0)
             return -1;
+        v->inject_ran = true;
         gk_pass_begin(f->pass, "vct_mips");
         /* Directional views (gk_vct_options.directional_injection, mip_aniso.comp) with one bounce
            only: they keep a bright patch from lighting what sees it edge-on or from behind
@@ -395,6 +397,7 @@ static void vct_destroy(void *self)
     vct_free_gpu(v);
     glDeleteBuffers(1, &v->tri_ssbo);
     glDeleteBuffers(1, &v->counter_ssbo);
+    vct_work_free(v);
     if (v->alpha_tex)
         glDeleteTextures(1, &v->alpha_tex);
     if (v->trace_diffuse)

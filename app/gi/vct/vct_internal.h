@@ -2,6 +2,7 @@
 #ifndef GK_VCT_INTERNAL_H
 #define GK_VCT_INTERNAL_H
 
+#include "gl/gl_counters.h"
 #include "gl/gl.h"
 #include "gl/gl_program.h"
 #include "vct.h"
@@ -56,6 +57,11 @@ typedef struct gk_vct {
     float origin[3], size, voxel;
     int res, levels;
     bool mips_ran;               /* this frame rebuilt the mips (vct_work.c counts their fetches) */
+    bool inject_ran;             /* and injected the light (vct_work.c) */
+    bool voxelize_ran;           /* and voxelized (all or a moved object's region) */
+    bool count_work;             /* this frame is the bench's counting frame (gk_gi_frame.count_work) */
+    gk_counters inject_fetches;  /* the bench's counts (vct_work.c): the injection's shadow fetches, */
+    gk_counters voxelize_atomics; /* the voxelizer's scratch-buffer atomics */
     /* GL objects */
     GLuint tri_ssbo, scratch_ssbo, counter_ssbo;
     GLuint alpha_tex;            /* R8 2D array: masked materials' base-colour alpha (vct_alpha.c) */
@@ -140,5 +146,13 @@ void vct_bind_map(const gk_vct *v, GLint vox0, const GLint voxp[3], const GLint 
 int vct_cone_set(int n, bool faithful, float dir[][3], float aperture[], float weight[]);
 /* gk_gi_method.pass_work (vct_work.c): the last trace's counted samples as fetches. */
 int vct_pass_work(void *self, gk_pass_work *out, int max);
+/* vct_work.c: around the injection of a counting frame (count_work), zero and bind its counter
+   (returns the define inject.comp adds, "" when not counting), read it back; free it. */
+const char *vct_work_inject_begin(gk_vct *v, bool count_work);
+void vct_work_inject_end(gk_vct *v);
+/* The same around the voxelizer's dispatches (the define voxelize.comp adds). */
+const char *vct_work_voxelize_begin(gk_vct *v);
+void vct_work_voxelize_end(gk_vct *v);
+void vct_work_free(gk_vct *v);
 
 #endif

@@ -133,10 +133,11 @@ static const gk_uniform_field compose_fields[] = {
 
 int vct_pass_voxelize(gk_vct *v, const int lo[3], const int hi[3], gk_err *e)
 {
-    char defs[256];
+    char defs[256], vox_defs[320];
     defines_common(v, defs, sizeof defs);
+    snprintf(vox_defs, sizeof vox_defs, "%s%s", defs, vct_work_voxelize_begin(v));
     GLuint clear = gk_program_get_compute(v->ctx.programs, "vct/clear.comp", defs, e);
-    GLuint vox = clear ? gk_program_get_compute(v->ctx.programs, "vct/voxelize.comp", defs, e) : 0;
+    GLuint vox = clear ? gk_program_get_compute(v->ctx.programs, "vct/voxelize.comp", vox_defs, e) : 0;
     const clear_uniforms *uc = vox ? gk_program_uniforms(v->ctx.programs, clear, GK_FIELDS(clear_fields), sizeof *uc, e) : NULL;
     const voxelize_uniforms *uv = uc ? gk_program_uniforms(v->ctx.programs, vox, GK_FIELDS(voxelize_fields), sizeof *uv, e) : NULL;
     if (!uv)
@@ -171,6 +172,8 @@ int vct_pass_voxelize(gk_vct *v, const int lo[3], const int hi[3], gk_err *e)
         glDispatchCompute((GLuint)groups(count, 64), 1, 1);
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    vct_work_voxelize_end(v);
+    v->voxelize_ran = true;
     v->stats.voxelize_runs++;
     v->stats.last_voxelized_region = (long)size[0] * size[1] * size[2];
     return 0;
@@ -178,8 +181,10 @@ int vct_pass_voxelize(gk_vct *v, const int lo[3], const int hi[3], gk_err *e)
 
 int vct_pass_inject(gk_vct *v, const gk_gi_frame *f, gk_err *e)
 {
-    char defs[256];
+    char defs[320];
     defines_common(v, defs, sizeof defs);
+    size_t len = strlen(defs);
+    snprintf(defs + len, sizeof defs - len, "%s", vct_work_inject_begin(v, f->count_work));
     GLuint p = gk_program_get_compute(v->ctx.programs, "vct/inject.comp", defs, e);
     const inject_uniforms *u = p ? gk_program_uniforms(v->ctx.programs, p, GK_FIELDS(inject_fields), sizeof *u, e) : NULL;
     if (!u)
@@ -235,6 +240,7 @@ int vct_pass_inject(gk_vct *v, const gk_gi_frame *f, gk_err *e)
     }
     glDispatchCompute((GLuint)groups(v->res, 4), (GLuint)groups(v->res, 4), (GLuint)groups(v->res, 4));
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+    vct_work_inject_end(v);
     for (int i = 0; i < VCT_MAX_LIGHTS; i++) {
         glActiveTexture(GL_TEXTURE8 + (GLenum)i);
         glBindTexture(GL_TEXTURE_2D, 0);

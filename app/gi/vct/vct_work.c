@@ -5,7 +5,19 @@
  * cone takes depends on the voxels (it stops at opacity 0.99 and at the volume's border), so the
  * pass counts them (vct/trace.comp Counters) and the bench reads the count; the model below, a
  * replay of the step loop in open space, is what a cone costs when only its length stops it --
- * the bound the count is checked against (tests/gpu/test_vct.c). */
+ * the bound the count is checked against (tests/gpu/test_vct.c).
+ * The injection (vct_inject, frames that re-light the voxels) reads the light's 32-bit depth map 9
+ * times (3x3 PCF) per occupied voxel and shadowed light whose lookup lands in the map: which voxels
+ * are occupied and where they project is data, so inject.comp counts them (INJECT_COUNT_FETCHES)
+ * in the bench's untimed counting frame; its scratch-buffer reads and image stores have no
+ * roofline kind and are not counted (tests/gpu/test_vct_inject.c: 9 per occupied voxel when the
+ * light's map covers the scene).
+ * The voxelizer (vct_voxelize, frames that voxelize) is bound by its atomics into the scratch
+ * buffer: per voxel a triangle writes, one per channel (the count and three components each of
+ * albedo, normal and position, + emission: 10 or 13; the thesis's compare-and-swap averages 3 or
+ * 4), at the roofline's atomic kind. Which voxels a triangle overlaps is geometry, so
+ * voxelize.comp counts them (VOXELIZE_COUNT_ATOMICS) in the counting frame; the clear pass and the
+ * triangles' reads are not counted (tests/gpu/test_vct_inject.c: 10 x the scratch's count channel). */
 #include <math.h>
 
 #include "vct_internal.h"
@@ -64,8 +76,33 @@ double gk_vct_mip_fetches(int res, int levels)
     return 6.0 * 8.0 * texels;
 }
 
+const char *vct_work_inject_begin(gk_vct *v, bool count_work)
+{
+    v->inject_fetches.n = 1;
+    v->inject_fetches.binding = 2; /* vct/inject.comp InjectFetches */
+    return gk_counters_begin(&v->inject_fetches, count_work) ? "#define INJECT_COUNT_FETCHES 1\n" : "";
+}
+
+void vct_work_inject_end(gk_vct *v) { gk_counters_end(&v->inject_fetches); }
+
+const char *vct_work_voxelize_begin(gk_vct *v)
+{
+    v->voxelize_atomics.n = 1;
+    v->voxelize_atomics.binding = 2; /* vct/voxelize.comp VoxelizeAtomics */
+    return gk_counters_begin(&v->voxelize_atomics, v->count_work) ? "#define VOXELIZE_COUNT_ATOMICS 1\n" : "";
+}
+
+void vct_work_voxelize_end(gk_vct *v) { gk_counters_end(&v->voxelize_atomics); }
+
+void vct_work_free(gk_vct *v)
+{
+    gk_counters_free(&v->inject_fetches);
+    gk_counters_free(&v->voxelize_atomics);
+}
+
 /* gk_gi_method.pass_work: the trace's counted samples as fetches of the RGBA16F voxel textures, and
-   in a frame that rebuilt them, the anisotropic mips' image loads (the isotropic chain is the
+   in a frame that rebuilt them, the voxelizer's counted atomics, the injection's counted shadow
+   fetches and the anisotropic mips' image loads (the isotropic chain is the
    driver's glGenerateMipmap: no model). */
 int vct_pass_work(void *self, gk_pass_work *out, int max)
 {
@@ -77,6 +114,12 @@ int vct_pass_work(void *self, gk_pass_work *out, int max)
         out[n++] = (gk_pass_work){.pass = "gi.vct_trace", .kind = "tex3d_rgba16f_trilinear",
                                   .fetches = gk_vct_trace_fetches(s.aniso, (double)s.last_trace_fine_steps,
                                                                   (double)(s.last_trace_steps - s.last_trace_fine_steps))};
+    if (v->voxelize_ran && v->voxelize_atomics.counted && v->voxelize_atomics.value[0] > 0.0 && n < max)
+        out[n++] = (gk_pass_work){.pass = "gi.vct_voxelize", .kind = "ssbo_r32ui_atomic",
+                                  .fetches = v->voxelize_atomics.value[0]};
+    if (v->inject_ran && v->inject_fetches.counted && v->inject_fetches.value[0] > 0.0 && n < max)
+        out[n++] = (gk_pass_work){.pass = "gi.vct_inject", .kind = "tex2d_depth32f_nearest",
+                                  .fetches = v->inject_fetches.value[0]};
     if (v->mips_ran && v->cur.aniso && n < max)
         out[n++] = (gk_pass_work){.pass = "gi.vct_mips", .kind = "image3d_rgba16f_load",
                                   .fetches = gk_vct_mip_fetches(v->res, v->levels)};

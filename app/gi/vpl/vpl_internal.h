@@ -60,8 +60,10 @@ typedef struct vpl_state {
     int mr_levels, mr_w, mr_h;
     GLuint mr_t[VPL_MR_MAX_LEVELS][4], mr_rend[VPL_MR_MAX_LEVELS], mr_sint[VPL_MR_MAX_LEVELS];
     GLuint mr_fbo[VPL_MR_MAX_LEVELS], mr_rend_fbo[VPL_MR_MAX_LEVELS], mr_sint_fbo[VPL_MR_MAX_LEVELS];
-    /* the bench's count of the gather's fetches (vpl_work.c) */
-    gk_counters gather_fetches; /* three: unfiltered, filtered RGBA8, filtered 16-bit float */
+    /* the bench's counts (vpl_work.c): the gather's fetches, the VAL maps' fragments */
+    gk_counters gather_fetches; /* unfiltered RGBA32F, filtered RGBA8, filtered 16-bit float, R16F */
+    gk_counters map_fragments;  /* fragments vpl/val_depth.frag shaded */
+    long map_basis_fragments;   /* the basis pass's, res² per map (not counted: a full-screen pass) */
 } vpl_state;
 
 /* vpl_rsm.c: RSM of every light + VPL generation + readback into st.vpl; returns VPL count. */
@@ -83,6 +85,9 @@ void vpl_free_multires(vpl_state *s);
    gk_gi_method.pass_work; the counters' buffer freed. */
 const char *vpl_work_begin(vpl_state *s, const gk_gi_frame *f);
 void vpl_work_end(vpl_state *s);
+/* The same around the VAL maps' depth draws (vpl_valmap.c; the define val_depth.frag adds). */
+const char *vpl_work_maps_begin(vpl_state *s, const gk_gi_frame *f);
+void vpl_work_maps_end(vpl_state *s, long basis_fragments);
 int vpl_pass_work(void *self, gk_pass_work *out, int max);
 void vpl_work_free(vpl_state *s);
 /* Largest value an indirect target stores (fp16 saturates at 65504; fp32: no cap). */

@@ -98,12 +98,16 @@ static const gk_uniform_field val_basis_fields[] = {GK_UNIFORM(val_basis_uniform
 
 int vpl_build_maps(vpl_state *s, const gk_gi_frame *f, const gk_val *em, int count, gk_err *e)
 {
-    if (s->vis == GK_VPL_VIS_NONE || count == 0)
+    /* first: a counting frame without maps counts none */
+    const char *count_define = vpl_work_maps_begin(s, f);
+    if (s->vis == GK_VPL_VIS_NONE || count == 0) {
+        vpl_work_maps_end(s, 0);
         return 0;
+    }
     bool exact = s->vis == GK_VPL_VIS_EXACT;
     int res = exact ? VPL_EXACT_RES : s->val_res;
     ensure_maps(s, res, exact ? s->n : GK_VPL_MAX_M, s->vis);
-    GLuint prog = gk_program_get(s->ctx.programs, "vpl/val_depth.vert", "vpl/val_depth.frag", NULL, e);
+    GLuint prog = gk_program_get(s->ctx.programs, "vpl/val_depth.vert", "vpl/val_depth.frag", count_define, e);
     const val_depth_uniforms *u = prog ? gk_program_uniforms(s->ctx.programs, prog, GK_FIELDS(val_depth_fields), sizeof *u, e) : NULL;
     if (!u)
         return -1;
@@ -120,8 +124,10 @@ int vpl_build_maps(vpl_state *s, const gk_gi_frame *f, const gk_val *em, int cou
     glUseProgram(prog);
     for (int k = 0; k < count; k++) {
         glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, s->z_arr, 0, k);
-        if (k == 0 && glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        if (k == 0 && glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+            vpl_work_maps_end(s, 0);
             return gk_fail(e, GK_ERUNTIME, "vpl: paraboloid map framebuffer (R16F %d²) incomplete", res);
+        }
         const GLfloat far_z[4] = {1, 1, 1, 1};
         glClearBufferfv(GL_COLOR, 0, far_z);
         glClear(GL_DEPTH_BUFFER_BIT);
@@ -136,6 +142,7 @@ int vpl_build_maps(vpl_state *s, const gk_gi_frame *f, const gk_val *em, int cou
         vpl_proxy_draw_all(&s->proxy, f->scene, u->u_model);
     }
     glDisable(GL_DEPTH_TEST);
+    vpl_work_maps_end(s, exact ? 0 : (long)res * res * count);
     if (exact)
         return 0;
     bool vsm = s->vis == GK_VPL_VIS_VSM;

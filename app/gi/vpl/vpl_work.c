@@ -1,34 +1,62 @@
 /* The gather's work (#21, app/gl/pass_work.h): how many fetches vpl_gather needs. Per pixel of the
  * indirect buffer its VPL subset (n / block² VPLs) is read from the VPL table (2 fetches, a third
  * for a VPL that can light it), and each VPL that faces the pixel asks its VAL's visibility: 4
- * table fetches, then by the visibility in use 1 depth texel (exact), 2 RGBA8 + 3 16-bit lookups
+ * table fetches, then by the visibility in use 1 R16F depth texel (exact), 2 RGBA8 + 3 16-bit lookups
  * plus 2 more RGBA8 where the search kernel found blockers (CSSM), 2 moment lookups (VSM), none
  * (vpl_vis=none). That depends on the data (which VPLs face which pixels, where blockers are), so
  * the gather counts it in the bench's counting frame (vpl/gather.frag GATHER_COUNT_FETCHES, the
- * interleaved gather only) and the bench reads the count. The VAL maps (vpl_valsm) are rasterized,
- * not fetched: no model. */
+ * interleaved gather only) and the bench reads the count.
+ * The VAL maps (vpl_valsm) are rasterized, not fetched: their work is fragments, at the roofline's
+ * fill rate. How many the depth draws make depends on where the proxy geometry projects in each
+ * paraboloid (and what the negative half-space discards costs as much), so val_depth.frag counts
+ * them (VAL_COUNT_FRAGMENTS, one atomic add per fragment in the same untimed frame); the CSSM/VSM
+ * basis pass is one full-screen triangle per map, res² fragments each, added from the parameters.
+ * The mips (glGenerateMipmap) are not modelled. tests/gpu/test_vpl_work.c replays the depth draws'
+ * rasterization on the CPU. */
 #include "vpl_internal.h"
 
 const char *vpl_work_begin(vpl_state *s, const gk_gi_frame *f)
 {
-    s->gather_fetches.n = 3;
+    s->gather_fetches.n = 4;
     s->gather_fetches.binding = 6; /* vpl/gather.frag GatherFetches */
     return gk_counters_begin(&s->gather_fetches, f->count_work) ? "#define GATHER_COUNT_FETCHES 1\n" : "";
 }
 
 void vpl_work_end(vpl_state *s) { gk_counters_end(&s->gather_fetches); }
 
+const char *vpl_work_maps_begin(vpl_state *s, const gk_gi_frame *f)
+{
+    s->map_fragments.n = 1;
+    s->map_fragments.binding = 6; /* vpl/val_depth.frag ValFragments (the gather's comes later) */
+    return gk_counters_begin(&s->map_fragments, f->count_work) ? "#define VAL_COUNT_FRAGMENTS 1\n" : "";
+}
+
+void vpl_work_maps_end(vpl_state *s, long basis_fragments)
+{
+    gk_counters_end(&s->map_fragments);
+    s->map_basis_fragments = basis_fragments;
+}
+
 int vpl_pass_work(void *self, gk_pass_work *out, int max)
 {
     const vpl_state *s = self;
     /* the VPL and VAL tables are RGBA32F, read unfiltered; CSSM's cos/sin bases RGBA8 and its z
-       bases, depth and VSM's moments 16-bit float, all filtered between mips */
-    static const char *const kinds[3] = {"tex2d_rgba32f_nearest", "tex2d_rgba8_trilinear", "tex2d_rgba16f_trilinear"};
+       bases, depth and VSM's moments 16-bit float, all filtered between mips; exact visibility's
+       paraboloid depths R16F, unfiltered */
+    static const char *const kinds[4] = {"tex2d_rgba32f_nearest", "tex2d_rgba8_trilinear", "tex2d_rgba16f_trilinear",
+                                         "tex2d_r16f_nearest"};
     int n = 0;
-    for (int k = 0; k < 3 && s->gather_fetches.counted; k++)
+    for (int k = 0; k < 4 && s->gather_fetches.counted; k++)
         if (s->gather_fetches.value[k] > 0.0 && n < max)
             out[n++] = (gk_pass_work){.pass = "gi.vpl_gather", .kind = kinds[k], .fetches = s->gather_fetches.value[k]};
+    double fragments = s->map_fragments.value[0] + (double)s->map_basis_fragments;
+    if (s->map_fragments.counted && fragments > 0.0 && n < max)
+        out[n++] = (gk_pass_work){.pass = "gi.vpl_valsm", .kind = "raster_r16f_depth_fill", .fetches = fragments};
     return n;
 }
 
-void vpl_work_free(vpl_state *s) { gk_counters_free(&s->gather_fetches); }
+void vpl_work_free(vpl_state *s)
+{
+    gk_counters_free(&s->gather_fetches);
+    gk_counters_free(&s->map_fragments);
+}
