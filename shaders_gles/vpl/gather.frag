@@ -84,9 +84,71 @@ float csm_lit(vec4 cosz, vec4 sinz, float d)
 #if defined(VIS_VSM)
 const float VSM_OFFSET = 0.01; // Chebyshev is one-tailed: a small bias suffices
 #endif
+#if defined(VIS_CSSM) || defined(VIS_VSM)
+// Deep umbra (vpl_umbra=on, the default; not in the thesis). The filtered test cannot tell a
+// receiver 2 cm behind a wall from the receiver's own surface: CSSM's series ramps from lit to dark
+// over ±0.064 of the normalised depth and the receiver is tested CSM_OFFSET in front of itself, so
+// on light-leak (far ≈ 10 m) receivers up to ~1.4 m behind the wall kept light. The VAL's chain of
+// maxima (val_zmax.frag: the largest depth under a texel, and whether the map has a gap there)
+// answers with exact depths. The receiver is in the whole VAL's umbra (V = 0) when it lies behind
+// the surface the map holds at its own texels, and over the VAL's penumbra kernel around it every
+// depth lies in front of it, or the surface has no gap a ray from the receiver could pass through
+// on its way to the VAL in front of that surface (light-leak's kernels also hold the lit room's far
+// walls next to the wall, behind the receiver: a closed room has no gap).
+// The kernel is CSSM's own (Fig. 6.2: w = atan((r − z)Δ/(z·r))/π) with the exact blocker depth z:
+// over a smaller one (the VAL centre's point visibility, or a kernel per VPL from its offset to the
+// centre; both without the gap test) the leak fell to 0.020–0.039 but cornell's one-bounce error
+// rose 0.0776 -> 0.079–0.082 and atrium's 0.4085 -> 0.421–0.424 whatever the margin below: a
+// cluster is not its centre.
+uniform highp sampler2DArray u_bzmax;
+uniform int u_umbra;
+const float UMBRA_TAN_MAX = 20.0;   // grazing receivers (φ > 87°): no test, the filtered value stands
+// Maxima of the chain over the 2×2 texels of `level` around uv: (depth, level 0: slope, coarser
+// levels: gap). uv lies inside the square of their centres, so over a surface whose depth is
+// linear across them one of them is at least the depth at uv; at level l > 0 they cover those of
+// level 0, and the kernel when 2^l texels of level 0 span it.
+vec2 chain_max(int k, vec2 uv, int level, float res)
+{
+    int lres = max(int(res) >> level, 1);
+    ivec2 t0 = clamp(ivec2(floor(uv * float(lres) - 0.5)), ivec2(0), ivec2(max(lres - 2, 0)));
+    GATHER_COUNT(4, 0, 0);
+    vec2 m = vec2(0.0);
+    for (int j = 0; j < 2; j++)
+        for (int i = 0; i < 2; i++)
+            m = max(m, texelFetch(u_bzmax, ivec3(min(t0 + ivec2(i, j), ivec2(lres - 1)), k), level).rg);
+    return m;
+}
+// Receiver at normalised depth d = r/far in direction v (unit, from the centre), normal nx. The
+// receiver's own surface is in the map if the VAL sees it, and a texel's depth differs from the
+// depth at uv by at most the texel's reach along that surface, d·tanφ·Δθ (φ between nx and v;
+// Δθ ≤ 2.83/res rad, half the diagonal of the paraboloid's largest texel, 4/res rad at its pole),
+// plus fp16's rounding of z (2^-11 relative, twice). Measured without the gap test: a margin of
+// 1/res instead of 2.83/res cut light-leak's residue 0.054 -> 0.039 but cost cornell 0.0776 ->
+// 0.0789 (receivers shadowed themselves); using the slope the map stores instead of tanφ left
+// 0.0234 with the gap test (0.0215 with tanφ).
+bool deep_umbra(int k, vec2 uv, float d, float r, float delta, float res, vec3 v, vec3 nx)
+{
+    float c = abs(dot(nx, v));
+    float tan_phi = sqrt(max(1.0 - c * c, 0.0)) / max(c, 1.0 / UMBRA_TAN_MAX);
+    if (tan_phi >= UMBRA_TAN_MAX)
+        return false;
+    float eps = d * (ldexp(1.0, -10) + tan_phi * 2.83 / res);
+    float zb = chain_max(k, uv, 0, res).x;   // the blocker in front of the receiver, if any
+    if (zb >= d - eps)
+        return false;
+    float za = zb * r / d;
+    float w = atan((r - za) * delta / (za * r)) / PI;
+    int level = int(ceil(log2(max(w * res, 1.0))));
+    if (level == 0)
+        return true;
+    vec2 m = chain_max(k, uv, level, res);
+    return m.x < d - eps || m.y == 0.0;
+}
+#endif
 
-// Soft visibility of receiver x from VAL k (paraboloid CSSM / VSM), or hard per-VPL visibility.
-float visibility(int k, vec3 x)
+// Soft visibility of receiver x (normal nx) from VAL k (paraboloid CSSM / VSM), or hard per-VPL
+// visibility.
+float visibility(int k, vec3 x, vec3 nx)
 {
 #if defined(VIS_NONE)
     return 1.0;
@@ -104,6 +166,9 @@ float visibility(int k, vec3 x)
     vec2 uv = 0.5 + 0.5 * l.xy / (1.0 + l.z);
     float far = c0.w, delta = c1.w, res = c3.w;
     float d = r / far;
+#if defined(VIS_CSSM) || defined(VIS_VSM)
+    float d_receiver = d;   // the deep-umbra test compares exact depths: no offset
+#endif
 #if defined(VIS_CSSM)
     d -= CSM_OFFSET;
 #elif defined(VIS_VSM)
@@ -151,14 +216,17 @@ float visibility(int k, vec3 x)
     GATHER_COUNT(0, 2, 0, 0);
     float s = csm_lit(textureLod(u_bcos, tc, lf) * 2.0 - 1.0, textureLod(u_bsin, tc, lf) * 2.0 - 1.0, d);
     s = clamp(ALPHA * (s - 0.5) + 0.5, 0.0, 1.0);
-    return SHARP_A > 0.0 ? pow(s, 1.0 + SHARP_A * exp(-SHARP_B * (d - zavg))) : s;
+    s = SHARP_A > 0.0 ? pow(s, 1.0 + SHARP_A * exp(-SHARP_B * (d - zavg))) : s;
 #else
     GATHER_COUNT(0, 0, 1, 0);
     vec2 mf = textureLod(u_bmom, tc, lf).rg;
     float vf = max(mf.y - mf.x * mf.x, 1e-6);
     float mdf = d - mf.x;
-    return mdf <= 0.0 ? 1.0 : vf / (vf + mdf * mdf);
+    float s = mdf <= 0.0 ? 1.0 : vf / (vf + mdf * mdf);
 #endif
+    if (u_umbra != 0 && s > 0.0 && deep_umbra(k, uv, d_receiver, r, delta, res, v / r, nx))
+        return 0.0;
+    return s;
 #endif
 #endif
 }
@@ -232,7 +300,7 @@ void main()
         float g = max(dot(nx, w), 0.0) * max(-dot(ni, w), 0.0);
         if (g <= 0.0)
             continue;
-        float V = visibility(int(p.w), x);
+        float V = visibility(int(p.w), x, nx);
         vec3 e = flux * (g * V / PI);
         vec3 full = e / max(d2, 1e-8);
         vec3 clamped = e / max(d2, u_dmin2);

@@ -82,8 +82,11 @@ fi
 # share the VPLs and their clusters, so the unfiltered fetches (VPL and VAL tables) are equal; per VPL
 # past the VAL's early-out VSM reads 2 moments and CSSM 2 RGBA8 bases, and where it finds blockers
 # CSSM adds 3 16-bit and 2 RGBA8 lookups: VSM's 16-bit count = CSSM's RGBA8 - 2/3 of its 16-bit.
+# The deep-umbra test is off here: its unfiltered lookups (4 or 8 per VPL that reaches it) follow
+# each visibility's own filtered answer, so the two would no longer share their unfiltered count.
 expect_exit 0 "bench --roofline-csv: vpl with VSM and CSSM visibility" sh -c "'$GIKIOSK' bench --scenes cornell \
-    --methods vpl --size 80x60 --frames 1 --warmup 1 --sweep 'vpl_vis=vsm,cssm' --roofline-csv '$TMP/roofline.csv' \
+    --methods vpl --size 80x60 --frames 1 --warmup 1 --sweep 'vpl_vis=vsm,cssm' --budget vpl_umbra=off \
+    --roofline-csv '$TMP/roofline.csv' \
     --out '$TMP/v' 2>'$TMP/v.log'"
 check "vpl's efficiency.csv: every number recomputed" \
     python3 "$TMP/recompute.py" "$TMP/v/bench.csv" "$TMP/v/efficiency.csv" "$TMP/roofline.csv" vpl_vis
@@ -130,6 +133,25 @@ import csv, sys
 f = {e["radiosity_bounces"]: float(e["fetches"]) for e in csv.DictReader(open(sys.argv[1]))
      if e["pass"] == "gi.radiosity_bounce" and e["kind"] == "ssbo_rgba32f_load"}
 assert f["2"] > 0 and f["4"] == 2 * f["2"], f
+PY
+# ... and the deep-umbra test on (its default) against off: it reads only its chain of maxima (4
+# unfiltered lookups per level, level 0 and at most one coarser one per VPL whose filtered
+# visibility found blockers and is above 0), after the filtered lookups it leaves as they were.
+# Measured on cornell at 160x120: filtered counts equal, unfiltered 200106 -> 272882 (+4 x 18194).
+expect_exit 0 "bench --roofline-csv: vpl with and without the deep-umbra test" sh -c "'$GIKIOSK' bench \
+    --scenes cornell --methods vpl --size 80x60 --frames 1 --warmup 1 --sweep 'vpl_umbra=off,on' \
+    --roofline-csv '$TMP/roofline.csv' --out '$TMP/u' 2>'$TMP/u.log'"
+check "vpl_gather: the deep-umbra test adds whole chain lookups and no filtered ones" python3 - "$TMP/u/efficiency.csv" <<'PY'
+import csv, sys
+f = {}
+for e in csv.DictReader(open(sys.argv[1])):
+    if e["pass"] == "gi.vpl_gather":
+        f[(e["vpl_umbra"], e["kind"])] = float(e["fetches"])
+u = "tex2d_rgba32f_nearest"
+for k in ("tex2d_rgba8_trilinear", "tex2d_rgba16f_trilinear"):
+    assert f[("on", k)] == f[("off", k)] > 0, f
+extra = f[("on", u)] - f[("off", u)]
+assert extra > 0 and extra % 4 == 0, f
 PY
 printf 'name,format,size,fetches,median_ms,fetches_per_s\ntex3d_rgba16f_trilinear,rgba16f,64,1,1,fast\n' >"$TMP/bad.csv"
 expect_exit 2 "a roofline.csv with a rate that is not a number" "$GIKIOSK" bench --scenes cornell --methods vct \

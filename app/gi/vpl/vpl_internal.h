@@ -12,7 +12,7 @@
 #define VPL_EXACT_RES 64     /* per-VPL hard shadow maps of the exact-visibility reference */
 #define VPL_MR_MAX_LEVELS 6  /* 000: coarsest regions 32×32 pixels (16×16 of them at 512²) */
 
-#define VPL_KNOBS 9               /* knobs declared by vpl_method.c */
+#define VPL_KNOBS 10              /* knobs declared by vpl_method.c */
 
 typedef struct vpl_state {
     gk_gi_context ctx;
@@ -24,6 +24,7 @@ typedef struct vpl_state {
     int n, m_knob, val_res, block, blur_radius, vis;
     float res_scale;
     bool clamp;
+    bool umbra;   /* vpl_umbra: the deep-umbra test on each map's chain of maxima (gather.frag) */
     /* scene */
     float diam;
     float origin[3];   /* bounds centre: positions in render targets are stored relative to it */
@@ -48,7 +49,9 @@ typedef struct vpl_state {
     /* VAL maps (texture arrays) */
     GLuint map_fbo, basis_fbo, map_depth;
     GLuint z_arr, bcos, bsin, bzcos, bzsin, bmom;
+    GLuint zmax;   /* chain of maxima, RG16F: depth, slope (level 0) or gap (vpl_umbra=on) */
     int map_res, map_layers, map_vis;
+    bool map_umbra;
     /* indirect buffers */
     GLuint ind_fbo, ind_tex, pos_tex, nrm_tex;
     GLuint blur_fbo, blur_tex, out_fbo[2], out_tex[2];
@@ -94,12 +97,12 @@ void vpl_work_free(vpl_state *s);
 float vpl_target_max(const vpl_state *s);
 /* vpl/gather.frag in every variant (visibility defines, dense and MULTIRES): its uniform locations,
    resolved once per program (vpl_gather.c). */
-/* Units of the dense gather: G-buffer 10..13, position 2, visibility 3..9. */
+/* Units of the dense gather: G-buffer 10..13, position 2, visibility 3..9 and 14. */
 #define VPL_GATHER_GBUFFER_UNIT 10
 typedef struct vpl_gather_uniforms {
     gk_gbuffer_uniforms gb;
     GLint u_ind_size, u_vpl, u_val, u_n, u_block, u_dmin2, u_origin, u_out_max;
-    GLint u_bcos, u_bsin, u_bzcos, u_bzsin, u_bz, u_bmom;
+    GLint u_bcos, u_bsin, u_bzcos, u_bzsin, u_bz, u_bmom, u_bzmax, u_umbra;
     GLint u_mr_t[4], u_mr_p[3], u_mr_level, u_mr_top, u_tau_z, u_tau_n;
 } vpl_gather_uniforms;
 const vpl_gather_uniforms *vpl_gather_uniforms_of(vpl_state *s, GLuint prog, gk_err *e);

@@ -20,7 +20,7 @@
  *              T5 at 64² measured ~1/16 as many regions as pixels, i.e. par with block 4     -> 1, 1.4
  * Each prior is the method's whole cost with the other knobs held, so every trade knob scales the
  * `gi` pass (scales_pass): the scheduler predicts a step from that pass's measured time. */
-enum { K_N, K_M, K_VAL_MAP, K_BLOCK, K_RES, K_BLUR, K_VIS, K_CLAMP, K_GATHER, K_COUNT };
+enum { K_N, K_M, K_VAL_MAP, K_BLOCK, K_RES, K_BLUR, K_VIS, K_CLAMP, K_GATHER, K_UMBRA, K_COUNT };
 /* Levels of the variant knobs, in the order of their values below. */
 _Static_assert(K_COUNT == VPL_KNOBS, "vpl_internal.h's VPL_KNOBS counts the knobs");
 enum { VIS_VSM, VIS_CSSM, VIS_EXACT };
@@ -36,6 +36,9 @@ static const gk_knob_def knobs[K_COUNT] = {
     {"vpl_vis", "vpl", 3, {"vsm", "cssm", "exact"}, {1.0f, 1.3f, 20.0f}, 1, .auto_max_level = 1, .scales_pass = "gi"},
     {"vpl_clamp", "vpl", 2, {"off", "on"}, {1.0f, 1.0f}, 1, 0, .fixed = true},
     {"vpl_gather", "vpl", 2, {"interleaved", "multires"}, {1.0f, 1.4f}, 0, 0, false, .scales_pass = "gi"},
+    /* The deep-umbra test (gather.frag; not in the thesis): exact depths decide where the whole VAL
+       is hidden, which the filtered visibility cannot near a thin wall (tests/e2e/vpl_leak.sh). */
+    {"vpl_umbra", "vpl", 2, {"off", "on"}, {1.0f, 1.0f}, 1, 0, .fixed = true},
 };
 
 static void declare_knobs(gk_budget *b)
@@ -157,6 +160,7 @@ static void read_budget(vpl_state *s, const gk_budget *b)
     if (s->dbg.vis_override >= 0)
         s->vis = s->dbg.vis_override;
     s->clamp = gk_knob_level(b, &s->knob[K_CLAMP], 1) == 1;
+    s->umbra = gk_knob_level(b, &s->knob[K_UMBRA], 1) == 1;
     s->multires = gk_knob_level(b, &s->knob[K_GATHER], GATHER_INTERLEAVED) == GATHER_MULTIRES;
 }
 
@@ -258,6 +262,8 @@ static long memory_bytes(const void *self)
     long texels = (long)s->map_res * s->map_res * s->map_layers;
     long per = s->map_vis == GK_VPL_VIS_CSSM ? 2 + 4 + 4 + 8 + 8 : (s->map_vis == GK_VPL_VIS_VSM ? 2 + 8 : 2);
     b += texels * per * (s->map_vis == GK_VPL_VIS_EXACT ? 3 : 4) / 3; /* mips add ⅓ */
+    if (s->map_umbra)
+        b += texels * 4 * 4 / 3; /* the chain of maxima, RG16F with mips */
     b += (long)s->map_res * s->map_res * 4;
     b += (long)s->iw * s->ih * (px * 6);
     b += s->proxy.bytes;

@@ -1,8 +1,9 @@
 /* One paraboloid shadow map per VAL (thesis §6.3.2, §6.5 steps 7–8): linear radial depth into a
  * texture array layer (GLES 3.1 has no geometry shader, so one draw per layer), then the CSSM basis
  * (4 Fourier terms: cos/sin in RGBA8, z·cos/z·sin in RGBA16F, plus z itself) or the two moments,
- * and mipmaps for the prefiltered lookups. The exact-visibility reference uses the same pass with
- * one hard map per VPL. Also the tables the gather reads (VPLs with labels, emitters). */
+ * and mipmaps for the prefiltered lookups; with vpl_umbra=on also the chain of maxima (depth, gap)
+ * the deep-umbra test reads. The exact-visibility reference uses the same pass with one hard map
+ * per VPL. Also the tables the gather reads (VPLs with labels, emitters). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -11,11 +12,11 @@
 
 static void free_maps(vpl_state *s)
 {
-    GLuint tex[6] = {s->z_arr, s->bcos, s->bsin, s->bzcos, s->bzsin, s->bmom};
-    for (int i = 0; i < 6; i++)
+    GLuint tex[7] = {s->z_arr, s->bcos, s->bsin, s->bzcos, s->bzsin, s->bmom, s->zmax};
+    for (int i = 0; i < 7; i++)
         if (tex[i])
             glDeleteTextures(1, &tex[i]);
-    s->z_arr = s->bcos = s->bsin = s->bzcos = s->bzsin = s->bmom = 0;
+    s->z_arr = s->bcos = s->bsin = s->bzcos = s->bzsin = s->bmom = s->zmax = 0;
     if (s->map_depth)
         glDeleteRenderbuffers(1, &s->map_depth);
     s->map_depth = 0;
@@ -39,11 +40,17 @@ static GLuint array_tex(GLenum fmt, int res, int layers, bool mips)
     return t;
 }
 
-static void ensure_maps(vpl_state *s, int res, int layers, int vis)
+static void ensure_maps(vpl_state *s, int res, int layers, int vis, bool umbra)
 {
-    if (s->map_layers >= layers && s->map_res == res && s->map_vis == vis)
+    if (s->map_layers >= layers && s->map_res == res && s->map_vis == vis && s->map_umbra == umbra)
         return;
     free_maps(s);
+    if (umbra) {
+        /* Read by texelFetch only (a maximum is not a filtered value): nearest everywhere. */
+        s->zmax = array_tex(GL_RG16F, res, layers, true);
+        glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
+        glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    }
     s->z_arr = array_tex(GL_R16F, res, layers, vis == GK_VPL_VIS_CSSM);
     if (vis == GK_VPL_VIS_CSSM) {
         s->bcos = array_tex(GL_RGBA8, res, layers, true);
@@ -63,7 +70,54 @@ static void ensure_maps(vpl_state *s, int res, int layers, int vis)
         glGenFramebuffers(1, &s->map_fbo);
     if (!s->basis_fbo)
         glGenFramebuffers(1, &s->basis_fbo);
-    s->map_res = res, s->map_layers = layers, s->map_vis = vis;
+    s->map_res = res, s->map_layers = layers, s->map_vis = vis, s->map_umbra = umbra;
+}
+
+/* vpl/val_zmax.frag */
+typedef struct val_zmax_uniforms {
+    GLint u_zmax, u_layer, u_level;
+} val_zmax_uniforms;
+static const gk_uniform_field val_zmax_fields[] = {GK_UNIFORM(val_zmax_uniforms, u_zmax),
+                                                   GK_UNIFORM(val_zmax_uniforms, u_layer),
+                                                   GK_UNIFORM(val_zmax_uniforms, u_level)};
+
+/* The chain of maxima of the deep-umbra test: level 0 came from the depth pass; each coarser
+   level is reduced from the one below, which is made the texture's only level meanwhile (reading
+   one level of a texture while rendering into another is a feedback loop in GLES unless the
+   written level lies outside [base, max]). */
+static int build_zmax(vpl_state *s, int count, gk_err *e)
+{
+    GLuint prog = gk_program_get(s->ctx.programs, "common/fullscreen.vert", "vpl/val_zmax.frag", NULL, e);
+    const val_zmax_uniforms *u = prog ? gk_program_uniforms(s->ctx.programs, prog, GK_FIELDS(val_zmax_fields), sizeof *u, e) : NULL;
+    if (!u)
+        return -1;
+    glBindFramebuffer(GL_FRAMEBUFFER, s->basis_fbo);
+    const GLenum b1[1] = {GL_COLOR_ATTACHMENT0};
+    glDrawBuffers(1, b1);
+    glUseProgram(prog);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, s->zmax);
+    glUniform1i(u->u_zmax, 0);
+    glBindVertexArray(s->empty_vao);
+    int level = 1;
+    for (int res = s->map_res / 2; res >= 1; res /= 2, level++) {
+        glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_BASE_LEVEL, level - 1);
+        glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAX_LEVEL, level - 1);
+        glViewport(0, 0, res, res);
+        glUniform1i(u->u_level, level);
+        for (int k = 0; k < count; k++) {
+            glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, s->zmax, level, k);
+            if (level == 1 && k == 0 && glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+                return gk_fail(e, GK_ERUNTIME, "vpl: chain of maxima framebuffer (RG16F) incomplete");
+            glUniform1i(u->u_layer, k);
+            glDrawArrays(GL_TRIANGLES, 0, 3);
+        }
+    }
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_BASE_LEVEL, 0);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAX_LEVEL, 1000);
+    glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, 0, 0, 0);
+    glViewport(0, 0, s->map_res, s->map_res); /* the basis pass draws at the map's size */
+    return 0;
 }
 
 void vpl_emitter_params(const vpl_state *s, const gk_val *v, bool exact, float out_c[3], float *rnear, float *far)
@@ -106,15 +160,16 @@ int vpl_build_maps(vpl_state *s, const gk_gi_frame *f, const gk_val *em, int cou
     }
     bool exact = s->vis == GK_VPL_VIS_EXACT;
     int res = exact ? VPL_EXACT_RES : s->val_res;
-    ensure_maps(s, res, exact ? s->n : GK_VPL_MAX_M, s->vis);
+    bool umbra = s->umbra && !exact;
+    ensure_maps(s, res, exact ? s->n : GK_VPL_MAX_M, s->vis, umbra);
     GLuint prog = gk_program_get(s->ctx.programs, "vpl/val_depth.vert", "vpl/val_depth.frag", count_define, e);
     const val_depth_uniforms *u = prog ? gk_program_uniforms(s->ctx.programs, prog, GK_FIELDS(val_depth_fields), sizeof *u, e) : NULL;
     if (!u)
         return -1;
     glBindFramebuffer(GL_FRAMEBUFFER, s->map_fbo);
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, s->map_depth);
-    const GLenum b1[1] = {GL_COLOR_ATTACHMENT0};
-    glDrawBuffers(1, b1);
+    const GLenum b2[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    glDrawBuffers(umbra ? 2 : 1, b2);
     glViewport(0, 0, res, res);
     glDisable(GL_BLEND);
     glDisable(GL_CULL_FACE);
@@ -124,12 +179,18 @@ int vpl_build_maps(vpl_state *s, const gk_gi_frame *f, const gk_val *em, int cou
     glUseProgram(prog);
     for (int k = 0; k < count; k++) {
         glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, s->z_arr, 0, k);
+        glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, umbra ? s->zmax : 0, 0, k);
         if (k == 0 && glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
             vpl_work_maps_end(s, 0);
             return gk_fail(e, GK_ERUNTIME, "vpl: paraboloid map framebuffer (R16F %d²) incomplete", res);
         }
         const GLfloat far_z[4] = {1, 1, 1, 1};
+        /* Nothing drawn (beyond far, the negative half-space, the near sphere): depth 1 with no
+           slope, so its edge against anything drawn is a gap. */
+        const GLfloat empty[4] = {1, 0, 0, 0};
         glClearBufferfv(GL_COLOR, 0, far_z);
+        if (umbra)
+            glClearBufferfv(GL_COLOR, 1, empty);
         glClear(GL_DEPTH_BUFFER_BIT);
         float c[3], rnear, far;
         vpl_emitter_params(s, &em[k], exact, c, &rnear, &far);
@@ -143,8 +204,11 @@ int vpl_build_maps(vpl_state *s, const gk_gi_frame *f, const gk_val *em, int cou
     }
     glDisable(GL_DEPTH_TEST);
     vpl_work_maps_end(s, exact ? 0 : (long)res * res * count);
+    glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, 0, 0, 0);
     if (exact)
         return 0;
+    if (umbra && build_zmax(s, count, e))
+        return -1;
     bool vsm = s->vis == GK_VPL_VIS_VSM;
     GLuint bp = gk_program_get(s->ctx.programs, "common/fullscreen.vert", "vpl/val_basis.frag",
                                vsm ? "#define VIS_VSM 1\n" : NULL, e);
