@@ -41,7 +41,7 @@ typedef struct inject_uniforms {
         u_shadow_bias, u_n_lights;
     GLint u_shadow[VCT_MAX_LIGHTS];
     GLint u_light_type, u_light_pos, u_light_dir, u_light_radiant, u_light_spot, u_light_lambert, u_light_shadow,
-        u_shadow_vp;
+        u_shadow_vp, u_shadow_range;
 } inject_uniforms;
 static const gk_uniform_field inject_fields[] = {
     GK_UNIFORM(inject_uniforms, u_res),
@@ -65,6 +65,7 @@ static const gk_uniform_field inject_fields[] = {
     GK_UNIFORM(inject_uniforms, u_light_lambert),
     GK_UNIFORM(inject_uniforms, u_light_shadow),
     GK_UNIFORM(inject_uniforms, u_shadow_vp),
+    GK_UNIFORM(inject_uniforms, u_shadow_range),
 };
 _Static_assert(VCT_MAX_LIGHTS == 4, "inject_fields lists u_shadow0..3 (shaders_gles/vct/inject.comp)");
 
@@ -194,12 +195,17 @@ int vct_pass_inject(gk_vct *v, const gk_gi_frame *f, gk_err *e)
     glUniform1f(u->u_voxel_size, v->voxel);
     glUniform1f(u->u_emission_max, v->tris.max_emission);
     glUniform1f(u->u_shadow_ambient, v->opt.shadow_ambient);
-    glUniform1f(u->u_shadow_bias, 0.0015f);
+    /* The shadow test compares distances along the map's axis (inject.comp), so the bias is in world
+       units: a quarter voxel, on top of the lookup's one voxel along the normal. It was 0.0015 of
+       window depth, which in a perspective map with its near plane at 1 cm is 0.6 m of depth 2 m from
+       the light (window depth changes by near / z^2 a metre at depth z): light-leak's dark floor
+       behind the wall was injected lit. */
+    glUniform1f(u->u_shadow_bias, 0.25f * v->voxel);
     int n = f->n_lights < VCT_MAX_LIGHTS ? f->n_lights : VCT_MAX_LIGHTS;
     glUniform1i(u->u_n_lights, n);
     GLint type_of[VCT_MAX_LIGHTS], lambert_of[VCT_MAX_LIGHTS], shadow_of[VCT_MAX_LIGHTS];
     float pos[VCT_MAX_LIGHTS][3], dir[VCT_MAX_LIGHTS][3], radiant[VCT_MAX_LIGHTS][3], spot[VCT_MAX_LIGHTS][2];
-    float vp[VCT_MAX_LIGHTS][16];
+    float vp[VCT_MAX_LIGHTS][16], range[VCT_MAX_LIGHTS][3];
     for (int i = 0; i < VCT_MAX_LIGHTS; i++) {
         glUniform1i(u->u_shadow[i], 8 + i);
         glActiveTexture(GL_TEXTURE8 + (GLenum)i);
@@ -222,6 +228,8 @@ int vct_pass_inject(gk_vct *v, const gk_gi_frame *f, gk_err *e)
         lambert_of[i] = lambert;
         shadow_of[i] = L->shadow_depth_tex != 0;
         memcpy(vp[i], L->shadow_view_proj.m, sizeof vp[i]);
+        memcpy(range[i], (float[3]){L->shadow_near, L->shadow_far, L->shadow_is_perspective ? 1.0f : 0.0f},
+               sizeof range[i]);
     }
     if (n > 0) {
         glUniform1iv(u->u_light_type, n, type_of);
@@ -232,6 +240,7 @@ int vct_pass_inject(gk_vct *v, const gk_gi_frame *f, gk_err *e)
         glUniform1iv(u->u_light_lambert, n, lambert_of);
         glUniform1iv(u->u_light_shadow, n, shadow_of);
         glUniformMatrix4fv(u->u_shadow_vp, n, GL_FALSE, &vp[0][0]);
+        glUniform3fv(u->u_shadow_range, n, &range[0][0]);
     }
     glDispatchCompute((GLuint)groups(v->res, 4), (GLuint)groups(v->res, 4), (GLuint)groups(v->res, 4));
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
