@@ -72,11 +72,11 @@ _Static_assert(VCT_MAX_LIGHTS == 4, "inject_fields lists u_shadow0..3 (shaders_g
 /* vct/mip_aniso.comp */
 typedef struct mip_uniforms {
     GLint u_half;
-    GLint u_res, u_dst_res, u_from_level0, u_dir;
+    GLint u_res, u_dst_res, u_from_level0, u_dir, u_views_only;
 } mip_uniforms;
 static const gk_uniform_field mip_fields[] = {GK_UNIFORM(mip_uniforms, u_res), GK_UNIFORM(mip_uniforms, u_dst_res),
                                               GK_UNIFORM(mip_uniforms, u_from_level0), GK_UNIFORM(mip_uniforms, u_dir),
-                                              GK_UNIFORM(mip_uniforms, u_half)};
+                                              GK_UNIFORM(mip_uniforms, u_half), GK_UNIFORM(mip_uniforms, u_views_only)};
 
 /* vct/trace.comp */
 typedef struct trace_uniforms {
@@ -275,18 +275,22 @@ int vct_pass_mips(gk_vct *v, bool directional, gk_err *e)
     glUseProgram(p);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, v->scratch_ssbo);
     glUniform1i(u->u_res, v->res);
-    for (int l = 1; l < v->levels; l++) {
+    /* map level l is level l - first of the chains: from level 1 on (thesis §4), or with
+       vct_level0=aniso from level 0, whose views are the isotropic injection seen from each side */
+    int first = v->cur.aniso_level0 ? 0 : 1;
+    for (int l = first; l < v->levels; l++) {
         int dst_res = v->res >> l;
         glUniform1i(u->u_dst_res, dst_res);
-        glUniform1i(u->u_from_level0, l == 1);
+        glUniform1i(u->u_from_level0, l == first);
+        glUniform1i(u->u_views_only, l == 0);
         for (int d = 0; d < 6; d++) {
             /* view d in axis texture d / 2, in the lower (even d) or upper half of each level's depth */
             GLuint packed = v->voxp[d / 2];
-            if (l == 1)
+            if (l == first)
                 glBindImageTexture(0, v->vox0, 0, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA16F);
             else
-                glBindImageTexture(0, packed, l - 2, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA16F);
-            glBindImageTexture(1, packed, l - 1, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+                glBindImageTexture(0, packed, l - first - 1, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA16F);
+            glBindImageTexture(1, packed, l - first, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
             glUniform1i(u->u_half, d % 2);
             glUniform1i(u->u_dir, d);
             glDispatchCompute((GLuint)groups(dst_res, 4), (GLuint)groups(dst_res, 4), (GLuint)groups(dst_res, 4));
@@ -357,7 +361,13 @@ void vct_bind_map(const gk_vct *v, GLint vox0, const GLint voxp[3], const GLint 
             bind_tex(voxp[a], 1 + a, GL_TEXTURE_3D, v->voxp[a], 0);
             bind_tex(voxp_l0[a], 4 + a, GL_TEXTURE_3D, v->voxp[a], v->level0_sampler);
         }
-    glUniform1f(dir_levels, (float)(v->levels - 1));
+    glUniform1f(dir_levels, (float)(v->levels - (v->cur.aniso_level0 ? 0 : 1)));
+}
+
+void vct_map_defines(const gk_vct *v, char *out, size_t n)
+{
+    snprintf(out, n, "#define ISO_MIPS %d\n#define ANISO_LEVEL0 %d\n", v->cur.aniso ? 0 : 1,
+             v->cur.aniso && v->cur.aniso_level0 ? 1 : 0);
 }
 
 int vct_skip_top(const gk_vct *v)
@@ -389,11 +399,13 @@ static void unbind_units(int n)
 
 int vct_pass_trace(gk_vct *v, const gk_gi_frame *f, const vct_budget *b, gk_err *e)
 {
-    char defs[256];
-    snprintf(defs, sizeof defs,
-             "#define ISO_MIPS %d\n#define AXIS_WEIGHT_SQ %d\n#define OPACITY_CORRECTION %d\n#define SPECULAR %d\n"
+    char defs[320];
+    vct_map_defines(v, defs, sizeof defs);
+    size_t used = strlen(defs);
+    snprintf(defs + used, sizeof defs - used,
+             "#define AXIS_WEIGHT_SQ %d\n#define OPACITY_CORRECTION %d\n#define SPECULAR %d\n"
              "#define CLIP_CONES %d\n#define EMPTY_SKIP %d\n",
-             v->cur.aniso ? 0 : 1, v->opt.axis_weight_sq ? 1 : 0, v->opt.opacity_correction ? 1 : 0,
+             v->opt.axis_weight_sq ? 1 : 0, v->opt.opacity_correction ? 1 : 0,
              v->specular ? 1 : 0, v->opt.clip_cones ? 1 : 0, b->skip && v->specular ? 1 : 0);
     GLuint p = gk_program_get_compute(v->ctx.programs, "vct/trace.comp", defs, e);
     const trace_uniforms *u = p ? gk_program_uniforms(v->ctx.programs, p, GK_FIELDS(trace_fields), sizeof *u, e) : NULL;
@@ -447,10 +459,11 @@ int vct_pass_bounce(gk_vct *v, const vct_budget *b, gk_err *e)
     char defs[384];
     defines_common(v, defs, sizeof defs);
     size_t used = strlen(defs);
+    vct_map_defines(v, defs + used, sizeof defs - used);
+    used = strlen(defs);
     snprintf(defs + used, sizeof defs - used,
-             "#define ISO_MIPS %d\n#define AXIS_WEIGHT_SQ %d\n#define OPACITY_CORRECTION %d\n#define CLIP_CONES %d\n",
-             v->cur.aniso ? 0 : 1, v->opt.axis_weight_sq ? 1 : 0, v->opt.opacity_correction ? 1 : 0,
-             v->opt.clip_cones ? 1 : 0);
+             "#define AXIS_WEIGHT_SQ %d\n#define OPACITY_CORRECTION %d\n#define CLIP_CONES %d\n",
+             v->opt.axis_weight_sq ? 1 : 0, v->opt.opacity_correction ? 1 : 0, v->opt.clip_cones ? 1 : 0);
     GLuint p = gk_program_get_compute(v->ctx.programs, "vct/bounce.comp", defs, e);
     const bounce_uniforms *u = p ? gk_program_uniforms(v->ctx.programs, p, GK_FIELDS(bounce_fields), sizeof *u, e) : NULL;
     if (!u || vct_ensure_bounce_target(v, e) != 0)
