@@ -6,7 +6,8 @@
 //                (u_voxp0..2 level k = lod k+1; 3 fetches a sample above lod 1, 4 below).
 //   ANISO_LEVEL0=1 (with ISO_MIPS=0; vct_level0=aniso, not in the thesis): the directional views
 //                start at level 0 (u_voxp0..2 level k = lod k), every sample reads the three views
-//                its direction sees (3 fetches), u_vox0 is not read.
+//                its direction sees (3 fetches); the cones do not sample u_vox0 (the empty-space
+//                skip still reads its opacity).
 //   AXIS_WEIGHT_SQ=0: thesis sample = sum |d_axis| T_face(axis)  (over-weights diagonals up to 1.73x)
 //   AXIS_WEIGHT_SQ=1: weights d_axis^2 (sum 1)  -- not in the thesis, calibrated option.
 //   OPACITY_CORRECTION=1: alpha' = 1 - (1 - alpha)^(step / voxel(lod)) -- not in the thesis.
