@@ -7,7 +7,8 @@
  *   vct_voxelize  compute voxelizer over the triangle SSBO -> scratch ("voxel G-buffer": albedo,
  *                 normal, position, emission sums + count). Static geometry once; moving (animated)
  *                 nodes re-voxelized in their dirty region.
- *   vct_inject    direct light from the lights (with their shadow maps) -> level 0 radiance RGBA16F.
+ *   vct_inject    direct light from the lights (with their shadow maps; a ray through the voxels where
+ *                 a point or spot light's map does not reach) -> level 0 radiance RGBA16F.
  *                 Runs when geometry or lights change.
  *   vct_mips      six-direction anisotropic pre-integration (eq. 3.1/3.2) or glGenerateMipmap (iso);
  *                 with vct_level0=aniso first the six views of level 0 (not in the thesis).
