@@ -1,6 +1,7 @@
 // Second bounce (not in the thesis, which is one bounce; knob vct_bounces=2, as voxel-based GI
 // @variant ISO_MIPS=0 AXIS_WEIGHT_SQ=1 OPACITY_CORRECTION=0 CLIP_CONES=1 CONSERVATIVE=1 AVERAGE_CAS=0 EMISSIVE=0
 // @variant ISO_MIPS=1 AXIS_WEIGHT_SQ=0 OPACITY_CORRECTION=1 CLIP_CONES=0 CONSERVATIVE=0 AVERAGE_CAS=1 EMISSIVE=1
+// @variant ISO_MIPS=0 ANISO_LEVEL0=1 AXIS_WEIGHT_SQ=0 OPACITY_CORRECTION=0 CLIP_CONES=1 CONSERVATIVE=1 AVERAGE_CAS=0 EMISSIVE=0
 // renderers do): the indirect light of the first gather injected back into the voxels. Per occupied
 // voxel, the trace pass's diffuse cone set from the voxel's mean position along its mean normal,
 // through the map of direct light (level 0 + its mips as the trace pass reads them):

@@ -4,6 +4,10 @@
 //   ISO_MIPS=0:  level 0 isotropic (u_vox0, thesis §4: anisotropic level 0 ripples) plus six
 //                directional views +X,-X,+Y,-Y,+Z,-Z holding levels 1.., packed two per axis texture
 //                (u_voxp0..2 level k = lod k+1; 3 fetches a sample above lod 1, 4 below).
+//   ANISO_LEVEL0=1 (with ISO_MIPS=0; vct_level0=aniso, not in the thesis): the directional views
+//                start at level 0 (u_voxp0..2 level k = lod k), every sample reads the three views
+//                its direction sees (3 fetches); the cones do not sample u_vox0 (the empty-space
+//                skip still reads its opacity).
 //   AXIS_WEIGHT_SQ=0: thesis sample = sum |d_axis| T_face(axis)  (over-weights diagonals up to 1.73x)
 //   AXIS_WEIGHT_SQ=1: weights d_axis^2 (sum 1)  -- not in the thesis, calibrated option.
 //   OPACITY_CORRECTION=1: alpha' = 1 - (1 - alpha)^(step / voxel(lod)) -- not in the thesis.
@@ -13,6 +17,11 @@
 #ifndef CLIP_CONES
 #define CLIP_CONES 0
 #endif
+#ifndef ANISO_LEVEL0
+#define ANISO_LEVEL0 0
+#endif
+// The map lod of the directional chains' first level.
+#define DIR_FIRST_LOD (ANISO_LEVEL0 != 0 ? 0.0 : 1.0)
 uniform highp sampler3D u_vox0;
 #if !ISO_MIPS
 // The six directional chains packed per axis (app/gi/vct/vct_internal.h voxp): u_voxp0 holds +X in
@@ -29,7 +38,7 @@ uniform highp sampler3D u_voxp2;
 uniform highp sampler3D u_voxp0_l0;
 uniform highp sampler3D u_voxp1_l0;
 uniform highp sampler3D u_voxp2_l0;
-uniform float u_dir_levels; // levels in each directional chain (lod 1 .. u_dir_levels of the map)
+uniform float u_dir_levels; // levels in each directional chain (from lod DIR_FIRST_LOD of the map)
 #endif
 uniform float u_res_f;      // level-0 resolution
 uniform float u_step_mul;   // step = max(diameter * u_step_mul, 1 voxel): 1 = text/Alg. 1, 0.5 = code
@@ -65,7 +74,7 @@ cone_axes cone_axes_for(vec3 d)
     return a;
 }
 
-// sum_a w_a T_view(a)(p, lodd), lodd = level in the directional chains (map lod - 1). At z = 0 each
+// sum_a w_a T_view(a)(p, lodd), lodd = level in the directional chains (map lod - DIR_FIRST_LOD). At z = 0 each
 // view lies at the texture's own edge (clamp-to-edge, as with separate textures). At z = 1 the two
 // views of one axis meet, mirrored, so what filtering reads across the seam is the other view of
 // the same edge voxels; z is clamped to the half-texel border of the finer of the two levels
@@ -73,7 +82,7 @@ cone_axes cone_axes_for(vec3 d)
 // its other view's edge texel, only in the outermost half texel of the grid.
 vec4 dir_sample(vec3 p, cone_axes a, float lodd)
 {
-    float texels = u_res_f * 0.5 * exp2(-min(floor(lodd), u_dir_levels - 1.0));  // per half, in z, finer level
+    float texels = u_res_f * exp2(-DIR_FIRST_LOD - min(floor(lodd), u_dir_levels - 1.0));  // per half, in z, finer level
     float z = min(p.z, 1.0 - 0.5 / texels);
     return a.w.x * textureLod(u_voxp0, vec3(p.xy, a.zoff.x + a.zmul.x * z), lodd)
          + a.w.y * textureLod(u_voxp1, vec3(p.xy, a.zoff.y + a.zmul.y * z), lodd)
@@ -137,8 +146,12 @@ vec4 trace_cone(vec3 apex, vec3 d, float aperture, float max_dist, vec4 plane, o
         if (c.ended) { ended = true; break; }
 #if !ISO_MIPS
         if (c.lod >= 1.0) break;
+#if ANISO_LEVEL0
+        vec4 s = dir_sample(c.p, ax, c.lod);   // the views' levels 0 and 1, mip-filtered
+#else
         // mix(level 0, directional level 1, lod), as the thesis's quadrilinear step into the chains
         vec4 s = (1.0 - c.lod) * textureLod(u_vox0, c.p, 0.0) + c.lod * dir_sample_level0(c.p, ax);
+#endif
 #else
         vec4 s = textureLod(u_vox0, c.p, c.lod);
 #endif
@@ -161,7 +174,7 @@ vec4 trace_cone(vec3 apex, vec3 d, float aperture, float max_dist, vec4 plane, o
         if (ended) break;
         cone_pos c = cone_at(apex, d, dst, diam, aperture, max_dist, plane, acc.a);
         if (c.ended) break;
-        vec4 s = dir_sample(c.p, ax, c.lod - 1.0);
+        vec4 s = dir_sample(c.p, ax, c.lod - DIR_FIRST_LOD);
         float step_len = max(c.ds * u_step_mul, vs);
 #if OPACITY_CORRECTION
         float a_c = 1.0 - pow(max(1.0 - s.a, 0.0), step_len / (exp2(c.lod) * vs));

@@ -17,15 +17,16 @@
 #define SKIP_MAX_APERTURE 0.3  // thesis code: apertures below 0.3 only
 uniform int u_skip_top;        // the map level the search starts at: log2(res) - 3 (thesis code), within the map
 
-// Opacity of cell c of map level L: level 0 is the isotropic u_vox0; above it, the +X directional
-// view (any view is empty exactly where its children all are), the lower half of u_voxp0's level L - 1.
+// Opacity of cell c of map level L: level 0 is the isotropic u_vox0 (also with ANISO_LEVEL0, where
+// every view has its opacity); above it, the +X directional view (any view is empty exactly where its
+// children all are), the lower half of u_voxp0's level L - DIR_FIRST_LOD.
 float skip_cell_alpha(ivec3 c, int L)
 {
 #if ISO_MIPS
     return texelFetch(u_vox0, c, L).a;
 #else
     if (L == 0) return texelFetch(u_vox0, c, 0).a;
-    return texelFetch(u_voxp0, c, L - 1).a;
+    return texelFetch(u_voxp0, c, L - int(DIR_FIRST_LOD)).a;
 #endif
 }
 

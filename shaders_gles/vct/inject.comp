@@ -9,7 +9,10 @@
 //                        times the glTF spot falloff, times cos(theta_emit) for one-sided emitters;
 //            directional: E_i = colour * illuminance [lux] * max(n.l, 0);
 //   V_i  = shadow-map visibility (3x3 PCF), 1 without a shadow map; u_shadow_ambient instead of 0
-//          in shadow (0.07 in the thesis code's faithful mode, 0 calibrated);
+//          in shadow (0.07 in the thesis code's faithful mode, 0 calibrated); where the light's map
+//          does not reach (render_gi.c gives a point light one 160-degree face along its axis), a
+//          ray through the voxels' occupancy (not in the thesis, whose spot light's map covers its
+//          cone; without it a voxel there was lit through every wall: see voxel_visibility);
 //   L_o  = rho / pi * sum_i E_i V_i + L_emit          [nits = cd/m^2]: outgoing diffuse radiance,
 // stored premultiplied as (L_o * alpha, alpha), alpha = 1 for an occupied voxel (thesis A.1.3).
 // RGBA16F, so HDR radiance is not clipped (the thesis's RGBA8 saturates at 1).
@@ -34,8 +37,9 @@ uniform vec2 u_light_spot[MAX_LIGHTS];      // glTF spot: scale, offset
 uniform int u_light_lambert[MAX_LIGHTS];    // one-sided rectangle/disc emitter
 uniform int u_light_shadow[MAX_LIGHTS];
 uniform mat4 u_shadow_vp[MAX_LIGHTS];
+uniform vec3 u_shadow_range[MAX_LIGHTS];   // the map's near, far, and 1 if perspective (gk_gi_light)
 uniform float u_shadow_ambient;
-uniform float u_shadow_bias;
+uniform float u_shadow_bias;               // world units, along the map's axis
 uniform highp sampler2D u_shadow0;
 uniform highp sampler2D u_shadow1;
 uniform highp sampler2D u_shadow2;
@@ -59,24 +63,77 @@ float shadow_depth(int i, vec2 uv)   // constant sampler indices only (GLSL ES)
     return textureLod(u_shadow3, uv, 0.0).r;
 }
 
-float visibility(int i, vec3 x)
+// Visibility of the light at lp from world x along the voxel grid (Amanatides & Woo's traversal):
+// 0 when the segment crosses an occupied voxel, 1 otherwise. The voxel x lies in is not tested (it
+// is x's own surface), nor are the last 1.5 voxels before the light (a fixture around it), nor
+// anything outside the grid. For the voxels a light's map does not cover: light-leak's lamp hangs
+// 0.8 m under the ceiling with its 160-degree map pointing down, so the dark room's ceiling and the
+// upper part of its walls lay outside the map and were injected lit, straight through the wall.
+float voxel_visibility(vec3 x, vec3 lp)
 {
-    if (u_light_shadow[i] == 0) return 1.0;
+    vec3 a = (x - u_grid_origin) / u_voxel_size, b = (lp - u_grid_origin) / u_voxel_size;
+    vec3 d = b - a;
+    float len = length(d);
+    if (len < 2.0) return 1.0;
+    d /= len;
+    ivec3 c = ivec3(floor(a));
+    ivec3 stp = ivec3(sign(d));
+    vec3 inv = vec3(abs(d.x) > 1e-6 ? 1.0 / abs(d.x) : 1e30, abs(d.y) > 1e-6 ? 1.0 / abs(d.y) : 1e30,
+                    abs(d.z) > 1e-6 ? 1.0 / abs(d.z) : 1e30);
+    // distance along the ray to the first boundary on each axis
+    vec3 t_next = vec3(d.x >= 0.0 ? float(c.x + 1) - a.x : a.x - float(c.x),
+                       d.y >= 0.0 ? float(c.y + 1) - a.y : a.y - float(c.y),
+                       d.z >= 0.0 ? float(c.z + 1) - a.z : a.z - float(c.z)) * inv;
+    for (int k = 0; k < 3 * 256; k++) {
+        float t = min(t_next.x, min(t_next.y, t_next.z));
+        if (t > len - 1.5) break;
+        if (t_next.x <= t_next.y && t_next.x <= t_next.z) { c.x += stp.x; t_next.x += inv.x; }
+        else if (t_next.y <= t_next.z) { c.y += stp.y; t_next.y += inv.y; }
+        else { c.z += stp.z; t_next.z += inv.z; }
+        if (any(lessThan(c, ivec3(0))) || any(greaterThanEqual(c, ivec3(u_res)))) break;
+        if (vct_voxel_occupied(c)) return 0.0;
+    }
+    return 1.0;
+}
+
+// Window depth z of light i's map -> distance along its axis (world): the shadow test compares
+// these, since a bias in window depth is a distance that grows with d^2 / near in a perspective map.
+float map_distance(int i, float z)
+{
+    vec3 r = u_shadow_range[i];
+    return r.z > 0.5 ? r.x * r.y / (r.y - z * (r.y - r.x)) : r.x + z * (r.y - r.x);
+}
+
+// The fraction of light i that reaches x: the light's map (3x3 PCF) where it covers x; elsewhere a
+// voxel ray for a point or spot light. A directional light's map covers the scene; a one-sided
+// emitter's 160-degree map covers all but its grazing 10 degrees (cos_emit < 0.17), where a ray to its
+// centre runs along the ceiling it is set in (cornell: the upper walls' voxels were shadowed, error
+// against the one-bounce reference 0.0743 -> 0.0762), so there it stays unshadowed as before.
+float lit_fraction(int i, vec3 x)
+{
     vec4 c = u_shadow_vp[i] * vec4(x, 1.0);
-    if (c.w <= 0.0) return 1.0;
+    bool local = u_light_type[i] != 2 && u_light_lambert[i] == 0;
+    if (c.w <= 0.0) return local ? voxel_visibility(x, u_light_pos[i]) : 1.0;
     vec3 ndc = c.xyz / c.w;
     vec3 sc = ndc * 0.5 + 0.5;
-    if (any(lessThan(sc.xy, vec2(0.0))) || any(greaterThan(sc.xy, vec2(1.0)))) return 1.0;
+    if (any(lessThan(sc.xy, vec2(0.0))) || any(greaterThan(sc.xy, vec2(1.0))))
+        return local ? voxel_visibility(x, u_light_pos[i]) : 1.0;
     vec2 texel = 1.0 / vec2(textureSize(u_shadow0, 0));
     if (i == 1) texel = 1.0 / vec2(textureSize(u_shadow1, 0));
     if (i == 2) texel = 1.0 / vec2(textureSize(u_shadow2, 0));
     if (i == 3) texel = 1.0 / vec2(textureSize(u_shadow3, 0));
-    float lit = 0.0;
+    float lit = 0.0, dist = map_distance(i, sc.z) - u_shadow_bias;
     INJECT_COUNT(9);
     for (int dy = -1; dy <= 1; dy++)
         for (int dx = -1; dx <= 1; dx++)
-            lit += (sc.z - u_shadow_bias <= shadow_depth(i, sc.xy + vec2(dx, dy) * texel)) ? 1.0 : 0.0;
-    lit /= 9.0;
+            lit += dist <= map_distance(i, shadow_depth(i, sc.xy + vec2(dx, dy) * texel)) ? 1.0 : 0.0;
+    return lit / 9.0;
+}
+
+float visibility(int i, vec3 x)
+{
+    if (u_light_shadow[i] == 0) return 1.0;
+    float lit = lit_fraction(i, x);
     return lit + (1.0 - lit) * u_shadow_ambient;
 }
 

@@ -21,7 +21,12 @@
 // cornell 0.085 / 0.074 / 0.069 / 0.080, cornell-spot 0.342 / 0.355 / 0.372 / 0.486; 0.26 is the
 // largest share with which vct beats none on cornell-spot. A lone lit plane lights itself through
 // isotropic coarse levels (74% of its direct light without the footprint clamp, tests/gpu/test_vct.c).
-// Level 0 stays isotropic as in the thesis (§4, Fig. 16).
+// Level 0 stays isotropic as in the thesis (§4, Fig. 16), unless vct_level0=aniso (not in the
+// thesis): then the chains start at level 0, and its six views are made first (u_views_only: each
+// voxel as fetch() shows it to the view, nothing composited), so the directional weighting above
+// acts at level 0 as well. A wall thinner than a voxel whose lit and dark faces fall in neighbouring
+// voxels then shows its lit voxel dark from the far side, where the isotropic level 0 showed a
+// trilinear sample between the two voxels half the lit one's light (tests/e2e/vct_leak.sh).
 #include "vct/common.glsl"
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 layout(binding = 0, rgba16f) readonly uniform highp image3D u_src;
@@ -38,6 +43,7 @@ ivec3 packed_at(ivec3 c, int n)   // voxel c of a level with n voxels a side -> 
     return u_half == 0 ? c : ivec3(c.xy, 2 * n - 1 - c.z);
 }
 uniform bool u_from_level0;
+uniform bool u_views_only;   // level 0's views: u_dst_res = u_res, one voxel to one texel
 vec4 over(vec4 f, vec4 b) { return f + (1.0 - f.a) * b; }
 
 vec3 view_dir(int dir)   // where the viewer of this view stands
@@ -84,6 +90,10 @@ void main()
 {
     ivec3 d = ivec3(gl_GlobalInvocationID);
     if (any(greaterThanEqual(d, ivec3(u_dst_res)))) return;
+    if (u_views_only) {
+        imageStore(u_dst, packed_at(d, u_dst_res), fetch(d));
+        return;
+    }
     ivec3 s = 2 * d;
     int axis = u_dir / 2;
     bool pos = (u_dir % 2) == 0;

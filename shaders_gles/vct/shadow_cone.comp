@@ -3,6 +3,7 @@
 // visibility = 1 - A, written for the direct pass to multiply in (shadow/mask.glsl).
 // @variant ISO_MIPS=0 AXIS_WEIGHT_SQ=0 OPACITY_CORRECTION=0 CLIP_CONES=1 EMPTY_SKIP=1
 // @variant ISO_MIPS=1 AXIS_WEIGHT_SQ=1 OPACITY_CORRECTION=1 CLIP_CONES=0 EMPTY_SKIP=0
+// @variant ISO_MIPS=0 ANISO_LEVEL0=1 AXIS_WEIGHT_SQ=0 OPACITY_CORRECTION=0 CLIP_CONES=1 EMPTY_SKIP=1
 // The cone is cone_lib.glsl's, as the thesis code's shadow shader: step max(diameter, 1 voxel)
 // (u_step_mul = 1), ending short of the light (thesis code: at the distance to the light; see
 // main) -- a directional light's cone runs to the volume's border, apex offset along the geometric

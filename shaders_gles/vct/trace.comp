@@ -1,6 +1,7 @@
 // Cone tracing pass (thesis §3.3) at reduced resolution: per traced pixel the diffuse cone set
 // @variant ISO_MIPS=0 AXIS_WEIGHT_SQ=0 OPACITY_CORRECTION=0 SPECULAR=1 CLIP_CONES=0 EMPTY_SKIP=1
 // @variant ISO_MIPS=1 AXIS_WEIGHT_SQ=1 OPACITY_CORRECTION=1 SPECULAR=0 CLIP_CONES=1
+// @variant ISO_MIPS=0 ANISO_LEVEL0=1 AXIS_WEIGHT_SQ=0 OPACITY_CORRECTION=0 SPECULAR=1 CLIP_CONES=1 EMPTY_SKIP=1
 // (4, 6 or 9 cones in the tangent frame, normal = +y as in the thesis code), AO inside the diffuse
 // cones, and with SPECULAR one glossy cone along reflect(V, N).
 // Output u_out_diffuse: rgb = D = sum_k w_k L_k  (w_k from the C side: calibrated w_k = W_k / pi with

@@ -33,3 +33,13 @@ bool vct_voxel_read(ivec3 c, out vec3 alb, out vec3 nrm, out vec3 frac, out vec3
 #endif
     return true;
 }
+
+// Whether voxel c holds any fragment (what vct_voxel_read tests first, without reading the means).
+bool vct_voxel_occupied(ivec3 c)
+{
+#if AVERAGE_CAS
+    return (s[CH_ALB * vox_count() + vox_index(c)] >> 24) != 0u;
+#else
+    return s[CH_COUNT * vox_count() + vox_index(c)] != 0u;
+#endif
+}

@@ -41,7 +41,10 @@ static void memory_matches_formula_per_budget(void **state)
        scratch 10*4*262144 = 10485760; level 0 8*262144 = 2097152; six chains 32^3..2^3:
        6*8*(32768+4096+512+64+8) = 1797504; trace 2*8*1024 = 16384; triangles 2*112 = 224 (7 vec4:
        position and alpha x3, albedo, emission, the alpha mask's UVs, layer and cutoff). */
-    assert_int_equal(gk_vct_memory_formula(64, true, 10, 32, 32, 2), 10485760L + 2097152 + 1797504 + 16384 + 224);
+    assert_int_equal(gk_vct_memory_formula(64, true, false, 10, 32, 32, 2), 10485760L + 2097152 + 1797504 + 16384 + 224);
+    /* vct_level0=aniso: the six chains from 64^3: 6*8*(262144+32768+4096+512+64+8) = 14380416; the
+       isotropic level 0 stays (the injection's target) */
+    assert_int_equal(gk_vct_memory_formula(64, true, true, 10, 32, 32, 2), 10485760L + 2097152 + 14380416 + 16384 + 224);
     vt_scene sc;
     gk_gi_light L = unit_floor(&sc);
     vt_frame f;
@@ -50,17 +53,22 @@ static void memory_matches_formula_per_budget(void **state)
     static const char *budgets[] = {"vct_res=32,vct_mips=iso,vct_trace_scale=0.25",
                                     "vct_res=32,vct_mips=aniso,vct_trace_scale=0.5",
                                     "vct_res=64,vct_mips=aniso,vct_trace_scale=0.5",
+                                    "vct_res=64,vct_mips=aniso,vct_level0=aniso,vct_trace_scale=0.5",
+                                    "vct_res=64,vct_mips=iso,vct_level0=aniso,vct_trace_scale=0.5",
                                     "vct_res=128,vct_mips=aniso,vct_trace_scale=1",
                                     "vct_res=256,vct_mips=aniso,vct_trace_scale=1"};
     void *vct = vt_create(&g);
-    for (int i = 0; i < 5; i++) {
+    for (int i = 0; i < 7; i++) {
         gk_budget b;
         vt_budget(&b, budgets[i]);
         assert_int_equal(vt_render(vct, &f, &sc, &b, &L, 1, NULL, NULL), 0);
         gk_vct_stats st;
         gk_vct_get_stats(vct, &st);
         long bytes = gk_gi_vct.memory_bytes(vct);
-        long expect = gk_vct_memory_formula(st.res, strstr(budgets[i], "aniso") != NULL, 10, st.trace_w, st.trace_h, 2);
+        bool aniso = strstr(budgets[i], "mips=aniso") != NULL;
+        /* vct_level0=aniso with iso mips is ignored (no directional chains to start at level 0) */
+        assert_int_equal(st.aniso_level0, aniso && strstr(budgets[i], "level0=aniso") != NULL);
+        long expect = gk_vct_memory_formula(st.res, aniso, st.aniso_level0, 10, st.trace_w, st.trace_h, 2);
         printf("# memory %s: res %d, trace %dx%d -> %.2f MiB\n", budgets[i], st.res, st.trace_w, st.trace_h,
                (double)bytes / (1 << 20));
         assert_int_equal(bytes, expect);
@@ -70,7 +78,7 @@ static void memory_matches_formula_per_budget(void **state)
         glGetTexLevelParameteriv(GL_TEXTURE_3D, 0, GL_TEXTURE_WIDTH, &w);
         glBindTexture(GL_TEXTURE_3D, 0);
         assert_int_equal(w, st.res);
-        if (i == 4) {
+        if (i == 6) {
             /* 256^3 x 10 channels x 4 B = 640 MiB exceeds the 128 MiB storage-block limit of
                llvmpipe (and the GLES 3.1 minimum): the method falls back to 128^3 */
             GLint64 max_block = 0;
@@ -479,7 +487,7 @@ static void trace_floor(const char *pins, const gk_vct_options *o, gk_vct_stats 
     vt_scene_free(&sc);
 }
 
-static void check_count_against_model(const char *pins, int cones, int res, bool aniso)
+static void check_count_against_model(const char *pins, int cones, int res, bool aniso, bool aniso_level0)
 {
     gk_vct_options o;
     gk_vct_default_options(&o);
@@ -506,24 +514,34 @@ static void check_count_against_model(const char *pins, int cones, int res, bool
         assert_string_equal(work[1].pass, "gi.vct_mips");
         assert_string_equal(work[1].kind, "image3d_rgba16f_load");
         /* hand-computed once: 6 views x 8 loads x (32³ + 16³ + 8³ + 4³ + 2³) texels at 64³ (the
-           chains stop at 2³, vct_grid.c) */
-        assert_true(work[1].fetches == 48.0 * (32768 + 4096 + 512 + 64 + 8));
+           chains stop at 2³, vct_grid.c); with vct_level0=aniso also 6 views x 1 load x 64³ */
+        assert_true(work[1].fetches == 48.0 * (32768 + 4096 + 512 + 64 + 8) + (aniso_level0 ? 6.0 * 262144 : 0.0));
     }
     assert_string_equal(work[0].pass, "gi.vct_trace");
     assert_string_equal(work[0].kind, "tex3d_rgba16f_trilinear");
-    assert_true(work[0].fetches == pixels * (aniso ? 4.0 * fine + 3.0 * coarse : fine + coarse));
+    /* a sample below lod 1 reads the isotropic level 0 and three views (4), or three views alone
+       when they start at level 0 */
+    double fine_fetches = aniso ? (aniso_level0 ? 3.0 : 4.0) : 1.0;
+    assert_true(work[0].fetches == pixels * (fine_fetches * fine + (aniso ? 3.0 : 1.0) * coarse));
 }
 
 static void aniso_count_matches_model(void **state)
 {
     (void)state;
-    check_count_against_model("vct_res=64,vct_cones=9,vct_step=1,vct_trace_scale=1,vct_mips=aniso", 9, 64, true);
+    check_count_against_model("vct_res=64,vct_cones=9,vct_step=1,vct_trace_scale=1,vct_mips=aniso", 9, 64, true, false);
+}
+
+static void aniso_level0_count_matches_model(void **state)
+{
+    (void)state;
+    check_count_against_model("vct_res=64,vct_cones=9,vct_step=1,vct_trace_scale=1,vct_mips=aniso,vct_level0=aniso", 9,
+                              64, true, true);
 }
 
 static void iso_count_matches_model(void **state)
 {
     (void)state;
-    check_count_against_model("vct_res=32,vct_cones=4,vct_step=1,vct_trace_scale=1,vct_mips=iso", 4, 32, false);
+    check_count_against_model("vct_res=32,vct_cones=4,vct_step=1,vct_trace_scale=1,vct_mips=iso", 4, 32, false, false);
 }
 
 int main(void)
@@ -537,6 +555,7 @@ int main(void)
         cmocka_unit_test(moving_light_reinjects_without_revoxelizing),
         cmocka_unit_test(pass_costs_and_work_counters),
         cmocka_unit_test(aniso_count_matches_model),
+        cmocka_unit_test(aniso_level0_count_matches_model),
         cmocka_unit_test(iso_count_matches_model),
     };
     return cmocka_run_group_tests_name("vct", tests, group_setup, group_teardown);

@@ -22,6 +22,14 @@ static const gk_knob_def knob_cones = {"vct_cones", "vct", 3, {"4", "6", "9"}, {
 static const gk_knob_def knob_step = {"vct_step", "vct", 4, {"2", "1.5", "1", "0.5"}, {1, 1.2f, 1.57f, 2.65f}, 2, 0, false, .scales_pass = "gi.vct_trace"};
 static const gk_knob_def knob_scale = {"vct_trace_scale", "vct", 3, {"0.25", "0.5", "1"}, {1, 4, 16}, 1, 0, false, .scales_pass = "gi.vct_trace"};
 static const gk_knob_def knob_mips = {"vct_mips", "vct", 2, {"iso", "aniso"}, {1, 2}, 1, 0, false, NULL};
+/* Level 0 of the anisotropic map (with vct_mips=aniso; ignored with iso): iso, the thesis's one
+   isotropic texture (§4: an anisotropic level 0 rippled its surfaces, Fig. 16); aniso, six
+   directional views from level 0 on, each voxel showing its light to a view by how its mean normal
+   faces it (mip_aniso.comp), so a wall's lit voxel looks dark from the far side (not in the thesis;
+   six times level 0's memory). A switch for measuring one against the other, never a scheduler
+   pick: the calibration has no rows for it. */
+static const gk_knob_def knob_level0 = {.name = "vct_level0", .owner = "vct", .n_values = 2, .values = {"iso", "aniso"},
+                                        .cost = {1, 1}, .default_level = 0, .fixed = true};
 /* default: gk_vct_default_options (conservative voxelization, fixed-point averaging, footprint
    clamp, ...); thesis: gk_vct_thesis_options, the thesis as published. A switch for measuring one
    against the other, never a scheduler pick. */
@@ -48,6 +56,7 @@ static const gk_knob_def knob_skip = {.name = "vct_skip", .owner = "vct", .n_val
 
 /* Levels of the variant knobs, in the order of their values above. */
 enum { MIPS_ISO, MIPS_ANISO };
+enum { LEVEL0_ISO, LEVEL0_ANISO };
 enum { VARIANT_DEFAULT, VARIANT_THESIS };
 
 void gk_vct_default_options(gk_vct_options *o)
@@ -105,6 +114,7 @@ static void vct_declare_knobs(gk_budget *b)
     gk_budget_add(b, &knob_bounces);
     gk_budget_add(b, &knob_shadow);
     gk_budget_add(b, &knob_skip);
+    gk_budget_add(b, &knob_level0);
 }
 
 static void *vct_create(const gk_gi_context *ctx, gk_err *e)
@@ -123,6 +133,7 @@ static void *vct_create(const gk_gi_context *ctx, gk_err *e)
     v->k_bounces = (gk_knob){&knob_bounces, -1};
     v->k_shadow = (gk_knob){&knob_shadow, -1};
     v->k_skip = (gk_knob){&knob_skip, -1};
+    v->k_level0 = (gk_knob){&knob_level0, -1};
     v->ctx = *ctx;
     gk_vct_default_options(&v->opt);
     v->user_opt = v->opt;
@@ -195,6 +206,7 @@ void vct_read_budget(gk_vct *v, const gk_budget *b, vct_budget *out)
     out->bounces = (int)gk_knob_number(b, &v->k_bounces, 1) == 2 ? 2 : 1;
     out->shadow = gk_knob_level(b, &v->k_shadow, 0);
     out->skip = gk_knob_level(b, &v->k_skip, 0) == 1;
+    out->aniso_level0 = out->aniso && gk_knob_level(b, &v->k_level0, LEVEL0_ISO) == LEVEL0_ANISO;
     if (out->res < 8)
         out->res = 64;
     if (out->cones != 4 && out->cones != 9)
@@ -266,7 +278,7 @@ int vct_update(gk_vct *v, const gk_gi_frame *f, vct_budget *bp, gk_err *e)
         b.res = max_res;
         gk_knob_note_ran(f->pass ? f->pass->ran : NULL, &v->k_res, (float)max_res);
     }
-    if (!v->allocated || b.res != v->cur.res || b.aniso != v->cur.aniso) {
+    if (!v->allocated || b.res != v->cur.res || b.aniso != v->cur.aniso || b.aniso_level0 != v->cur.aniso_level0) {
         vct_grid_fit(v, s, b.res);
         if (vct_alloc(v, &b, e) != 0)
             return -1;
@@ -384,8 +396,8 @@ static long vct_memory_bytes(const void *self)
     const gk_vct *v = self;
     if (!v->allocated)
         return 0;
-    return gk_vct_memory_formula(v->cur.res, v->cur.aniso, gk_vct_channels(v->emissive), v->trace_w, v->trace_h,
-                                 v->tris.n) +
+    return gk_vct_memory_formula(v->cur.res, v->cur.aniso, v->cur.aniso_level0, gk_vct_channels(v->emissive),
+                                 v->trace_w, v->trace_h, v->tris.n) +
            (v->vox_bounce ? gk_vct_bounce_memory(v->cur.res, v->cur.aniso) : 0);
 }
 
@@ -431,6 +443,7 @@ void gk_vct_get_stats(const void *self, gk_vct_stats *out)
     out->last_trace_pixels = counted[2];
     out->last_shadow_steps = counted[3];
     out->aniso = v->cur.aniso;
+    out->aniso_level0 = v->cur.aniso_level0;
 }
 
 unsigned gk_vct_scratch_buffer(const void *self) { return ((const gk_vct *)self)->scratch_ssbo; }

@@ -7,9 +7,11 @@
  *   vct_voxelize  compute voxelizer over the triangle SSBO -> scratch ("voxel G-buffer": albedo,
  *                 normal, position, emission sums + count). Static geometry once; moving (animated)
  *                 nodes re-voxelized in their dirty region.
- *   vct_inject    direct light from the lights (with their shadow maps) -> level 0 radiance RGBA16F.
+ *   vct_inject    direct light from the lights (with their shadow maps; a ray through the voxels where
+ *                 a point or spot light's map does not reach) -> level 0 radiance RGBA16F.
  *                 Runs when geometry or lights change.
- *   vct_mips      six-direction anisotropic pre-integration (eq. 3.1/3.2) or glGenerateMipmap (iso).
+ *   vct_mips      six-direction anisotropic pre-integration (eq. 3.1/3.2) or glGenerateMipmap (iso);
+ *                 with vct_level0=aniso first the six views of level 0 (not in the thesis).
  *   vct_bounce    with vct_bounces=2 (not in the thesis): the diffuse cones from every voxel add its
  *                 once-bounced light to level 0, and the mips are rebuilt (after injection only).
  *   vct_trace     diffuse cones (+AO) and the specular cone at trace_scale resolution.
@@ -72,6 +74,7 @@ typedef struct gk_vct_stats {
     unsigned long last_trace_fine_steps; /* of those, the samples below lod 1 (aniso: 4 fetches, not 3) */
     unsigned long last_trace_pixels;     /* pixels that traced cones (not background) */
     bool aniso;                     /* the mips in use: vct_mips=aniso */
+    bool aniso_level0;              /* vct_level0=aniso: six directional views at level 0 too */
     int res;                        /* level-0 resolution in use */
     float grid_origin[3], grid_size, voxel_size;  /* world */
     int trace_w, trace_h;
@@ -82,12 +85,14 @@ void gk_vct_get_stats(const void *self, gk_vct_stats *s);
 
 /* The trace's work (app/gi/vct/vct_work.c, #21). Fetches of a trace of `fine` samples below lod 1
  * and `coarse` ones from lod 1 on: aniso 4 and 3 a sample (level 0 blended with the three views a
- * direction sees, then the views alone), iso 1. */
-double gk_vct_trace_fetches(bool aniso, double fine, double coarse);
+ * direction sees, then the views alone), iso 1; aniso with aniso_level0 3 and 3 (the views alone
+ * from level 0 on). */
+double gk_vct_trace_fetches(bool aniso, bool aniso_level0, double fine, double coarse);
 /* The anisotropic mips' image loads (vct/mip_aniso.comp): 8 per texel of each of the six views,
- * levels 1 .. levels-1 of a res³ map (the first level's also read the voxels' mean normals from the
- * scratch buffer: not counted). */
-double gk_vct_mip_fetches(int res, int levels);
+ * levels 1 .. levels-1 of a res³ map, and with aniso_level0 one per texel of each view at level 0
+ * (the views made from the isotropic injection; the voxels' mean normals the views read from the
+ * scratch buffer are not counted). */
+double gk_vct_mip_fetches(int res, int levels, bool aniso_level0);
 /* One cone in open space: only its length stops it (no opacity, no volume border), over the
  * receiver's own tangent plane (cos_n: the cone's cosine to its normal), as vct/cone_lib.glsl steps. */
 typedef struct gk_vct_cone_model {
@@ -103,8 +108,10 @@ void gk_vct_trace_model(int cones, int res, float step_mul, bool aniso, const gk
 /* Scratch channels per voxel: 10 (count, albedo, normal, position) + 3 with emissive surfaces. */
 int gk_vct_channels(bool emissive);
 /* GPU bytes held at a budget: scratch SSBO + level-0 RGBA16F (with its mip chain in iso mode) +
- * six directional RGBA16F chains from level 1 (aniso) + two RGBA16F trace targets + triangles. */
-long gk_vct_memory_formula(int res, bool aniso, int channels, int trace_w, int trace_h, int n_triangles);
+ * six directional RGBA16F chains from level 1 (aniso), from level 0 with aniso_level0 (vct_level0=aniso;
+ * the isotropic level 0 stays: the injection's target) + two RGBA16F trace targets + triangles. */
+long gk_vct_memory_formula(int res, bool aniso, bool aniso_level0, int channels, int trace_w, int trace_h,
+                           int n_triangles);
 
 /* GPU bytes the second bounce adds (vct_bounces=2): a second level 0 RGBA16F (with its mip chain in
  * iso mode), the one the bounce pass writes while it reads the first. */

@@ -33,13 +33,14 @@ static long chain_texels(int res, int first_level)
 
 int gk_vct_channels(bool emissive) { return emissive ? 13 : 10; }
 
-long gk_vct_memory_formula(int res, bool aniso, int channels, int trace_w, int trace_h, int n_triangles)
+long gk_vct_memory_formula(int res, bool aniso, bool aniso_level0, int channels, int trace_w, int trace_h,
+                           int n_triangles)
 {
     long r3 = (long)res * res * res;
     long bytes = (long)channels * 4 * r3;                         /* scratch SSBO */
     bytes += 8 * (aniso ? r3 : chain_texels(res, 0));            /* level 0 RGBA16F (+ iso chain) */
     if (aniso)
-        bytes += 6L * 8 * chain_texels(res, 1);                   /* six directional chains */
+        bytes += 6L * 8 * chain_texels(res, aniso_level0 ? 0 : 1); /* six directional chains */
     bytes += 2L * 8 * trace_w * trace_h;                          /* diffuse + specular targets */
     bytes += (long)n_triangles * VCT_TRI_FLOATS * 4;              /* triangle SSBO */
     return bytes;
@@ -122,9 +123,11 @@ int vct_alloc(gk_vct *v, const vct_budget *b, gk_err *e)
     glBufferData(GL_SHADER_STORAGE_BUFFER, (GLsizeiptr)(r3 * channels * 4), NULL, GL_DYNAMIC_COPY);
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
     v->vox0 = tex3d(b->res, b->aniso ? 1 : chain_levels(b->res), 1);
-    if (b->aniso)
+    if (b->aniso) {
+        int first = b->aniso_level0 ? 0 : 1;   /* the map level of the chains' first */
         for (int a = 0; a < 3; a++)
-            v->voxp[a] = tex3d(b->res / 2, chain_levels(b->res) - 1, 2);
+            v->voxp[a] = tex3d(b->res >> first, chain_levels(b->res) - first, 2);
+    }
     GLenum err = glGetError();
     if (err != GL_NO_ERROR) {
         vct_free_gpu(v);

@@ -20,6 +20,7 @@ typedef struct vct_budget {
     float step;         /* vct_step */
     float trace_scale;  /* vct_trace_scale */
     bool aniso;         /* vct_mips */
+    bool aniso_level0;  /* vct_level0=aniso (with aniso only): the directional chains start at level 0 */
     bool thesis;        /* vct_variant=thesis */
     int bounces;        /* vct_bounces: 1 (thesis) or 2 (vct/bounce.comp) */
     int shadow;         /* vct_shadow level: VCT_SHADOW_MAP, or a cone (vct_shadow.c) */
@@ -49,7 +50,7 @@ typedef struct gk_vct {
     const gk_scene *scene;
     vct_budget cur;              /* budget the GPU resources were made for */
     gk_knob k_res, k_cones, k_step, k_scale, k_mips, k_variant; /* knob handles (vct.c) */
-    gk_knob k_bounces, k_shadow, k_skip;
+    gk_knob k_bounces, k_shadow, k_skip, k_level0;
     bool allocated;
     bool need_voxelize, need_inject;
     bool emissive, specular;
@@ -69,7 +70,8 @@ typedef struct gk_vct {
     /* The six directional chains from level 1 (aniso), packed per axis: voxp[a] is (res/2, res/2, res)
        at its level 0, view 2a (+axis, sampled by cones with d_a < 0) in z < 1/2 of every level, view
        2a+1 (-axis) in z >= 1/2, so a cone sample reads one texture per axis whatever the signs of its
-       direction (vct/cone_lib.glsl); each view's levels stay within its half (vct/mip_aniso.comp). */
+       direction (vct/cone_lib.glsl); each view's levels stay within its half (vct/mip_aniso.comp).
+       With vct_level0=aniso the chains start at level 0: (res, res, 2 res), one level more. */
     GLuint voxp[3];
     GLuint vox_bounce;           /* vct_bounces=2: level 0 of direct + first bounce, written by the bounce
                                     pass while it samples vox0, then swapped with it (same storage) */
@@ -128,6 +130,8 @@ int vct_pass_trace(gk_vct *v, const gk_gi_frame *f, const vct_budget *b, gk_err 
 int vct_pass_compose(gk_vct *v, const gk_gi_frame *f, gk_err *e);
 /* Where Algorithm 1's top-down search starts: map level log2(res) - 3 (thesis code), within the map. */
 int vct_skip_top(const gk_vct *v);
+/* The cone-tracing programs' defines of the map's layout (ISO_MIPS, ANISO_LEVEL0) into out. */
+void vct_map_defines(const gk_vct *v, char *out, size_t n);
 /* Binds the voxel map's textures (units 0..6) for a cone-tracing program. */
 void vct_bind_map(const gk_vct *v, GLint vox0, const GLint voxp[3], const GLint voxp_l0[3], GLint dir_levels);
 

@@ -41,7 +41,7 @@ typedef struct inject_uniforms {
         u_shadow_bias, u_n_lights;
     GLint u_shadow[VCT_MAX_LIGHTS];
     GLint u_light_type, u_light_pos, u_light_dir, u_light_radiant, u_light_spot, u_light_lambert, u_light_shadow,
-        u_shadow_vp;
+        u_shadow_vp, u_shadow_range;
 } inject_uniforms;
 static const gk_uniform_field inject_fields[] = {
     GK_UNIFORM(inject_uniforms, u_res),
@@ -65,17 +65,18 @@ static const gk_uniform_field inject_fields[] = {
     GK_UNIFORM(inject_uniforms, u_light_lambert),
     GK_UNIFORM(inject_uniforms, u_light_shadow),
     GK_UNIFORM(inject_uniforms, u_shadow_vp),
+    GK_UNIFORM(inject_uniforms, u_shadow_range),
 };
 _Static_assert(VCT_MAX_LIGHTS == 4, "inject_fields lists u_shadow0..3 (shaders_gles/vct/inject.comp)");
 
 /* vct/mip_aniso.comp */
 typedef struct mip_uniforms {
     GLint u_half;
-    GLint u_res, u_dst_res, u_from_level0, u_dir;
+    GLint u_res, u_dst_res, u_from_level0, u_dir, u_views_only;
 } mip_uniforms;
 static const gk_uniform_field mip_fields[] = {GK_UNIFORM(mip_uniforms, u_res), GK_UNIFORM(mip_uniforms, u_dst_res),
                                               GK_UNIFORM(mip_uniforms, u_from_level0), GK_UNIFORM(mip_uniforms, u_dir),
-                                              GK_UNIFORM(mip_uniforms, u_half)};
+                                              GK_UNIFORM(mip_uniforms, u_half), GK_UNIFORM(mip_uniforms, u_views_only)};
 
 /* vct/trace.comp */
 typedef struct trace_uniforms {
@@ -199,12 +200,17 @@ int vct_pass_inject(gk_vct *v, const gk_gi_frame *f, gk_err *e)
     glUniform1f(u->u_voxel_size, v->voxel);
     glUniform1f(u->u_emission_max, v->tris.max_emission);
     glUniform1f(u->u_shadow_ambient, v->opt.shadow_ambient);
-    glUniform1f(u->u_shadow_bias, 0.0015f);
+    /* The shadow test compares distances along the map's axis (inject.comp), so the bias is in world
+       units: a quarter voxel, on top of the lookup's one voxel along the normal. It was 0.0015 of
+       window depth, which in a perspective map with its near plane at 1 cm is 0.6 m of depth 2 m from
+       the light (window depth changes by near / z^2 a metre at depth z): light-leak's dark floor
+       behind the wall was injected lit. */
+    glUniform1f(u->u_shadow_bias, 0.25f * v->voxel);
     int n = f->n_lights < VCT_MAX_LIGHTS ? f->n_lights : VCT_MAX_LIGHTS;
     glUniform1i(u->u_n_lights, n);
     GLint type_of[VCT_MAX_LIGHTS], lambert_of[VCT_MAX_LIGHTS], shadow_of[VCT_MAX_LIGHTS];
     float pos[VCT_MAX_LIGHTS][3], dir[VCT_MAX_LIGHTS][3], radiant[VCT_MAX_LIGHTS][3], spot[VCT_MAX_LIGHTS][2];
-    float vp[VCT_MAX_LIGHTS][16];
+    float vp[VCT_MAX_LIGHTS][16], range[VCT_MAX_LIGHTS][3];
     for (int i = 0; i < VCT_MAX_LIGHTS; i++) {
         glUniform1i(u->u_shadow[i], 8 + i);
         glActiveTexture(GL_TEXTURE8 + (GLenum)i);
@@ -227,6 +233,8 @@ int vct_pass_inject(gk_vct *v, const gk_gi_frame *f, gk_err *e)
         lambert_of[i] = lambert;
         shadow_of[i] = L->shadow_depth_tex != 0;
         memcpy(vp[i], L->shadow_view_proj.m, sizeof vp[i]);
+        memcpy(range[i], (float[3]){L->shadow_near, L->shadow_far, L->shadow_is_perspective ? 1.0f : 0.0f},
+               sizeof range[i]);
     }
     if (n > 0) {
         glUniform1iv(u->u_light_type, n, type_of);
@@ -237,6 +245,7 @@ int vct_pass_inject(gk_vct *v, const gk_gi_frame *f, gk_err *e)
         glUniform1iv(u->u_light_lambert, n, lambert_of);
         glUniform1iv(u->u_light_shadow, n, shadow_of);
         glUniformMatrix4fv(u->u_shadow_vp, n, GL_FALSE, &vp[0][0]);
+        glUniform3fv(u->u_shadow_range, n, &range[0][0]);
     }
     glDispatchCompute((GLuint)groups(v->res, 4), (GLuint)groups(v->res, 4), (GLuint)groups(v->res, 4));
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
@@ -272,18 +281,22 @@ int vct_pass_mips(gk_vct *v, bool directional, gk_err *e)
     glUseProgram(p);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, v->scratch_ssbo);
     glUniform1i(u->u_res, v->res);
-    for (int l = 1; l < v->levels; l++) {
+    /* map level l is level l - first of the chains: from level 1 on (thesis §4), or with
+       vct_level0=aniso from level 0, whose views are the isotropic injection seen from each side */
+    int first = v->cur.aniso_level0 ? 0 : 1;
+    for (int l = first; l < v->levels; l++) {
         int dst_res = v->res >> l;
         glUniform1i(u->u_dst_res, dst_res);
-        glUniform1i(u->u_from_level0, l == 1);
+        glUniform1i(u->u_from_level0, l == first);
+        glUniform1i(u->u_views_only, l == 0);
         for (int d = 0; d < 6; d++) {
             /* view d in axis texture d / 2, in the lower (even d) or upper half of each level's depth */
             GLuint packed = v->voxp[d / 2];
-            if (l == 1)
+            if (l == first)
                 glBindImageTexture(0, v->vox0, 0, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA16F);
             else
-                glBindImageTexture(0, packed, l - 2, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA16F);
-            glBindImageTexture(1, packed, l - 1, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+                glBindImageTexture(0, packed, l - first - 1, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA16F);
+            glBindImageTexture(1, packed, l - first, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
             glUniform1i(u->u_half, d % 2);
             glUniform1i(u->u_dir, d);
             glDispatchCompute((GLuint)groups(dst_res, 4), (GLuint)groups(dst_res, 4), (GLuint)groups(dst_res, 4));
@@ -354,7 +367,13 @@ void vct_bind_map(const gk_vct *v, GLint vox0, const GLint voxp[3], const GLint 
             bind_tex(voxp[a], 1 + a, GL_TEXTURE_3D, v->voxp[a], 0);
             bind_tex(voxp_l0[a], 4 + a, GL_TEXTURE_3D, v->voxp[a], v->level0_sampler);
         }
-    glUniform1f(dir_levels, (float)(v->levels - 1));
+    glUniform1f(dir_levels, (float)(v->levels - (v->cur.aniso_level0 ? 0 : 1)));
+}
+
+void vct_map_defines(const gk_vct *v, char *out, size_t n)
+{
+    snprintf(out, n, "#define ISO_MIPS %d\n#define ANISO_LEVEL0 %d\n", v->cur.aniso ? 0 : 1,
+             v->cur.aniso && v->cur.aniso_level0 ? 1 : 0);
 }
 
 int vct_skip_top(const gk_vct *v)
@@ -386,11 +405,13 @@ static void unbind_units(int n)
 
 int vct_pass_trace(gk_vct *v, const gk_gi_frame *f, const vct_budget *b, gk_err *e)
 {
-    char defs[256];
-    snprintf(defs, sizeof defs,
-             "#define ISO_MIPS %d\n#define AXIS_WEIGHT_SQ %d\n#define OPACITY_CORRECTION %d\n#define SPECULAR %d\n"
+    char defs[320];
+    vct_map_defines(v, defs, sizeof defs);
+    size_t used = strlen(defs);
+    snprintf(defs + used, sizeof defs - used,
+             "#define AXIS_WEIGHT_SQ %d\n#define OPACITY_CORRECTION %d\n#define SPECULAR %d\n"
              "#define CLIP_CONES %d\n#define EMPTY_SKIP %d\n",
-             v->cur.aniso ? 0 : 1, v->opt.axis_weight_sq ? 1 : 0, v->opt.opacity_correction ? 1 : 0,
+             v->opt.axis_weight_sq ? 1 : 0, v->opt.opacity_correction ? 1 : 0,
              v->specular ? 1 : 0, v->opt.clip_cones ? 1 : 0, b->skip && v->specular ? 1 : 0);
     GLuint p = gk_program_get_compute(v->ctx.programs, "vct/trace.comp", defs, e);
     const trace_uniforms *u = p ? gk_program_uniforms(v->ctx.programs, p, GK_FIELDS(trace_fields), sizeof *u, e) : NULL;
@@ -444,10 +465,11 @@ int vct_pass_bounce(gk_vct *v, const vct_budget *b, gk_err *e)
     char defs[384];
     defines_common(v, defs, sizeof defs);
     size_t used = strlen(defs);
+    vct_map_defines(v, defs + used, sizeof defs - used);
+    used = strlen(defs);
     snprintf(defs + used, sizeof defs - used,
-             "#define ISO_MIPS %d\n#define AXIS_WEIGHT_SQ %d\n#define OPACITY_CORRECTION %d\n#define CLIP_CONES %d\n",
-             v->cur.aniso ? 0 : 1, v->opt.axis_weight_sq ? 1 : 0, v->opt.opacity_correction ? 1 : 0,
-             v->opt.clip_cones ? 1 : 0);
+             "#define AXIS_WEIGHT_SQ %d\n#define OPACITY_CORRECTION %d\n#define CLIP_CONES %d\n",
+             v->opt.axis_weight_sq ? 1 : 0, v->opt.opacity_correction ? 1 : 0, v->opt.clip_cones ? 1 : 0);
     GLuint p = gk_program_get_compute(v->ctx.programs, "vct/bounce.comp", defs, e);
     const bounce_uniforms *u = p ? gk_program_uniforms(v->ctx.programs, p, GK_FIELDS(bounce_fields), sizeof *u, e) : NULL;
     if (!u || vct_ensure_bounce_target(v, e) != 0)

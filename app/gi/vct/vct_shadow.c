@@ -6,8 +6,10 @@
  * in the frame finds it done. Knob vct_shadow: map (off), the thesis's apertures, or the light's. */
 #include <math.h>
 #include <stdio.h>
+#include <string.h>
 
 #include "gl/gl_target.h"
+
 #include "vct_internal.h"
 
 /* vct/shadow_cone.comp */
@@ -79,12 +81,13 @@ void vct_shadow_free(gk_vct *v)
 
 static int pass_shadow(gk_vct *v, const gk_gi_frame *f, const vct_budget *b, int light, gk_err *e)
 {
-    char defs[256];
-    snprintf(defs, sizeof defs,
-             "#define ISO_MIPS %d\n#define AXIS_WEIGHT_SQ %d\n#define OPACITY_CORRECTION %d\n#define CLIP_CONES %d\n"
-             "#define EMPTY_SKIP %d\n",
-             v->cur.aniso ? 0 : 1, v->opt.axis_weight_sq ? 1 : 0, v->opt.opacity_correction ? 1 : 0,
-             v->opt.clip_cones ? 1 : 0, b->skip ? 1 : 0);
+    char defs[320];
+    vct_map_defines(v, defs, sizeof defs);
+    size_t used = strlen(defs);
+    snprintf(defs + used, sizeof defs - used,
+             "#define AXIS_WEIGHT_SQ %d\n#define OPACITY_CORRECTION %d\n#define CLIP_CONES %d\n#define EMPTY_SKIP %d\n",
+             v->opt.axis_weight_sq ? 1 : 0, v->opt.opacity_correction ? 1 : 0, v->opt.clip_cones ? 1 : 0,
+             b->skip ? 1 : 0);
     GLuint p = gk_program_get_compute(v->ctx.programs, "vct/shadow_cone.comp", defs, e);
     const shadow_uniforms *u = p ? gk_program_uniforms(v->ctx.programs, p, GK_FIELDS(shadow_fields), sizeof *u, e) : NULL;
     if (!u)

@@ -22,9 +22,11 @@
 
 #include "vct_internal.h"
 
-double gk_vct_trace_fetches(bool aniso, double fine, double coarse)
+double gk_vct_trace_fetches(bool aniso, bool aniso_level0, double fine, double coarse)
 {
-    return aniso ? 4.0 * fine + 3.0 * coarse : fine + coarse;
+    if (!aniso)
+        return fine + coarse;
+    return (aniso_level0 ? 3.0 : 4.0) * fine + 3.0 * coarse;
 }
 
 /* vct/cone_lib.glsl trace_cone without the opacity and border tests, in float as the shader: the
@@ -68,12 +70,12 @@ void gk_vct_trace_model(int cones, int res, float step_mul, bool aniso, const gk
     }
 }
 
-double gk_vct_mip_fetches(int res, int levels)
+double gk_vct_mip_fetches(int res, int levels, bool aniso_level0)
 {
     double texels = 0.0;
     for (int l = 1; l < levels; l++)
         texels += (double)(res >> l) * (res >> l) * (res >> l);
-    return 6.0 * 8.0 * texels;
+    return 6.0 * 8.0 * texels + (aniso_level0 ? 6.0 * res * res * res : 0.0);
 }
 
 const char *vct_work_inject_begin(gk_vct *v, bool count_work)
@@ -112,7 +114,7 @@ int vct_pass_work(void *self, gk_pass_work *out, int max)
     int n = 0;
     if (s.trace_runs > 0 && n < max)
         out[n++] = (gk_pass_work){.pass = "gi.vct_trace", .kind = "tex3d_rgba16f_trilinear",
-                                  .fetches = gk_vct_trace_fetches(s.aniso, (double)s.last_trace_fine_steps,
+                                  .fetches = gk_vct_trace_fetches(s.aniso, s.aniso_level0, (double)s.last_trace_fine_steps,
                                                                   (double)(s.last_trace_steps - s.last_trace_fine_steps))};
     if (v->voxelize_ran && v->voxelize_atomics.counted && v->voxelize_atomics.value[0] > 0.0 && n < max)
         out[n++] = (gk_pass_work){.pass = "gi.vct_voxelize", .kind = "ssbo_r32ui_atomic",
@@ -122,6 +124,6 @@ int vct_pass_work(void *self, gk_pass_work *out, int max)
                                   .fetches = v->inject_fetches.value[0]};
     if (v->mips_ran && v->cur.aniso && n < max)
         out[n++] = (gk_pass_work){.pass = "gi.vct_mips", .kind = "image3d_rgba16f_load",
-                                  .fetches = gk_vct_mip_fetches(v->res, v->levels)};
+                                  .fetches = gk_vct_mip_fetches(v->res, v->levels, v->cur.aniso_level0)};
     return n;
 }
