@@ -111,7 +111,7 @@ vec2 chain_max(int k, vec2 uv, int level, float res)
 {
     int lres = max(int(res) >> level, 1);
     ivec2 t0 = clamp(ivec2(floor(uv * float(lres) - 0.5)), ivec2(0), ivec2(max(lres - 2, 0)));
-    GATHER_COUNT(4, 0, 0);
+    GATHER_COUNT(0, 0, 0, 4);   // RG16F texelFetch: the R16F-nearest kind
     vec2 m = vec2(0.0);
     for (int j = 0; j < 2; j++)
         for (int i = 0; i < 2; i++)
