@@ -2,7 +2,8 @@
  * shared depth maps. Per light and frame:
  *   depth map (shadow_depth.c) -> normalised linear depth + min-max HSM mip chain (compute)
  *   -> SAT of (z, z^2) in two R32UI arrays with exact modular fixed-point sums (compute, rows then
- *   columns) -> the lighting pass (shaders_gles/shadow/vssm.glsl): HSM early-out, blocker depth by
+ *   columns) -> the lighting pass (shaders_gles/shadow/vssm.glsl): HSM early-out (and the search
+ *   kernel bounded by the HSM's nearest depth, VSSM_SEARCH_BOUND), blocker depth by
  *   Eq. 7.4 with 5x5 uniform subdivision of non-planar kernels, contact 3x3 PCF, Chebyshev over the
  *   penumbra kernel with the H = 3 adaptive quadtree (Algorithm 3) for non-planar kernels.
  * Methods registered here (knob value / name):
