@@ -1,7 +1,8 @@
 // Variance soft shadow maps, VSSM (Yang et al. 2010; dong-001.md §5, Algorithms 2 and 3), with
 // the Chebyshev bound as corrected (errata §14.1: p_max = s^2 / (s^2 + (d - mu)^2), mu = E(z),
 // t = d). Depths are normalised to [0, 1] over [near, far]; moments come from the exact integer
-// SATs, bounds from the min-max HSM (app/render/shadow/shadow_vssm.c).
+// SATs, bounds from the min-max HSM (app/render/shadow/shadow_vssm.c). Additions to the thesis, each
+// with a switch whose 0 is the thesis (method vssm_thesis): VSSM_RECEIVER_PLANE, VSSM_SEARCH_BOUND.
 //   VSSM_SUBDIV 1 (default): non-planar kernels (E(z) >= d) are subdivided: m x m uniform (m = 5
 //                by default) for the blocker search, an adaptive quadtree of height H (3 by
 //                default) with stackless traversal for the shadow kernel (m, H: u_vssm_sub); non-planar leaves use a 2x2 point-sample PCF, planar-lit ones
@@ -24,6 +25,18 @@
 // 0: the thesis's constant d (method vssm_thesis).
 #ifndef VSSM_RECEIVER_PLANE
 #define VSSM_RECEIVER_PLANE 1
+#endif
+// VSSM_SEARCH_BOUND 1 (default; an addition to the thesis, #21/#11): the blocker search kernel is
+// cut from the light's footprint on the near plane to its footprint on the plane of the nearest
+// depth the HSM finds over it, z_min, and the HSM is asked again over the smaller kernel; the
+// penumbra kernel gets the same HSM lit test before its moments. Every blocker has z >= z_min and a
+// blocker at depth z can only shadow the receiver within the footprint on its own plane, whose width
+// falls with z, so no blocker is lost: what goes is the conservative search's false blockers, the
+// occluders beside the light's footprint (on the Cornell walls the other walls and the boxes) that
+// the thesis's near-plane kernel (up to a quarter of the map wide) averaged into z_occ. 0: the
+// thesis's near-plane kernel only (method vssm_thesis).
+#ifndef VSSM_SEARCH_BOUND
+#define VSSM_SEARCH_BOUND 1
 #endif
 // How much more variance than its tangent plane's a kernel on a sloped receiver may have and still
 // count as the receiver alone: the plane's depth is convex in a perspective map, so a wide kernel
@@ -146,8 +159,12 @@ highp vec2 vssm_shift(highp vec2 m, highp float s)
 // Sub-range k of n equal integer parts of [lo, hi] (nested: part k of n/2 = parts 2k, 2k+1 of n).
 ivec2 vssm_split(int lo, int hi, int k, int n)
 {
+    // floor(k w / n) in float (exact: k w + 0.5 lies at least 0.5 / n from a multiple of n, far
+    // more than the reciprocal's rounding): llvmpipe has no vector integer division and runs
+    // one scalar division per lane, several per quadtree node and grid corner (#21).
     int w = hi - lo + 1;
-    return ivec2(lo + (k * w) / n, lo + ((k + 1) * w) / n - 1);
+    highp float inv = 1.0 / float(n);
+    return ivec2(lo + int((float(k * w) + 0.5) * inv), lo + int((float((k + 1) * w) + 0.5) * inv) - 1);
 }
 
 // (min, max) depth over the box from the HSM: level ceil(log2 width), at most 2x2 texels there.
@@ -387,15 +404,40 @@ highp float shadow_visibility(highp vec3 world_pos, highp vec3 world_normal)
         return 1.0;
     if (d > mm.y)
         return 0.0;
+#if VSSM_SEARCH_BOUND
+    wi = min(wi, gk_soft_kernel(c.d, gk_soft_denorm(mm.x)));
+    gk_soft_box(tc, wi, lo, hi);
+    mm = vssm_hsm(lo - 1, hi + 1, layer);
+    if (d <= mm.x)
+        return 1.0;
+    if (d > mm.y)
+        return 0.0;
+#endif
     // the receiver plane only after the HSM's early-outs, which do not use it (two unprojections)
     vssm_receiver_plane(c, world_pos, world_normal);
     // 2. Average blocker depth.
     highp vec2 b = vssm_blocker(tc, wi, layer, d);
     if (b.y <= 0.0)
         return 1.0;
+#if VSSM_SEARCH_BOUND
+    // No blocker is nearer than the HSM's z_min over the kernel: the bound keeps Eq. 7.4 in range
+    // where the kernel holds a sliver of blocker (the footprint's edge at the penumbra's outer
+    // rim), 1 - p is within the SATs' rounding, and z_occ = mu - s^2 / (d - mu) came out near the
+    // light: a wide penumbra kernel darkened a thin ring there (T1: penumbra error 0.043 without
+    // the bound, 0.016 with it).
+    highp float zocc = clamp(b.x, mm.x, d);
+#else
     highp float zocc = min(b.x, d);
+#endif
     // 3. Penumbra kernel from the blocker plane.
     highp vec2 wp = gk_soft_kernel(c.d, gk_soft_denorm(zocc));
+#if VSSM_SEARCH_BOUND
+    // Nothing in front of d within the penumbra kernel (1 texel margin: the sub-texel boxes and the
+    // contact PCF's bilinear taps reach one texel past it): every path below would return 1.
+    gk_soft_box(tc, wp, lo, hi);
+    if (d <= vssm_hsm(lo - 1, hi + 1, layer).x)
+        return 1.0;
+#endif
 #if VSSM_CONTACT
     if (abs(zocc - d) < u_vssm.z)
         return vssm_contact(tc, wp, layer, d);

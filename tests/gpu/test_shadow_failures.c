@@ -88,8 +88,8 @@ static void f5_pcss_bands_prefiltered_methods_do_not(void **state)
     (void)state;
     double pcss = distinct_fraction("pcss"), vssm = distinct_fraction("vssm"), cssm = distinct_fraction("cssm_sat");
     /* Measured: pcss 33 levels / 192 pixels (0.17; at most 145 levels exist with 12x12
-       samples), vssm 68 (0.35), cssm_sat 52 (0.27; 58 before #11's per-layer depth range); the smooth methods lose levels only to the
-       1/1024 bins, the fp16 HDR target and pixels sharing a texel. PCSS is bounded by its sample count whatever
+       samples), vssm 64 (0.33; 68 before #21's search bound), cssm_sat 52 (0.27; 58 before #11's
+       per-layer depth range); the smooth methods lose levels only to the 1/1024 bins, the fp16 HDR target and pixels sharing a texel. PCSS is bounded by its sample count whatever
        the penumbra size; the prefiltered methods are limited only by the fp16 HDR target and
        pixels that fall on the same texel. Asserted: both prefiltered methods have 1.5x the
        distinct levels of PCSS. */

@@ -2,17 +2,21 @@
  * shared depth maps. Per light and frame:
  *   depth map (shadow_depth.c) -> normalised linear depth + min-max HSM mip chain (compute)
  *   -> SAT of (z, z^2) in two R32UI arrays with exact modular fixed-point sums (compute, rows then
- *   columns) -> the lighting pass (shaders_gles/shadow/vssm.glsl): HSM early-out, blocker depth by
+ *   columns) -> the lighting pass (shaders_gles/shadow/vssm.glsl): HSM early-out (and the search
+ *   kernel bounded by the HSM's nearest depth, VSSM_SEARCH_BOUND), blocker depth by
  *   Eq. 7.4 with 5x5 uniform subdivision of non-planar kernels, contact 3x3 PCF, Chebyshev over the
  *   penumbra kernel with the H = 3 adaptive quadtree (Algorithm 3) for non-planar kernels.
  * Methods registered here (knob value / name):
  *   vssm            the thesis's algorithm (subdivision + contact fallback)
  *   savsm           no subdivision: a non-planar kernel counts as lit (summed-area VSM,
- *                   [Lauritzen07]) -- the baseline of failure test F1
+ *                   [Lauritzen07]), with the thesis's near-plane blocker search -- the baseline
+ *                   of failure test F1
  *   vssm_nocontact  without the |z_occ - d| < eps contact PCF -- the baseline of F7
  *   vssm_thesis     every box tested against the pixel's one depth d, as the thesis does, without
- *                   the receiver plane vssm does (VSSM_RECEIVER_PLANE, vssm.glsl) -- the baseline
- *                   of the rim test (test_shadow_rim.c)
+ *                   the receiver plane vssm does (VSSM_RECEIVER_PLANE, vssm.glsl), and the blocker
+ *                   search over the near plane's kernel without vssm's bound by the HSM's nearest
+ *                   depth (VSSM_SEARCH_BOUND) -- the baseline of the rim and contour tests
+ *                   (test_shadow_rim.c, test_shadow_contours.c)
  * Subdivision depth: the budget knob shadow_subdiv (renderer_knobs.c), read from ctx->subdiv at
  * render time, picks (m, H) = the blocker search's m x m grid and the adaptive quadtree's height:
  *   0: (1, 0)  a non-planar kernel is one 2x2 point-sample PCF (cheapest that still sees it)
@@ -160,6 +164,6 @@ static int vssm_bind(void *self, gk_program_cache *progs, int slot, const gk_sha
     };
 
 VSSM_METHOD(gk_shadow_vssm, "vssm", "")
-VSSM_METHOD(gk_shadow_savsm, "savsm", "#define VSSM_SUBDIV 0\n")
+VSSM_METHOD(gk_shadow_savsm, "savsm", "#define VSSM_SUBDIV 0\n#define VSSM_SEARCH_BOUND 0\n")
 VSSM_METHOD(gk_shadow_vssm_nocontact, "vssm_nocontact", "#define VSSM_CONTACT 0\n")
-VSSM_METHOD(gk_shadow_vssm_thesis, "vssm_thesis", "#define VSSM_RECEIVER_PLANE 0\n")
+VSSM_METHOD(gk_shadow_vssm_thesis, "vssm_thesis", "#define VSSM_RECEIVER_PLANE 0\n#define VSSM_SEARCH_BOUND 0\n")
