@@ -454,10 +454,11 @@ static void measure(const char *ref_path, const char *mask_path, ruler *r)
     assert_int_equal(ref.width, W);
     as_image(&ours);
     const char *dump = getenv("GK_LGV_DUMP"); /* a folder: what was measured, for looking at */
-    if (dump) {
+    if (dump) { /* numbered in the order measured, so a test's configurations do not overwrite each other */
+        static int dumped;
         char path[512];
         const char *base = strrchr(ref_path, '/');
-        snprintf(path, sizeof path, "%s/lgv-%s", dump, base ? base + 1 : ref_path);
+        snprintf(path, sizeof path, "%s/lgv-%02d-%s", dump, dumped++, base ? base + 1 : ref_path);
         gk_image_write_float(path, &ours, NULL, &e);
     }
     unsigned char *mask = NULL;
