@@ -85,9 +85,11 @@ fi
 # Photon tracing against distance cube-maps with SH grids (seed 002): the LGV-size trade-off of its
 # Fig. 9 (16³/32³/48³) on glass against glass.exr (lgv's indirect error alone is in
 # tests/gpu/test_lgv.c: the bench measures the whole image); the lgv_gather pass's time is the grid's.
-# lgv beside the other methods is on the `methods` run's charts below.
+# At the default photons and at 16x them: whether the error falls with the size depends on the photon
+# noise per cell (README lgv, the photon study). lgv beside the other methods is on the `methods`
+# run's charts below.
 if "$BIN" scenes | grep -q 'lgv'; then
-    run lgv --scenes glass --methods lgv --sweep 'lgv_size=16,32,48'
+    run lgv --scenes glass --methods lgv --sweep 'lgv_size=16,32,48;lgv_photons=65536,1048576'
 fi
 # Choosing a method: per scene ONE chart with every method's default sweep against one ruler
 # (SCENE-1bounce.exr where it exists, else SCENE.exr), the Pareto front over all of them, each

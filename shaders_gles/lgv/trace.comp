@@ -42,6 +42,8 @@ uniform ivec3 u_dims;
 uniform float u_inject_scale; // eq. (4)'s constant with the errata fixed (lgv_internal.h)
 uniform float u_fixed;        // fixed-point units per unit of SH coefficient
 uniform int u_caustic_cap;
+uniform int u_sphere_normals; // 1 (tests): glass normals from the refractor map's centre, exact on a sphere centred there
+uniform int u_refractor_surface; // 1: glass hits placed on its refractor map (enter_glass), normals interpolated there
 uniform int u_snap;           // 1: diffuse hits moved onto the map's surface (lgv_internal.h LGV_SNAP_HITS)
 
 highp uint g_rng;
@@ -120,19 +122,30 @@ highp float trace_inside(highp vec3 x, highp vec3 r, out int map)
     highp float dl = 1e-4, el = lgv_err(map, x0, r, dl);
     for (int k = 1; k <= 16; k++) {
         highp float dp = step * float(k), ep = lgv_err(map, x0, r, dp);
-        if (ep >= 0.0) {
-            highp float d = dp;
-            for (int s = 0; s < u_secant_steps; s++) {
-                highp float den = ep - el;
-                d = clamp(abs(den) > 1e-12 ? dl - el * (dp - dl) / den : 0.5 * (dl + dp), dl, dp);
-                highp float e = lgv_err(map, x0, r, d);
-                if (e < 0.0)
-                    dl = d, el = e;
-                else
-                    dp = d, ep = e;
-            }
-            return d;
-        }
+        if (ep >= 0.0)
+            return lgv_refine(map, x0, r, dl, el, dp, ep);
+        dl = dp, el = ep;
+    }
+    return -1.0;
+}
+
+// Where ray x + d r enters the glass of refractor map m near a lattice map's hit on it at distance d:
+// the first outside-to-inside change of the refractor map's error in [d - 2w, d + w] (w: two of the
+// lattice map's texel footprints there), refined by the secant. -1 when the ray does not enter the
+// object there: the lattice maps see glass from afar, a few texels, and their coarse copy of it lies
+// up to a footprint outside it, so a photon that has just left the glass met that copy again at once
+// (glass, 0.26M photons: 3,944 of the 5,093 glass hits after leaving glass lay within 2 cm).
+highp float enter_glass(int m, highp vec3 x, highp vec3 r, highp float d, highp float w)
+{
+    highp vec3 x0 = x - centre[m].xyz;
+    highp float dl = max(d - 2.0 * w, 0.0), el = lgv_err(m, x0, r, dl);
+    if (el < 0.0)
+        return dl; // already inside at the window's start: the entry is no later
+    highp float step = (d + w - dl) / 24.0;
+    for (int k = 0; k < 24; k++) {
+        highp float dp = dl + step, ep = lgv_err(m, x0, r, dp);
+        if (ep < 0.0)
+            return lgv_refine(m, x0, r, dl, el, dp, ep);
         dl = dp, el = ep;
     }
     return -1.0;
@@ -170,6 +183,25 @@ void main()
         highp vec3 n = normalize(texelFetch(u_nrm, tx, 0).xyz * 2.0 - 1.0);
         highp vec4 alb = texelFetch(u_alb, tx, 0);
         int code = int(alb.a * 255.0 + 0.5);
+        int refractor = u_n_maps + (code - 128) / 32;
+        if (code >= 128 && refractor < u_n_maps + u_n_refractors) {
+            // Glass is seen from afar by the lattice maps (a sphere of glass: a few texels each),
+            // whose nearest texel's place and normal scatter the refraction: its refractor map,
+            // centred in it, holds the same surface finely and smoothly (u_refractor_surface).
+            if (u_refractor_surface == 1 && !inside) {
+                highp float w = 4.0 * length(hit - centre[map].xyz) / float(u_res);
+                highp float de = enter_glass(refractor, x, r, d, w);
+                if (de < 0.0) {
+                    x = hit + r * 1e-4; // not the object: trace on (a segment, no event)
+                    continue;
+                }
+                hit = x + de * r;
+            }
+            if (u_sphere_normals == 1)
+                n = normalize(hit - centre[refractor].xyz);
+            else if (u_refractor_surface == 1)
+                n = lgv_normal_smooth(refractor, hit - centre[refractor].xyz);
+        }
         bool front = dot(n, r) < 0.0;
         highp vec3 ns = front ? n : -n; // facing the incoming photon
         if (code >= 128) {

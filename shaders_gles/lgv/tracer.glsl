@@ -16,6 +16,7 @@ uniform vec3 u_bmin;          // the scene's bounds (a little padded): a ray lea
 uniform vec3 u_bmax;
 uniform int u_itp_mode;       // 0 angle partition (the seed), 1 planar ITP (Fig. 4's comparison)
 uniform int u_seeing;         // 1: a ray's maps are the nearest that see its point (lgv_seeing_map)
+uniform int u_bounds_hit;     // 1: a ray reaching the bounds where the map sees a surface met it (lgv_secant)
 layout(std430, binding = 0) readonly buffer Maps { highp vec4 centre[]; };
 
 highp float lgv_dist(int map, highp vec3 d, int level)
@@ -33,6 +34,26 @@ ivec3 lgv_texel(int map, highp vec3 d)
     int f = lgv_face_of(d, uv);
     ivec2 t = clamp(ivec2((uv * 0.5 + 0.5) * float(u_res)), ivec2(0), ivec2(u_res - 1));
     return ivec3(t, map * 6 + f);
+}
+
+// The normal map m stores towards d, interpolated bilinearly between the face's four nearest texels
+// (clamped at the face's edges). For a refractor map, whose centre lies inside its object, every
+// texel holds that one smooth surface, so the interpolation has no silhouettes to cross.
+highp vec3 lgv_normal_smooth(int m, highp vec3 d)
+{
+    highp vec2 uv;
+    int f = lgv_face_of(d, uv);
+    highp vec2 t = (uv * 0.5 + 0.5) * float(u_res) - 0.5;
+    ivec2 t0 = ivec2(floor(t));
+    highp vec2 w = t - vec2(t0);
+    highp vec3 n = vec3(0.0);
+    for (int k = 0; k < 4; k++) {
+        ivec2 o = ivec2(k & 1, k >> 1);
+        ivec2 tk = clamp(t0 + o, ivec2(0), ivec2(u_res - 1));
+        highp float wk = (o.x == 1 ? w.x : 1.0 - w.x) * (o.y == 1 ? w.y : 1.0 - w.y);
+        n += wk * (texelFetch(u_nrm, ivec3(tk, m * 6 + f), 0).xyz * 2.0 - 1.0);
+    }
+    return normalize(n);
 }
 
 int lgv_nearest_map(highp vec3 x, int first, int count)
@@ -162,6 +183,35 @@ highp float lgv_err(int m, highp vec3 x0, highp vec3 r, highp float d)
     return l - lgv_dist(m, p / max(l, 1e-12), 0);
 }
 
+// A ray that reaches the scene's bounds still in front of map m's surface: the bounds hold every
+// surface, so where the map sees one that way (its texel is not empty) the ray met it at the bounds,
+// a box's wall lying on them. The nearest texel's distance is the texel centre's: across a texel
+// of a wall seen obliquely it differs by ~ d tan(angle) x the texel's angle (64^2: 2% of d at 60
+// degrees), far more than the bounds' 0.1% padding, so the error test alone leaves such rays in
+// front of the wall (test_lgv: 99.7% of glass's photon-like rays with no hit had their true
+// surface at the bounds). p is relative to the map's centre.
+bool lgv_bounds_hit(int m, highp vec3 p)
+{
+    return u_bounds_hit == 1 && lgv_dist(m, p, 0) < 0.5 * LGV_FAR;
+}
+
+// Secant iterations on map m inside the bracket [dl, dp], whose errors el and ep differ in sign (either
+// way: a refractor map's outside is behind its surface); returns the last estimate.
+highp float lgv_refine(int m, highp vec3 x0, highp vec3 r, highp float dl, highp float el, highp float dp, highp float ep)
+{
+    highp float d = dp;
+    for (int k = 0; k < u_secant_steps; k++) {
+        highp float den = ep - el;
+        d = clamp(abs(den) > 1e-12 ? dl - el * (dp - dl) / den : 0.5 * (dl + dp), dl, dp);
+        highp float e = lgv_err(m, x0, r, d);
+        if ((e < 0.0) == (el < 0.0))
+            dl = d, el = e;
+        else
+            dp = d, ep = e;
+    }
+    return d;
+}
+
 // Secant refinement on map m from the initial distance d0 along the ray; returns the hit
 // distance, or -1 when the ray leaves the scene (at d_max) in front of every surface.
 highp float lgv_secant(int m, highp vec3 x, highp vec3 r, highp float d0, highp float d_start, highp float d_max)
@@ -176,7 +226,7 @@ highp float lgv_secant(int m, highp vec3 x, highp vec3 r, highp float d0, highp 
             dl = dp;
             el = ep;
             if (dp >= d_max)
-                return -1.0;
+                return lgv_bounds_hit(m, x0 + d_max * r) ? d_max : -1.0;
             dp = min(dp * 1.5 + d_start, d_max);
             ep = lgv_err(m, x0, r, dp);
             hit = ep >= 0.0;
@@ -198,18 +248,7 @@ highp float lgv_secant(int m, highp vec3 x, highp vec3 r, highp float d0, highp 
         if (!ok)
             return dp; // no bracket: trust the initial point
     }
-    highp float d = dp;
-    for (int k = 0; k < u_secant_steps; k++) {
-        highp float den = ep - el;
-        d = abs(den) > 1e-12 ? dl - el * (dp - dl) / den : 0.5 * (dl + dp);
-        d = clamp(d, dl, dp);
-        highp float e = lgv_err(m, x0, r, d);
-        if (e < 0.0)
-            dl = d, el = e;
-        else
-            dp = d, ep = e;
-    }
-    return d;
+    return lgv_refine(m, x0, r, dl, el, dp, ep);
 }
 
 // Distance along x + d r to where the ray leaves the scene's bounds.

@@ -12,8 +12,10 @@
  *   item 6    the LGV's temporal noise with new photons every frame; the same photons twice: identical;
  *   G         eq. (6)'s fuzzy occlusion: on light-leak the gathering carries no flux through the wall;
  *   sweep     (GK_LGV_SWEEP=1, alone) iterations x LGV sizes against the indirect references (README);
- * GK_LGV_ONLY=NAME runs one test; GK_LGV_EVENTS, GK_LGV_OFFSET, GK_LGV_SEEING set the debug switches
- * of the same names (max_events, lookup_offset, seeing_maps) for the README's experiments.
+ *   Fig. 9's cause (GK_LGV_FIG9=1, alone) the error per LGV size at 1M, 4M and 16M photons;
+ * GK_LGV_ONLY=NAME runs one test; GK_LGV_EVENTS, GK_LGV_OFFSET, GK_LGV_SEEING, GK_LGV_BOUNDS,
+ * GK_LGV_SPHERE set the debug switches max_events, lookup_offset, seeing_maps, bounds_hits and
+ * sphere_normals for the README's experiments.
  * (The other B.5 tests are not written yet: see the README's lgv section.)
  * Bounds come from the measurements printed with each test (see the comments there). */
 #include <setjmp.h>
@@ -59,6 +61,7 @@ static harness H;
 static float C0 = 1.0f; /* the SSLGV's C0 of the next frames (item 13 varies it) */
 static bool OCCLUSION = true; /* eq. (6)'s G of the next frames (the leak test turns it off) */
 static bool REPLACE = false;  /* the lookup reads the last gathering iteration alone */
+static bool REFRACTOR = true; /* glass hits placed and shaded on its refractor map (gk_lgv_debug.refractor_surface) */
 
 static int draw_scene(void *ctx, unsigned prog, gk_err *e)
 {
@@ -143,11 +146,16 @@ static void frame(const char *list, int parts, unsigned seed)
     gk_lgv_debug d;
     gk_lgv_default_debug(&d);
     d.parts = parts, d.seed = seed, d.c0 = C0, d.occlusion = OCCLUSION, d.gather_replace = REPLACE;
+    d.refractor_surface = REFRACTOR;
     d.max_events = getenv("GK_LGV_EVENTS") ? atoi(getenv("GK_LGV_EVENTS")) : 0;
     if (getenv("GK_LGV_OFFSET"))
         d.lookup_offset = (float)atof(getenv("GK_LGV_OFFSET"));
     if (getenv("GK_LGV_SEEING"))
         d.seeing_maps = atoi(getenv("GK_LGV_SEEING")) != 0;
+    if (getenv("GK_LGV_SPHERE"))
+        d.sphere_normals = atoi(getenv("GK_LGV_SPHERE")) != 0;
+    if (getenv("GK_LGV_BOUNDS"))
+        d.bounds_hits = atoi(getenv("GK_LGV_BOUNDS")) != 0;
     gk_lgv_set_debug(H.self, &d);
     gk_gi_frame f = {0};
     f.scene = H.scene, f.width = W, f.height = HH, f.scene_changed = false;
@@ -281,8 +289,11 @@ typedef struct pass_through {
     double rate;        /* beyond the first true surface (or no hit where there is one) */
     double early;       /* before it (a surface that is not there) */
     double lost;        /* no hit at all where there is one (the photon leaves the scene) */
+    double lost_at_bounds; /* of them: the true surface lies within 1% of the diagonal of where the ray leaves the bounds */
     double median_err;  /* hit position error, m */
 } pass_through;
+
+static float axis_of(vec3 v, int a) { return a == 0 ? v.x : (a == 1 ? v.y : v.z); }
 
 static int cmp_float(const void *a, const void *b)
 {
@@ -293,7 +304,9 @@ static int cmp_float(const void *a, const void *b)
 /* tol: a hit counts as right within this distance along the ray of the exact one. */
 static void compare_rays(const exact *x, const float *rays, const float *hits, int n, float tol, pass_through *out)
 {
-    int beyond = 0, early = 0, valid = 0, lost = 0;
+    int beyond = 0, early = 0, valid = 0, lost = 0, at_bounds = 0;
+    vec3 pad = v3_scale(v3_sub(H.scene->bmax, H.scene->bmin), 1e-3f);
+    vec3 bmin = v3_sub(H.scene->bmin, pad), bmax = v3_add(H.scene->bmax, pad);
     float *err = malloc(sizeof(float) * (size_t)n);
     for (int i = 0; i < n; i++) {
         vec3 o = v3(rays[6 * i], rays[6 * i + 1], rays[6 * i + 2]), d = v3(rays[6 * i + 3], rays[6 * i + 4], rays[6 * i + 5]);
@@ -302,6 +315,13 @@ static void compare_rays(const exact *x, const float *rays, const float *hits, i
             continue; /* leaves the scene: nothing to pass through */
         vec3 pe = v3_add(o, v3_scale(d, hit.t));
         if (hits[4 * i + 3] < 0.5f) {
+            float exit_t = 1e30f;
+            for (int a = 0; a < 3; a++) {
+                float da = axis_of(d, a);
+                if (fabsf(da) > 1e-12f)
+                    exit_t = fminf(exit_t, ((da > 0 ? axis_of(bmax, a) : axis_of(bmin, a)) - axis_of(o, a)) / da);
+            }
+            at_bounds += exit_t - hit.t < tol;
             beyond++, lost++;
             err[valid++] = 1e9f;
             continue;
@@ -318,38 +338,51 @@ static void compare_rays(const exact *x, const float *rays, const float *hits, i
     out->rate = (double)beyond / valid;
     out->early = (double)early / valid;
     out->lost = (double)lost / valid;
+    out->lost_at_bounds = lost ? (double)at_bounds / lost : 0;
     out->median_err = err[valid / 2];
     free(err);
 }
 
-static void tracer_on(const char *name, double bound_angle)
+/* bound_angle: the most pass-through of the angle partition; fig4: assert the seed's Fig. 4 order
+   (the angle partition passes through less than the planar ITP). */
+static void tracer_on(const char *name, double bound_angle, bool fig4)
 {
     gk_scene *s = load(name);
     assert_int_equal(open_scene(&H, s), 0);
     frame("lgv_photons=16384", GK_LGV_PART_ALL, 0);
     exact x;
     exact_build(&x, s);
-    const int n = 4096;
+    const int n = 65536; /* the probe takes well under a second; 4096 left Fig. 4's order to ~30 rays */
     float *rays = malloc(sizeof(float) * 6 * n), *hits = malloc(sizeof(float) * 4 * n);
     make_rays(&x, H.lights[0].position, n, rays);
     vec3 ext = v3_sub(s->bmax, s->bmin);
     float tol = 0.01f * v3_len(ext);
-    pass_through pt[2];
-    for (int mode = 0; mode < 2; mode++) {
+    /* the seed's angle partition, the planar ITP (Fig. 4), the angle partition with rays reaching the
+       bounds counted as leaving (the tracer before gk_lgv_debug.bounds_hits) */
+    pass_through pt[3];
+    for (int k = 0; k < 3; k++) {
         gk_lgv_debug d;
         gk_lgv_default_debug(&d);
-        d.itp_mode = mode;
+        d.itp_mode = k == 1 ? GK_LGV_ITP_PLANAR : GK_LGV_ITP_ANGLE;
+        d.bounds_hits = k != 2;
         gk_lgv_set_debug(H.self, &d);
         gk_err e = {0};
         assert_int_equal(gk_lgv_probe(H.self, rays, n, hits, &e), n);
-        compare_rays(&x, rays, hits, n, tol, &pt[mode]);
+        compare_rays(&x, rays, hits, n, tol, &pt[k]);
     }
     printf("# %s, 27 maps of 64^2, %d rays, tolerance %.3f m: pass-through %.4f angle partition / %.4f planar ITP; "
            "early hits %.4f / %.4f; no hit at all %.4f / %.4f; median hit error %.4f / %.4f m\n",
            name, n, tol, pt[0].rate, pt[1].rate, pt[0].early, pt[1].early, pt[0].lost, pt[1].lost, pt[0].median_err,
            pt[1].median_err);
+    printf("# %s, angle partition, rays reaching the bounds left the scene (no bounds hits): pass-through %.4f, no hit "
+           "at all %.4f, of them with the true surface at the bounds %.3f\n", name, pt[2].rate, pt[2].lost, pt[2].lost_at_bounds);
     assert_true(pt[0].rate <= bound_angle);
-    assert_true(pt[0].rate < pt[1].rate); /* the seed's claim (Fig. 4): fewer pass-through errors */
+    if (fig4)
+        assert_true(pt[0].rate < pt[1].rate);
+    /* the bounds hits find what the error test missed: nearly every ray without a hit had its surface
+       at the bounds (measured 0.997 and 0.996), and with them almost none is left (0.0002, 0.0006) */
+    assert_true(pt[2].lost > 0.05 && pt[2].lost_at_bounds > 0.95);
+    assert_true(pt[0].lost < 0.005);
     free(rays), free(hits);
     gk_bvh_free(&x.bvh);
     free(x.verts);
@@ -359,12 +392,17 @@ static void tracer_on(const char *name, double bound_angle)
 static void tracer_against_exact_rays(void **state)
 {
     (void)state;
-    /* Measured on llvmpipe (deterministic rays and maps): glass 0.1062 angle partition / 0.2119
-       planar, caustic-ring 0.1372 / 0.2814 (its 2 cm mirror wall covers few texels of maps metres
-       away: B.5 item 1); before the second march on the photon's own map (tracer.glsl) 0.1235 /
-       0.2155 and 0.2145 / 0.2904. Bounds: the measurement plus ~0.03-0.04. */
-    tracer_on("glass", 0.15);
-    tracer_on("caustic-ring", 0.17);
+    /* Measured on llvmpipe (deterministic rays and maps, 65536 rays): pass-through glass 0.0104 angle
+       partition / 0.0082 planar, caustic-ring 0.0058 / 0.0077; early hits 0.0068 / 0.0181 and 0.0322 /
+       0.0257. Before the bounds hits (gk_lgv_debug.bounds_hits) 0.107 / 0.142 with the angle partition,
+       nearly all of it rays with no hit (0.098, 0.137) whose true surface was a wall at the bounds;
+       before the second march on the photon's own map (4096 rays) 0.1235 / 0.2155 and 0.2145 / 0.2904.
+       Fig. 4's order (angle partition < planar) holds on caustic-ring, whose concave ring is Fig. 3a's
+       case; on glass (a sphere in a box, nothing concave) the two are within 0.003 and the planar ITP
+       is the lower since the bounds hits (its early hits are 2.7x the angle partition's). Bounds: the
+       measurement + ~0.01. */
+    tracer_on("glass", 0.02, false);
+    tracer_on("caustic-ring", 0.015, true);
 }
 
 /* ---- the caustic against the path-traced reference (issue: energy in the mask within 15%) ---- */
@@ -373,7 +411,29 @@ typedef struct ruler {
     double energy;  /* sum of luminance inside the reference's mask, lgv / reference */
     double rel_in;  /* rel. RMSE inside the mask */
     double rel_all; /* rel. RMSE over the whole image */
+    double energy_near[2]; /* with a mask: the energy inside it grown by 2 and by 4 pixels */
+    double energy_total;   /* with a mask: the energy over the whole image */
 } ruler;
+
+/* Luminance sums of ours and the reference over the mask grown by `grow` pixels (a square). */
+static double grown_energy(const gk_image *ref, const gk_image *ours, const unsigned char *mask, int grow)
+{
+    double eo = 0, er = 0;
+    for (int y = 0; y < HH; y++)
+        for (int x = 0; x < W; x++) {
+            bool in = false;
+            for (int dy = -grow; dy <= grow && !in; dy++)
+                for (int dx = -grow; dx <= grow && !in; dx++) {
+                    int u = x + dx, v = y + dy;
+                    in = u >= 0 && v >= 0 && u < W && v < HH && mask[v * W + u];
+                }
+            if (!in)
+                continue;
+            const float *o = &ours->pixels[(y * W + x) * 3], *f = &ref->pixels[(y * W + x) * ref->channels];
+            eo += gk_luminance(o[0], o[1], o[2]), er += gk_luminance(f[0], f[1], f[2]);
+        }
+    return eo / er;
+}
 
 /* H.img (bottom row first) as an image (top row first), like the references. */
 static void as_image(gk_image *out)
@@ -394,10 +454,11 @@ static void measure(const char *ref_path, const char *mask_path, ruler *r)
     assert_int_equal(ref.width, W);
     as_image(&ours);
     const char *dump = getenv("GK_LGV_DUMP"); /* a folder: what was measured, for looking at */
-    if (dump) {
+    if (dump) { /* numbered in the order measured, so a test's configurations do not overwrite each other */
+        static int dumped;
         char path[512];
         const char *base = strrchr(ref_path, '/');
-        snprintf(path, sizeof path, "%s/lgv-%s", dump, base ? base + 1 : ref_path);
+        snprintf(path, sizeof path, "%s/lgv-%02d-%s", dump, dumped++, base ? base + 1 : ref_path);
         gk_image_write_float(path, &ours, NULL, &e);
     }
     unsigned char *mask = NULL;
@@ -419,6 +480,9 @@ static void measure(const char *ref_path, const char *mask_path, ruler *r)
     if (mask) {
         assert_int_equal(gk_metrics_compute_masked(&ref, &ours, exposure, mask, &m, &e), 0);
         r->rel_in = m.rel_rmse;
+        r->energy_near[0] = grown_energy(&ref, &ours, mask, 2);
+        r->energy_near[1] = grown_energy(&ref, &ours, mask, 4);
+        r->energy_total = grown_energy(&ref, &ours, mask, W);
     }
     assert_int_equal(gk_metrics_compute(&ref, &ours, exposure, &m, &e), 0);
     r->rel_all = m.rel_rmse;
@@ -439,36 +503,43 @@ static void caustic_on(const char *name, const char *budget, ruler *r, double *a
     const gk_lgv_stats *st = gk_lgv_get_stats(H.self);
     *accepted = (double)st->sslgv_accepted / (double)st->caustic;
     printf("# %s caustic (SSLGV) [%s]: energy in the mask %.3f, rel. RMSE inside %.3f, whole image %.3f; "
-           "%u caustic photons, %u accepted (%.3f)\n",
-           name, budget, r->energy, r->rel_in, r->rel_all, st->caustic, st->sslgv_accepted, *accepted);
+           "%u caustic photons, %u accepted (%.3f); energy in the mask grown by 2 / 4 pixels %.3f / %.3f, "
+           "over the image %.3f\n",
+           name, budget, r->energy, r->rel_in, r->rel_all, st->caustic, st->sslgv_accepted, *accepted,
+           r->energy_near[0], r->energy_near[1], r->energy_total);
     close_scene(&H);
 }
 
 static void caustic_against_reference(void **state)
 {
     (void)state;
-    ruler g, c;
-    double ga, ca;
+    ruler g, c, g0;
+    double ga, ca, g0a;
     caustic_on("glass", "lgv_photons=262144", &g, &ga);
     caustic_on("caustic-ring", "lgv_photons=262144", &c, &ca);
+    REFRACTOR = false; /* glass as the lattice maps see it: the place and normal of the hit map's texel */
+    caustic_on("glass", "lgv_photons=262144", &g0, &g0a);
+    REFRACTOR = true;
     if (getenv("GK_LGV_EXPLORE")) { /* the richer maps, for the README's numbers */
         caustic_on("glass", "lgv_photons=262144,lgv_map_res=128", &g, &ga);
         caustic_on("caustic-ring", "lgv_photons=262144,lgv_map_res=128,lgv_maps=64", &c, &ca);
     }
-    /* Measured (llvmpipe, 0.26M photons, 27 maps of 64^2, SSLGV 256 wide): glass 0.709 in the mask,
-       1760 of 1868 caustic photons accepted (0.942; the rest land off screen); before the acceptance
-       fixes (x_p at the photon's own screen position, hits on the map's surface, h at least the
-       map's texel footprint) 0.189 with 524 accepted. caustic-ring 0.555 (most of its caustic
-       photons land off screen at the references' view). The issue's target, within 15% of the
-       reference, is NOT met: glass's 30-pixel mask is the focus of the refractor map's 64^2
-       normals, blurred out of the mask; caustic-ring's concave ring needs several mirror bounces
-       on a 2 cm wall few texels of maps metres away see (B.5 item 1: pass-through 0.14).
-       Richer maps do not help (before the second march: map_res 128 gave glass 0.590,
-       caustic-ring with 64 maps 0.374). Bounds: the measurements +- 0.05, so the acceptance
-       fixes cannot silently regress. */
-    assert_true(g.energy > 0.66 && g.energy < 0.76);
+    /* Measured (llvmpipe, 0.26M photons, 27 maps of 64^2, SSLGV 256 wide): glass 0.974 in the mask
+       (0.892 in the mask grown by 2 pixels, 0.854 over the image), 2223 of 2312 caustic photons
+       accepted (0.962). With glass as the lattice maps see it (REFRACTOR false) 0.708 in the mask and
+       0.667 over the image: the loss was not the focus blurred out of the mask but photons lost on the
+       way (1844 caustic photons): a photon leaving the sphere met the lattice maps' coarse copy of it,
+       up to a texel footprint outside, at once (3,944 of 5,093 glass hits after leaving glass lay
+       within 2 cm), and bounced in and out until the 6-event cap; exact sphere normals alone
+       (gk_lgv_debug.sphere_normals) gave 0.804. Before the acceptance fixes 0.189 with 524 accepted.
+       caustic-ring 0.510 (most of its caustic photons land off screen at the references' view; 24
+       events instead of 6: 0.568, its ring needs several mirror bounces). Bounds: glass the issue's
+       +-15%, the lattice-only glass below 0.80 (the refractor's part), caustic-ring the measurement
+       +- 0.05. */
+    assert_true(g.energy > 0.85 && g.energy < 1.15);
     assert_true(ga > 0.92);
-    assert_true(c.energy > 0.50 && c.energy < 0.61);
+    assert_true(g0.energy < 0.80);
+    assert_true(c.energy > 0.46 && c.energy < 0.56);
 }
 
 static double mean_luminance(void)
@@ -552,14 +623,14 @@ static void indirect_on(const char *scene, const char *budget, ruler *r)
 }
 
 /* Seed Fig. 9, the LGV-size trade-off: the indirect light (the LGV's eq. 7 lookup, no caustic) against
-   glass-indirect.exr per lgv_size, with no gathering iterations (the density estimate alone) and with
-   the default 4, at 1M photons (4 frames of 262144 averaged: the photon noise well below the grid's
-   error). The time side is the bench's (tools/bench.sh, sweep lgv). */
+   glass-indirect.exr per lgv_size, with no gathering iterations (the density estimate alone, the
+   default) and with 2, at 1M photons (4 frames of 262144 averaged). The time side is the bench's
+   (tools/bench.sh, sweep lgv); the photon study (GK_LGV_FIG9) says why the error rises with the size. */
 static void lgv_size_tradeoff(void **state)
 {
     (void)state;
     static const char *const sizes[3] = {"16", "32", "48"};
-    static const char *const iters[2] = {"0", "4"};
+    static const char *const iters[2] = {"0", "2"};
     double err[2][3], ratio[2][3];
     for (int k = 0; k < 2; k++)
         for (int i = 0; i < 3; i++) {
@@ -573,24 +644,24 @@ static void lgv_size_tradeoff(void **state)
         printf("# glass indirect (LGV, %s gathering iterations) vs glass-indirect.exr: rel. RMSE %.3f / %.3f / %.3f at "
                "16 / 32 / 48 cells; energy ratio %.3f / %.3f / %.3f\n", iters[k], err[k][0], err[k][1], err[k][2],
                ratio[k][0], ratio[k][1], ratio[k][2]);
-    /* Measured (llvmpipe, 4 x 262144 photons): no iterations rel. RMSE 0.716 / 0.763 / 0.796, energy
-       0.621 / 0.594 / 0.580; 4 iterations (with G) 0.580 / 0.653 / 0.714, energy 1.082 / 1.037 / 1.013.
-       The gathering lowers the error at every size (by 0.136 / 0.110 / 0.082) and brings the energy
-       to the reference's (the iterations' sum adds what eq. 7's one-cell estimate misses); Fig. 9's
-       trend (error falling as the grid grows) is still NOT reproduced: the error rises with the size
-       with or without gathering (photon noise per cell grows faster than the blur falls). Where the
-       density estimate's missing ~40% goes (README lgv): photons the tracer loses (no hit for 9.9% of
-       photon-like rays that meet a surface, every bounce), the 6-event cap (16 events: +4%), the
-       lookup's half-cell offset (0 instead: +2-5%). Bounds: the measurements + 0.03 (rel. RMSE), the
-       gathering's gain at least 0.04, the energy with gathering within [0.95, 1.15] and without it
-       independent of the grid size within 8% (the normalisation k does not depend on l). */
-    static const double bound0[3] = {0.75, 0.80, 0.83}, bound4[3] = {0.61, 0.69, 0.75};
+    /* Measured (llvmpipe, 4 x 262144 photons): no iterations rel. RMSE 0.563 / 0.728 / 0.816, energy
+       0.937 / 0.897 / 0.875; 2 iterations (with G) 0.870 / 1.046 / 1.160, energy 1.448 / 1.390 / 1.356.
+       Before the tracer's bounds hits and glass on its refractor map the density estimate had 0.621 /
+       0.594 / 0.580 of the energy (photons lost at the walls: 9.9% of the photon-like rays meeting a
+       surface found none) and the iterations' sum made it up (4 iterations: 1.08 / 1.04 / 1.01, the
+       default then); with the photons found the sum adds ~50% on top, so the gathering now raises the
+       error at every size and the default is no iterations. Fig. 9's trend (error falling as the grid
+       grows) is NOT reproduced at these photons: the error rises with the size (README lgv: the
+       photon noise per cell). Bounds: the measurements + 0.03 (rel. RMSE); the energy without
+       gathering in [0.84, 1] and independent of the grid size within 8% (the normalisation k does
+       not depend on l); 2 iterations add at least 30% and raise the error (the default's reason). */
+    static const double bound0[3] = {0.60, 0.76, 0.85};
     for (int i = 0; i < 3; i++) {
         assert_true(err[0][i] < bound0[i]);
-        assert_true(err[1][i] < bound4[i]);
-        assert_true(err[1][i] < err[0][i] - 0.04);
-        assert_true(ratio[1][i] > 0.95 && ratio[1][i] < 1.15);
+        assert_true(ratio[0][i] > 0.84 && ratio[0][i] < 1.0);
         assert_true(fabs(ratio[0][i] / ratio[0][1] - 1.0) < 0.08);
+        assert_true(ratio[1][i] > 1.3 * ratio[0][i]);
+        assert_true(err[1][i] > err[0][i]);
     }
 }
 
@@ -616,6 +687,59 @@ static void gathering_sweep(void **state)
                        sizes[i], iters[k], r.rel_all, r.energy);
                 fflush(stdout);
             }
+}
+
+/* Rel. RMSE of image `ours` against image `ref` (both as the references: top row first, RGB). */
+static double rel_rmse(const gk_image *ref, const gk_image *ours)
+{
+    gk_metrics m;
+    gk_err e = {0};
+    assert_int_equal(gk_metrics_compute(ref, ours, gk_metrics_auto_exposure(ref), &m, &e), 0);
+    return m.rel_rmse;
+}
+
+/* Fig. 9's cause (GK_LGV_FIG9=1 runs it alone; GK_LGV_FIG9_ITERS sets lgv_iters, default 0): glass's
+   indirect light (LGV) per lgv_size averaged over 4, 16 and 64 frames of 262144 photons (1M, 4M, 16M)
+   against glass-indirect.exr, and the 1M and 4M averages against the 16M one (the photon noise: the
+   16M average stands in for the noise-free estimate at that size). The error that does not fall with
+   the photons is the grid's bias at that size. */
+static void fig9_photon_study(void **state)
+{
+    (void)state;
+    static const char *const sizes[3] = {"16", "32", "48"};
+    const char *iters = getenv("GK_LGV_FIG9_ITERS") ? getenv("GK_LGV_FIG9_ITERS") : "0";
+    static float sum[W * HH * 4];
+    gk_image ref = {0}, avg[3] = {{0}};
+    gk_err e = {0};
+    assert_int_equal(gk_image_read("tests/references/glass-indirect.exr", &ref, &e), 0);
+    for (int i = 0; i < 3; i++) {
+        char budget[96];
+        snprintf(budget, sizeof budget, "lgv_photons=262144,lgv_size=%s,lgv_iters=%s", sizes[i], iters);
+        assert_int_equal(open_scene(&H, load("glass")), 0);
+        memset(sum, 0, sizeof sum);
+        for (int f = 1, k = 0; f <= 64; f++) {
+            frame(budget, GK_LGV_PART_LGV, 0);
+            for (int j = 0; j < W * HH * 4; j++)
+                sum[j] += H.img[j];
+            if (f != 4 && f != 16 && f != 64)
+                continue;
+            for (int j = 0; j < W * HH * 4; j++)
+                H.img[j] = sum[j] / (float)f;
+            as_image(&avg[k++]);
+        }
+        close_scene(&H);
+        double err[3], noise[2];
+        for (int k = 0; k < 3; k++)
+            err[k] = rel_rmse(&ref, &avg[k]);
+        for (int k = 0; k < 2; k++)
+            noise[k] = rel_rmse(&avg[2], &avg[k]);
+        printf("# fig9 glass size %s iters %s: rel. RMSE vs glass-indirect.exr at 1M / 4M / 16M photons %.3f / %.3f / %.3f; "
+               "1M and 4M vs the 16M average %.3f / %.3f\n", sizes[i], iters, err[0], err[1], err[2], noise[0], noise[1]);
+        fflush(stdout);
+        for (int k = 0; k < 3; k++)
+            gk_image_free(&avg[k]);
+    }
+    gk_image_free(&ref);
 }
 
 /* light-leak's LGV after 4 frames of 262144 photons (the last frame's grid): the share of the grid's
@@ -723,12 +847,13 @@ static void temporal_noise_and_determinism(void **state)
         }
     printf("# glass, LGV at 65536 photons, 8 frames with new photons: mean relative temporal std %.4f over %d pixels; "
            "the same frame twice identical: %s\n", sum / n, n, same ? "yes" : "no");
-    /* Measured (llvmpipe): 0.197 over 15563 pixels with the default 4 gathering iterations (0.293 over
-       14734 without: eq. 7 alone is a one-cell density estimate, ~0.3 relative flicker at the
-       default photons, the seed's "temporal discontinuity"; the iterations' sum spreads each
-       photon over more cells); identical twice. Bound: the measurement + 0.04. */
+    /* Measured (llvmpipe): 0.232 over 13873 pixels with the default, no gathering iterations (eq. 7
+       alone is a one-cell density estimate: the seed's "temporal discontinuity" at the default
+       photons); 0.157 over 14872 with 4 iterations (their sum spreads each photon over more cells;
+       before the tracer's bounds hits, 0.197 with 4 and 0.293 without); identical twice. Bound: the
+       measurement + 0.04. */
     assert_true(same);
-    assert_true(sum / n < 0.24);
+    assert_true(sum / n < 0.27);
 }
 
 int main(void)
@@ -742,8 +867,11 @@ int main(void)
         cmocka_unit_test(occlusion_blocks_a_wall),
     };
     const struct CMUnitTest sweep[] = {cmocka_unit_test(gathering_sweep)};
+    const struct CMUnitTest fig9[] = {cmocka_unit_test(fig9_photon_study)};
     if (getenv("GK_LGV_SWEEP"))
         return cmocka_run_group_tests(sweep, setup, teardown);
+    if (getenv("GK_LGV_FIG9"))
+        return cmocka_run_group_tests(fig9, setup, teardown);
     if (getenv("GK_LGV_ONLY")) /* one test by name (a glob), e.g. GK_LGV_ONLY=occlusion_blocks_a_wall */
         cmocka_set_test_filter(getenv("GK_LGV_ONLY"));
     return cmocka_run_group_tests(tests, setup, teardown);

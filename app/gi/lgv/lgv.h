@@ -20,6 +20,9 @@ typedef struct gk_lgv_debug {
     float c0;          /* the SSLGV's bandwidth factor C0 of h = C0 sqrt(A / N) (default LGV_C0) */
     bool snap_hits;    /* diffuse hits moved onto the surface the map's texel holds (default; false: the secant's point) */
     bool occlusion;    /* eq. (6)'s fuzzy occlusion G from the geometry volume (default; false: G = 1, leaks) */
+    bool bounds_hits;  /* a ray reaching the bounds where the map sees a surface met it there (default; false: left the scene) */
+    bool refractor_surface; /* glass hits placed on its refractor map, normals interpolated there (default; false: the hit map's texel) */
+    bool sphere_normals; /* tests: glass normals from the refractor map's centre (exact for a sphere centred there) */
     bool seeing_maps;  /* a ray's maps: the nearest that see its point (tracer.glsl lgv_seeing_map) */
     float lookup_offset; /* eq. (7) reads the LGV this many cells along the normal (default 0.5, research B.5 item 8) */
     int max_events;    /* longest photon path in surface events (0: LGV_BOUNCES) */

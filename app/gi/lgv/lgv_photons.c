@@ -38,7 +38,7 @@ static void zero_buffer(GLuint b, long bytes)
 /* lgv/tracer.glsl (in trace.comp) */
 typedef struct tracer_uniforms {
     GLint u_dist, u_nrm, u_alb, u_res, u_levels, u_n_maps, u_n_refractors, u_q, u_loops, u_itp_eps, u_secant_steps,
-        u_itp_mode, u_seeing, u_bmin, u_bmax;
+        u_itp_mode, u_seeing, u_bounds_hit, u_bmin, u_bmax;
 } tracer_uniforms;
 static const gk_uniform_field tracer_fields[] = {
     GK_UNIFORM(tracer_uniforms, u_dist),      GK_UNIFORM(tracer_uniforms, u_nrm),
@@ -48,6 +48,7 @@ static const gk_uniform_field tracer_fields[] = {
     GK_UNIFORM(tracer_uniforms, u_loops),     GK_UNIFORM(tracer_uniforms, u_itp_eps),
     GK_UNIFORM(tracer_uniforms, u_secant_steps),
     GK_UNIFORM(tracer_uniforms, u_itp_mode),  GK_UNIFORM(tracer_uniforms, u_seeing),
+    GK_UNIFORM(tracer_uniforms, u_bounds_hit),
     GK_UNIFORM(tracer_uniforms, u_bmin),
     GK_UNIFORM(tracer_uniforms, u_bmax),
 };
@@ -55,7 +56,7 @@ static const gk_uniform_field tracer_fields[] = {
 /* lgv/trace.comp's own */
 typedef struct trace_uniforms {
     GLint u_probe, u_photons, u_first, u_frame, u_light_kind, u_light_pos, u_light_dir, u_light_u, u_light_v, u_cone,
-        u_power, u_bounces, u_grid_min, u_cell, u_dims, u_inject_scale, u_fixed, u_caustic_cap, u_snap;
+        u_power, u_bounces, u_grid_min, u_cell, u_dims, u_inject_scale, u_fixed, u_caustic_cap, u_snap, u_sphere_normals, u_refractor_surface;
 } trace_uniforms;
 static const gk_uniform_field trace_fields[] = {
     GK_UNIFORM(trace_uniforms, u_probe),       GK_UNIFORM(trace_uniforms, u_photons),
@@ -67,7 +68,8 @@ static const gk_uniform_field trace_fields[] = {
     GK_UNIFORM(trace_uniforms, u_grid_min),    GK_UNIFORM(trace_uniforms, u_cell),
     GK_UNIFORM(trace_uniforms, u_dims),        GK_UNIFORM(trace_uniforms, u_inject_scale),
     GK_UNIFORM(trace_uniforms, u_fixed),       GK_UNIFORM(trace_uniforms, u_caustic_cap),
-    GK_UNIFORM(trace_uniforms, u_snap),
+    GK_UNIFORM(trace_uniforms, u_snap),        GK_UNIFORM(trace_uniforms, u_sphere_normals),
+    GK_UNIFORM(trace_uniforms, u_refractor_surface),
 };
 
 int lgv_bind_tracer(lgv_state *s, GLuint prog, gk_err *e)
@@ -94,6 +96,7 @@ int lgv_bind_tracer(lgv_state *s, GLuint prog, gk_err *e)
     glUniform1i(u->u_secant_steps, LGV_SECANT_STEPS);
     glUniform1i(u->u_itp_mode, s->dbg.itp_mode);
     glUniform1i(u->u_seeing, s->dbg.seeing_maps ? 1 : 0);
+    glUniform1i(u->u_bounds_hit, s->dbg.bounds_hits ? 1 : 0);
     glUniform3f(u->u_bmin, s->bmin.x, s->bmin.y, s->bmin.z);
     glUniform3f(u->u_bmax, s->bmax.x, s->bmax.y, s->bmax.z);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, s->centres_ssbo);
@@ -206,6 +209,8 @@ int lgv_trace_photons(lgv_state *s, const gk_gi_frame *f, gk_err *e)
     glUniform1f(u->u_fixed, s->fixed_scale);
     glUniform1i(u->u_caustic_cap, cap);
     glUniform1i(u->u_snap, s->dbg.snap_hits ? 1 : 0);
+    glUniform1i(u->u_sphere_normals, s->dbg.sphere_normals ? 1 : 0);
+    glUniform1i(u->u_refractor_surface, s->dbg.refractor_surface ? 1 : 0);
     unsigned first = 0;
     int left = s->photons;
     for (int i = 0; i < n; i++) {
