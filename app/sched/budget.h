@@ -8,7 +8,7 @@
 
 #include "base/err.h"
 
-#define GK_MAX_KNOBS 64   /* every method's knobs together: 48 filled up once radiosity, lgv and volcaustics joined; a full budget refuses more (tests/unit/test_calibration.c checks the room) */
+#define GK_MAX_KNOBS 96   /* every method's knobs together: 48 filled up once radiosity, lgv and volcaustics joined, 64 once vpl_umbra and vct_level0 did; a full budget refuses more (tests/unit/test_calibration.c checks the room) */
 #define GK_MAX_KNOB_VALUES 8
 
 typedef struct gk_knob_def {
