@@ -171,6 +171,15 @@ int read_opened(OIIO::ImageInput *in, const char *path, gk_image *img, gk_err *e
         return gk_fail(e, GK_EINPUT, "%s: not a 2D image (%dx%dx%d, %d channels)", path, spec.width, spec.height,
                        spec.depth, spec.nchannels);
     int channels = std::min(spec.nchannels, 4);
+    // A side over MAX_SIDE is refused before OpenImageIO reads it: its read_scanlines allocates a
+    // buffer of many scan lines, so a one-line EXR 16,777,219 pixels wide (the fuzzer's 679-byte file,
+    // tests/fuzz/corpus/image/found-width-16777219.exr; 2^24 pixels, under the pixel cap) made it ask
+    // for 34 GB. No texture, environment map or reference is that wide: GLES textures end at
+    // GL_MAX_TEXTURE_SIZE (16384 on the boards and llvmpipe).
+    const int MAX_SIDE = 32768;
+    if (spec.width > MAX_SIDE || spec.height > MAX_SIDE)
+        return gk_fail(e, GK_EINPUT, "%s: image too large (%dx%d: a side over %d)", path, spec.width, spec.height,
+                       MAX_SIDE);
     if (gk_image_alloc(img, spec.width, spec.height, channels) != 0)
         return gk_fail(e, GK_EINPUT, "%s: image too large (%dx%d)", path, spec.width, spec.height);
     if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, img->pixels)) {

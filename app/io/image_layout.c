@@ -63,6 +63,25 @@ static int check_exr_window(const char *path, const int32_t box[4], int compress
     return 0;
 }
 
+/* The size of an OpenEXR attribute type OpenEXR reads by its type, not by the size the file gives
+ * (ImfStandardAttributes' fixed-size types), or -1 for the others (strings, channel lists, opaque
+ * types: read by the size). A file whose size disagrees desynchronises OpenEXR's reading of the header
+ * from ours: the fuzzer's 502-byte EXR gave `screenWindowWidth` (float) 3 bytes, so OpenEXR read the
+ * following bytes as another attribute, of an unknown type claiming ~2 GB, and allocated it. */
+static int exr_fixed_size(const char *type)
+{
+    static const struct { const char *type; int size; } fixed[] = {
+        {"float", 4}, {"double", 8}, {"int", 4}, {"box2i", 16}, {"box2f", 16}, {"v2i", 8}, {"v2f", 8},
+        {"v2d", 16}, {"v3i", 12}, {"v3f", 12}, {"v3d", 24}, {"m33f", 36}, {"m33d", 72}, {"m44f", 64},
+        {"m44d", 128}, {"compression", 1}, {"lineOrder", 1}, {"envmap", 1}, {"deepImageState", 1},
+        {"chromaticities", 32}, {"keycode", 28}, {"timecode", 8}, {"rational", 8}, {"tiledesc", 9},
+    };
+    for (size_t i = 0; i < sizeof fixed / sizeof fixed[0]; i++)
+        if (strcmp(type, fixed[i].type) == 0)
+            return fixed[i].size;
+    return -1;
+}
+
 /* OpenEXR (file layout, "Header"): magic, version (flags in bytes 5..7), then attributes
  * `name\0 type\0 size(int32 LE) value[size]` up to an empty name; a multi-part file has one such
  * header per part and an empty header after the last. */
@@ -117,6 +136,10 @@ static int check_exr(FILE *f, const char *path, long long size, gk_err *e)
         if (len < 0 || at + len > size)
             return gk_fail(e, GK_EINPUT, "%s: corrupt OpenEXR: header attribute '%s' (%s) claims %d bytes, the file has "
                            "%lld left", path, name, type, len, size - at);
+        int fixed = exr_fixed_size(type);
+        if (fixed >= 0 && len != fixed)
+            return gk_fail(e, GK_EINPUT, "%s: corrupt OpenEXR: header attribute '%s' (%s) has %d bytes, not %d", path,
+                           name, type, len, fixed);
         unsigned char v[16];
         if (strcmp(name, "dataWindow") == 0 && strcmp(type, "box2i") == 0 && len == 16 && fread(v, 1, 16, f) == 16) {
             for (int i = 0; i < 4; i++)

@@ -319,6 +319,44 @@ static void exr_data_window_is_checked_before_reading(void **state)
     gk_image_free(&a);
 }
 
+/* An attribute of a fixed-size type (float here) whose size field disagrees with its type: OpenEXR
+   reads the type's 4 bytes whatever the field says, so its reading of the header and ours part; the
+   fuzzer's 502-byte file (tests/fuzz/corpus/image/found-attribute-size-mismatch-2GB.exr) gave a float 3
+   bytes, OpenEXR then read an attribute of an unknown type claiming ~2 GB and allocated it. Refused
+   before OpenEXR sees the file. */
+static void exr_attribute_sizes_match_their_types(void **state)
+{
+    gk_image a, b = {0};
+    assert_int_equal(gk_image_alloc(&a, 4, 4, 3), 0);
+    fill_gradient(&a, 1.0f);
+    gk_err e = {0};
+    const char *exr = tmp_path(state, "sizes.exr");
+    assert_int_equal(gk_image_write(exr, &a, NULL, &e), 0);
+    FILE *f = fopen(exr, "rb");
+    assert_non_null(f);
+    char head[512];
+    size_t got = fread(head, 1, sizeof head, f);
+    fclose(f);
+    const char key[] = "pixelAspectRatio\0float";
+    const char *at = memmem(head, got, key, sizeof key);
+    assert_non_null(at);
+    patch4(exr, (long)(at - head) + (long)sizeof key, (const unsigned char[4]){3, 0, 0, 0});
+    assert_int_equal(gk_image_read(exr, &b, &e), -1);
+    assert_int_equal(e.code, GK_EINPUT);
+    assert_non_null(strstr(e.msg, "sizes.exr: corrupt OpenEXR: header attribute 'pixelAspectRatio' (float) has 3 bytes, not 4"));
+    assert_null(b.pixels);
+    gk_image_free(&a);
+    /* a side over 32768 (the fuzzer's one-line EXR 16,777,219 wide made OpenImageIO ask for 34 GB) */
+    assert_int_equal(gk_image_alloc(&a, 32769, 1, 3), 0);
+    const char *wide = tmp_path(state, "wide.exr");
+    assert_int_equal(gk_image_write(wide, &a, NULL, &e), 0);
+    gk_err e2 = {0};
+    assert_int_equal(gk_image_read(wide, &b, &e2), -1);
+    assert_int_equal(e2.code, GK_EINPUT);
+    assert_non_null(strstr(e2.msg, "wide.exr: image too large (32769x1: a side over 32768)"));
+    gk_image_free(&a);
+}
+
 static void write_errors(void **state)
 {
     gk_image a;
@@ -356,6 +394,7 @@ int main(void)
         cmocka_unit_test(exr_metadata_round_trip),
         cmocka_unit_test(png_metadata_round_trip),
         cmocka_unit_test(exr_data_window_is_checked_before_reading),
+        cmocka_unit_test(exr_attribute_sizes_match_their_types),
         cmocka_unit_test(missing_file_is_input_error_naming_it),
         cmocka_unit_test(corrupt_file_is_input_error),
         cmocka_unit_test(lengths_beyond_the_file_are_refused_before_reading),
