@@ -275,29 +275,41 @@ static void lengths_beyond_the_file_are_refused_before_reading(void **state)
     gk_image_free(&a);
 }
 
+/* Writes a 4x4 gradient EXR to tmp NAME (checking it reads back) and returns the byte offset of the
+ * value of its header attribute `key` (`name\0type`, followed by the 4-byte size): where a test patches
+ * the header. */
+static long small_exr_attribute(void **state, const char *name, const char *key, size_t key_len, const char **path)
+{
+    gk_image a, b = {0};
+    assert_int_equal(gk_image_alloc(&a, 4, 4, 3), 0);
+    fill_gradient(&a, 1.0f);
+    gk_err e = {0};
+    *path = tmp_path(state, name);
+    assert_int_equal(gk_image_write(*path, &a, NULL, &e), 0);
+    assert_int_equal(gk_image_read(*path, &b, &e), 0);
+    gk_image_free(&b);
+    gk_image_free(&a);
+    FILE *f = fopen(*path, "rb");
+    assert_non_null(f);
+    char head[512];
+    size_t got = fread(head, 1, sizeof head, f);
+    fclose(f);
+    const char *at = memmem(head, got, key, key_len);
+    assert_non_null(at);
+    return (long)(at - head) + (long)key_len + 4;
+}
+
 /* The EXR's dataWindow is checked before OpenEXR sizes its line-offset table by it (found by
  * tests/fuzz/fuzz_image.c: a 400-byte EXR whose dataWindow claimed 1.68e9 x 1.70e9 pixels made the
  * reader use 2 GB before it failed): a window over the pixel cap is refused as too large, one whose
  * offset table cannot fit in the file as corrupt; the file with its own window reads. */
 static void exr_data_window_is_checked_before_reading(void **state)
 {
-    gk_image a, b = {0};
-    assert_int_equal(gk_image_alloc(&a, 4, 4, 3), 0);
-    fill_gradient(&a, 1.0f);
+    gk_image b = {0};
     gk_err e = {0};
-    const char *exr = tmp_path(state, "window.exr");
-    assert_int_equal(gk_image_write(exr, &a, NULL, &e), 0);
-    assert_int_equal(gk_image_read(exr, &b, &e), 0);
-    gk_image_free(&b);
-    FILE *f = fopen(exr, "rb");
-    assert_non_null(f);
-    char head[512];
-    size_t got = fread(head, 1, sizeof head, f);
-    fclose(f);
+    const char *exr;
     const char key[] = "dataWindow\0box2i";
-    const char *at = memmem(head, got, key, sizeof key);
-    assert_non_null(at);
-    long value = (long)(at - head) + (long)sizeof key + 4; /* after `name\0type\0` and the size */
+    long value = small_exr_attribute(state, "window.exr", key, sizeof key, &exr);
     /* ymax 2^20 - 1: 4 x 2^20 pixels (under the cap), a 512 KB offset table in a file of a few hundred bytes */
     patch4(exr, value + 12, (const unsigned char[4]){0xff, 0xff, 0x0f, 0x00});
     assert_int_equal(gk_image_read(exr, &b, &e), -1);
@@ -316,7 +328,6 @@ static void exr_data_window_is_checked_before_reading(void **state)
     gk_err e3 = {0};
     assert_int_equal(gk_image_read(exr, &b, &e3), -1);
     assert_non_null(strstr(e3.msg, "corrupt OpenEXR: its dataWindow (0,0)-(-2,1698920303) is empty"));
-    gk_image_free(&a);
 }
 
 /* An attribute of a fixed-size type (float here) whose size field disagrees with its type: OpenEXR
@@ -326,27 +337,24 @@ static void exr_data_window_is_checked_before_reading(void **state)
    before OpenEXR sees the file. */
 static void exr_attribute_sizes_match_their_types(void **state)
 {
-    gk_image a, b = {0};
-    assert_int_equal(gk_image_alloc(&a, 4, 4, 3), 0);
-    fill_gradient(&a, 1.0f);
+    gk_image b = {0};
     gk_err e = {0};
-    const char *exr = tmp_path(state, "sizes.exr");
-    assert_int_equal(gk_image_write(exr, &a, NULL, &e), 0);
-    FILE *f = fopen(exr, "rb");
-    assert_non_null(f);
-    char head[512];
-    size_t got = fread(head, 1, sizeof head, f);
-    fclose(f);
+    const char *exr;
     const char key[] = "pixelAspectRatio\0float";
-    const char *at = memmem(head, got, key, sizeof key);
-    assert_non_null(at);
-    patch4(exr, (long)(at - head) + (long)sizeof key, (const unsigned char[4]){3, 0, 0, 0});
+    long value = small_exr_attribute(state, "sizes.exr", key, sizeof key, &exr);
+    patch4(exr, value - 4, (const unsigned char[4]){3, 0, 0, 0}); /* its size field: 3, not 4 */
     assert_int_equal(gk_image_read(exr, &b, &e), -1);
     assert_int_equal(e.code, GK_EINPUT);
     assert_non_null(strstr(e.msg, "sizes.exr: corrupt OpenEXR: header attribute 'pixelAspectRatio' (float) has 3 bytes, not 4"));
     assert_null(b.pixels);
-    gk_image_free(&a);
-    /* a side over 32768 (the fuzzer's one-line EXR 16,777,219 wide made OpenImageIO ask for 34 GB) */
+}
+
+/* A side over 32768 is refused before OpenImageIO reads the pixels: the fuzzer's one-line EXR
+   16,777,219 wide (2^24 pixels, under the pixel cap) made its read_scanlines ask for 34 GB. */
+static void images_with_a_side_over_32768_are_refused(void **state)
+{
+    gk_image a, b = {0};
+    gk_err e = {0};
     assert_int_equal(gk_image_alloc(&a, 32769, 1, 3), 0);
     const char *wide = tmp_path(state, "wide.exr");
     assert_int_equal(gk_image_write(wide, &a, NULL, &e), 0);
@@ -395,6 +403,7 @@ int main(void)
         cmocka_unit_test(png_metadata_round_trip),
         cmocka_unit_test(exr_data_window_is_checked_before_reading),
         cmocka_unit_test(exr_attribute_sizes_match_their_types),
+        cmocka_unit_test(images_with_a_side_over_32768_are_refused),
         cmocka_unit_test(missing_file_is_input_error_naming_it),
         cmocka_unit_test(corrupt_file_is_input_error),
         cmocka_unit_test(lengths_beyond_the_file_are_refused_before_reading),
