@@ -12,24 +12,9 @@
 
 #include "test_vpl_harness.h"
 
-static vpl_h H;
-#define W 64
-#define HH 64
+VPL_H_BOX_GROUP
 /* Same VPLs, interleave, resolution and blur for every run, so only visibility differs. */
 #define COMMON "vpl_n=256,vpl_block=2,vpl_res=0.5,vpl_blur=4,vpl_clamp=on,vpl_val_map=64"
-
-static int setup(void **state)
-{
-    (void)state;
-    return h_init(&H, true, W, HH);
-}
-
-static int teardown(void **state)
-{
-    (void)state;
-    h_free(&H);
-    return 0;
-}
 
 static float *run(const char *extra)
 {

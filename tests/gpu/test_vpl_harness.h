@@ -254,4 +254,21 @@ static inline void h_free(vpl_h *h)
     gkt_gl_close(&h->gl);
 }
 
+/* The fixture most vpl tests share: one harness H over the box with its blocks at W x HH = 64 x 64,
+ * set up once for the group (cmocka_run_group_tests(tests, setup, teardown)). */
+#define VPL_H_BOX_GROUP                                                                                          \
+    static vpl_h H;                                                                                              \
+    enum { W = 64, HH = 64 };                                                                                    \
+    static int setup(void **state)                                                                               \
+    {                                                                                                            \
+        (void)state;                                                                                             \
+        return h_init(&H, true, W, HH);                                                                          \
+    }                                                                                                            \
+    static int teardown(void **state)                                                                            \
+    {                                                                                                            \
+        (void)state;                                                                                             \
+        h_free(&H);                                                                                              \
+        return 0;                                                                                                \
+    }
+
 #endif

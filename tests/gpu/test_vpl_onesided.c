@@ -18,22 +18,8 @@
 
 #include "test_vpl_harness.h"
 
-static vpl_h H;
-#define W 64
-#define HH 64
+VPL_H_BOX_GROUP
 
-static int setup(void **state)
-{
-    (void)state;
-    return h_init(&H, true, W, HH);
-}
-
-static int teardown(void **state)
-{
-    (void)state;
-    h_free(&H);
-    return 0;
-}
 
 /* mean luminance of rows [y0, y1) (row 0 is the image's bottom: glReadPixels order) */
 static double rows_mean(const float *img, int y0, int y1)

@@ -13,22 +13,8 @@
 
 #include "test_vpl_harness.h"
 
-static vpl_h H;
-#define W 64
-#define HH 64
+VPL_H_BOX_GROUP
 
-static int setup(void **state)
-{
-    (void)state;
-    return h_init(&H, true, W, HH);
-}
-
-static int teardown(void **state)
-{
-    (void)state;
-    h_free(&H);
-    return 0;
-}
 
 static void sun_vpls_carry_the_flux_the_ceiling_reflects(void **state)
 {

@@ -19,22 +19,8 @@
    of an edge. The bound is 4x the larger; a model off by a map or a triangle set is off by 10%+. */
 #define TOLERANCE 2e-4
 
-static vpl_h H;
-#define W 64
-#define HH 64
+VPL_H_BOX_GROUP
 
-static int setup(void **state)
-{
-    (void)state;
-    return h_init(&H, true, W, HH);
-}
-
-static int teardown(void **state)
-{
-    (void)state;
-    h_free(&H);
-    return 0;
-}
 
 /* vpl/val_depth.vert's window position of world point w in a res² map of the frame (c, t, b, n) */
 static void project(const float c[3], const gk_val *v, vec3 w, int res, double out[2])
