@@ -11,23 +11,9 @@
 
 #include "gpu/test_shadow_util.h"
 
-#define W 128
-#define H 128
+SX_SESSION_GROUP(128)
 
-static sx_session ses;
 
-static int setup(void **state)
-{
-    (void)state;
-    return sx_open(&ses, W, H);
-}
-
-static int teardown(void **state)
-{
-    (void)state;
-    sx_close(&ses);
-    return 0;
-}
 
 static sx_setup t1(float S)
 {

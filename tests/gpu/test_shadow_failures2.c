@@ -20,24 +20,10 @@
 #include "gpu/test_shadow_util.h"
 #include "render/shadow/shadow_prefilter.h"
 
-#define W 128
-#define H 128
+SX_SESSION_GROUP(128)
 #define MAP 512
 
-static sx_session ses;
 
-static int setup(void **state)
-{
-    (void)state;
-    return sx_open(&ses, W, H);
-}
-
-static int teardown(void **state)
-{
-    (void)state;
-    sx_close(&ses);
-    return 0;
-}
 
 /* Renders V = L / L_unblocked of `method` (extra pins appended) for a set-up; truth into t. */
 static void render_v(const sx_setup *st, const char *pins_extra, const char *method, float *v, sx_truth *t)

@@ -398,4 +398,21 @@ static inline void sx_print(const char *what, const char *method, const sx_stats
            what, method, s->mean[0], s->max[0], s->n[0], s->mean[1], s->max[1], s->bias[1], s->n[1], s->mean[2], s->max[2], s->n[2]);
 }
 
+/* The fixture the shadow tests share: one session `ses` of SIZE x SIZE pixels (W and H) opened once for
+ * the group (cmocka_run_group_tests(tests, setup, teardown)). */
+#define SX_SESSION_GROUP(SIZE)                                                                                   \
+    enum { W = SIZE, H = SIZE };                                                                                 \
+    static sx_session ses;                                                                                       \
+    static int setup(void **state)                                                                               \
+    {                                                                                                            \
+        (void)state;                                                                                             \
+        return sx_open(&ses, W, H);                                                                              \
+    }                                                                                                            \
+    static int teardown(void **state)                                                                            \
+    {                                                                                                            \
+        (void)state;                                                                                             \
+        sx_close(&ses);                                                                                          \
+        return 0;                                                                                                \
+    }
+
 #endif

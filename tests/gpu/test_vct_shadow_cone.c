@@ -12,23 +12,9 @@
 
 #include "gpu/test_shadow_util.h"
 
-#define W 128
-#define H 128
+SX_SESSION_GROUP(128)
 
-static sx_session ses;
 
-static int setup(void **state)
-{
-    (void)state;
-    return sx_open(&ses, W, H);
-}
-
-static int teardown(void **state)
-{
-    (void)state;
-    sx_close(&ses);
-    return 0;
-}
 
 static const char *const variants[] = {"map", "cone9", "cone6", "cone3", "cone0", "cone"};
 enum { V_PCSS, V_CONE9, V_CONE6, V_CONE3, V_CONE0, V_CONE, V_N };
