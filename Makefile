@@ -105,13 +105,14 @@ $(BUILD)/tests/gpu/%: tests/gpu/%.c $(LIB) $(TESTLIB_OBJS) | $(TEST_SHADER_STAMP
 
 # The fuzz targets (libFuzzer, clang; tests/fuzz/fuzz_*.c): gltf (the loader from memory),
 # gltf_files (the loader from a scene folder: URIs, confinement, file readers), config (kiosk.ini),
-# script (button scripts), image (the EXR/PNG readers of `compare`). Built and run briefly by
-# `make test` (a fixed number of runs from seed 1, tests/run.sh; FUZZ_TEST_SECONDS caps each);
-# `make fuzz` hunts from a random seed for FUZZ_SECONDS each. Only the modules they reach (base, scene, core, io, the config and script parsers, the budget they fill) are
-# compiled with clang and the sanitizers, and the C++ shims (tinygltf, OpenImageIO) with clang++,
-# into one archive, so each target links only what it calls (the commands live in app/cli/, so no
-# exclusions are needed). Of app/gi/ only the catalogue of method names comes along: a leaf
-# without GL that scene/ and the config read.
+# script (button scripts), image (the EXR/PNG readers of `compare`). Built and run briefly by `make
+# test` (a fixed number of runs from seed 1, tests/run.sh; FUZZ_TEST_SECONDS caps each); `make fuzz`
+# hunts from a random seed for FUZZ_SECONDS each. Only the modules they reach (base, scene, core,
+# io, the config and script parsers, the budget they fill) are compiled with clang and the
+# sanitizers, and the C++ shims (tinygltf, OpenImageIO) with clang++, into one archive, so each
+# target links only what it calls (the commands live in app/cli/, so no exclusions are needed). Of
+# app/gi/ only the catalogue of method names comes along: a leaf without GL that scene/ and the
+# config read.
 FUZZ_TARGETS := gltf gltf_files config script image
 FUZZ_BINS := $(FUZZ_TARGETS:%=$(BUILD)/fuzz/fuzz_%)
 FUZZ_SRCS := $(filter base/% app/scene/% app/core/% app/io/% app/gi/gi_catalogue.c app/kiosk/config.c \
