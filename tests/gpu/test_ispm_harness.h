@@ -32,6 +32,7 @@ typedef struct ispm_h {
     float *img;          /* w*h*4: what the method added to the HDR image this frame */
     float *albedo;       /* w*h*4 G-buffer albedo (rgb) + metallic */
     float *normal;       /* w*h*4 G-buffer normal + roughness */
+    bool count_work;     /* frames are the bench's counting frames (gk_gi_frame.count_work) */
 } ispm_h;
 
 static inline int ih_draw_scene(void *ctx, unsigned prog, gk_err *e)
@@ -166,6 +167,7 @@ static inline int ih_frame(ispm_h *h)
     f.hdr_fbo = h->hdr.fbo;
     f.n_lights = 1, f.lights = &h->light, f.budget = &h->budget;
     f.draw_scene = ih_draw_scene, f.draw_ctx = h;
+    f.count_work = h->count_work;
     glBindFramebuffer(GL_FRAMEBUFFER, h->hdr.fbo);
     const GLenum b1[1] = {GL_COLOR_ATTACHMENT0};
     glDrawBuffers(1, b1);
