@@ -2,8 +2,9 @@
 # `gikiosk bench --roofline-csv` (#21): efficiency.csv holds one line per measured pass that has a
 # work model, each of its numbers recomputed here another way -- the pass time from bench.csv's own
 # column, the limit from roofline.csv, the rate and the efficiency from those and the fetches -- the
-# bars chart is drawn per scene, vpl's gather counts agree between two visibilities, and a broken
-# roofline.csv is bad input naming its file and line.
+# bars chart is drawn per scene, vpl's gather counts agree between two visibilities, the models of
+# vct, vpl, ispm (its caustic passes too), lightmap and radiosity hold across their
+# rows, and a broken roofline.csv is bad input naming its file and line.
 . tests/e2e/lib.sh
 export EGL_PLATFORM=surfaceless
 
@@ -131,6 +132,26 @@ lists = f[("gi.ispm_lists", "ssbo_r32ui_atomic")]["1024"]
 assert lists % 5 == 0, lists
 for k in caustic - {("gi.ispm_lists", "ssbo_r32ui_atomic")}:
     assert f[k]["4096"] > f[k]["1024"] > 0, (k, f[k])
+PY
+# lightmap's GPU passes (app/gi/lightmap/lm_work.c): the compose's light-map lookups (counted; at most
+# one a pixel, the same view at both caustic budgets) and the caustic filter's count texels (from the
+# filtered tiles: at most the whole screen's, per axis 7 n - 12 of them, tests/gpu/
+# test_lightmap_caustics.c); lockstep, so every row's frames show the light map and the caustics
+expect_exit 0 "bench --roofline-csv: lightmap at two caustic budgets" sh -c "'$GIKIOSK' bench --scenes caustic-ring \
+    --methods lightmap --size 80x60 --frames 1 --warmup 1 --budget lightmap_sync=lockstep \
+    --sweep 'lightmap_caustics=2500,10000' --roofline-csv '$TMP/roofline.csv' --out '$TMP/l' 2>'$TMP/l.log'"
+check "lightmap's efficiency.csv: every number recomputed" \
+    python3 "$TMP/recompute.py" "$TMP/l/bench.csv" "$TMP/l/efficiency.csv" "$TMP/roofline.csv" lightmap_caustics
+check "lightmap: the compose's lookups and the caustic filter's reads" python3 - "$TMP/l/efficiency.csv" <<'PY'
+import csv, sys
+f = {}
+for e in csv.DictReader(open(sys.argv[1])):
+    f[(e["pass"], e["kind"], e["lightmap_caustics"])] = float(e["fetches"])
+c = [f[("gi.lightmap_compose", "tex2d_rgba16f_trilinear", k)] for k in ("2500", "10000")]
+assert 0 < c[0] == c[1] <= 80 * 60, f
+for k in ("2500", "10000"):
+    reads = f[("gi.lightmap_caustic_filter", "tex2d_r16f_nearest", k)]
+    assert 0 < reads <= (7 * 80 - 12) * (7 * 60 - 12), f
 PY
 # radiosity's bounces (app/gi/radiosity/rad_work.c): one radiance load per link per bounce, so with
 # the same links (lockstep: the worker's first link set in both rows) 4 bounces load twice what 2 do

@@ -155,8 +155,9 @@ static inline void ih_debug(ispm_h *h, void (*edit)(gk_ispm_debug *))
     gk_ispm_set_debug(h->self, &d);
 }
 
-/* One frame of the method: what it added lands in h->img. */
-static inline int ih_frame(ispm_h *h)
+/* One frame of a GI method on the harness's scene and G-buffer (the ispm tests: ih_frame): what it
+   added lands in h->img. */
+static inline int ih_frame_of(ispm_h *h, const gk_gi_method *m, void *self)
 {
     gk_gi_frame f = {0};
     f.scene = h->scene, f.width = h->w, f.height = h->h;
@@ -175,13 +176,16 @@ static inline int ih_frame(ispm_h *h)
     glClearColor(0, 0, 0, 0);
     glClear(GL_COLOR_BUFFER_BIT);
     gk_err e = {0};
-    if (gk_gi_ispm.render(h->self, &f, &e)) {
+    if (m->render(self, &f, &e)) {
         fprintf(stderr, "render: %s\n", e.msg);
         return -1;
     }
     gkt_read_rgba(&h->hdr, 0, GL_FLOAT, h->img);
     return glGetError() == GL_NO_ERROR ? 0 : -1;
 }
+
+/* One frame of the method: what it added lands in h->img. */
+static inline int ih_frame(ispm_h *h) { return ih_frame_of(h, &gk_gi_ispm, h->self); }
 
 static inline double ih_lum(const float *p) { return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]; }
 
