@@ -3,7 +3,7 @@
 # work model, each of its numbers recomputed here another way -- the pass time from bench.csv's own
 # column, the limit from roofline.csv, the rate and the efficiency from those and the fetches -- the
 # bars chart is drawn per scene, vpl's gather counts agree between two visibilities, the models of
-# vct, vpl, ispm (its caustic passes too), lightmap and radiosity hold across their
+# vct, vpl (both gathers), ispm (its caustic passes too), lightmap and radiosity hold across their
 # rows, and a broken roofline.csv is bad input naming its file and line.
 . tests/e2e/lib.sh
 export EGL_PLATFORM=surfaceless
@@ -106,6 +106,22 @@ u, h = "tex2d_rgba32f_nearest", "tex2d_rgba16f_trilinear"
 assert f[("vsm", u)] > 0 and f[("vsm", u)] == f[("cssm", u)], f
 assert f[("vsm", h)] > 0 and f[("vsm", h)] == f[("cssm", "tex2d_rgba8_trilinear")] - 2 * f[("cssm", h)] / 3, f
 assert f[("vsm", "valsm")] > 64 * 64 and f[("vsm", "valsm")] == f[("cssm", "valsm")], f
+PY
+# the multi-resolution gather counts its regions' VPL loops (tests/gpu/test_vpl_work.c: regions x the
+# dense gather's reads a pixel): both gathers' rows recomputed; the VAL maps do not depend on the gather
+expect_exit 0 "bench --roofline-csv: vpl's interleaved and multires gathers" sh -c "'$GIKIOSK' bench --scenes cornell \
+    --methods vpl --size 80x60 --frames 1 --warmup 1 --sweep 'vpl_gather=interleaved,multires' \
+    --roofline-csv '$TMP/roofline.csv' --out '$TMP/m' 2>'$TMP/m.log'"
+check "vpl multires's efficiency.csv: every number recomputed" \
+    python3 "$TMP/recompute.py" "$TMP/m/bench.csv" "$TMP/m/efficiency.csv" "$TMP/roofline.csv" vpl_gather
+check "vpl_gather=multires: its gather counted, the VAL maps as the interleaved row's" python3 - "$TMP/m/efficiency.csv" <<'PY'
+import csv, sys
+f = {}
+for e in csv.DictReader(open(sys.argv[1])):
+    f[(e["vpl_gather"], e["pass"], e["kind"])] = float(e["fetches"])
+assert f[("multires", "gi.vpl_gather", "tex2d_rgba32f_nearest")] > 0, f
+v = ("gi.vpl_valsm", "raster_r16f_depth_fill")
+assert f[("multires",) + v] == f[("interleaved",) + v] > 0, f
 PY
 # ispm's diffuse indirect part is vpl's (its passes by vpl's models): the same at any photon count
 expect_exit 0 "bench --roofline-csv: ispm at two photon counts" sh -c "'$GIKIOSK' bench --scenes caustic-ring \

@@ -128,10 +128,61 @@ static void val_map_fragments_match_a_replay(void **state)
     }
 }
 
+/* the gi.vpl_gather entry of kind `kind` in the last frame's work, or 0 */
+static double gather_fetches(const char *kind)
+{
+    gk_pass_work w[GK_MAX_PASS_WORK];
+    int n = H.m->pass_work(H.self, w, GK_MAX_PASS_WORK);
+    for (int i = 0; i < n; i++)
+        if (!strcmp(w[i].pass, "gi.vpl_gather") && !strcmp(w[i].kind, kind))
+            return w[i].fetches;
+    return 0.0;
+}
+
+/* The multi-resolution gather (vpl_gather=multires) runs the interleaved gather's VPL loop over all
+   n VPLs once per region it shades. Without visibility (no lookups that depend on the receiver)
+   that loop's table reads are the same at every receiver: the dense interleaved gather (block 1,
+   every pixel all VPLs; the camera is inside the box, so every pixel gathers) counts pixels x c, and
+   the multires one must count its regions (read back from its levels, debug.measure) x the same c,
+   2n <= c <= 3n (2 reads a VPL, a third for one that can light anything). */
+static void multires_gather_counts_regions(void **state)
+{
+    (void)state;
+    gk_vpl_debug d;
+    gk_vpl_default_debug(&d);
+    d.fade_frames = 0, d.measure = true, d.vis_override = GK_VPL_VIS_NONE;
+    gk_vpl_set_debug(H.self, &d);
+    const char *u = "tex2d_rgba32f_nearest";
+    assert_int_equal(h_budget(&H, "vpl_n=256,vpl_m=8,vpl_block=1,vpl_res=1,vpl_gather=interleaved"), 0);
+    H.count_work = true;
+    assert_int_equal(h_frame(&H, 0), 0);
+    double dense = gather_fetches(u), c = dense / (W * HH);
+    assert_int_equal(h_budget(&H, "vpl_n=256,vpl_m=8,vpl_block=1,vpl_res=1,vpl_gather=multires"), 0);
+    assert_int_equal(h_frame(&H, 0), 0);
+    H.count_work = false;
+    double multires = gather_fetches(u);
+    int regions = gk_vpl_get_stats(H.self)->mr_regions;
+    print_message("# vis none, n = 256: dense gather %.0f table reads (%.1f a pixel of %d), multires %.0f for %d "
+                  "regions (%.1f a region)\n", dense, c, W * HH, multires, regions, multires / regions);
+    assert_true(c == floor(c) && c >= 2 * 256 && c <= 3 * 256);
+    assert_true(regions > 0 && regions < W * HH && multires == c * regions);
+    /* with visibility the lookups depend on the receiver: only that both gathers count some */
+    d.vis_override = -1;
+    gk_vpl_set_debug(H.self, &d);
+    assert_int_equal(h_budget(&H, "vpl_n=256,vpl_m=8,vpl_vis=cssm,vpl_gather=multires"), 0);
+    H.count_work = true;
+    assert_int_equal(h_frame(&H, 0), 0);
+    H.count_work = false;
+    assert_true(gather_fetches(u) > 0.0 && gather_fetches("tex2d_rgba8_trilinear") > 0.0);
+    gk_vpl_default_debug(&d);
+    gk_vpl_set_debug(H.self, &d);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(val_map_fragments_match_a_replay),
+        cmocka_unit_test(multires_gather_counts_regions),
     };
     return cmocka_run_group_tests_name("vpl_work", tests, setup, teardown);
 }
