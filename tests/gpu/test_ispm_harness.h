@@ -225,4 +225,20 @@ static inline void ih_close(ispm_h *h)
     gkt_gl_close(&h->gl);
 }
 
+/* A test group's fixture on a scene built in memory (tests/common/gl_fixture.h): the harness opened
+   on it with the tests' debug settings; closed, and the scene freed. */
+static inline int ih_open_built(ispm_h *h, gkt_scene *t, int w, int hh)
+{
+    if (ih_open(h, &t->s, w, hh))
+        return -1;
+    ih_debug(h, NULL);
+    return 0;
+}
+
+static inline void ih_close_built(ispm_h *h, gkt_scene *t)
+{
+    ih_close(h);
+    gkt_scene_free(t);
+}
+
 #endif

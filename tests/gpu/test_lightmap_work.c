@@ -13,6 +13,7 @@
 
 #include "gi/lightmap/lightmap.h"
 #include "test_ispm_harness.h"
+#include "test_pass_work.h"
 
 #define W 160
 #define HH 120
@@ -30,7 +31,7 @@ static int setup(void **state)
     gkt_light(&T, GK_LIGHT_POINT, GK_SHAPE_POINT, 10.0f, v3(1.0f, 1.5f, 0.0f), v3(1, 1, 0));
     gkt_camera(&T, v3(2.4f, 2.0f, 0), v3(2.4f, 0, 0), 40.0f * (float)M_PI / 180.0f);
     gkt_scene_bounds(&T);
-    if (ih_open(&H, &T.s, W, HH))
+    if (ih_open_built(&H, &T, W, HH))
         return -1;
     gk_err e = {0};
     gk_gi_context ctx = {.programs = H.programs, .gles_version = H.gl.egl.gles_version};
@@ -55,22 +56,13 @@ static int teardown(void **state)
     (void)state;
     if (LM)
         gk_gi_lightmap.destroy(LM);
-    ih_close(&H);
-    gkt_scene_free(&T);
+    ih_close_built(&H, &T);
     return 0;
 }
 
-/* the gi.lightmap_compose entry of the last frame's work, or -1 */
 static double compose_lookups(void)
 {
-    gk_pass_work w[GK_MAX_PASS_WORK];
-    int n = gk_gi_lightmap.pass_work(LM, w, GK_MAX_PASS_WORK);
-    for (int i = 0; i < n; i++)
-        if (!strcmp(w[i].pass, "gi.lightmap_compose")) {
-            assert_string_equal(w[i].kind, "tex2d_rgba16f_trilinear");
-            return w[i].fetches;
-        }
-    return -1.0;
+    return tpw_fetches(&gk_gi_lightmap, LM, "gi.lightmap_compose", "tex2d_rgba16f_trilinear");
 }
 
 static void compose_lookups_match_the_charted_pixels(void **state)

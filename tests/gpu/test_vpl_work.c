@@ -13,6 +13,7 @@
 
 #include "gi/vpl/vpl_internal.h"
 #include "test_vpl_harness.h"
+#include "test_pass_work.h"
 
 /* Measured on llvmpipe (8 sub-pixel bits): counted - replayed = -2 of 41617 (4 maps of 64²) and -8
    of 376895 (8 maps of 128²), -0.0048% and -0.0021%: the pixel centres within snapping distance
@@ -90,18 +91,7 @@ static long replay_fragments(const vpl_state *s)
     return total;
 }
 
-/* the gi.vpl_valsm entry of the last frame's work, or -1 */
-static double valsm_fragments(void)
-{
-    gk_pass_work w[GK_MAX_PASS_WORK];
-    int n = H.m->pass_work(H.self, w, GK_MAX_PASS_WORK);
-    for (int i = 0; i < n; i++)
-        if (!strcmp(w[i].pass, "gi.vpl_valsm")) {
-            assert_string_equal(w[i].kind, "raster_r16f_depth_fill");
-            return w[i].fetches;
-        }
-    return -1.0;
-}
+static double valsm_fragments(void) { return tpw_fetches(H.m, H.self, "gi.vpl_valsm", "raster_r16f_depth_fill"); }
 
 static void val_map_fragments_match_a_replay(void **state)
 {
@@ -128,16 +118,7 @@ static void val_map_fragments_match_a_replay(void **state)
     }
 }
 
-/* the gi.vpl_gather entry of kind `kind` in the last frame's work, or 0 */
-static double gather_fetches(const char *kind)
-{
-    gk_pass_work w[GK_MAX_PASS_WORK];
-    int n = H.m->pass_work(H.self, w, GK_MAX_PASS_WORK);
-    for (int i = 0; i < n; i++)
-        if (!strcmp(w[i].pass, "gi.vpl_gather") && !strcmp(w[i].kind, kind))
-            return w[i].fetches;
-    return 0.0;
-}
+static double gather_fetches(const char *kind) { return tpw_fetches(H.m, H.self, "gi.vpl_gather", kind); }
 
 /* The multi-resolution gather (vpl_gather=multires) runs the interleaved gather's VPL loop over all
    n VPLs once per region it shades. Without visibility (no lookups that depend on the receiver)
