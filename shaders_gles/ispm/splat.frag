@@ -10,8 +10,16 @@
 // each where its view ray meets the splat's plane: the pixel's integral of the kernel rather than its
 // value at the centre, so an ellipse narrower than a pixel (a caustic line's width) still deposits
 // its Φ and keeps its peak, where a point-sampled one would alias or need widening to a pixel.
+// SPLAT_COUNT_FRAGMENTS: the bench's counting variant (#21, app/gi/ispm/ispm_work.c), one atomic
+// add per fragment shaded, discarded or not (fragment-stage storage buffers capability-checked by
+// the caller). Never in the kiosk's frames.
+// @variant -
+// @variant SPLAT_COUNT_FRAGMENTS
 precision highp float;
 #include "common/gbuffer.glsl"
+#ifdef SPLAT_COUNT_FRAGMENTS
+layout(std430, binding = 6) buffer SplatFragments { highp uint fragments; } splat_counted;
+#endif
 flat in vec3 v_c;
 flat in vec3 v_n;
 flat in vec4 v_e1;
@@ -24,6 +32,9 @@ uniform highp int u_samples;   // kernel samples per splat pixel side (highp: th
 layout(location = 0) out vec4 o_e;
 void main()
 {
+#ifdef SPLAT_COUNT_FRAGMENTS
+    atomicAdd(splat_counted.fragments, 1u);
+#endif
     ivec2 p = ivec2(floor(gl_FragCoord.xy * u_to_full));
     float depth = gb_depth(p);
     if (gb_background(depth))

@@ -19,6 +19,10 @@
 // @variant VIS_VSM=1 GATHER_COUNT_FETCHES=1
 // @variant VIS_HARD=1 GATHER_COUNT_FETCHES=1
 // @variant VIS_NONE=1 GATHER_COUNT_FETCHES=1
+// @variant VIS_CSSM=1 MULTIRES=1 GATHER_COUNT_FETCHES=1
+// @variant VIS_VSM=1 MULTIRES=1 GATHER_COUNT_FETCHES=1
+// @variant VIS_HARD=1 MULTIRES=1 GATHER_COUNT_FETCHES=1
+// @variant VIS_NONE=1 MULTIRES=1 GATHER_COUNT_FETCHES=1
 precision highp float;
 precision highp int;
 precision highp sampler2DArray;
@@ -44,8 +48,8 @@ layout(location = 2) out vec4 o_nrm;
 
 const float PI = 3.14159265;
 
-// The bench's counting variant (#21, app/gi/vpl/vpl_work.c; interleaved gather only, fragment-stage
-// storage buffers capability-checked by the caller): each pixel adds up its fetches -- x unfiltered
+// The bench's counting variant (#21, app/gi/vpl/vpl_work.c; fragment-stage storage buffers
+// capability-checked by the caller): each pixel (multires: each region shaded) adds up its fetches -- x unfiltered
 // RGBA32F (the VPL and VAL tables), y filtered RGBA8 (CSSM's cos/sin bases), z filtered 16-bit
 // float (CSSM's z bases and depth, VSM's moments), w unfiltered R16F (exact visibility's depth) --
 // and adds them to the buffer once. Never in the kiosk's frames.
@@ -307,17 +311,17 @@ void main()
         E += clamped;
         removed += dot(full - clamped, vec3(0.2126, 0.7152, 0.0722));
     }
-#ifdef MULTIRES
-    o_ind = vec4(min(E, vec3(u_out_max)), 1.0);   // a = hasData
-    o_pos = vec4(min(removed, u_out_max));
-    o_nrm = vec4(0.0);
-#else
 #ifdef GATHER_COUNT_FETCHES
     atomicAdd(gather_counted.unfiltered, gather_fetches.x);
     atomicAdd(gather_counted.rgba8, gather_fetches.y);
     atomicAdd(gather_counted.half_float, gather_fetches.z);
     atomicAdd(gather_counted.depth_r16f, gather_fetches.w);
 #endif
+#ifdef MULTIRES
+    o_ind = vec4(min(E, vec3(u_out_max)), 1.0);   // a = hasData
+    o_pos = vec4(min(removed, u_out_max));
+    o_nrm = vec4(0.0);
+#else
     float scale = float(bb);
     o_ind = min(vec4(E * scale, removed * scale), vec4(u_out_max));
     o_pos = vec4(x - u_origin, 1.0);

@@ -2,8 +2,9 @@
 # `gikiosk bench --roofline-csv` (#21): efficiency.csv holds one line per measured pass that has a
 # work model, each of its numbers recomputed here another way -- the pass time from bench.csv's own
 # column, the limit from roofline.csv, the rate and the efficiency from those and the fetches -- the
-# bars chart is drawn per scene, vpl's gather counts agree between two visibilities, and a broken
-# roofline.csv is bad input naming its file and line.
+# bars chart is drawn per scene, vpl's gather counts agree between two visibilities, the models of
+# vct, vpl (both gathers), ispm (its caustic passes too), lightmap and radiosity hold across their
+# rows, and a broken roofline.csv is bad input naming its file and line.
 . tests/e2e/lib.sh
 export EGL_PLATFORM=surfaceless
 
@@ -55,6 +56,17 @@ for e in eff:
 PY
 check "efficiency.csv: every number recomputed from bench.csv and roofline.csv" \
     python3 "$TMP/recompute.py" "$TMP/b/bench.csv" "$EFF" "$TMP/roofline.csv" vct_cones
+# bench_rows DIR KEY WHAT ARGS...: a bench of two rows (ARGS: the scene, method and sweep) at 80x60
+# over the round-number roofline into $TMP/DIR, every number of its efficiency.csv recomputed (KEY:
+# the swept knob that tells the two rows apart)
+bench_rows() {
+    dir=$1 key=$2 what=$3
+    shift 3
+    expect_exit 0 "bench --roofline-csv: $what" sh -c "'$GIKIOSK' bench --size 80x60 --frames 1 --warmup 1 $* \
+        --roofline-csv '$TMP/roofline.csv' --out '$TMP/$dir' 2>'$TMP/$dir.log'"
+    check "$what: every number of efficiency.csv recomputed" \
+        python3 "$TMP/recompute.py" "$TMP/$dir/bench.csv" "$TMP/$dir/efficiency.csv" "$TMP/roofline.csv" "$key"
+}
 check "efficiency.csv: vct's passes and the direct pass's kind" python3 - "$EFF" <<'PY'
 import csv, sys
 eff = list(csv.DictReader(open(sys.argv[1])))
@@ -106,20 +118,62 @@ assert f[("vsm", u)] > 0 and f[("vsm", u)] == f[("cssm", u)], f
 assert f[("vsm", h)] > 0 and f[("vsm", h)] == f[("cssm", "tex2d_rgba8_trilinear")] - 2 * f[("cssm", h)] / 3, f
 assert f[("vsm", "valsm")] > 64 * 64 and f[("vsm", "valsm")] == f[("cssm", "valsm")], f
 PY
+# the multi-resolution gather counts its regions' VPL loops (tests/gpu/test_vpl_work.c: regions x the
+# dense gather's reads a pixel): both gathers' rows recomputed; the VAL maps do not depend on the gather
+bench_rows m vpl_gather "vpl's interleaved and multires gathers" --scenes cornell --methods vpl \
+    --sweep "'vpl_gather=interleaved,multires'"
+check "vpl_gather=multires: its gather counted, the VAL maps as the interleaved row's" python3 - "$TMP/m/efficiency.csv" <<'PY'
+import csv, sys
+f = {}
+for e in csv.DictReader(open(sys.argv[1])):
+    f[(e["vpl_gather"], e["pass"], e["kind"])] = float(e["fetches"])
+# the interleaved gather reads a 1/16 subset of the VPLs per pixel (vpl_block=4), the multires one all
+# of them per region: more unless it shades under 1/16 of the pixels (measured 632 699 against 50 832
+# table reads on cornell at 80x60)
+u = "tex2d_rgba32f_nearest"
+assert f[("multires", "gi.vpl_gather", u)] > f[("interleaved", "gi.vpl_gather", u)] > 0, f
+v = ("gi.vpl_valsm", "raster_r16f_depth_fill")
+assert f[("multires",) + v] == f[("interleaved",) + v] > 0, f
+PY
 # ispm's diffuse indirect part is vpl's (its passes by vpl's models): the same at any photon count
-expect_exit 0 "bench --roofline-csv: ispm at two photon counts" sh -c "'$GIKIOSK' bench --scenes caustic-ring \
-    --methods ispm --size 80x60 --frames 1 --warmup 1 --sweep 'ispm_photons=1024,4096' \
-    --roofline-csv '$TMP/roofline.csv' --out '$TMP/i' 2>'$TMP/i.log'"
-check "ispm's efficiency.csv: every number recomputed" \
-    python3 "$TMP/recompute.py" "$TMP/i/bench.csv" "$TMP/i/efficiency.csv" "$TMP/roofline.csv" ispm_photons
-check "ispm: vpl's gather and VAL maps, equal at both photon counts" python3 - "$TMP/i/efficiency.csv" <<'PY'
+bench_rows i ispm_photons "ispm at two photon counts" --scenes caustic-ring --methods ispm \
+    --sweep "'ispm_photons=1024,4096'"
+# ... and its caustic passes (app/gi/ispm/ispm_work.c; tests/gpu/test_ispm_work.c replays them): the
+# lists see the same frustum fragments at both photon counts, five atomics each (none dropped at the
+# default pool); more photons march more steps and draw more splats
+check "ispm: vpl's passes equal at both photon counts, the caustic passes by their models" python3 - "$TMP/i/efficiency.csv" <<'PY'
 import csv, sys
 f = {}
 for e in csv.DictReader(open(sys.argv[1])):
     f.setdefault((e["pass"], e["kind"]), {})[e["ispm_photons"]] = float(e["fetches"])
 assert ("gi.vpl_valsm", "raster_r16f_depth_fill") in f and ("gi.vpl_gather", "tex2d_rgba32f_nearest") in f, f
+caustic = {("gi.ispm_lists", "ssbo_r32ui_atomic"), ("gi.ispm_trace", "ssbo_rgba32f_load"),
+           ("gi.ispm_splat", "raster_r16f_depth_fill")}
+assert caustic <= set(f), f
 for k, v in f.items():
-    assert v["1024"] == v["4096"] > 0, (k, v)
+    if k not in caustic or k[0] == "gi.ispm_lists":
+        assert v["1024"] == v["4096"] > 0, (k, v)
+lists = f[("gi.ispm_lists", "ssbo_r32ui_atomic")]["1024"]
+assert lists % 5 == 0, lists
+for k in caustic - {("gi.ispm_lists", "ssbo_r32ui_atomic")}:
+    assert f[k]["4096"] > f[k]["1024"] > 0, (k, f[k])
+PY
+# lightmap's GPU passes (app/gi/lightmap/lm_work.c): the compose's light-map lookups (counted; at most
+# one a pixel, the same view at both caustic budgets) and the caustic filter's count texels (from the
+# filtered tiles: at most the whole screen's, per axis 7 n - 12 of them, tests/gpu/
+# test_lightmap_caustics.c); lockstep, so every row's frames show the light map and the caustics
+bench_rows l lightmap_caustics "lightmap at two caustic budgets" --scenes caustic-ring --methods lightmap \
+    --budget lightmap_sync=lockstep --sweep "'lightmap_caustics=2500,10000'"
+check "lightmap: the compose's lookups and the caustic filter's reads" python3 - "$TMP/l/efficiency.csv" <<'PY'
+import csv, sys
+f = {}
+for e in csv.DictReader(open(sys.argv[1])):
+    f[(e["pass"], e["kind"], e["lightmap_caustics"])] = float(e["fetches"])
+c = [f[("gi.lightmap_compose", "tex2d_rgba16f_trilinear", k)] for k in ("2500", "10000")]
+assert 0 < c[0] == c[1] <= 80 * 60, f
+for k in ("2500", "10000"):
+    reads = f[("gi.lightmap_caustic_filter", "tex2d_r16f_nearest", k)]
+    assert 0 < reads <= (7 * 80 - 12) * (7 * 60 - 12), f
 PY
 # radiosity's bounces (app/gi/radiosity/rad_work.c): one radiance load per link per bounce, so with
 # the same links (lockstep: the worker's first link set in both rows) 4 bounces load twice what 2 do

@@ -32,6 +32,7 @@ typedef struct ispm_h {
     float *img;          /* w*h*4: what the method added to the HDR image this frame */
     float *albedo;       /* w*h*4 G-buffer albedo (rgb) + metallic */
     float *normal;       /* w*h*4 G-buffer normal + roughness */
+    bool count_work;     /* frames are the bench's counting frames (gk_gi_frame.count_work) */
 } ispm_h;
 
 static inline int ih_draw_scene(void *ctx, unsigned prog, gk_err *e)
@@ -154,8 +155,9 @@ static inline void ih_debug(ispm_h *h, void (*edit)(gk_ispm_debug *))
     gk_ispm_set_debug(h->self, &d);
 }
 
-/* One frame of the method: what it added lands in h->img. */
-static inline int ih_frame(ispm_h *h)
+/* One frame of a GI method on the harness's scene and G-buffer (the ispm tests: ih_frame): what it
+   added lands in h->img. */
+static inline int ih_frame_of(ispm_h *h, const gk_gi_method *m, void *self)
 {
     gk_gi_frame f = {0};
     f.scene = h->scene, f.width = h->w, f.height = h->h;
@@ -166,6 +168,7 @@ static inline int ih_frame(ispm_h *h)
     f.hdr_fbo = h->hdr.fbo;
     f.n_lights = 1, f.lights = &h->light, f.budget = &h->budget;
     f.draw_scene = ih_draw_scene, f.draw_ctx = h;
+    f.count_work = h->count_work;
     glBindFramebuffer(GL_FRAMEBUFFER, h->hdr.fbo);
     const GLenum b1[1] = {GL_COLOR_ATTACHMENT0};
     glDrawBuffers(1, b1);
@@ -173,13 +176,16 @@ static inline int ih_frame(ispm_h *h)
     glClearColor(0, 0, 0, 0);
     glClear(GL_COLOR_BUFFER_BIT);
     gk_err e = {0};
-    if (gk_gi_ispm.render(h->self, &f, &e)) {
+    if (m->render(self, &f, &e)) {
         fprintf(stderr, "render: %s\n", e.msg);
         return -1;
     }
     gkt_read_rgba(&h->hdr, 0, GL_FLOAT, h->img);
     return glGetError() == GL_NO_ERROR ? 0 : -1;
 }
+
+/* One frame of the method: what it added lands in h->img. */
+static inline int ih_frame(ispm_h *h) { return ih_frame_of(h, &gk_gi_ispm, h->self); }
 
 static inline double ih_lum(const float *p) { return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]; }
 
@@ -217,6 +223,22 @@ static inline void ih_close(ispm_h *h)
     free(h->albedo);
     free(h->normal);
     gkt_gl_close(&h->gl);
+}
+
+/* A test group's fixture on a scene built in memory (tests/common/gl_fixture.h): the harness opened
+   on it with the tests' debug settings; closed, and the scene freed. */
+static inline int ih_open_built(ispm_h *h, gkt_scene *t, int w, int hh)
+{
+    if (ih_open(h, &t->s, w, hh))
+        return -1;
+    ih_debug(h, NULL);
+    return 0;
+}
+
+static inline void ih_close_built(ispm_h *h, gkt_scene *t)
+{
+    ih_close(h);
+    gkt_scene_free(t);
 }
 
 #endif

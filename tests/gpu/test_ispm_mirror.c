@@ -96,17 +96,13 @@ static int setup(void **state)
 {
     (void)state;
     build(&T, 0);
-    if (ih_open(&H, &T.s, W, HH))
-        return -1;
-    ih_debug(&H, NULL);
-    return 0;
+    return ih_open_built(&H, &T, W, HH);
 }
 
 static int teardown(void **state)
 {
     (void)state;
-    ih_close(&H);
-    gkt_scene_free(&T);
+    ih_close_built(&H, &T);
     return 0;
 }
 

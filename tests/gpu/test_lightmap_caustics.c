@@ -129,6 +129,28 @@ static void test_single_photon_shows_the_weights(void **state)
     lm_caustic_gpu_free(&g);
 }
 
+/* The count texels the culled filter reads, counted pixel by pixel: the tiles within k = 3 pixels
+   of a photon's pixel (every photon here lies on the plane, so each is counted), each of their
+   pixels' 7 x 7 neighbours on the screen. */
+static double culled_reads(const float *pts, int n, int tile)
+{
+    double reads = 0.0;
+    for (int ty = 0; ty * tile < H; ty++)
+        for (int tx = 0; tx * tile < W; tx++) {
+            bool on = false;
+            for (int i = 0; i < n && !on; i++) {
+                int px = (int)pts[3 * i], py = (int)pts[3 * i + 1];
+                on = px >= tx * tile - 3 && px < (tx + 1) * tile + 3 && py >= ty * tile - 3 && py < (ty + 1) * tile + 3;
+            }
+            for (int y = ty * tile; on && y < (ty + 1) * tile && y < H; y++)
+                for (int x = tx * tile; x < (tx + 1) * tile && x < W; x++)
+                    for (int j = -3; j <= 3; j++)
+                        for (int i = -3; i <= 3; i++)
+                            reads += x + i >= 0 && x + i < W && y + j >= 0 && y + j < H;
+        }
+    return reads;
+}
+
 static void test_culling_is_bit_identical(void **state)
 {
     (void)state;
@@ -141,6 +163,7 @@ static void test_culling_is_bit_identical(void **state)
     vec3 flux = v3(1.0f, 0.8f, 0.3f);
     float *culled = filter(pts, n, flux, true, &g);
     int tiles = g.tiles_filtered, total = g.tiles_x * g.tiles_y;
+    double culled_reads_model = g.filter_reads;
     float *full = filter(pts, n, flux, false, &g);
     print_message("culling: %d of %d tiles filtered\n", tiles, total);
     assert_memory_equal(culled, full, sizeof(float) * 4 * W * H);
@@ -148,6 +171,10 @@ static void test_culling_is_bit_identical(void **state)
     assert_true(culled[4 * (45 * W + 31)] > 0.0f);
     /* the photons' tiles and the ones within 3 px of them: 10 of 60 measured */
     assert_true(tiles > 0 && tiles < total);
+    /* the filter's work (#21): the whole screen reads 7 x 7 texels a pixel, less what its edges cut
+       off: per axis 7 n - 2 (3 + 2 + 1) */
+    assert_true(g.filter_reads == (7.0 * W - 12.0) * (7.0 * H - 12.0));
+    assert_true(culled_reads(pts, n, g.tile) == culled_reads_model);
     free(culled), free(full);
     lm_caustic_gpu_free(&g);
 }

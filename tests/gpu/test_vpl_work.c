@@ -13,6 +13,7 @@
 
 #include "gi/vpl/vpl_internal.h"
 #include "test_vpl_harness.h"
+#include "test_pass_work.h"
 
 /* Measured on llvmpipe (8 sub-pixel bits): counted - replayed = -2 of 41617 (4 maps of 64²) and -8
    of 376895 (8 maps of 128²), -0.0048% and -0.0021%: the pixel centres within snapping distance
@@ -90,18 +91,7 @@ static long replay_fragments(const vpl_state *s)
     return total;
 }
 
-/* the gi.vpl_valsm entry of the last frame's work, or -1 */
-static double valsm_fragments(void)
-{
-    gk_pass_work w[GK_MAX_PASS_WORK];
-    int n = H.m->pass_work(H.self, w, GK_MAX_PASS_WORK);
-    for (int i = 0; i < n; i++)
-        if (!strcmp(w[i].pass, "gi.vpl_valsm")) {
-            assert_string_equal(w[i].kind, "raster_r16f_depth_fill");
-            return w[i].fetches;
-        }
-    return -1.0;
-}
+static double valsm_fragments(void) { return tpw_fetches(H.m, H.self, "gi.vpl_valsm", "raster_r16f_depth_fill"); }
 
 static void val_map_fragments_match_a_replay(void **state)
 {
@@ -128,10 +118,52 @@ static void val_map_fragments_match_a_replay(void **state)
     }
 }
 
+static double gather_fetches(const char *kind) { return tpw_fetches(H.m, H.self, "gi.vpl_gather", kind); }
+
+/* The multi-resolution gather (vpl_gather=multires) runs the interleaved gather's VPL loop over all
+   n VPLs once per region it shades. Without visibility (no lookups that depend on the receiver)
+   that loop's table reads are the same at every receiver: the dense interleaved gather (block 1,
+   every pixel all VPLs; the camera is inside the box, so every pixel gathers) counts pixels x c, and
+   the multires one must count its regions (read back from its levels, debug.measure) x the same c,
+   2n <= c <= 3n (2 reads a VPL, a third for one that can light anything). */
+static void multires_gather_counts_regions(void **state)
+{
+    (void)state;
+    gk_vpl_debug d;
+    gk_vpl_default_debug(&d);
+    d.fade_frames = 0, d.measure = true, d.vis_override = GK_VPL_VIS_NONE;
+    gk_vpl_set_debug(H.self, &d);
+    const char *u = "tex2d_rgba32f_nearest";
+    assert_int_equal(h_budget(&H, "vpl_n=256,vpl_m=8,vpl_block=1,vpl_res=1,vpl_gather=interleaved"), 0);
+    H.count_work = true;
+    assert_int_equal(h_frame(&H, 0), 0);
+    double dense = gather_fetches(u), c = dense / (W * HH);
+    assert_int_equal(h_budget(&H, "vpl_n=256,vpl_m=8,vpl_block=1,vpl_res=1,vpl_gather=multires"), 0);
+    assert_int_equal(h_frame(&H, 0), 0);
+    H.count_work = false;
+    double multires = gather_fetches(u);
+    int regions = gk_vpl_get_stats(H.self)->mr_regions;
+    print_message("# vis none, n = 256: dense gather %.0f table reads (%.1f a pixel of %d), multires %.0f for %d "
+                  "regions (%.1f a region)\n", dense, c, W * HH, multires, regions, multires / regions);
+    assert_true(c == floor(c) && c >= 2 * 256 && c <= 3 * 256);
+    assert_true(regions > 0 && regions < W * HH && multires == c * regions);
+    /* with visibility the lookups depend on the receiver: only that both gathers count some */
+    d.vis_override = -1;
+    gk_vpl_set_debug(H.self, &d);
+    assert_int_equal(h_budget(&H, "vpl_n=256,vpl_m=8,vpl_vis=cssm,vpl_gather=multires"), 0);
+    H.count_work = true;
+    assert_int_equal(h_frame(&H, 0), 0);
+    H.count_work = false;
+    assert_true(gather_fetches(u) > 0.0 && gather_fetches("tex2d_rgba8_trilinear") > 0.0);
+    gk_vpl_default_debug(&d);
+    gk_vpl_set_debug(H.self, &d);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(val_map_fragments_match_a_replay),
+        cmocka_unit_test(multires_gather_counts_regions),
     };
     return cmocka_run_group_tests_name("vpl_work", tests, setup, teardown);
 }

@@ -3,6 +3,7 @@
 #define GK_ISPM_INTERNAL_H
 
 #include "gl/gl.h"
+#include "gl/gl_counters.h"
 #include "gl/gl_program.h"
 #include "ispm.h"
 
@@ -85,6 +86,11 @@ typedef struct ispm_state {
     int readback_frame;
     unsigned frame_index;
     bool logged_overflow, logged_tier;
+    /* the bench's counting frame (ispm_work.c): its caustic passes' work */
+    bool counting;           /* this frame is one (gk_gi_frame.count_work) */
+    bool work_counted;       /* the counts below are this counting frame's */
+    unsigned work_trace_loads, work_list_fragments, work_list_dropped;
+    gk_counters splat_fragments;
 } ispm_state;
 
 /* ispm_photons.c: frames the light onto the specular geometry, renders the RSM, builds the mask
@@ -105,5 +111,17 @@ int ispm_density_radius(ispm_state *s, const gk_gi_frame *f, gk_err *e);
 /* ispm_footprint.c: the splat ellipses from the photons' neighbours (after the density radius). */
 int ispm_footprint(ispm_state *s, const gk_gi_frame *f, gk_err *e);
 void ispm_free_gpu(ispm_state *s);
+/* ispm_work.c (#21): each frame's start (a counting frame or not); around the splat draw (the
+   defines of its counting variant, or NULL); the trace's loads and the lists' fragments and drops
+   as read back (kept in a counting frame); the caustic passes' gk_pass_work entries. */
+void ispm_work_frame(ispm_state *s, const gk_gi_frame *f);
+const char *ispm_work_splat_begin(ispm_state *s);
+void ispm_work_splat_end(ispm_state *s);
+void ispm_work_counters(ispm_state *s, unsigned trace_loads, unsigned list_fragments, unsigned list_dropped);
+/* ll_build.frag's storage-buffer atomics for `fragments` frustum fragments of which `dropped` found
+   the pool full */
+double ispm_list_atomics(unsigned fragments, unsigned dropped);
+int ispm_caustic_work(const ispm_state *s, gk_pass_work *out, int max);
+void ispm_work_free(ispm_state *s);
 
 #endif

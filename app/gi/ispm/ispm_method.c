@@ -172,8 +172,10 @@ static void read_counters(ispm_state *s)
     glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, 0, 0, ph_bytes);
     glBindBuffer(GL_COPY_READ_BUFFER, s->ctr_ssbo);
     glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, 0, ph_bytes, ll_bytes);
-    int rd = s->dbg.measure ? cur : 1 - cur;
-    if (!s->dbg.measure && s->readback_frame == 0) {
+    /* the bench's counting frame reads its own counts (ispm_work.c) */
+    bool now = s->dbg.measure || s->counting;
+    int rd = now ? cur : 1 - cur;
+    if (!now && s->readback_frame == 0) {
         s->readback_frame = 1;
         return;   /* nothing copied a frame ago yet */
     }
@@ -187,6 +189,7 @@ static void read_counters(ispm_state *s)
         const unsigned *ll = p + ISPM_PH_HEADER_UINTS;
         st->fragments = s->tier == GK_ISPM_TIER_LISTS ? ll[ISPM_LL_COUNT] : 0;
         st->list_overflow = s->tier == GK_ISPM_TIER_LISTS ? ll[ISPM_LL_OVERFLOW] : 0;
+        ispm_work_counters(s, st->trace_work, st->fragments, st->list_overflow);
         glUnmapBuffer(GL_COPY_READ_BUFFER);
     }
     glBindBuffer(GL_COPY_READ_BUFFER, 0);
@@ -239,6 +242,7 @@ static int render(void *self, const gk_gi_frame *f, gk_err *e)
     if (s->diam <= 0.0f && set_scene(s, f->scene, e))
         return -1;
     read_budget(s, f->budget);
+    ispm_work_frame(s, f);
     /* vpl's passes nest under `gi` next to ours, with their own names */
     if (!s->dbg.caustics_only && s->vpl->render(s->vpl_self, f, e))
         return -1;
@@ -269,14 +273,15 @@ static long memory_bytes(const void *self)
 }
 
 /* gk_gi_method.pass_work (#21): the diffuse indirect part's passes, vpl's gather and VAL maps (their
-   names are vpl's under `gi`), by vpl's own models (app/gi/vpl/vpl_work.c); the caustic passes have
-   none yet. */
+   names are vpl's under `gi`), by vpl's own models (app/gi/vpl/vpl_work.c), then the caustic
+   passes' (ispm_work.c). */
 static int pass_work(void *self, gk_pass_work *out, int max)
 {
     const ispm_state *s = self;
-    if (s->dbg.caustics_only || !s->vpl_self || !s->vpl->pass_work)
-        return 0;
-    return s->vpl->pass_work(s->vpl_self, out, max);
+    int n = 0;
+    if (!s->dbg.caustics_only && s->vpl_self && s->vpl->pass_work)
+        n = s->vpl->pass_work(s->vpl_self, out, max);
+    return n + ispm_caustic_work(s, out + n, max - n);
 }
 
 void ispm_free_gpu(ispm_state *s)
@@ -301,6 +306,7 @@ static void destroy(void *self)
     if (!s)
         return;
     ispm_free_gpu(s);
+    ispm_work_free(s);
     if (s->vpl_self)
         s->vpl->destroy(s->vpl_self);
     if (s->own_cache)

@@ -139,7 +139,7 @@ int ispm_splat(ispm_state *s, const gk_gi_frame *f, gk_err *e)
     glClear(GL_COLOR_BUFFER_BIT);
     if (!s->light.ok)
         return 0;
-    GLuint prog = gk_program_get(s->ctx.programs, "ispm/splat.vert", "ispm/splat.frag", NULL, e);
+    GLuint prog = gk_program_get(s->ctx.programs, "ispm/splat.vert", "ispm/splat.frag", ispm_work_splat_begin(s), e);
     const splat_uniforms *u = prog ? gk_program_uniforms(s->ctx.programs, prog, GK_FIELDS(splat_fields), sizeof *u, e) : NULL;
     if (!u)
         return -1;
@@ -188,6 +188,7 @@ int ispm_splat(ispm_state *s, const gk_gi_frame *f, gk_err *e)
     glBlendEquation(GL_FUNC_ADD);
     glBlendFunc(GL_ONE, GL_ONE);
     glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, s->capacity);
+    ispm_work_splat_end(s);
     glDisable(GL_BLEND);
     glBindVertexArray(0);
     glBindBuffer(GL_ARRAY_BUFFER, 0);

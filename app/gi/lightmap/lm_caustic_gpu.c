@@ -116,10 +116,27 @@ static void tile_rect(const lm_caustic_gpu *g, int tx, int ty, int d, int r[4])
     r[0] = x0, r[1] = y0, r[2] = x1 - x0, r[3] = y1 - y0;
 }
 
+/* Σ over the pixels lo .. lo+n-1 of an axis of size `size` of their neighbours within k on it */
+static double axis_reads(int lo, int n, int size)
+{
+    double sum = 0.0;
+    for (int x = lo; x < lo + n; x++) {
+        int a = x - LM_CAUSTIC_K < 0 ? 0 : x - LM_CAUSTIC_K, b = x + LM_CAUSTIC_K >= size ? size - 1 : x + LM_CAUSTIC_K;
+        sum += b - a + 1;
+    }
+    return sum;
+}
+
+/* the neighbourhood is a product of the two axes' ranges, so its sum over a rect is too */
+double lm_caustic_filter_reads(const int r[4], int w, int h)
+{
+    return axis_reads(r[0], r[2], w) * axis_reads(r[1], r[3], h);
+}
+
 int lm_caustic_gpu_draw(lm_caustic_gpu *g, gk_program_cache *programs, const gk_gbuffer_view *gb, vec3 flux, bool cull,
                         GLuint out_fbo, const gk_pass_ctx *pass, gk_err *e)
 {
-    g->tiles_filtered = 0, g->pixels_filtered = 0;
+    g->tiles_filtered = 0, g->pixels_filtered = 0, g->filter_reads = 0.0;
     if (g->n_points <= 0 || !g->vao)
         return 0;
     GLuint cp = gk_program_get(programs, "lightmap/caustic_count.vert", "lightmap/caustic_count.frag", NULL, e);
@@ -215,6 +232,8 @@ int lm_caustic_gpu_draw(lm_caustic_gpu *g, gk_program_cache *programs, const gk_
         glDrawArrays(GL_TRIANGLES, 0, 3);
         g->tiles_filtered = g->tiles_x * g->tiles_y;
         g->pixels_filtered = (long)g->w * g->h;
+        const int all[4] = {0, 0, g->w, g->h};
+        g->filter_reads = lm_caustic_filter_reads(all, g->w, g->h);
     } else {
         glEnable(GL_SCISSOR_TEST);
         for (int ty = 0; ty < g->tiles_y; ty++)
@@ -227,6 +246,7 @@ int lm_caustic_gpu_draw(lm_caustic_gpu *g, gk_program_cache *programs, const gk_
                 glDrawArrays(GL_TRIANGLES, 0, 3);
                 g->tiles_filtered++;
                 g->pixels_filtered += (long)r[2] * r[3];
+                g->filter_reads += lm_caustic_filter_reads(r, g->w, g->h);
             }
         glDisable(GL_SCISSOR_TEST);
     }

@@ -38,7 +38,13 @@ typedef struct lm_caustic_gpu {
     /* the last draw */
     int tiles_filtered;      /* tiles whose query found a counted photon (all when not culling) */
     long pixels_filtered;    /* pixels the filter ran on */
+    double filter_reads;     /* the count texels they read (#21: lm_caustic_filter_reads) */
 } lm_caustic_gpu;
+
+/* The filter's work (#21, app/gl/pass_work.h): the count texels caustic_filter.frag reads for the
+ * pixels of the rect r (x, y, width, height) on a w x h screen, each pixel its (2k+1)^2 neighbours
+ * that lie on the screen (all of them, before it knows whether any photon is near). */
+double lm_caustic_filter_reads(const int r[4], int w, int h);
 
 /* The photons' world positions (n points, `stride` floats apart, xyz first). */
 int lm_caustic_gpu_upload(lm_caustic_gpu *g, const float *points, int n, int stride, gk_err *e);

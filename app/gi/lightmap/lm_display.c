@@ -299,7 +299,8 @@ int lm_display_draw(lm_state *s, const gk_gi_frame *f, gk_err *e)
 {
     GLuint up = gk_program_get(s->ctx.programs, "lightmap/uv.vert", "lightmap/uv.frag", NULL, e);
     const uv_uniforms *uu = up ? gk_program_uniforms(s->ctx.programs, up, GK_FIELDS(uv_fields), sizeof *uu, e) : NULL;
-    GLuint cp = uu ? gk_program_get(s->ctx.programs, "common/fullscreen.vert", "lightmap/compose.frag", NULL, e) : 0;
+    GLuint cp = uu ? gk_program_get(s->ctx.programs, "common/fullscreen.vert", "lightmap/compose.frag",
+                                    lm_work_compose_begin(s), e) : 0;
     const compose_uniforms *uc =
         cp ? gk_program_uniforms(s->ctx.programs, cp, GK_FIELDS(compose_fields), sizeof *uc, e) : NULL;
     if (!uc || ensure_uv_target(s, f->width, f->height, e))
@@ -356,6 +357,7 @@ int lm_display_draw(lm_state *s, const gk_gi_frame *f, gk_err *e)
     gk_gbuffer_bind(&gb, &uc->gb, 2, 0);
     glBindVertexArray(s->empty_vao); /* the full-screen triangle reads no attribute */
     glDrawArrays(GL_TRIANGLES, 0, 3);
+    lm_work_compose_end(s);
     glBindVertexArray(0);
     glDisable(GL_BLEND);
     glActiveTexture(GL_TEXTURE0);
@@ -390,6 +392,7 @@ int lm_display_caustics(lm_state *s, const gk_gi_frame *f, gk_err *e)
     s->st.caustic_tiles = s->caustic.tiles_filtered;
     s->st.caustic_tiles_total = s->caustic.tiles_x * s->caustic.tiles_y;
     s->st.caustic_pixels = s->caustic.pixels_filtered;
+    lm_work_caustics(s);
     return 0;
 }
 

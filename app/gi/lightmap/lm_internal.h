@@ -3,6 +3,7 @@
 #define GK_LM_INTERNAL_H
 
 #include "gl/gl.h"
+#include "gl/gl_counters.h"
 #include "gl/gl_program.h"
 #include "lightmap.h"
 #include "lm_atlas.h"
@@ -54,6 +55,10 @@ typedef struct lm_state {
     bool caustic_cull;           /* filter only the tiles with photons (false: the whole screen) */
     gk_gl_caps caps;             /* R16F counts need color_buffer_half */
     bool warned_count;           /* lightmap_count=float without R16F targets, logged once */
+    /* the bench's counting frame (lm_work.c) */
+    bool counting;               /* this frame is one (gk_gi_frame.count_work) */
+    gk_counters compose_lookups;
+    double caustic_reads;        /* the caustic filter's count texels in it, -1 when it did not run */
 } lm_state;
 
 /* lm_display.c */
@@ -66,5 +71,15 @@ void lm_display_free(lm_state *s);
 /* Takes the worker's newest caustic photons (lm_worker_take_caustics) and adds the filtered
    caustics to the frame. */
 int lm_display_caustics(lm_state *s, const gk_gi_frame *f, gk_err *e);
+
+/* lm_work.c (#21): each frame's start; around the compose draw (the defines of its counting
+   variant, or NULL); after the caustic filter; the passes' gk_pass_work entries (the method's
+   pass_work); the counters' buffer freed. */
+void lm_work_frame(lm_state *s, const gk_gi_frame *f);
+const char *lm_work_compose_begin(lm_state *s);
+void lm_work_compose_end(lm_state *s);
+void lm_work_caustics(lm_state *s);
+int lm_pass_work(void *self, gk_pass_work *out, int max);
+void lm_work_free(lm_state *s);
 
 #endif

@@ -91,6 +91,7 @@ static void teardown_scene(lm_state *s)
     lm_worker_destroy(s->worker); /* joins its threads before what they read goes */
     s->worker = NULL;
     lm_display_free(s);
+    lm_work_free(s);
     if (s->have_atlas)
         lm_atlas_free(&s->atlas);
     s->have_atlas = false;
@@ -179,6 +180,7 @@ static int render(void *self, const gk_gi_frame *f, gk_err *e)
                             .caustic_photons = (int)gk_knob_number(b, &s->knob[K_CAUSTICS], 10000.0f),
                             .caustic_window = (int)gk_knob_number(b, &s->knob[K_WINDOW], 8.0f)};
     bool lockstep = gk_knob_level(b, &s->knob[K_SYNC], 0) == 1;
+    lm_work_frame(s, f);
     /* the render thread's whole share of the CPU work: hand over the frame's node matrices,
        (lockstep: wait), upload the newest atlas if there is one */
     gk_pass_begin(f->pass, "lightmap_upload");
@@ -251,5 +253,6 @@ const gk_gi_method gk_gi_lightmap = {
     .set_scene = set_scene,
     .render = render,
     .memory_bytes = memory_bytes,
+    .pass_work = lm_pass_work,
     .destroy = destroy,
 };

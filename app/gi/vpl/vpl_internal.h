@@ -83,8 +83,9 @@ void vpl_free_gpu(vpl_state *s);
    (plus pos_tex/nrm_tex for the blur), replacing the interleaved gather. */
 int vpl_gather_multires(vpl_state *s, const gk_gi_frame *f, gk_err *e);
 void vpl_free_multires(vpl_state *s);
-/* vpl_work.c (#21): around the interleaved gather of a counting frame (f->count_work), zero and bind
-   the counters (returns the define the gather adds, "" when not counting) and read them back;
+/* vpl_work.c (#21): around the gather (interleaved, or all the multires levels) of a counting frame
+   (f->count_work), zero and bind the counters (returns the define the gather adds, "" when not
+   counting) and read them back;
    gk_gi_method.pass_work; the counters' buffer freed. */
 const char *vpl_work_begin(vpl_state *s, const gk_gi_frame *f);
 void vpl_work_end(vpl_state *s);

@@ -150,8 +150,8 @@ int vpl_gather_multires(vpl_state *s, const gk_gi_frame *f, gk_err *e)
 {
     if (ensure_levels(s, e) || build_mips(s, f, e))
         return -1;
-    char defs[96];
-    snprintf(defs, sizeof defs, "%s#define MULTIRES 1\n", vpl_vis_define(s->vis));
+    char defs[160];
+    snprintf(defs, sizeof defs, "%s#define MULTIRES 1\n%s", vpl_vis_define(s->vis), vpl_work_begin(s, f));
     GLuint g = gk_program_get(s->ctx.programs, "common/fullscreen.vert", "vpl/gather.frag", defs, e);
     GLuint ip = gk_program_get(s->ctx.programs, "common/fullscreen.vert", "vpl/mr_interp.frag", NULL, e);
     const vpl_gather_uniforms *u = g && ip ? vpl_gather_uniforms_of(s, g, e) : NULL;
@@ -182,6 +182,7 @@ int vpl_gather_multires(vpl_state *s, const gk_gi_frame *f, gk_err *e)
         glUniform1i(u->u_mr_top, top);
         glDrawArrays(GL_TRIANGLES, 0, 3);
     }
+    vpl_work_end(s); /* the levels' gathers counted together: one gi.vpl_gather */
     if (s->dbg.measure)
         s->st.mr_regions = count_regions(s);
     glUseProgram(ip);

@@ -4,8 +4,11 @@
  * table fetches, then by the visibility in use 1 R16F depth texel (exact), 2 RGBA8 + 3 16-bit lookups
  * plus 2 more RGBA8 where the search kernel found blockers (CSSM), 2 moment lookups (VSM), none
  * (vpl_vis=none). That depends on the data (which VPLs face which pixels, where blockers are), so
- * the gather counts it in the bench's counting frame (vpl/gather.frag GATHER_COUNT_FETCHES, the
- * interleaved gather only) and the bench reads the count.
+ * the gather counts it in the bench's counting frame (vpl/gather.frag GATHER_COUNT_FETCHES) and the
+ * bench reads the count. The multi-resolution gather (vpl_gather=multires) runs the same loop over
+ * all n VPLs once per region it shades, at every level: its levels count into the same counters
+ * (tests/gpu/test_vpl_work.c: regions x the per-pixel count of the dense interleaved gather); its
+ * min-max mips, region tests and interpolation are not counted.
  * The VAL maps (vpl_valsm) are rasterized, not fetched: their work is fragments, at the roofline's
  * fill rate. How many the depth draws make depends on where the proxy geometry projects in each
  * paraboloid (and what the negative half-space discards costs as much), so val_depth.frag counts

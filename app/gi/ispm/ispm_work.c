@@ -1,0 +1,72 @@
+/* The caustic passes' work (#21, app/gl/pass_work.h): what ispm_lists, ispm_trace and ispm_splat
+ * need, by the roofline kind each is bound by. All three depend on the data, so they are counted:
+ *   ispm_lists (tier A, ll_build.frag): every frustum fragment takes a node with five storage-buffer
+ *     atomics (the pool's counter, the head exchange, the depth range's min and max, the pixel's
+ *     count); one the full pool drops takes two (the counter and the overflow count). The counter
+ *     buffer already holds both numbers. Tier B's peeled layers are rasterized, not modelled.
+ *   ispm_trace (trace.comp): each march step loads its pixel's list head (a 16-byte Pixel) and each
+ *     node it visits one Node: the shader's own work count (ISPM_PH_STEPS, research L19), one
+ *     storage-buffer load each.
+ *   ispm_splat (splat.frag): fragments, at the roofline's fill rate: each splat quad's fragments,
+ *     discarded or not, counted by a variant (SPLAT_COUNT_FRAGMENTS, one atomic add per fragment) in
+ *     the bench's untimed counting frame. With ispm_radius=density or footprint the pass's time also
+ *     holds those radii's compute passes, which are not counted.
+ * The lists' and the trace's numbers are read back with the frame's other counters, synchronously in
+ * a counting frame (not one frame late). tests/gpu/test_ispm_work.c checks them against a hand count
+ * (the lists) and CPU replays (the march, the quads' rasterization). ispm_photons (the RSM, the mask
+ * pyramid, the emission) and ispm_upsample have no model. */
+#include "ispm_internal.h"
+
+/* ll_build.frag's atomics per fragment kept in the lists and per fragment the full pool dropped */
+enum { LIST_ATOMICS_KEPT = 5, LIST_ATOMICS_DROPPED = 2 };
+
+void ispm_work_frame(ispm_state *s, const gk_gi_frame *f)
+{
+    s->counting = f->count_work;
+    s->work_counted = false;
+    s->splat_fragments.counted = false; /* a frame without splats reports none */
+}
+
+const char *ispm_work_splat_begin(ispm_state *s)
+{
+    s->splat_fragments.n = 1;
+    s->splat_fragments.binding = 6; /* ispm/splat.frag SplatFragments */
+    return gk_counters_begin(&s->splat_fragments, s->counting) ? "#define SPLAT_COUNT_FRAGMENTS 1\n" : NULL;
+}
+
+void ispm_work_splat_end(ispm_state *s) { gk_counters_end(&s->splat_fragments); }
+
+void ispm_work_counters(ispm_state *s, unsigned trace_loads, unsigned list_fragments, unsigned list_dropped)
+{
+    if (!s->counting)
+        return;
+    s->work_trace_loads = trace_loads;
+    s->work_list_fragments = list_fragments;
+    s->work_list_dropped = list_dropped;
+    s->work_counted = true;
+}
+
+double ispm_list_atomics(unsigned fragments, unsigned dropped)
+{
+    unsigned kept = fragments > dropped ? fragments - dropped : 0u;
+    return LIST_ATOMICS_KEPT * (double)kept + LIST_ATOMICS_DROPPED * (double)dropped;
+}
+
+int ispm_caustic_work(const ispm_state *s, gk_pass_work *out, int max)
+{
+    int n = 0;
+    if (!s->work_counted)
+        return 0;
+    double atomics = ispm_list_atomics(s->work_list_fragments, s->work_list_dropped);
+    if (s->tier == GK_ISPM_TIER_LISTS && atomics > 0.0 && n < max)
+        out[n++] = (gk_pass_work){.pass = "gi.ispm_lists", .kind = "ssbo_r32ui_atomic", .fetches = atomics};
+    if (s->work_trace_loads > 0 && n < max)
+        out[n++] = (gk_pass_work){.pass = "gi.ispm_trace", .kind = "ssbo_rgba32f_load",
+                                  .fetches = (double)s->work_trace_loads};
+    if (s->splat_fragments.counted && s->splat_fragments.value[0] > 0.0 && n < max)
+        out[n++] = (gk_pass_work){.pass = "gi.ispm_splat", .kind = "raster_r16f_depth_fill",
+                                  .fetches = s->splat_fragments.value[0]};
+    return n;
+}
+
+void ispm_work_free(ispm_state *s) { gk_counters_free(&s->splat_fragments); }
