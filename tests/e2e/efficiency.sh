@@ -154,6 +154,38 @@ for k in ("tex2d_rgba32f_nearest", "tex2d_rgba8_trilinear", "tex2d_rgba16f_trili
 extra = f[("on", u)] - f.get(("off", u), 0.0)
 assert extra > 0 and extra % 4 == 0, f
 PY
+# lgv's passes (app/gi/lgv/lgv_work.c), the maps rendered each frame (--rebuild-gi), without and with
+# the gathering iterations: the maps' fragments and the lookup's volume reads do not depend on them,
+# the gathering's loads grow by 2 x (4 per neighbour pair + 3 per cell), whose pairs and cells must be
+# those of a grid of at most 32 cells a side (lgv_size=32)
+expect_exit 0 "bench --roofline-csv: lgv with 0 and 2 gathering iterations" sh -c "'$GIKIOSK' bench --scenes glass \
+    --methods lgv --size 80x60 --frames 1 --warmup 1 --sweep 'lgv_iters=0,2' --budget lgv_photons=16384 --rebuild-gi \
+    --roofline-csv '$TMP/roofline.csv' --out '$TMP/l' 2>'$TMP/l.log'"
+check "lgv's efficiency.csv: every number recomputed" \
+    python3 "$TMP/recompute.py" "$TMP/l/bench.csv" "$TMP/l/efficiency.csv" "$TMP/roofline.csv" lgv_iters
+check "lgv: each pass's kinds, the maps and lookup alike in both rows, the gathering's loads a grid's" python3 - "$TMP/l/efficiency.csv" <<'PY'
+import csv, sys
+f = {}
+for e in csv.DictReader(open(sys.argv[1])):
+    f.setdefault((e["pass"], e["kind"]), {})[e["lgv_iters"]] = float(e["fetches"])
+assert {k for k in f if k[0].startswith("gi.")} == {
+    ("gi.lgv_maps", "raster_r16f_depth_fill"), ("gi.lgv_trace", "tex2d_r32ui_nearest"),
+    ("gi.lgv_trace", "ssbo_r32ui_atomic"), ("gi.lgv_gather", "ssbo_rgba32f_load"),
+    ("gi.lgv_sslgv", "ssbo_r32ui_atomic"), ("gi.lgv_sslgv", "ssbo_rgba32f_load"),
+    ("gi.lgv_sslgv", "tex2d_depth32f_nearest"), ("gi.lgv_lookup", "tex3d_rgba16f_trilinear"),
+    ("gi.lgv_lookup", "tex2d_rgba16f_trilinear")}, sorted(f)
+for k in (("gi.lgv_maps", "raster_r16f_depth_fill"), ("gi.lgv_lookup", "tex3d_rgba16f_trilinear")):
+    assert f[k]["0"] == f[k]["2"] > 0, (k, f[k])
+# the lookup: 3 volume reads per shaded pixel, at most every pixel of 80x60
+look = f[("gi.lgv_lookup", "tex3d_rgba16f_trilinear")]["0"]
+assert look % 3 == 0 and look <= 3 * 80 * 60, look
+g = f[("gi.lgv_gather", "ssbo_rgba32f_load")]
+cells = g["0"] / 6                       # the resolve's and the volume's 3 vec4s a cell
+pairs = ((g["2"] - g["0"]) / 2 - 3 * cells) / 4
+grids = [(a, b, c) for a in range(1, 33) for b in range(1, 33) for c in range(1, 33)
+         if a * b * c == cells and 2 * ((a - 1) * b * c + a * (b - 1) * c + a * b * (c - 1)) == pairs]
+assert cells == int(cells) and grids, (g, cells, pairs)
+PY
 printf 'name,format,size,fetches,median_ms,fetches_per_s\ntex3d_rgba16f_trilinear,rgba16f,64,1,1,fast\n' >"$TMP/bad.csv"
 expect_exit 2 "a roofline.csv with a rate that is not a number" "$GIKIOSK" bench --scenes cornell --methods vct \
     --roofline-csv "$TMP/bad.csv" --out "$TMP/bad"

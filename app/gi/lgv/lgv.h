@@ -41,8 +41,11 @@ void gk_lgv_set_debug(void *self, const gk_lgv_debug *d);
 const gk_lgv_stats *gk_lgv_get_stats(void *self);
 /* Traces n rays (origin, direction: 6 floats each) once against the maps of the last frame and
  * writes where each first met the scene (hit xyz and 1, or 0 0 0 0 when it left): 4 floats each.
+ * With fetches, the counting variant (lgv_work.c) says how many distance-map texels the rays read.
  * Returns n or -1. */
-int gk_lgv_probe(void *self, const float *rays, int n, float *hits, gk_err *e);
+int gk_lgv_probe(void *self, const float *rays, int n, float *hits, double *fetches, gk_err *e);
+/* The gathering pass's storage-buffer loads in vec4s (lgv_work.c): LGV dims, iterations, occlusion. */
+double gk_lgv_gather_loads(const int dims[3], int iters, bool occlusion);
 /* Map centres of the current scene (xyz, w) and their count (lattice first, then refractors). */
 int gk_lgv_centres(const void *self, float *out, int cap);
 /* The LGV the last frame's lookup read (the iterations' sum, or the last one), 12 floats per cell (R, G, B x 4 SH; x fastest, dims in

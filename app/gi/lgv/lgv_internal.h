@@ -4,6 +4,7 @@
 #define GK_LGV_INTERNAL_H
 
 #include "gl/gl.h"
+#include "gl/gl_counters.h"
 #include "gl/gl_program.h"
 #include "lgv.h"
 
@@ -81,6 +82,10 @@ typedef struct lgv_state {
     float h;
     GLuint empty_vao;
     unsigned frame_index;
+    /* the bench's counting frame (lgv_work.c): the counting variants' counters */
+    bool count_work;
+    bool maps_ran;               /* this frame rendered the maps */
+    gk_counters trace_work, map_fragments, sslgv_loads, lookup_fetches;
 } lgv_state;
 
 /* lgv_maps.c: lattice placement (set_scene), rendering of the maps and their min mips. */
@@ -97,6 +102,18 @@ int lgv_bind_tracer(lgv_state *s, GLuint prog, gk_err *e);
 int lgv_sslgv(lgv_state *s, const gk_gi_frame *f, gk_err *e);
 int lgv_lookup(lgv_state *s, const gk_gi_frame *f, gk_err *e);
 void lgv_free_gpu(lgv_state *s);
+/* lgv_work.c: the counting variants around the passes (each begin returns the #defines of its
+   shader's variant, "" when not counting), the model the bench reads (gk_gi_method.pass_work). */
+const char *lgv_work_trace_begin(lgv_state *s);
+void lgv_work_trace_end(lgv_state *s);
+const char *lgv_work_maps_begin(lgv_state *s);
+void lgv_work_maps_end(lgv_state *s);
+const char *lgv_work_sslgv_begin(lgv_state *s);
+void lgv_work_sslgv_end(lgv_state *s);
+const char *lgv_work_lookup_begin(lgv_state *s);
+void lgv_work_lookup_end(lgv_state *s);
+int lgv_pass_work(void *self, gk_pass_work *out, int max);
+void lgv_work_free(lgv_state *s);
 /* A shader storage buffer of `bytes` (zeroed when zero is true). */
 GLuint lgv_buffer(GLuint old, long bytes, bool zero);
 
