@@ -186,6 +186,30 @@ grids = [(a, b, c) for a in range(1, 33) for b in range(1, 33) for c in range(1,
          if a * b * c == cells and 2 * ((a - 1) * b * c + a * (b - 1) * c + a * b * (c - 1)) == pairs]
 assert cells == int(cells) and grids, (g, cells, pairs)
 PY
+# volcaustics' passes (app/gi/volcaustics/vc_work.c) at two airlight resolutions: the rays (vc_light)
+# and the lines do not depend on it, the airlight reads each march pixel's G-buffer depth and at most
+# one shadow texel per step (48) and light (glass-fog's 2 spots); each ray generation invocation reads
+# its own light-view texel, the 2 lights' 256^2 at least, and at most 64 march steps, 32 + 10 glass
+# steps and 2 more texels besides
+expect_exit 0 "bench --roofline-csv: volcaustics at two airlight resolutions" sh -c "'$GIKIOSK' bench \
+    --scenes glass-fog --methods volcaustics --size 80x60 --frames 1 --warmup 1 --sweep 'vc_march=0.25,0.5' \
+    --roofline-csv '$TMP/roofline.csv' --out '$TMP/c' 2>'$TMP/c.log'"
+check "volcaustics' efficiency.csv: every number recomputed" \
+    python3 "$TMP/recompute.py" "$TMP/c/bench.csv" "$TMP/c/efficiency.csv" "$TMP/roofline.csv" vc_march
+check "volcaustics: the rays and lines alike at both airlight resolutions, each count within its bounds" \
+    python3 - "$TMP/c/efficiency.csv" <<'PY'
+import csv, sys
+f = {}
+for e in csv.DictReader(open(sys.argv[1])):
+    f.setdefault((e["pass"], e["kind"]), {})[e["vc_march"]] = float(e["fetches"])
+rays, lines = f[("gi.vc_light", "tex2d_depth32f_nearest")], f[("gi.vc_lines", "raster_r16f_depth_fill")]
+air = f[("gi.vc_airlight", "tex2d_depth32f_nearest")]
+assert rays["0.25"] == rays["0.5"] and lines["0.25"] == lines["0.5"] > 0, (rays, lines)
+texels = 2 * 256 * 256
+assert texels <= rays["0.25"] <= texels * (1 + 64 + 32 + 10 + 2), rays
+for march, (w, h) in (("0.25", (20, 15)), ("0.5", (40, 30))):
+    assert w * h < air[march] <= w * h * (1 + 48 * 2), (march, air)
+PY
 printf 'name,format,size,fetches,median_ms,fetches_per_s\ntex3d_rgba16f_trilinear,rgba16f,64,1,1,fast\n' >"$TMP/bad.csv"
 expect_exit 2 "a roofline.csv with a rate that is not a number" "$GIKIOSK" bench --scenes cornell --methods vct \
     --roofline-csv "$TMP/bad.csv" --out "$TMP/bad"

@@ -3,6 +3,7 @@
 #define GK_VC_INTERNAL_H
 
 #include "gl/gl.h"
+#include "gl/gl_counters.h"
 #include "gl/gl_program.h"
 #include "gl/gl_target.h"
 #include "volcaustics.h"
@@ -60,6 +61,9 @@ typedef struct vc_state {
     gk_target air, caustic, surface;   /* surface: the surface caustics' irradiance (vc_surface.c) */
     GLenum caustic_fmt;      /* RGBA32F where it can be blended, else RGBA16F (vc_method.c) */
     GLuint empty_vao;
+    /* the bench's counting frame (vc_work.c): the counting variants' counters */
+    bool count_work;
+    gk_counters raygen_fetches, line_fragments, air_fetches;
 } vc_state;
 
 /* vc_light.c: frames each caustic light onto the specular objects and renders passes 1a, 1b and 2
@@ -80,5 +84,16 @@ int vc_composite(vc_state *s, const gk_gi_frame *f, bool have_lines, bool have_s
 /* 1 / integral over [-r_f, r_f] of the seed's Gaussian filter (lines.frag), for r_f = 1. */
 double vc_filter_integral_unit(void);
 void vc_free_gpu(vc_state *s);
+/* vc_work.c: the counting variants around the passes (each begin returns the #defines of its
+   shader's variant, "" when not counting) and the work the bench reads (gk_gi_method.pass_work). */
+void vc_work_frame(vc_state *s, const gk_gi_frame *f);
+const char *vc_work_raygen_begin(vc_state *s);
+void vc_work_raygen_end(vc_state *s);
+const char *vc_work_lines_begin(vc_state *s);
+void vc_work_lines_end(vc_state *s);
+const char *vc_work_airlight_begin(vc_state *s);
+void vc_work_airlight_end(vc_state *s);
+int vc_pass_work(void *self, gk_pass_work *out, int max);
+void vc_work_free(vc_state *s);
 
 #endif
