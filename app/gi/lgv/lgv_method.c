@@ -145,6 +145,8 @@ static int render(void *self, const gk_gi_frame *f, gk_err *e)
     read_budget(s, f->budget);
     s->count_work = f->count_work; /* a bench counting frame (lgv_work.c) */
     s->maps_ran = false;
+    /* a pass that does not run this frame (no photons: no lamp) reports no count of an earlier one */
+    s->trace_work.counted = s->map_fragments.counted = s->sslgv_loads.counted = s->lookup_fetches.counted = false;
     int per_axis = s->n_maps_wanted >= 64 ? 4 : (s->n_maps_wanted >= 27 ? 3 : 2);
     int rc = 0;
     gk_pass_begin(f->pass, "lgv_maps");
