@@ -154,20 +154,35 @@ for k in ("tex2d_rgba32f_nearest", "tex2d_rgba8_trilinear", "tex2d_rgba16f_trili
 extra = f[("on", u)] - f.get(("off", u), 0.0)
 assert extra > 0 and extra % 4 == 0, f
 PY
+# A bench run of two rows told apart by KNOB (argv: DIR KNOB WHAT BENCH-ARGS...), each number of its
+# efficiency.csv recomputed; $TMP/fetches.py reads its fetches by (pass, kind) and row for the checks.
+cat >"$TMP/fetches.py" <<'PY'
+import csv
+def by_row(path, knob):
+    f = {}
+    for e in csv.DictReader(open(path)):
+        f.setdefault((e["pass"], e["kind"]), {})[e[knob]] = float(e["fetches"])
+    return f
+PY
+two_rows() {
+    _dir=$1 _knob=$2 _what=$3
+    shift 3
+    expect_exit 0 "bench --roofline-csv: $_what" sh -c "'$GIKIOSK' bench $* --size 80x60 --frames 1 --warmup 1 \
+        --roofline-csv '$TMP/roofline.csv' --out '$TMP/$_dir' 2>'$TMP/$_dir.log'"
+    check "$_what: every number of efficiency.csv recomputed" \
+        python3 "$TMP/recompute.py" "$TMP/$_dir/bench.csv" "$TMP/$_dir/efficiency.csv" "$TMP/roofline.csv" "$_knob"
+}
 # lgv's passes (app/gi/lgv/lgv_work.c), the maps rendered each frame (--rebuild-gi), without and with
 # the gathering iterations: the maps' fragments and the lookup's volume reads do not depend on them,
 # the gathering's loads grow by 2 x (4 per neighbour pair + 3 per cell), whose pairs and cells must be
 # those of a grid of at most 32 cells a side (lgv_size=32)
-expect_exit 0 "bench --roofline-csv: lgv with 0 and 2 gathering iterations" sh -c "'$GIKIOSK' bench --scenes glass \
-    --methods lgv --size 80x60 --frames 1 --warmup 1 --sweep 'lgv_iters=0,2' --budget lgv_photons=16384 --rebuild-gi \
-    --roofline-csv '$TMP/roofline.csv' --out '$TMP/l' 2>'$TMP/l.log'"
-check "lgv's efficiency.csv: every number recomputed" \
-    python3 "$TMP/recompute.py" "$TMP/l/bench.csv" "$TMP/l/efficiency.csv" "$TMP/roofline.csv" lgv_iters
-check "lgv: each pass's kinds, the maps and lookup alike in both rows, the gathering's loads a grid's" python3 - "$TMP/l/efficiency.csv" <<'PY'
-import csv, sys
-f = {}
-for e in csv.DictReader(open(sys.argv[1])):
-    f.setdefault((e["pass"], e["kind"]), {})[e["lgv_iters"]] = float(e["fetches"])
+two_rows l lgv_iters "lgv with 0 and 2 gathering iterations" --scenes glass --methods lgv \
+    --sweep "'lgv_iters=0,2'" --budget lgv_photons=16384 --rebuild-gi
+check "lgv: each pass's kinds, the maps and lookup alike in both rows, the gathering's loads a grid's" \
+    env PYTHONPATH="$TMP" python3 - "$TMP/l/efficiency.csv" <<'PY'
+import sys
+from fetches import by_row
+f = by_row(sys.argv[1], "lgv_iters")
 assert {k for k in f if k[0].startswith("gi.")} == {
     ("gi.lgv_maps", "raster_r16f_depth_fill"), ("gi.lgv_trace", "tex2d_r32ui_nearest"),
     ("gi.lgv_trace", "ssbo_r32ui_atomic"), ("gi.lgv_gather", "ssbo_rgba32f_load"),
@@ -191,17 +206,13 @@ PY
 # one shadow texel per step (48) and light (glass-fog's 2 spots); each ray generation invocation reads
 # its own light-view texel, the 2 lights' 256^2 at least, and at most 64 march steps, 32 + 10 glass
 # steps and 2 more texels besides
-expect_exit 0 "bench --roofline-csv: volcaustics at two airlight resolutions" sh -c "'$GIKIOSK' bench \
-    --scenes glass-fog --methods volcaustics --size 80x60 --frames 1 --warmup 1 --sweep 'vc_march=0.25,0.5' \
-    --roofline-csv '$TMP/roofline.csv' --out '$TMP/c' 2>'$TMP/c.log'"
-check "volcaustics' efficiency.csv: every number recomputed" \
-    python3 "$TMP/recompute.py" "$TMP/c/bench.csv" "$TMP/c/efficiency.csv" "$TMP/roofline.csv" vc_march
+two_rows c vc_march "volcaustics at two airlight resolutions" --scenes glass-fog --methods volcaustics \
+    --sweep "'vc_march=0.25,0.5'"
 check "volcaustics: the rays and lines alike at both airlight resolutions, each count within its bounds" \
-    python3 - "$TMP/c/efficiency.csv" <<'PY'
-import csv, sys
-f = {}
-for e in csv.DictReader(open(sys.argv[1])):
-    f.setdefault((e["pass"], e["kind"]), {})[e["vc_march"]] = float(e["fetches"])
+    env PYTHONPATH="$TMP" python3 - "$TMP/c/efficiency.csv" <<'PY'
+import sys
+from fetches import by_row
+f = by_row(sys.argv[1], "vc_march")
 rays, lines = f[("gi.vc_light", "tex2d_depth32f_nearest")], f[("gi.vc_lines", "raster_r16f_depth_fill")]
 air = f[("gi.vc_airlight", "tex2d_depth32f_nearest")]
 assert rays["0.25"] == rays["0.5"] and lines["0.25"] == lines["0.5"] > 0, (rays, lines)
