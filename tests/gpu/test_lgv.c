@@ -11,6 +11,8 @@
  *             the gathering iterations (eq. 6);
  *   item 6    the LGV's temporal noise with new photons every frame; the same photons twice: identical;
  *   G         eq. (6)'s fuzzy occlusion: on light-leak the gathering carries no flux through the wall;
+ *   work      each pass's work for the bench's efficiency (lgv_work.c) against hand counts on the
+ *             furnace box, and the injection's atomics against the injected photons on glass;
  *   sweep     (GK_LGV_SWEEP=1, alone) iterations x LGV sizes against the indirect references (README);
  *   Fig. 9's cause (GK_LGV_FIG9=1, alone) the error per LGV size at 1M, 4M and 16M photons;
  * GK_LGV_ONLY=NAME runs one test; GK_LGV_EVENTS, GK_LGV_OFFSET, GK_LGV_SEEING, GK_LGV_BOUNDS,
