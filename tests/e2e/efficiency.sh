@@ -201,21 +201,23 @@ grids = [(a, b, c) for a in range(1, 33) for b in range(1, 33) for c in range(1,
          if a * b * c == cells and 2 * ((a - 1) * b * c + a * (b - 1) * c + a * b * (c - 1)) == pairs]
 assert cells == int(cells) and grids, (g, cells, pairs)
 PY
-# volcaustics' passes (app/gi/volcaustics/vc_work.c) at two airlight resolutions: the rays (vc_light)
-# and the lines do not depend on it, the airlight reads each march pixel's G-buffer depth and at most
+# volcaustics' passes (app/gi/volcaustics/vc_work.c) at two airlight resolutions: the rays (vc_light),
+# the lines and the surface splats do not depend on it, the airlight reads each march pixel's G-buffer depth and at most
 # one shadow texel per step (48) and light (glass-fog's 2 spots); each ray generation invocation reads
 # its own light-view texel, the 2 lights' 256^2 at least, and at most 64 march steps, 32 + 10 glass
 # steps and 2 more texels besides
 two_rows c vc_march "volcaustics at two airlight resolutions" --scenes glass-fog --methods volcaustics \
     --sweep "'vc_march=0.25,0.5'"
-check "volcaustics: the rays and lines alike at both airlight resolutions, each count within its bounds" \
+check "volcaustics: the rays, lines and splats alike at both airlight resolutions, each count within its bounds" \
     env PYTHONPATH="$TMP" python3 - "$TMP/c/efficiency.csv" <<'PY'
 import sys
 from fetches import by_row
 f = by_row(sys.argv[1], "vc_march")
 rays, lines = f[("gi.vc_light", "tex2d_depth32f_nearest")], f[("gi.vc_lines", "raster_r16f_depth_fill")]
 air = f[("gi.vc_airlight", "tex2d_depth32f_nearest")]
-assert rays["0.25"] == rays["0.5"] and lines["0.25"] == lines["0.5"] > 0, (rays, lines)
+splats = f[("gi.vc_surface", "raster_r16f_depth_fill")]
+assert rays["0.25"] == rays["0.5"] and lines["0.25"] == lines["0.5"] > 0 and splats["0.25"] == splats["0.5"] > 0, \
+    (rays, lines, splats)
 texels = 2 * 256 * 256
 assert texels <= rays["0.25"] <= texels * (1 + 64 + 32 + 10 + 2), rays
 for march, (w, h) in (("0.25", (20, 15)), ("0.5", (40, 30))):

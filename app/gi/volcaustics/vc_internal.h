@@ -63,7 +63,7 @@ typedef struct vc_state {
     GLuint empty_vao;
     /* the bench's counting frame (vc_work.c): the counting variants' counters */
     bool count_work;
-    gk_counters raygen_fetches, line_fragments, air_fetches;
+    gk_counters raygen_fetches, line_fragments, surface_fragments, air_fetches;
 } vc_state;
 
 /* vc_light.c: frames each caustic light onto the specular objects and renders passes 1a, 1b and 2
@@ -91,6 +91,8 @@ const char *vc_work_raygen_begin(vc_state *s);
 void vc_work_raygen_end(vc_state *s);
 const char *vc_work_lines_begin(vc_state *s);
 void vc_work_lines_end(vc_state *s);
+const char *vc_work_surface_begin(vc_state *s);
+void vc_work_surface_end(vc_state *s);
 const char *vc_work_airlight_begin(vc_state *s);
 void vc_work_airlight_end(vc_state *s);
 int vc_pass_work(void *self, gk_pass_work *out, int max);

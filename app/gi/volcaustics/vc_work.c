@@ -6,11 +6,12 @@
  *     counts the reads (RAYGEN_COUNT_FETCHES) in the bench's untimed counting frame, as depth
  *     texels; its normal and colour reads (RGBA8) and the light views' rasterization are not counted.
  *   vc_lines is rasterized: its work is the lines' fragments (each filters its line's samples
- *     onto the view ray), at the fill rate, counted by lines.frag's variant (LINES_COUNT_FRAGMENTS).
+ *     onto the view ray), at the fill rate, counted by lines.frag's variant (LINES_COUNT_FRAGMENTS);
+ *     so is vc_surface, the rays' ends splatted as point sprites (SURFACE_COUNT_FRAGMENTS).
  *   vc_airlight reads the G-buffer's depth once per march pixel and, per step and light whose cone
  *     holds the step's point, that light's shadow map where the point projects into it: counted by
  *     airlight.frag's variant (AIRLIGHT_COUNT_FETCHES), as depth texels.
- * vc_surface (point splats) and vc_composite are not modelled. tests/e2e/efficiency.sh checks the
+ * vc_composite is not modelled. tests/e2e/efficiency.sh checks the
  * counts against each other (each pass's count unchanged by another pass's knob) and against their
  * ceilings from the parameters. */
 #include "vc_internal.h"
@@ -26,7 +27,8 @@ void vc_work_frame(vc_state *s, const gk_gi_frame *f)
 {
     s->count_work = f->count_work;
     /* a pass that does not run this frame (no caustic light, no lines) reports no earlier count */
-    s->raygen_fetches.counted = s->line_fragments.counted = s->air_fetches.counted = false;
+    s->raygen_fetches.counted = s->line_fragments.counted = s->surface_fragments.counted = false;
+    s->air_fetches.counted = false;
 }
 
 const char *vc_work_raygen_begin(vc_state *s)
@@ -43,6 +45,13 @@ const char *vc_work_lines_begin(vc_state *s)
 
 void vc_work_lines_end(vc_state *s) { gk_counters_end(&s->line_fragments); }
 
+const char *vc_work_surface_begin(vc_state *s)
+{
+    return begin(&s->surface_fragments, s->count_work, "#define SURFACE_COUNT_FRAGMENTS 1\n");
+}
+
+void vc_work_surface_end(vc_state *s) { gk_counters_end(&s->surface_fragments); }
+
 const char *vc_work_airlight_begin(vc_state *s)
 {
     return begin(&s->air_fetches, s->count_work, "#define AIRLIGHT_COUNT_FETCHES 1\n");
@@ -56,13 +65,14 @@ int vc_pass_work(void *self, gk_pass_work *out, int max)
     const struct {
         const gk_counters *c;
         const char *pass, *kind;
-    } rows[3] = {
+    } rows[4] = {
         {&s->raygen_fetches, "gi.vc_light", "tex2d_depth32f_nearest"},
         {&s->line_fragments, "gi.vc_lines", "raster_r16f_depth_fill"},
+        {&s->surface_fragments, "gi.vc_surface", "raster_r16f_depth_fill"},
         {&s->air_fetches, "gi.vc_airlight", "tex2d_depth32f_nearest"},
     };
     int n = 0;
-    for (int i = 0; i < 3; i++)
+    for (int i = 0; i < 4; i++)
         if (rows[i].c->counted && rows[i].c->value[0] > 0.0 && n < max)
             out[n++] = (gk_pass_work){.pass = rows[i].pass, .kind = rows[i].kind, .fetches = rows[i].c->value[0]};
     return n;
@@ -72,5 +82,6 @@ void vc_work_free(vc_state *s)
 {
     gk_counters_free(&s->raygen_fetches);
     gk_counters_free(&s->line_fragments);
+    gk_counters_free(&s->surface_fragments);
     gk_counters_free(&s->air_fetches);
 }
