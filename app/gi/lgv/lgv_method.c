@@ -146,7 +146,8 @@ static int render(void *self, const gk_gi_frame *f, gk_err *e)
     s->count_work = f->count_work; /* a bench counting frame (lgv_work.c) */
     s->maps_ran = false;
     /* a pass that does not run this frame (no photons: no lamp) reports no count of an earlier one */
-    s->trace_work.counted = s->map_fragments.counted = s->sslgv_loads.counted = s->lookup_fetches.counted = false;
+    for (int k = 0; k < LGV_WORK_N; k++)
+        s->work[k].counted = false;
     int per_axis = s->n_maps_wanted >= 64 ? 4 : (s->n_maps_wanted >= 27 ? 3 : 2);
     int rc = 0;
     gk_pass_begin(f->pass, "lgv_maps");
@@ -256,8 +257,8 @@ int gk_lgv_probe(void *self, const float *rays, int n, float *hits, double *fetc
     if (!s->maps_valid)
         return gk_fail(e, GK_ERUNTIME, "lgv probe: no maps yet (render a frame first)");
     s->count_work = fetches != NULL;
-    const char *defines = lgv_work_trace_begin(s);
-    if (fetches && !s->trace_work.counting)
+    const char *defines = lgv_work_begin(s, LGV_WORK_TRACE);
+    if (fetches && !s->work[LGV_WORK_TRACE].counting)
         return gk_fail(e, GK_ERUNTIME, "lgv probe: cannot count fetches here (no storage buffers to count into)");
     GLuint prog = gk_program_get_compute(s->ctx.programs, "lgv/trace.comp", defines, e);
     const probe_uniforms *u = prog ? gk_program_uniforms(s->ctx.programs, prog, GK_FIELDS(probe_fields), sizeof *u, e) : NULL;
@@ -283,9 +284,9 @@ int gk_lgv_probe(void *self, const float *rays, int n, float *hits, double *fetc
     glUniform1i(u->u_probe, 1);
     glUniform1i(u->u_photons, n);
     glDispatchCompute((GLuint)(n + 63) / 64, 1, 1);
-    lgv_work_trace_end(s);
+    lgv_work_end(s, LGV_WORK_TRACE);
     if (fetches)
-        *fetches = s->trace_work.value[0];
+        *fetches = s->work[LGV_WORK_TRACE].value[0];
     s->count_work = false;
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     glBindBuffer(GL_COPY_READ_BUFFER, s->probe_ssbo);

@@ -39,40 +39,27 @@ double gk_lgv_gather_loads(const int dims[3], int iters, bool occlusion)
     return 3.0 * cells + iters * per_iter + 3.0 * cells;
 }
 
-static const char *begin(gk_counters *c, int n, GLuint binding, bool on, const char *define)
+/* Per LGV_WORK_* pass: its counters, their buffer block's binding in the shader, the variant. */
+static const struct {
+    int n;
+    GLuint binding;
+    const char *define;
+} variants[LGV_WORK_N] = {
+    [LGV_WORK_TRACE] = {2, 5, "#define TRACE_COUNT_FETCHES 1\n"},    /* trace.comp TraceWork */
+    [LGV_WORK_MAPS] = {1, 6, "#define MAPS_COUNT_FRAGMENTS 1\n"},    /* cubemap.frag MapFragments */
+    [LGV_WORK_SSLGV] = {2, 11, "#define SSLGV_COUNT_LOADS 1\n"},     /* sslgv_gather.comp SslgvLoads */
+    [LGV_WORK_LOOKUP] = {2, 6, "#define LOOKUP_COUNT_FETCHES 1\n"},  /* lookup.frag LookupFetches */
+};
+
+const char *lgv_work_begin(lgv_state *s, int pass)
 {
-    c->n = n;
-    c->binding = binding;
-    return gk_counters_begin(c, on) ? define : "";
+    gk_counters *c = &s->work[pass];
+    c->n = variants[pass].n;
+    c->binding = variants[pass].binding;
+    return gk_counters_begin(c, s->count_work) ? variants[pass].define : "";
 }
 
-const char *lgv_work_trace_begin(lgv_state *s)
-{
-    return begin(&s->trace_work, 2, 5, s->count_work, "#define TRACE_COUNT_FETCHES 1\n"); /* trace.comp TraceWork */
-}
-
-void lgv_work_trace_end(lgv_state *s) { gk_counters_end(&s->trace_work); }
-
-const char *lgv_work_maps_begin(lgv_state *s)
-{
-    return begin(&s->map_fragments, 1, 6, s->count_work, "#define MAPS_COUNT_FRAGMENTS 1\n"); /* cubemap.frag */
-}
-
-void lgv_work_maps_end(lgv_state *s) { gk_counters_end(&s->map_fragments); }
-
-const char *lgv_work_sslgv_begin(lgv_state *s)
-{
-    return begin(&s->sslgv_loads, 2, 11, s->count_work, "#define SSLGV_COUNT_LOADS 1\n"); /* sslgv_gather.comp */
-}
-
-void lgv_work_sslgv_end(lgv_state *s) { gk_counters_end(&s->sslgv_loads); }
-
-const char *lgv_work_lookup_begin(lgv_state *s)
-{
-    return begin(&s->lookup_fetches, 2, 6, s->count_work, "#define LOOKUP_COUNT_FETCHES 1\n"); /* lookup.frag */
-}
-
-void lgv_work_lookup_end(lgv_state *s) { gk_counters_end(&s->lookup_fetches); }
+void lgv_work_end(lgv_state *s, int pass) { gk_counters_end(&s->work[pass]); }
 
 static void add(gk_pass_work *out, int *n, int max, const char *pass, const char *kind, double fetches)
 {
@@ -84,32 +71,32 @@ int lgv_pass_work(void *self, gk_pass_work *out, int max)
 {
     lgv_state *s = self;
     const gk_lgv_stats *st = gk_lgv_get_stats(s);
+    const gk_counters *trace = &s->work[LGV_WORK_TRACE], *maps = &s->work[LGV_WORK_MAPS];
+    const gk_counters *sslgv = &s->work[LGV_WORK_SSLGV], *lookup = &s->work[LGV_WORK_LOOKUP];
     int n = 0;
-    if (s->maps_ran && s->map_fragments.counted)
-        add(out, &n, max, "gi.lgv_maps", "raster_r16f_depth_fill", s->map_fragments.value[0]);
-    if (s->trace_work.counted)
-        add(out, &n, max, "gi.lgv_trace", "tex2d_r32ui_nearest", s->trace_work.value[0]);
-    if (s->trace_work.counted)
-        add(out, &n, max, "gi.lgv_trace", "ssbo_r32ui_atomic", s->trace_work.value[1] + (double)st->caustic);
+    if (s->maps_ran && maps->counted)
+        add(out, &n, max, "gi.lgv_maps", "raster_r16f_depth_fill", maps->value[0]);
+    if (trace->counted) {
+        add(out, &n, max, "gi.lgv_trace", "tex2d_r32ui_nearest", trace->value[0]);
+        add(out, &n, max, "gi.lgv_trace", "ssbo_r32ui_atomic", trace->value[1] + (double)st->caustic);
+    }
     if (s->lgv_cells > 0)
         add(out, &n, max, "gi.lgv_gather", "ssbo_rgba32f_load",
             gk_lgv_gather_loads(s->dims, s->iters, s->iters > 0 && s->dbg.occlusion));
     add(out, &n, max, "gi.lgv_sslgv", "ssbo_r32ui_atomic", 12.0 * st->sslgv_accepted);
-    if (s->sslgv_loads.counted) {
-        add(out, &n, max, "gi.lgv_sslgv", "ssbo_rgba32f_load", s->sslgv_loads.value[0]);
-        add(out, &n, max, "gi.lgv_sslgv", "tex2d_depth32f_nearest", s->sslgv_loads.value[1]);
+    if (sslgv->counted) {
+        add(out, &n, max, "gi.lgv_sslgv", "ssbo_rgba32f_load", sslgv->value[0]);
+        add(out, &n, max, "gi.lgv_sslgv", "tex2d_depth32f_nearest", sslgv->value[1]);
     }
-    if (s->lookup_fetches.counted) {
-        add(out, &n, max, "gi.lgv_lookup", "tex3d_rgba16f_trilinear", s->lookup_fetches.value[0]);
-        add(out, &n, max, "gi.lgv_lookup", "tex2d_rgba16f_trilinear", s->lookup_fetches.value[1]);
+    if (lookup->counted) {
+        add(out, &n, max, "gi.lgv_lookup", "tex3d_rgba16f_trilinear", lookup->value[0]);
+        add(out, &n, max, "gi.lgv_lookup", "tex2d_rgba16f_trilinear", lookup->value[1]);
     }
     return n;
 }
 
 void lgv_work_free(lgv_state *s)
 {
-    gk_counters_free(&s->trace_work);
-    gk_counters_free(&s->map_fragments);
-    gk_counters_free(&s->sslgv_loads);
-    gk_counters_free(&s->lookup_fetches);
+    for (int k = 0; k < LGV_WORK_N; k++)
+        gk_counters_free(&s->work[k]);
 }

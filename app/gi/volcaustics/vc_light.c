@@ -229,7 +229,7 @@ int vc_light_rays(vc_state *s, const gk_gi_frame *f, int *n_lines, gk_err *e)
     if (f->scene_changed)
         vc_specular_bounds(s, f->scene);
     s->st.caustic_lights = 0;
-    const char *raygen_defines = vc_work_raygen_begin(s); /* one count over every light's rays */
+    const char *raygen_defines = vc_work_begin(s, VC_WORK_RAYGEN); /* one count over every light's rays */
     for (int i = 0; i < f->n_lights && *n_lines < s->max_lights && *n_lines < VC_MAX_LIGHTS; i++) {
         vc_light *L = &s->light[*n_lines];
         frame_light(s, f, i, L);
@@ -243,7 +243,7 @@ int vc_light_rays(vc_state *s, const gk_gi_frame *f, int *n_lines, gk_err *e)
             return -1;
         ++*n_lines;
     }
-    vc_work_raygen_end(s);
+    vc_work_end(s, VC_WORK_RAYGEN);
     s->st.caustic_lights = *n_lines;
     s->st.light_ok = *n_lines > 0;
     return 0;

@@ -16,72 +16,46 @@
  * ceilings from the parameters. */
 #include "vc_internal.h"
 
-static const char *begin(gk_counters *c, bool on, const char *define)
-{
-    c->n = 1;
-    c->binding = 6; /* the shaders' counting blocks */
-    return gk_counters_begin(c, on) ? define : "";
-}
+/* Per VC_WORK_* pass: its shader variant (one counter at binding 6), its pass and its kind. */
+static const struct {
+    const char *define, *pass, *kind;
+} variants[VC_WORK_N] = {
+    [VC_WORK_RAYGEN] = {"#define RAYGEN_COUNT_FETCHES 1\n", "gi.vc_light", "tex2d_depth32f_nearest"},
+    [VC_WORK_LINES] = {"#define LINES_COUNT_FRAGMENTS 1\n", "gi.vc_lines", "raster_r16f_depth_fill"},
+    [VC_WORK_SURFACE] = {"#define SURFACE_COUNT_FRAGMENTS 1\n", "gi.vc_surface", "raster_r16f_depth_fill"},
+    [VC_WORK_AIRLIGHT] = {"#define AIRLIGHT_COUNT_FETCHES 1\n", "gi.vc_airlight", "tex2d_depth32f_nearest"},
+};
 
 void vc_work_frame(vc_state *s, const gk_gi_frame *f)
 {
     s->count_work = f->count_work;
     /* a pass that does not run this frame (no caustic light, no lines) reports no earlier count */
-    s->raygen_fetches.counted = s->line_fragments.counted = s->surface_fragments.counted = false;
-    s->air_fetches.counted = false;
+    for (int k = 0; k < VC_WORK_N; k++)
+        s->work[k].counted = false;
 }
 
-const char *vc_work_raygen_begin(vc_state *s)
+const char *vc_work_begin(vc_state *s, int pass)
 {
-    return begin(&s->raygen_fetches, s->count_work, "#define RAYGEN_COUNT_FETCHES 1\n");
+    gk_counters *c = &s->work[pass];
+    c->n = 1;
+    c->binding = 6; /* the shaders' counting blocks */
+    return gk_counters_begin(c, s->count_work) ? variants[pass].define : "";
 }
 
-void vc_work_raygen_end(vc_state *s) { gk_counters_end(&s->raygen_fetches); }
-
-const char *vc_work_lines_begin(vc_state *s)
-{
-    return begin(&s->line_fragments, s->count_work, "#define LINES_COUNT_FRAGMENTS 1\n");
-}
-
-void vc_work_lines_end(vc_state *s) { gk_counters_end(&s->line_fragments); }
-
-const char *vc_work_surface_begin(vc_state *s)
-{
-    return begin(&s->surface_fragments, s->count_work, "#define SURFACE_COUNT_FRAGMENTS 1\n");
-}
-
-void vc_work_surface_end(vc_state *s) { gk_counters_end(&s->surface_fragments); }
-
-const char *vc_work_airlight_begin(vc_state *s)
-{
-    return begin(&s->air_fetches, s->count_work, "#define AIRLIGHT_COUNT_FETCHES 1\n");
-}
-
-void vc_work_airlight_end(vc_state *s) { gk_counters_end(&s->air_fetches); }
+void vc_work_end(vc_state *s, int pass) { gk_counters_end(&s->work[pass]); }
 
 int vc_pass_work(void *self, gk_pass_work *out, int max)
 {
     const vc_state *s = self;
-    const struct {
-        const gk_counters *c;
-        const char *pass, *kind;
-    } rows[4] = {
-        {&s->raygen_fetches, "gi.vc_light", "tex2d_depth32f_nearest"},
-        {&s->line_fragments, "gi.vc_lines", "raster_r16f_depth_fill"},
-        {&s->surface_fragments, "gi.vc_surface", "raster_r16f_depth_fill"},
-        {&s->air_fetches, "gi.vc_airlight", "tex2d_depth32f_nearest"},
-    };
     int n = 0;
-    for (int i = 0; i < 4; i++)
-        if (rows[i].c->counted && rows[i].c->value[0] > 0.0 && n < max)
-            out[n++] = (gk_pass_work){.pass = rows[i].pass, .kind = rows[i].kind, .fetches = rows[i].c->value[0]};
+    for (int k = 0; k < VC_WORK_N; k++)
+        if (s->work[k].counted && s->work[k].value[0] > 0.0 && n < max)
+            out[n++] = (gk_pass_work){.pass = variants[k].pass, .kind = variants[k].kind, .fetches = s->work[k].value[0]};
     return n;
 }
 
 void vc_work_free(vc_state *s)
 {
-    gk_counters_free(&s->raygen_fetches);
-    gk_counters_free(&s->line_fragments);
-    gk_counters_free(&s->surface_fragments);
-    gk_counters_free(&s->air_fetches);
+    for (int k = 0; k < VC_WORK_N; k++)
+        gk_counters_free(&s->work[k]);
 }
