@@ -55,4 +55,15 @@ long gk_lgv_read_lgv(void *self, float *out, long cap, gk_err *e);
  * (projected areas / l^2 along x, y, z) per LGV cell corner, dims = the LGV's + 1; the count or -1. */
 long gk_lgv_read_geometry(void *self, float *out, long cap, int dims[3], gk_err *e);
 
+/* The distance maps and what the tracer reads them with (tests replay the tracer on the CPU). */
+typedef struct gk_lgv_maps_info {
+    int res, levels, layers, n_maps; /* level 0's side, the min mips, 6 per map (lattice, then refractors) */
+    vec3 bmin, bmax;                 /* the scene's bounds as the tracer pads them */
+    float itp_eps;                   /* the partition stops when its ITP moves less (m) */
+    int q, loops, secant_steps;      /* the partition's intervals and loops, the secant's steps */
+} gk_lgv_maps_info;
+/* Every level of every layer of the distance maps (R32UI float bits), level by level, each layer's
+   rows from y = 0, into out (cap texels); the count or -1. */
+long gk_lgv_read_maps(void *self, uint32_t *out, long cap, gk_lgv_maps_info *info, gk_err *e);
+
 #endif
