@@ -1,8 +1,16 @@
 // One texel of a distance cube-map (lgv/common.glsl): distance from the centre, normal, base colour
 // and material code. u_glass = (ior, transmission) per material (render_gi.c's draw_scene sets it
 // when the program declares it), u_refractor = the refractor map of the mesh being drawn (-1: none).
+// MAPS_COUNT_FRAGMENTS: the bench's counting variant (app/gi/lgv/lgv_work.c), one atomic add per
+// fragment shaded, discarded or not (fragment-stage storage buffers capability-checked by the
+// caller). Never in the kiosk's frames.
+// @variant -
+// @variant MAPS_COUNT_FRAGMENTS
 precision highp float;
 precision highp int;
+#ifdef MAPS_COUNT_FRAGMENTS
+layout(std430, binding = 6) buffer MapFragments { highp uint fragments; } map_counted;
+#endif
 in vec3 v_world;
 in vec3 v_normal;
 uniform vec3 u_centre;
@@ -19,6 +27,9 @@ layout(location = 1) out mediump vec4 o_normal;
 layout(location = 2) out mediump vec4 o_albedo;
 void main()
 {
+#ifdef MAPS_COUNT_FRAGMENTS
+    atomicAdd(map_counted.fragments, 1u);
+#endif
     // glTF alphaMode MASK: through a hole the map sees what is behind it
     if (gk_alpha_cut())
         discard;

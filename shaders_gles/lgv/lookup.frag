@@ -4,6 +4,11 @@
 // item 8), plus the SSLGV's caustics, L = 4 (c . y(-n))+ / A(p), A(p) the world area of the SSLGV
 // pixel on the surface (research B.2.7's footprint, exact for a square pixel).
 // @variant -
+// LOOKUP_COUNT_FETCHES: the bench's counting variant (app/gi/lgv/lgv_work.c): per fragment its
+// trilinear reads of the three LGV volumes and its reads of the three SSLGV images, added to
+// LookupFetches once. Never in the kiosk's frames.
+// @variant -
+// @variant LOOKUP_COUNT_FETCHES
 precision highp float;
 #include "common/gbuffer.glsl"
 #include "lgv/common.glsl"
@@ -23,6 +28,10 @@ uniform vec3 u_forward;       // camera forward (unit)
 uniform int u_parts;          // 1 LGV, 2 SSLGV, 3 both
 uniform float u_offset;       // cells along the normal the LGV is read at (0.5; gk_lgv_debug.lookup_offset)
 out vec4 o_color;
+#ifdef LOOKUP_COUNT_FETCHES
+layout(std430, binding = 6) buffer LookupFetches { highp uint volume; highp uint screen; } lookup_counted;
+highp uint g_screen_fetches = 0u;
+#endif
 
 // The SSLGV over this pixel's footprint. Finer than the image (lgv_sslgv wider than the view), the
 // SSLGV texels the pixel covers, weighted by their overlap (a box filter: every SSLGV texel's
@@ -32,9 +41,13 @@ vec3 ss_sample(ivec2 px, vec4 yn)
 {
     vec2 img = vec2(textureSize(u_gb_depth, 0));
     vec2 ratio = u_ss_size / img;
-    if (ratio.x <= 1.0 && ratio.y <= 1.0)
+    if (ratio.x <= 1.0 && ratio.y <= 1.0) {
+#ifdef LOOKUP_COUNT_FETCHES
+        g_screen_fetches += 3u;
+#endif
         return vec3(max(dot(texture(u_ss_r, v_uv), yn), 0.0), max(dot(texture(u_ss_g, v_uv), yn), 0.0),
                     max(dot(texture(u_ss_b, v_uv), yn), 0.0));
+    }
     vec2 a = vec2(px) * ratio, b = a + ratio; // the footprint in SSLGV texels
     vec3 sum = vec3(0.0);
     float wsum = 0.0;
@@ -46,6 +59,9 @@ vec3 ss_sample(ivec2 px, vec4 yn)
             sum += w * vec3(dot(texelFetch(u_ss_r, t, 0), yn), dot(texelFetch(u_ss_g, t, 0), yn),
                             dot(texelFetch(u_ss_b, t, 0), yn));
             wsum += w;
+#ifdef LOOKUP_COUNT_FETCHES
+            g_screen_fetches += 3u;
+#endif
         }
     return max(sum / max(wsum, 1e-12), vec3(0.0));
 }
@@ -64,6 +80,9 @@ void main()
         vec3 e = vec3(max(dot(texture(u_vol_r, uvw), yn), 0.0), max(dot(texture(u_vol_g, uvw), yn), 0.0),
                       max(dot(texture(u_vol_b, uvw), yn), 0.0));
         c += 4.0 * e / (u_cell * u_cell);
+#ifdef LOOKUP_COUNT_FETCHES
+        atomicAdd(lookup_counted.volume, 3u);
+#endif
     }
     if ((u_parts & 2) != 0) {
         vec3 v = u_eye - x;
@@ -71,6 +90,9 @@ void main()
         float area = abs((2.0 * u_tan_half.x / u_ss_size.x) * (2.0 * u_tan_half.y / u_ss_size.y) * z * z * z /
                          max(dot(v, n), 1e-6));
         c += 4.0 * ss_sample(px, yn) / max(area, 1e-12);
+#ifdef LOOKUP_COUNT_FETCHES
+        atomicAdd(lookup_counted.screen, g_screen_fetches);
+#endif
     }
     o_color = vec4(c, 1.0);
 }

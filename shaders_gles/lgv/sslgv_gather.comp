@@ -3,6 +3,11 @@
 // over the neighbours u_i whose surface lies within h of p's (a symmetric test), w = 1/5: a
 // depth-aware diffusion that keeps the total exactly (what one pixel gives, its neighbour takes).
 // Iteration 0 reads the fixed-point injection (u_from_ints = 1).
+// SSLGV_COUNT_LOADS: the bench's counting variant (app/gi/lgv/lgv_work.c): the storage-buffer
+// loads in vec4s (12 floats of a pixel: 3) and the G-buffer depth reads of each invocation, added to
+// SslgvLoads once. Never in the kiosk's frames.
+// @variant -
+// @variant SSLGV_COUNT_LOADS
 precision highp float;
 precision highp int;
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -15,6 +20,10 @@ uniform ivec2 u_size;
 uniform float u_h;
 uniform float u_fixed;
 uniform int u_from_ints;
+#ifdef SSLGV_COUNT_LOADS
+layout(std430, binding = 11) buffer SslgvLoads { highp uint vec4_loads; highp uint depth_fetches; } sslgv_counted;
+highp uint g_vec4_loads = 0u, g_depth_fetches = 0u;
+#endif
 
 float value(int i) { return u_from_ints == 1 ? float(grid[i]) / u_fixed : src[i]; }
 
@@ -22,6 +31,9 @@ bool surface(ivec2 px, out vec3 x)
 {
     vec2 uv = (vec2(px) + 0.5) / vec2(u_size);
     float depth = texture(u_gb_depth, uv).r;
+#ifdef SSLGV_COUNT_LOADS
+    g_depth_fetches++;
+#endif
     vec4 w = u_inv_viewproj * vec4(vec3(uv, depth) * 2.0 - 1.0, 1.0);
     x = w.xyz / w.w;
     return depth < 1.0;
@@ -36,6 +48,9 @@ void main()
     float s[12];
     for (int k = 0; k < 12; k++)
         s[k] = value(b + k);
+#ifdef SSLGV_COUNT_LOADS
+    g_vec4_loads += 3u;
+#endif
     float o[12];
     for (int k = 0; k < 12; k++)
         o[k] = s[k];
@@ -50,8 +65,15 @@ void main()
             int bq = 12 * (q.y * u_size.x + q.x);
             for (int k = 0; k < 12; k++)
                 o[k] += 0.2 * (value(bq + k) - s[k]);
+#ifdef SSLGV_COUNT_LOADS
+            g_vec4_loads += 3u;
+#endif
         }
     }
     for (int k = 0; k < 12; k++)
         dst[b + k] = o[k];
+#ifdef SSLGV_COUNT_LOADS
+    atomicAdd(sslgv_counted.vec4_loads, g_vec4_loads);
+    atomicAdd(sslgv_counted.depth_fetches, g_depth_fetches);
+#endif
 }

@@ -13,6 +13,11 @@
 // with total internal reflection keeping the photon inside.
 // u_probe = 1 (tests): no emission; each invocation traces one ray of the Probe buffer once and
 // writes where it hit (w = 1) or that it left the scene (w = 0).
+// TRACE_COUNT_FETCHES: the bench's counting variant (app/gi/lgv/lgv_work.c): the distance-map texels
+// each invocation read (tracer.glsl) and the LGV atomics its injections made, added to TraceWork once.
+// Never in the kiosk's frames.
+// @variant -
+// @variant TRACE_COUNT_FETCHES
 precision highp float;
 precision highp int;
 layout(local_size_x = 64) in;
@@ -24,6 +29,10 @@ layout(std430, binding = 2) buffer Caustics { highp uint n_caustic; highp uint o
                                               highp uint pad1; Caustic caustic[]; };
 layout(std430, binding = 3) buffer Stats { highp uint st[]; };           // lgv_internal.h LGV_ST_*
 layout(std430, binding = 4) buffer Probe { highp vec4 probe[]; };        // (origin, dir) in, (hit, w) out
+#ifdef TRACE_COUNT_FETCHES
+layout(std430, binding = 5) buffer TraceWork { highp uint dist_fetches; highp uint lgv_atomics; } trace_counted;
+highp uint g_lgv_atomics = 0u;
+#endif
 uniform int u_probe;
 uniform int u_photons;        // this light's photons
 uniform uint u_first;         // index of its first photon among all lights' (the hash key)
@@ -88,8 +97,12 @@ void inject(highp vec3 x, highp vec3 theta, highp vec3 n, highp vec3 flux_fr)
     highp vec4 y = lgv_sh(-theta);
     int base = 12 * ((c.z * u_dims.y + c.y) * u_dims.x + c.x);
     for (int ch = 0; ch < 3; ch++)
-        for (int k = 0; k < 4; k++)
+        for (int k = 0; k < 4; k++) {
             atomicAdd(lgv[base + 4 * ch + k], int(round(i[ch] * y[k] * u_fixed)));
+#ifdef TRACE_COUNT_FETCHES
+            g_lgv_atomics++;
+#endif
+        }
     atomicAdd(st[1], 1u);
 }
 
@@ -151,7 +164,7 @@ highp float enter_glass(int m, highp vec3 x, highp vec3 r, highp float d, highp 
     return -1.0;
 }
 
-void main()
+void trace_invocation()
 {
     uint id = gl_GlobalInvocationID.x;
     if (u_probe == 1) {
@@ -262,4 +275,13 @@ void main()
         specular_only = false;
         events++;
     }
+}
+
+void main()
+{
+    trace_invocation();
+#ifdef TRACE_COUNT_FETCHES
+    atomicAdd(trace_counted.dist_fetches, g_dist_fetches);
+    atomicAdd(trace_counted.lgv_atomics, g_lgv_atomics);
+#endif
 }

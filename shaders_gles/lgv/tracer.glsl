@@ -18,6 +18,12 @@ uniform int u_itp_mode;       // 0 angle partition (the seed), 1 planar ITP (Fig
 uniform int u_seeing;         // 1: a ray's maps are the nearest that see its point (lgv_seeing_map)
 uniform int u_bounds_hit;     // 1: a ray reaching the bounds where the map sees a surface met it (lgv_secant)
 layout(std430, binding = 0) readonly buffer Maps { highp vec4 centre[]; };
+// TRACE_COUNT_FETCHES (the bench's counting variant, app/gi/lgv/lgv_work.c): every distance-map
+// texel read, the partition's, the secant's and the map choice's alike, counted per invocation in
+// g_dist_fetches; trace.comp adds it to its buffer once.
+#ifdef TRACE_COUNT_FETCHES
+highp uint g_dist_fetches = 0u;
+#endif
 
 highp float lgv_dist(int map, highp vec3 d, int level)
 {
@@ -25,6 +31,9 @@ highp float lgv_dist(int map, highp vec3 d, int level)
     int f = lgv_face_of(d, uv);
     int res = max(u_res >> level, 1);
     ivec2 t = clamp(ivec2((uv * 0.5 + 0.5) * float(res)), ivec2(0), ivec2(res - 1));
+#ifdef TRACE_COUNT_FETCHES
+    g_dist_fetches++;
+#endif
     return uintBitsToFloat(texelFetch(u_dist, ivec3(t, map * 6 + f), level).r);
 }
 

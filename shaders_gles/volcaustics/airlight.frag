@@ -5,10 +5,19 @@
 //   T(v, x) sigma_s p(cos) I_spot(x) / |x - light|^2 T(light, x) V(x) Delta t
 // for each point/spot light (V from the renderer's GI light map, gk_gi_light.shadow_depth_tex), and
 // T(v, x) sigma_s p(cos) E T(box, x) V(x) Delta t for a directional light.
+// AIRLIGHT_COUNT_FETCHES: the bench's counting variant (app/gi/volcaustics/vc_work.c): the depth
+// texels each fragment read (the G-buffer's and the shadow maps'), added to AirFetches once.
+// Never in the kiosk's frames.
+// @variant -
+// @variant AIRLIGHT_COUNT_FETCHES
 precision highp float;
 precision highp int;
 #include "volcaustics/medium.glsl"
 #define VC_MAX_LIGHTS 4
+#ifdef AIRLIGHT_COUNT_FETCHES
+layout(std430, binding = 6) buffer AirFetches { highp uint fetches; } air_counted;
+highp uint g_air_fetches = 0u;
+#endif
 uniform highp sampler2D u_depth;       // the G-buffer depth (full resolution)
 uniform highp sampler2D u_shadow0;
 uniform highp sampler2D u_shadow1;
@@ -31,6 +40,9 @@ layout(location = 0) out vec4 o_rad;
 
 float shadow_depth(int i, vec2 uv)
 {
+#ifdef AIRLIGHT_COUNT_FETCHES
+    g_air_fetches++;
+#endif
     if (i == 0) return texture(u_shadow0, uv).r;
     if (i == 1) return texture(u_shadow1, uv).r;
     if (i == 2) return texture(u_shadow2, uv).r;
@@ -57,6 +69,9 @@ void main()
     vec3 dv = normalize(cf.xyz / cf.w - u_eye);
     ivec2 fq = clamp(ivec2(uv * u_full_size), ivec2(0), ivec2(u_full_size) - 1);
     float depth = texelFetch(u_depth, fq, 0).r;
+#ifdef AIRLIGHT_COUNT_FETCHES
+    atomicAdd(air_counted.fetches, 1u); // the march's shadow reads are added at its end
+#endif
     float t_surf = 1e6;
     if (depth < 1.0) {
         vec4 cs = u_inv_view_proj * vec4(vec3(uv, depth) * 2.0 - 1.0, 1.0);
@@ -99,4 +114,7 @@ void main()
         }
     }
     o_rad = vec4(acc * u_sigma_s * dt, 0.0);
+#ifdef AIRLIGHT_COUNT_FETCHES
+    atomicAdd(air_counted.fetches, g_air_fetches);
+#endif
 }

@@ -17,6 +17,11 @@
 // line ~ pixels, l ~ 1/pixels, 1/A_pix ~ pixels^2 ... per pixel: the same radiance).
 // Pass 5, visibility: a crossing behind the scene's surface at this pixel (G-buffer depth) is culled,
 // and so are the regular points behind it.
+// LINES_COUNT_FRAGMENTS: the bench's counting variant (app/gi/volcaustics/vc_work.c), one atomic
+// add per fragment of the lines (fragment-stage storage buffers capability-checked by the caller).
+// Never in the kiosk's frames.
+// @variant -
+// @variant LINES_COUNT_FRAGMENTS
 precision highp float;
 precision highp int;
 #include "volcaustics/medium.glsl"
@@ -35,6 +40,9 @@ uniform float u_dx;                  // Delta x (m)
 uniform float u_rf;                  // r_f (m)
 uniform float u_filter_norm;         // 1 / integral of w over [-r_f, r_f]
 layout(location = 0) out vec4 o_rad;
+#ifdef LINES_COUNT_FRAGMENTS
+layout(std430, binding = 6) buffer LineFragments { highp uint fragments; } lines_counted;
+#endif
 
 vec3 unproject(vec2 frag, float depth)
 {
@@ -59,6 +67,9 @@ float gauss_norm(float delta)
 
 void main()
 {
+#ifdef LINES_COUNT_FRAGMENTS
+    atomicAdd(lines_counted.fragments, 1u);
+#endif
     vec3 dv = normalize(unproject(gl_FragCoord.xy, 1.0) - u_eye);
     float depth = texelFetch(u_depth, ivec2(gl_FragCoord.xy), 0).r;
     float t_surf = depth < 1.0 ? distance(unproject(gl_FragCoord.xy, depth), u_eye) : 1e30;

@@ -16,10 +16,22 @@
 // intensity in its direction, the texel's solid angle, the mirror's Schlick Fresnel of its F0 colour
 // or the glass's two transmittances, and the medium's transmittance from the light to p1 (through
 // p0). Outputs (rgba32f images, core in 3.1 for compute): p1 (w = 1 valid), p2, flux.
+// RAYGEN_COUNT_FETCHES: the bench's counting variant (app/gi/volcaustics/vc_work.c): the light
+// views' depth texels each invocation read (its own texel's, the march's and the glass exit's),
+// added to RaygenFetches once. Never in the kiosk's frames.
+// @variant -
+// @variant RAYGEN_COUNT_FETCHES
 precision highp float;
 precision highp int;
 layout(local_size_x = 8, local_size_y = 8) in;
 #include "volcaustics/medium.glsl"
+#ifdef RAYGEN_COUNT_FETCHES
+layout(std430, binding = 6) buffer RaygenFetches { highp uint fetches; } raygen_counted;
+highp uint g_depth_fetches = 0u;
+#define RAYGEN_COUNT() g_depth_fetches++
+#else
+#define RAYGEN_COUNT()
+#endif
 uniform highp sampler2D u_depth_all;     // pass 1b depth
 uniform highp sampler2D u_depth_nospec;  // pass 1a depth
 uniform highp sampler2D u_nrm;           // pass 1b normal + specular flag
@@ -69,6 +81,7 @@ float behind(vec3 x)
     vec3 ndc = c.xyz / c.w;
     if (any(greaterThan(abs(ndc), vec3(1.0))))
         return -1.0;
+    RAYGEN_COUNT();
     float d = texture(u_depth_nospec, ndc.xy * 0.5 + 0.5).r;
     return (ndc.z * 0.5 + 0.5) > d + 1e-5 ? 1.0 : 0.0;
 }
@@ -83,6 +96,7 @@ bool before_back(vec3 x)
     vec3 ndc = c.xyz / c.w;
     if (any(greaterThan(abs(ndc), vec3(1.0))))
         return false;
+    RAYGEN_COUNT();
     return (ndc.z * 0.5 + 0.5) < texture(u_depth_back, ndc.xy * 0.5 + 0.5).r;
 }
 
@@ -134,13 +148,14 @@ bool refract_through(vec3 p0, vec3 n, vec3 wi, float cos_i, vec4 optics, out vec
     return true;
 }
 
-void main()
+void raygen_texel()
 {
     ivec2 q = ivec2(gl_GlobalInvocationID.xy);
     if (q.x >= u_res || q.y >= u_res)
         return;
     vec4 nf = texelFetch(u_nrm, q, 0);
     float depth = texelFetch(u_depth_all, q, 0).r;
+    RAYGEN_COUNT();
     if (nf.a < 0.25 || depth >= 1.0) {   // a: 1 mirror, 0.5 glass, 0 other (lightview.frag)
         imageStore(u_p1, q, vec4(0.0));
         return;
@@ -195,4 +210,12 @@ void main()
     imageStore(u_p1, q, vec4(p1, spot > 0.0 ? 1.0 : 0.0));
     imageStore(u_p2, q, vec4(p2, 0.0));
     imageStore(u_flux, q, vec4(flux, 0.0));
+}
+
+void main()
+{
+    raygen_texel();
+#ifdef RAYGEN_COUNT_FETCHES
+    atomicAdd(raygen_counted.fetches, g_depth_fetches);
+#endif
 }

@@ -5,8 +5,15 @@
 // kept); nothing where the surface faces away from the arriving light or lies off the disk
 // (another surface behind or in front of p2). Additive blending into RGBA32F (RGBA16F without
 // EXT_float_blend); composite.frag turns E into radiance with the surface's diffuse albedo.
+// SURFACE_COUNT_FRAGMENTS: the bench's counting variant (app/gi/volcaustics/vc_work.c), one atomic
+// add per fragment of the sprites, discarded or not. Never in the kiosk's frames.
+// @variant -
+// @variant SURFACE_COUNT_FRAGMENTS
 precision highp float;
 precision highp int;
+#ifdef SURFACE_COUNT_FRAGMENTS
+layout(std430, binding = 6) buffer SurfaceFragments { highp uint fragments; } surface_counted;
+#endif
 flat in vec3 v_p2;
 flat in vec3 v_from;
 flat in vec3 v_flux;
@@ -18,6 +25,9 @@ uniform vec2 u_size;
 layout(location = 0) out vec4 o_irr;
 void main()
 {
+#ifdef SURFACE_COUNT_FRAGMENTS
+    atomicAdd(surface_counted.fragments, 1u);
+#endif
     ivec2 px = ivec2(gl_FragCoord.xy);
     float depth = texelFetch(u_depth, px, 0).r;
     if (depth >= 1.0 || v_h <= 0.0)

@@ -208,6 +208,75 @@ for k in ("tex2d_rgba32f_nearest", "tex2d_rgba8_trilinear", "tex2d_rgba16f_trili
 extra = f[("on", u)] - f.get(("off", u), 0.0)
 assert extra > 0 and extra % 4 == 0, f
 PY
+# A bench run of two rows told apart by KNOB (argv: DIR KNOB WHAT BENCH-ARGS...), each number of its
+# efficiency.csv recomputed; $TMP/fetches.py reads its fetches by (pass, kind) and row for the checks.
+cat >"$TMP/fetches.py" <<'PY'
+import csv
+def by_row(path, knob):
+    f = {}
+    for e in csv.DictReader(open(path)):
+        f.setdefault((e["pass"], e["kind"]), {})[e[knob]] = float(e["fetches"])
+    return f
+PY
+two_rows() {
+    _dir=$1 _knob=$2 _what=$3
+    shift 3
+    expect_exit 0 "bench --roofline-csv: $_what" sh -c "'$GIKIOSK' bench $* --size 80x60 --frames 1 --warmup 1 \
+        --roofline-csv '$TMP/roofline.csv' --out '$TMP/$_dir' 2>'$TMP/$_dir.log'"
+    check "$_what: every number of efficiency.csv recomputed" \
+        python3 "$TMP/recompute.py" "$TMP/$_dir/bench.csv" "$TMP/$_dir/efficiency.csv" "$TMP/roofline.csv" "$_knob"
+}
+# lgv's passes (app/gi/lgv/lgv_work.c), the maps rendered each frame (--rebuild-gi), without and with
+# the gathering iterations: the maps' fragments and the lookup's volume reads do not depend on them,
+# the gathering's loads grow by 2 x (4 per neighbour pair + 3 per cell), whose pairs and cells must be
+# those of a grid of at most 32 cells a side (lgv_size=32)
+two_rows l lgv_iters "lgv with 0 and 2 gathering iterations" --scenes glass --methods lgv \
+    --sweep "'lgv_iters=0,2'" --budget lgv_photons=16384 --rebuild-gi
+check "lgv: each pass's kinds, the maps and lookup alike in both rows, the gathering's loads a grid's" \
+    env PYTHONPATH="$TMP" python3 - "$TMP/l/efficiency.csv" <<'PY'
+import sys
+from fetches import by_row
+f = by_row(sys.argv[1], "lgv_iters")
+assert {k for k in f if k[0].startswith("gi.")} == {
+    ("gi.lgv_maps", "raster_r16f_depth_fill"), ("gi.lgv_trace", "tex2d_r32ui_nearest"),
+    ("gi.lgv_trace", "ssbo_r32ui_atomic"), ("gi.lgv_gather", "ssbo_rgba32f_load"),
+    ("gi.lgv_sslgv", "ssbo_r32ui_atomic"), ("gi.lgv_sslgv", "ssbo_rgba32f_load"),
+    ("gi.lgv_sslgv", "tex2d_depth32f_nearest"), ("gi.lgv_lookup", "tex3d_rgba16f_trilinear"),
+    ("gi.lgv_lookup", "tex2d_rgba16f_trilinear")}, sorted(f)
+for k in (("gi.lgv_maps", "raster_r16f_depth_fill"), ("gi.lgv_lookup", "tex3d_rgba16f_trilinear")):
+    assert f[k]["0"] == f[k]["2"] > 0, (k, f[k])
+# the lookup: 3 volume reads per shaded pixel, at most every pixel of 80x60
+look = f[("gi.lgv_lookup", "tex3d_rgba16f_trilinear")]["0"]
+assert look % 3 == 0 and look <= 3 * 80 * 60, look
+g = f[("gi.lgv_gather", "ssbo_rgba32f_load")]
+cells = g["0"] / 6                       # the resolve's and the volume's 3 vec4s a cell
+pairs = ((g["2"] - g["0"]) / 2 - 3 * cells) / 4
+grids = [(a, b, c) for a in range(1, 33) for b in range(1, 33) for c in range(1, 33)
+         if a * b * c == cells and 2 * ((a - 1) * b * c + a * (b - 1) * c + a * b * (c - 1)) == pairs]
+assert cells == int(cells) and grids, (g, cells, pairs)
+PY
+# volcaustics' passes (app/gi/volcaustics/vc_work.c) at two airlight resolutions: the rays (vc_light),
+# the lines and the surface splats do not depend on it, the airlight reads each march pixel's G-buffer depth and at most
+# one shadow texel per step (48) and light (glass-fog's 2 spots); each ray generation invocation reads
+# its own light-view texel, the 2 lights' 256^2 at least, and at most 64 march steps, 32 + 10 glass
+# steps and 2 more texels besides
+two_rows c vc_march "volcaustics at two airlight resolutions" --scenes glass-fog --methods volcaustics \
+    --sweep "'vc_march=0.25,0.5'"
+check "volcaustics: the rays, lines and splats alike at both airlight resolutions, each count within its bounds" \
+    env PYTHONPATH="$TMP" python3 - "$TMP/c/efficiency.csv" <<'PY'
+import sys
+from fetches import by_row
+f = by_row(sys.argv[1], "vc_march")
+rays, lines = f[("gi.vc_light", "tex2d_depth32f_nearest")], f[("gi.vc_lines", "raster_r16f_depth_fill")]
+air = f[("gi.vc_airlight", "tex2d_depth32f_nearest")]
+splats = f[("gi.vc_surface", "raster_r16f_depth_fill")]
+assert rays["0.25"] == rays["0.5"] and lines["0.25"] == lines["0.5"] > 0 and splats["0.25"] == splats["0.5"] > 0, \
+    (rays, lines, splats)
+texels = 2 * 256 * 256
+assert texels <= rays["0.25"] <= texels * (1 + 64 + 32 + 10 + 2), rays
+for march, (w, h) in (("0.25", (20, 15)), ("0.5", (40, 30))):
+    assert w * h < air[march] <= w * h * (1 + 48 * 2), (march, air)
+PY
 printf 'name,format,size,fetches,median_ms,fetches_per_s\ntex3d_rgba16f_trilinear,rgba16f,64,1,1,fast\n' >"$TMP/bad.csv"
 expect_exit 2 "a roofline.csv with a rate that is not a number" "$GIKIOSK" bench --scenes cornell --methods vct \
     --roofline-csv "$TMP/bad.csv" --out "$TMP/bad"

@@ -41,8 +41,11 @@ void gk_lgv_set_debug(void *self, const gk_lgv_debug *d);
 const gk_lgv_stats *gk_lgv_get_stats(void *self);
 /* Traces n rays (origin, direction: 6 floats each) once against the maps of the last frame and
  * writes where each first met the scene (hit xyz and 1, or 0 0 0 0 when it left): 4 floats each.
+ * With fetches, the counting variant (lgv_work.c) says how many distance-map texels the rays read.
  * Returns n or -1. */
-int gk_lgv_probe(void *self, const float *rays, int n, float *hits, gk_err *e);
+int gk_lgv_probe(void *self, const float *rays, int n, float *hits, double *fetches, gk_err *e);
+/* The gathering pass's storage-buffer loads in vec4s (lgv_work.c): LGV dims, iterations, occlusion. */
+double gk_lgv_gather_loads(const int dims[3], int iters, bool occlusion);
 /* Map centres of the current scene (xyz, w) and their count (lattice first, then refractors). */
 int gk_lgv_centres(const void *self, float *out, int cap);
 /* The LGV the last frame's lookup read (the iterations' sum, or the last one), 12 floats per cell (R, G, B x 4 SH; x fastest, dims in
@@ -51,5 +54,16 @@ long gk_lgv_read_lgv(void *self, float *out, long cap, gk_err *e);
 /* The geometry volume (eq. 6's G, built at the first frame with gathering iterations): 3 opacities
  * (projected areas / l^2 along x, y, z) per LGV cell corner, dims = the LGV's + 1; the count or -1. */
 long gk_lgv_read_geometry(void *self, float *out, long cap, int dims[3], gk_err *e);
+
+/* The distance maps and what the tracer reads them with (tests replay the tracer on the CPU). */
+typedef struct gk_lgv_maps_info {
+    int res, levels, layers, n_maps; /* level 0's side, the min mips, 6 per map (lattice, then refractors) */
+    vec3 bmin, bmax;                 /* the scene's bounds as the tracer pads them */
+    float itp_eps;                   /* the partition stops when its ITP moves less (m) */
+    int q, loops, secant_steps;      /* the partition's intervals and loops, the secant's steps */
+} gk_lgv_maps_info;
+/* Every level of every layer of the distance maps (R32UI float bits), level by level, each layer's
+   rows from y = 0, into out (cap texels); the count or -1. */
+long gk_lgv_read_maps(void *self, uint32_t *out, long cap, gk_lgv_maps_info *info, gk_err *e);
 
 #endif

@@ -4,6 +4,7 @@
 #define GK_LGV_INTERNAL_H
 
 #include "gl/gl.h"
+#include "gl/gl_counters.h"
 #include "gl/gl_program.h"
 #include "lgv.h"
 
@@ -38,6 +39,9 @@ enum { LGV_ST_RAYS = 0, LGV_ST_INJECTED = 1, LGV_ST_CAUSTIC = 2, LGV_ST_ESCAPED 
 #define LGV_GEO_FIXED 65536.0f
 
 #define LGV_KNOBS 6
+
+/* The passes with a counting variant (lgv_work.c) */
+enum { LGV_WORK_TRACE, LGV_WORK_MAPS, LGV_WORK_SSLGV, LGV_WORK_LOOKUP, LGV_WORK_N };
 
 typedef struct lgv_state {
     gk_gi_context ctx;
@@ -81,6 +85,10 @@ typedef struct lgv_state {
     float h;
     GLuint empty_vao;
     unsigned frame_index;
+    /* the bench's counting frame (lgv_work.c): the counting variants' counters */
+    bool count_work;
+    bool maps_ran;               /* this frame rendered the maps */
+    gk_counters work[LGV_WORK_N];
 } lgv_state;
 
 /* lgv_maps.c: lattice placement (set_scene), rendering of the maps and their min mips. */
@@ -97,6 +105,13 @@ int lgv_bind_tracer(lgv_state *s, GLuint prog, gk_err *e);
 int lgv_sslgv(lgv_state *s, const gk_gi_frame *f, gk_err *e);
 int lgv_lookup(lgv_state *s, const gk_gi_frame *f, gk_err *e);
 void lgv_free_gpu(lgv_state *s);
+/* lgv_work.c: the counting variants around the passes, by LGV_WORK_*: begin returns the #defines of
+   the pass's shader variant ("" when not counting), end reads the counters back; the work the bench
+   reads (gk_gi_method.pass_work). */
+const char *lgv_work_begin(lgv_state *s, int pass);
+void lgv_work_end(lgv_state *s, int pass);
+int lgv_pass_work(void *self, gk_pass_work *out, int max);
+void lgv_work_free(lgv_state *s);
 /* A shader storage buffer of `bytes` (zeroed when zero is true). */
 GLuint lgv_buffer(GLuint old, long bytes, bool zero);
 

@@ -254,8 +254,9 @@ int lgv_render_maps(lgv_state *s, const gk_gi_frame *f, gk_err *e)
         return -1;
     if (s->maps_valid && !f->scene_changed)
         return 0;
+    s->maps_ran = true;
     gk_program_cache *pc = s->ctx.programs;
-    GLuint prog = gk_program_get(pc, "lgv/cubemap.vert", "lgv/cubemap.frag", NULL, e);
+    GLuint prog = gk_program_get(pc, "lgv/cubemap.vert", "lgv/cubemap.frag", lgv_work_begin(s, LGV_WORK_MAPS), e);
     const cubemap_uniforms *u = prog ? gk_program_uniforms(pc, prog, GK_FIELDS(cubemap_fields), sizeof *u, e) : NULL;
     GLuint mip = gk_program_get_compute(pc, "lgv/mip_min.comp", NULL, e);
     const mip_uniforms *mu = mip ? gk_program_uniforms(pc, mip, GK_FIELDS(mip_fields), sizeof *mu, e) : NULL;
@@ -293,6 +294,7 @@ int lgv_render_maps(lgv_state *s, const gk_gi_frame *f, gk_err *e)
                 return -1;
         }
     }
+    lgv_work_end(s, LGV_WORK_MAPS);
     glDisable(GL_DEPTH_TEST);
     glBindFramebuffer(GL_FRAMEBUFFER, f->hdr_fbo);
     /* min-reduced mips, every layer in one dispatch per level */

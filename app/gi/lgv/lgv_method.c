@@ -143,6 +143,11 @@ static int render(void *self, const gk_gi_frame *f, gk_err *e)
     if (!s->scene && set_scene(s, f->scene, e))
         return -1;
     read_budget(s, f->budget);
+    s->count_work = f->count_work; /* a bench counting frame (lgv_work.c) */
+    s->maps_ran = false;
+    /* a pass that does not run this frame (no photons: no lamp) reports no count of an earlier one */
+    for (int k = 0; k < LGV_WORK_N; k++)
+        s->work[k].counted = false;
     int per_axis = s->n_maps_wanted >= 64 ? 4 : (s->n_maps_wanted >= 27 ? 3 : 2);
     int rc = 0;
     gk_pass_begin(f->pass, "lgv_maps");
@@ -216,6 +221,7 @@ static void destroy(void *self)
     if (!s)
         return;
     lgv_free_gpu(s);
+    lgv_work_free(s);
     if (s->own_cache)
         gk_program_cache_destroy(s->own_cache);
     free(s);
@@ -245,12 +251,16 @@ typedef struct probe_uniforms {
 } probe_uniforms;
 static const gk_uniform_field probe_fields[] = {GK_UNIFORM(probe_uniforms, u_probe), GK_UNIFORM(probe_uniforms, u_photons)};
 
-int gk_lgv_probe(void *self, const float *rays, int n, float *hits, gk_err *e)
+int gk_lgv_probe(void *self, const float *rays, int n, float *hits, double *fetches, gk_err *e)
 {
     lgv_state *s = self;
     if (!s->maps_valid)
         return gk_fail(e, GK_ERUNTIME, "lgv probe: no maps yet (render a frame first)");
-    GLuint prog = gk_program_get_compute(s->ctx.programs, "lgv/trace.comp", NULL, e);
+    s->count_work = fetches != NULL;
+    const char *defines = lgv_work_begin(s, LGV_WORK_TRACE);
+    if (fetches && !s->work[LGV_WORK_TRACE].counting)
+        return gk_fail(e, GK_ERUNTIME, "lgv probe: cannot count fetches here (no storage buffers to count into)");
+    GLuint prog = gk_program_get_compute(s->ctx.programs, "lgv/trace.comp", defines, e);
     const probe_uniforms *u = prog ? gk_program_uniforms(s->ctx.programs, prog, GK_FIELDS(probe_fields), sizeof *u, e) : NULL;
     if (!u)
         return -1;
@@ -274,6 +284,10 @@ int gk_lgv_probe(void *self, const float *rays, int n, float *hits, gk_err *e)
     glUniform1i(u->u_probe, 1);
     glUniform1i(u->u_photons, n);
     glDispatchCompute((GLuint)(n + 63) / 64, 1, 1);
+    lgv_work_end(s, LGV_WORK_TRACE);
+    if (fetches)
+        *fetches = s->work[LGV_WORK_TRACE].value[0];
+    s->count_work = false;
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     glBindBuffer(GL_COPY_READ_BUFFER, s->probe_ssbo);
     const float *p = glMapBufferRange(GL_COPY_READ_BUFFER, 0, (GLsizeiptr)(sizeof(float) * 8 * (size_t)n), GL_MAP_READ_BIT);
@@ -297,4 +311,5 @@ const gk_gi_method gk_gi_lgv = {
     .memory_bytes = memory_bytes,
     .invalidate = invalidate,
     .destroy = destroy,
+    .pass_work = lgv_pass_work,
 };

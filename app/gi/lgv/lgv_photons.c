@@ -188,7 +188,7 @@ int lgv_trace_photons(lgv_state *s, const gk_gi_frame *f, gk_err *e)
         return 0;
     /* fixed point: 2^29 units for the whole scene's flux (a cell can hold several times all of it) */
     s->fixed_scale = 536870912.0f / total;
-    GLuint prog = gk_program_get_compute(s->ctx.programs, "lgv/trace.comp", NULL, e);
+    GLuint prog = gk_program_get_compute(s->ctx.programs, "lgv/trace.comp", lgv_work_begin(s, LGV_WORK_TRACE), e);
     const trace_uniforms *u = prog ? gk_program_uniforms(s->ctx.programs, prog, GK_FIELDS(trace_fields), sizeof *u, e) : NULL;
     if (!u)
         return -1;
@@ -241,6 +241,7 @@ int lgv_trace_photons(lgv_state *s, const gk_gi_frame *f, gk_err *e)
         glDispatchCompute((GLuint)(count + 63) / 64, 1, 1);
         first += (unsigned)count;
     }
+    lgv_work_end(s, LGV_WORK_TRACE);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     return 0;
 }

@@ -1,4 +1,6 @@
-/* The lgv method's grids read back for tests (lgv.h): the LGV the lookup reads and the geometry volume. */
+/* The lgv method's grids read back for tests (lgv.h): the LGV the lookup reads, the geometry volume
+ * and the distance maps. */
+#include <stdlib.h>
 #include <string.h>
 
 #include "lgv_internal.h"
@@ -35,4 +37,38 @@ long gk_lgv_read_geometry(void *self, float *out, long cap, int dims[3], gk_err 
         return gk_fail(e, GK_ERUNTIME, "lgv: no geometry volume yet, or %ld values do not hold its %ld", cap, n);
     memcpy(dims, s->geo_dims, sizeof s->geo_dims);
     return read_floats(s->geo_ssbo, n, true, LGV_GEO_FIXED, out, e) ? -1 : n;
+}
+
+long gk_lgv_read_maps(void *self, uint32_t *out, long cap, gk_lgv_maps_info *info, gk_err *e)
+{
+    lgv_state *s = self;
+    int layers = 6 * (s->n_maps + s->n_refractors);
+    long n = 0;
+    for (int l = 0; l < s->levels; l++)
+        n += (long)layers * (s->maps_res >> l) * (s->maps_res >> l);
+    if (!s->maps_valid || cap < n)
+        return gk_fail(e, GK_ERUNTIME, "lgv: no maps yet, or %ld texels do not hold their %ld", cap, n);
+    *info = (gk_lgv_maps_info){.res = s->maps_res, .levels = s->levels, .layers = layers, .n_maps = s->n_maps,
+                               .bmin = s->bmin, .bmax = s->bmax, .itp_eps = LGV_ITP_EPS_REL * s->diag,
+                               .q = LGV_Q, .loops = LGV_LOOPS, .secant_steps = LGV_SECANT_STEPS};
+    GLuint fbo, *texel = malloc(sizeof(GLuint) * 4 * (size_t)s->maps_res * (size_t)s->maps_res);
+    if (!texel)
+        return gk_fail(e, GK_ERUNTIME, "lgv: out of memory");
+    glGenFramebuffers(1, &fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    long at = 0;
+    for (int l = 0; l < s->levels; l++) {
+        int r = s->maps_res >> l;
+        for (int layer = 0; layer < layers; layer++, at += (long)r * r) {
+            glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, s->dist_tex, l, layer);
+            glReadPixels(0, 0, r, r, GL_RGBA_INTEGER, GL_UNSIGNED_INT, texel);
+            for (long i = 0; i < (long)r * r; i++)
+                out[at + i] = texel[4 * i];
+        }
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glDeleteFramebuffers(1, &fbo);
+    free(texel);
+    GLenum err = glGetError();
+    return err == GL_NO_ERROR ? n : gk_fail(e, GK_ERUNTIME, "lgv: reading the maps back: GL error 0x%04x", err);
 }

@@ -67,7 +67,8 @@ int lgv_sslgv(lgv_state *s, const gk_gi_frame *f, gk_err *e)
     gk_program_cache *pc = s->ctx.programs;
     GLuint inj = gk_program_get_compute(pc, "lgv/sslgv_inject.comp", NULL, e);
     const inject_uniforms *iu = inj ? gk_program_uniforms(pc, inj, GK_FIELDS(inject_fields), sizeof *iu, e) : NULL;
-    GLuint gat = iu ? gk_program_get_compute(pc, "lgv/sslgv_gather.comp", NULL, e) : 0;
+    const char *count = lgv_work_begin(s, LGV_WORK_SSLGV);
+    GLuint gat = iu ? gk_program_get_compute(pc, "lgv/sslgv_gather.comp", count, e) : 0;
     const ss_gather_uniforms *gu = gat ? gk_program_uniforms(pc, gat, GK_FIELDS(ss_gather_fields), sizeof *gu, e) : NULL;
     GLuint img = gu ? gk_program_get_compute(pc, "lgv/sslgv_image.comp", NULL, e) : 0;
     const ss_image_uniforms *mu = img ? gk_program_uniforms(pc, img, GK_FIELDS(ss_image_fields), sizeof *mu, e) : NULL;
@@ -112,6 +113,7 @@ int lgv_sslgv(lgv_state *s, const gk_gi_frame *f, gk_err *e)
         GLuint t = a;
         a = b, b = t;
     }
+    lgv_work_end(s, LGV_WORK_SSLGV);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     glUseProgram(img);
     glUniform2i(mu->u_size, s->ss_w, s->ss_h);
@@ -142,7 +144,8 @@ static const gk_uniform_field lookup_fields[] = {
 
 int lgv_lookup(lgv_state *s, const gk_gi_frame *f, gk_err *e)
 {
-    GLuint prog = gk_program_get(s->ctx.programs, "common/fullscreen.vert", "lgv/lookup.frag", NULL, e);
+    const char *count = lgv_work_begin(s, LGV_WORK_LOOKUP);
+    GLuint prog = gk_program_get(s->ctx.programs, "common/fullscreen.vert", "lgv/lookup.frag", count, e);
     const lookup_uniforms *u = prog ? gk_program_uniforms(s->ctx.programs, prog, GK_FIELDS(lookup_fields), sizeof *u, e) : NULL;
     if (!u)
         return -1;
@@ -179,6 +182,7 @@ int lgv_lookup(lgv_state *s, const gk_gi_frame *f, gk_err *e)
         glGenVertexArrays(1, &s->empty_vao);
     glBindVertexArray(s->empty_vao);
     glDrawArrays(GL_TRIANGLES, 0, 3);
+    lgv_work_end(s, LGV_WORK_LOOKUP);
     glBindVertexArray(0);
     glDisable(GL_BLEND);
     return 0;

@@ -3,6 +3,7 @@
 #define GK_VC_INTERNAL_H
 
 #include "gl/gl.h"
+#include "gl/gl_counters.h"
 #include "gl/gl_program.h"
 #include "gl/gl_target.h"
 #include "volcaustics.h"
@@ -14,6 +15,9 @@
    diameter, before 10 bisections (raygen.comp): a chord of glass-fog's ball is at least a few steps
    long even near its rim. */
 #define VC_GLASS_STEPS 32
+
+/* The passes with a counting variant (vc_work.c) */
+enum { VC_WORK_RAYGEN, VC_WORK_LINES, VC_WORK_SURFACE, VC_WORK_AIRLIGHT, VC_WORK_N };
 
 /* A light whose reflections or refractions make a volume caustic this frame (vc_light.c). */
 typedef struct vc_light {
@@ -60,6 +64,9 @@ typedef struct vc_state {
     gk_target air, caustic, surface;   /* surface: the surface caustics' irradiance (vc_surface.c) */
     GLenum caustic_fmt;      /* RGBA32F where it can be blended, else RGBA16F (vc_method.c) */
     GLuint empty_vao;
+    /* the bench's counting frame (vc_work.c): the counting variants' counters */
+    bool count_work;
+    gk_counters work[VC_WORK_N];
 } vc_state;
 
 /* vc_light.c: frames each caustic light onto the specular objects and renders passes 1a, 1b and 2
@@ -80,5 +87,13 @@ int vc_composite(vc_state *s, const gk_gi_frame *f, bool have_lines, bool have_s
 /* 1 / integral over [-r_f, r_f] of the seed's Gaussian filter (lines.frag), for r_f = 1. */
 double vc_filter_integral_unit(void);
 void vc_free_gpu(vc_state *s);
+/* vc_work.c: the counting variants around the passes, by VC_WORK_*: begin returns the #defines of
+   the pass's shader variant ("" when not counting), end reads the counter back; the work the bench
+   reads (gk_gi_method.pass_work). */
+void vc_work_frame(vc_state *s, const gk_gi_frame *f);
+const char *vc_work_begin(vc_state *s, int pass);
+void vc_work_end(vc_state *s, int pass);
+int vc_pass_work(void *self, gk_pass_work *out, int max);
+void vc_work_free(vc_state *s);
 
 #endif

@@ -181,9 +181,10 @@ static void bind_tex(int unit, GLuint tex, GLint loc)
     glUniform1i(loc, unit);
 }
 
-static int generate_rays(vc_state *s, const gk_gi_frame *f, const vc_light *L, const vc_caustic_buffer *cb, gk_err *e)
+static int generate_rays(vc_state *s, const gk_gi_frame *f, const vc_light *L, const vc_caustic_buffer *cb,
+                         const char *defines, gk_err *e)
 {
-    GLuint prog = gk_program_get_compute(s->ctx.programs, "volcaustics/raygen.comp", NULL, e);
+    GLuint prog = gk_program_get_compute(s->ctx.programs, "volcaustics/raygen.comp", defines, e);
     const raygen_uniforms *u =
         prog ? gk_program_uniforms(s->ctx.programs, prog, GK_FIELDS(raygen_fields), sizeof *u, e) : NULL;
     if (!u)
@@ -228,6 +229,7 @@ int vc_light_rays(vc_state *s, const gk_gi_frame *f, int *n_lines, gk_err *e)
     if (f->scene_changed)
         vc_specular_bounds(s, f->scene);
     s->st.caustic_lights = 0;
+    const char *raygen_defines = vc_work_begin(s, VC_WORK_RAYGEN); /* one count over every light's rays */
     for (int i = 0; i < f->n_lights && *n_lines < s->max_lights && *n_lines < VC_MAX_LIGHTS; i++) {
         vc_light *L = &s->light[*n_lines];
         frame_light(s, f, i, L);
@@ -237,10 +239,11 @@ int vc_light_rays(vc_state *s, const gk_gi_frame *f, int *n_lines, gk_err *e)
             light_view(s, f, L, &s->lv, "#define VC_WITH_SPECULAR 1\n", false, e) ||
             light_view(s, f, L, &s->lv_nospec, "#define VC_NO_SPECULAR 1\n", false, e) ||
             light_view(s, f, L, &s->lv_back, "#define VC_BACK_FACES 1\n", true, e) ||
-            generate_rays(s, f, L, &s->cb[*n_lines], e))
+            generate_rays(s, f, L, &s->cb[*n_lines], raygen_defines, e))
             return -1;
         ++*n_lines;
     }
+    vc_work_end(s, VC_WORK_RAYGEN);
     s->st.caustic_lights = *n_lines;
     s->st.light_ok = *n_lines > 0;
     return 0;

@@ -44,7 +44,8 @@ static void bind_tex(int unit, GLuint tex, GLint loc)
 
 int vc_lines(vc_state *s, const gk_gi_frame *f, int n, gk_err *e)
 {
-    GLuint prog = gk_program_get(s->ctx.programs, "volcaustics/lines.vert", "volcaustics/lines.frag", NULL, e);
+    GLuint prog = gk_program_get(s->ctx.programs, "volcaustics/lines.vert", "volcaustics/lines.frag",
+                                 vc_work_begin(s, VC_WORK_LINES), e);
     const lines_uniforms *u =
         prog ? gk_program_uniforms(s->ctx.programs, prog, GK_FIELDS(lines_fields), sizeof *u, e) : NULL;
     if (!u)
@@ -83,6 +84,7 @@ int vc_lines(vc_state *s, const gk_gi_frame *f, int n, gk_err *e)
         bind_tex(2, s->cb[i].flux, u->u_flux);
         glDrawArrays(GL_LINES, 0, 2 * s->cb_res * s->cb_res);
     }
+    vc_work_end(s, VC_WORK_LINES);
     glBindVertexArray(0);
     glDisable(GL_BLEND);
     return 0;

@@ -149,6 +149,7 @@ static int render(void *self, const gk_gi_frame *f, gk_err *e)
     if (!f->scene->medium.present)
         return 0;   /* nothing to scatter: the renderer's image stands */
     read_budget(s, f->budget);
+    vc_work_frame(s, f);
     if (ensure_images(s, f, e))
         return -1;
     int n_lines = 0;
@@ -217,6 +218,7 @@ static void destroy(void *self)
     if (!s)
         return;
     vc_free_gpu(s);
+    vc_work_free(s);
     if (s->own_cache)
         gk_program_cache_destroy(s->own_cache);
     free(s);
@@ -233,4 +235,5 @@ const gk_gi_method gk_gi_volcaustics = {
     .render = render,
     .memory_bytes = memory_bytes,
     .destroy = destroy,
+    .pass_work = vc_pass_work,
 };

@@ -38,7 +38,8 @@ static void bind_tex(int unit, GLuint tex, GLint loc)
 
 int vc_surface_caustics(vc_state *s, const gk_gi_frame *f, int n, gk_err *e)
 {
-    GLuint prog = gk_program_get(s->ctx.programs, "volcaustics/surface.vert", "volcaustics/surface.frag", NULL, e);
+    GLuint prog = gk_program_get(s->ctx.programs, "volcaustics/surface.vert", "volcaustics/surface.frag",
+                                 vc_work_begin(s, VC_WORK_SURFACE), e);
     const surface_uniforms *u =
         prog ? gk_program_uniforms(s->ctx.programs, prog, GK_FIELDS(surface_fields), sizeof *u, e) : NULL;
     if (!u)
@@ -73,6 +74,7 @@ int vc_surface_caustics(vc_state *s, const gk_gi_frame *f, int n, gk_err *e)
         bind_tex(2, s->cb[i].flux, u->u_flux);
         glDrawArrays(GL_POINTS, 0, s->cb_res * s->cb_res);
     }
+    vc_work_end(s, VC_WORK_SURFACE);
     glBindVertexArray(0);
     glDisable(GL_BLEND);
     return 0;

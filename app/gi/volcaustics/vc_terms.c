@@ -55,7 +55,8 @@ static const gk_uniform_field air_fields[] = {
 
 int vc_airlight(vc_state *s, const gk_gi_frame *f, gk_err *e)
 {
-    GLuint prog = gk_program_get(s->ctx.programs, "common/fullscreen.vert", "volcaustics/airlight.frag", NULL, e);
+    GLuint prog = gk_program_get(s->ctx.programs, "common/fullscreen.vert", "volcaustics/airlight.frag",
+                                 vc_work_begin(s, VC_WORK_AIRLIGHT), e);
     const air_uniforms *u = prog ? gk_program_uniforms(s->ctx.programs, prog, GK_FIELDS(air_fields), sizeof *u, e) : NULL;
     if (!u)
         return -1;
@@ -103,6 +104,7 @@ int vc_airlight(vc_state *s, const gk_gi_frame *f, gk_err *e)
     vc_set_medium(&u->med, f->scene);
     glBindVertexArray(s->empty_vao);
     glDrawArrays(GL_TRIANGLES, 0, 3);
+    vc_work_end(s, VC_WORK_AIRLIGHT);
     glBindVertexArray(0);
     return 0;
 }

@@ -1,0 +1,61 @@
+/* The volcaustics passes' work (#21, app/gl/pass_work.h), by the roofline's kinds:
+ *   vc_light's ray generation (raygen.comp, per caustic light one invocation per light-view texel)
+ *     reads the light views' depth: its own texel's, the march of the reflected or refracted ray
+ *     through the depth without the specular objects (up to VC_P2_STEPS), and for glass the march
+ *     and bisection through the back faces' depth. How far a ray marches is data, so the variant
+ *     counts the reads (RAYGEN_COUNT_FETCHES) in the bench's untimed counting frame, as depth
+ *     texels; its normal and colour reads (RGBA8) and the light views' rasterization are not counted.
+ *   vc_lines is rasterized: its work is the lines' fragments (each filters its line's samples
+ *     onto the view ray), at the fill rate, counted by lines.frag's variant (LINES_COUNT_FRAGMENTS);
+ *     so is vc_surface, the rays' ends splatted as point sprites (SURFACE_COUNT_FRAGMENTS).
+ *   vc_airlight reads the G-buffer's depth once per march pixel and, per step and light whose cone
+ *     holds the step's point, that light's shadow map where the point projects into it: counted by
+ *     airlight.frag's variant (AIRLIGHT_COUNT_FETCHES), as depth texels.
+ * vc_composite is not modelled. tests/e2e/efficiency.sh checks the
+ * counts against each other (each pass's count unchanged by another pass's knob) and against their
+ * ceilings from the parameters. */
+#include "vc_internal.h"
+
+/* Per VC_WORK_* pass: its shader variant (one counter at binding 6), its pass and its kind. */
+static const struct {
+    const char *define, *pass, *kind;
+} variants[VC_WORK_N] = {
+    [VC_WORK_RAYGEN] = {"#define RAYGEN_COUNT_FETCHES 1\n", "gi.vc_light", "tex2d_depth32f_nearest"},
+    [VC_WORK_LINES] = {"#define LINES_COUNT_FRAGMENTS 1\n", "gi.vc_lines", "raster_r16f_depth_fill"},
+    [VC_WORK_SURFACE] = {"#define SURFACE_COUNT_FRAGMENTS 1\n", "gi.vc_surface", "raster_r16f_depth_fill"},
+    [VC_WORK_AIRLIGHT] = {"#define AIRLIGHT_COUNT_FETCHES 1\n", "gi.vc_airlight", "tex2d_depth32f_nearest"},
+};
+
+void vc_work_frame(vc_state *s, const gk_gi_frame *f)
+{
+    s->count_work = f->count_work;
+    /* a pass that does not run this frame (no caustic light, no lines) reports no earlier count */
+    for (int k = 0; k < VC_WORK_N; k++)
+        s->work[k].counted = false;
+}
+
+const char *vc_work_begin(vc_state *s, int pass)
+{
+    gk_counters *c = &s->work[pass];
+    c->n = 1;
+    c->binding = 6; /* the shaders' counting blocks */
+    return gk_counters_begin(c, s->count_work) ? variants[pass].define : "";
+}
+
+void vc_work_end(vc_state *s, int pass) { gk_counters_end(&s->work[pass]); }
+
+int vc_pass_work(void *self, gk_pass_work *out, int max)
+{
+    const vc_state *s = self;
+    int n = 0;
+    for (int k = 0; k < VC_WORK_N; k++)
+        if (s->work[k].counted && s->work[k].value[0] > 0.0 && n < max)
+            out[n++] = (gk_pass_work){.pass = variants[k].pass, .kind = variants[k].kind, .fetches = s->work[k].value[0]};
+    return n;
+}
+
+void vc_work_free(vc_state *s)
+{
+    for (int k = 0; k < VC_WORK_N; k++)
+        gk_counters_free(&s->work[k]);
+}

@@ -1,0 +1,106 @@
+/* volcaustics' counted airlight reads (app/gi/volcaustics/vc_work.c, #21) against a hand count, on
+ * glass-fog through vpl's harness (tests/gpu/test_vpl_harness.h: its loaded-scene set-up, G-buffer
+ * and frame, with volcaustics in place of vpl): with its medium filling all of space (every
+ * view ray marches through it: none is empty), its light made a point light (no spot cone skips a
+ * step) and given a shadow map whose projection holds every point the march can reach, each march
+ * pixel reads its G-buffer depth once and one shadow texel per step (VC_AIR_STEPS, 48) -- (1 + 48) x
+ * the march pixels, whatever the surfaces are; without a shadow map it reads the G-buffer alone.
+ * (With the scene's own medium, a box, the view rays that miss it before their surface read no
+ * shadow texel: 44 a pixel on average at 32x24.) The other passes' counts (ray generation, lines,
+ * splats) depend on the rays and are checked against each other and their bounds in
+ * tests/e2e/efficiency.sh. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+
+#include <cmocka.h>
+
+#include "gi/volcaustics/volcaustics.h"
+#include "scene/scene.h"
+#include "test_vpl_harness.h"
+
+extern const gk_gi_method gk_gi_volcaustics;
+
+#define W 64
+#define HH 48
+#define AIR_STEPS 48 /* app/gi/volcaustics/vc_terms.c VC_AIR_STEPS */
+
+static vpl_h H;
+static gk_scene *S;
+
+static int setup(void **state)
+{
+    (void)state;
+    gk_err e = {0};
+    S = gk_scene_load("config/scenes/glass-fog.gltf", &e);
+    if (!S || h_init_with(&H, false, W, HH, S) != 0)
+        return -1;
+    /* the harness's method is vpl: volcaustics instead, on the same scene and G-buffer */
+    H.m->destroy(H.self);
+    H.self = NULL;
+    H.m = &gk_gi_volcaustics;
+    gk_gi_context ctx = {.programs = H.programs, .gles_version = H.gl.egl.gles_version};
+    H.self = H.m->create(&ctx, &e);
+    return H.self && H.m->set_scene(H.self, &H.scene, &e) == 0 ? 0 : -1;
+}
+
+static int teardown(void **state)
+{
+    (void)state;
+    h_free(&H);
+    gk_scene_free(S);
+    return 0;
+}
+
+/* One counting frame at `list`; the airlight's counted reads (0 when none). */
+static double airlight_reads(const char *list)
+{
+    assert_int_equal(h_budget(&H, list), 0);
+    H.count_work = true;
+    assert_int_equal(h_frame(&H, 0.0), 0);
+    H.count_work = false;
+    gk_pass_work w[GK_MAX_PASS_WORK];
+    int n = H.m->pass_work(H.self, w, GK_MAX_PASS_WORK);
+    double reads = 0;
+    for (int i = 0; i < n; i++)
+        if (!strcmp(w[i].pass, "gi.vc_airlight")) {
+            assert_string_equal(w[i].kind, "tex2d_depth32f_nearest");
+            reads += w[i].fetches;
+        }
+    return reads;
+}
+
+static void airlight_reads_by_hand(void **state)
+{
+    (void)state;
+    H.scene.lights[H.gl_light.scene_light].type = GK_LIGHT_POINT;
+    H.scene.medium.bounded = false;
+    /* without a shadow map: the G-buffer's depth, once per march pixel */
+    double none = airlight_reads("vc_march=0.5");
+    const gk_volcaustics_stats *st = gk_volcaustics_get_stats(H.self);
+    double pixels = (double)st->march_w * st->march_h;
+    /* a 1x1 depth map whose orthographic projection spans +-2e6 m: the march's farthest points (1e6 m
+       through an opening) still land in it */
+    GLuint depth;
+    glGenTextures(1, &depth);
+    glBindTexture(GL_TEXTURE_2D, depth);
+    glTexStorage2D(GL_TEXTURE_2D, 1, GL_DEPTH_COMPONENT32F, 1, 1);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    H.gl_light.shadow_depth_tex = depth;
+    H.gl_light.shadow_view_proj = m4_ortho(-2e6f, 2e6f, -2e6f, 2e6f, -2e6f, 2e6f);
+    double shadowed = airlight_reads("vc_march=0.5");
+    printf("# glass-fog, march %dx%d: %.0f reads without a shadow map, %.0f with one\n", st->march_w, st->march_h, none,
+           shadowed);
+    H.gl_light.shadow_depth_tex = 0;
+    glDeleteTextures(1, &depth);
+    assert_true(pixels > 0);
+    assert_true(none == pixels);
+    assert_true(shadowed == pixels * (1 + AIR_STEPS));
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {cmocka_unit_test(airlight_reads_by_hand)};
+    return cmocka_run_group_tests(tests, setup, teardown);
+}
