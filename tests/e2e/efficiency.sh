@@ -3,8 +3,9 @@
 # work model, each of its numbers recomputed here another way -- the pass time from bench.csv's own
 # column, the limit from roofline.csv, the rate and the efficiency from those and the fetches -- the
 # bars chart is drawn per scene, vpl's gather counts agree between two visibilities, the models of
-# vct, vpl (both gathers), ispm (its caustic passes too), lightmap and radiosity hold across their
-# rows, and a broken roofline.csv is bad input naming its file and line.
+# vct, vpl (both gathers), ispm (its caustic passes too), lightmap, radiosity (its display too) and
+# the renderer's own passes (the G-buffer, the compose) hold across their rows, and a broken
+# roofline.csv is bad input naming its file and line.
 . tests/e2e/lib.sh
 export EGL_PLATFORM=surfaceless
 
@@ -72,9 +73,11 @@ import csv, sys
 eff = list(csv.DictReader(open(sys.argv[1])))
 passes = {(e["vct_cones"], e["pass"]) for e in eff}
 # each row: the cone trace, the voxelizer's atomics, the injection's shadow fetches and the mips'
-# loads (rebuilt each frame), and the direct pass's shadow lookups (cornell's light is shadowed)
+# loads (rebuilt each frame), the direct pass's shadow lookups (cornell's light is shadowed), and the
+# renderer's G-buffer fragments and compose lookups
 assert passes == {(c, p) for c in ("4", "9")
-                  for p in ("gi.vct_trace", "gi.vct_voxelize", "gi.vct_inject", "gi.vct_mips", "direct")}, passes
+                  for p in ("gi.vct_trace", "gi.vct_voxelize", "gi.vct_inject", "gi.vct_mips", "direct",
+                            "gbuffer", "compose")}, passes
 # the cones do not change the voxels: the same voxelization, injection and mips at both counts
 for p in ("gi.vct_voxelize", "gi.vct_inject", "gi.vct_mips"):
     f = {e["vct_cones"]: float(e["fetches"]) for e in eff if e["pass"] == p}
@@ -188,6 +191,17 @@ f = {e["radiosity_bounces"]: float(e["fetches"]) for e in csv.DictReader(open(sy
      if e["pass"] == "gi.radiosity_bounce" and e["kind"] == "ssbo_rgba32f_load"}
 assert f["2"] > 0 and f["4"] == 2 * f["2"], f
 PY
+# ... and its display (rad_work.c; tests/gpu/test_radiosity_work.c counts a lone floor's pixels):
+# the mesh's fragments, at the fill rate, the same view and mesh at both bounce counts; drawn
+# without culling or depth test, the same surfaces as the G-buffer's, which culls back faces: at
+# least the G-buffer's fragments (measured 4606 against 4061 at 80x60)
+check "radiosity_display: the mesh's fragments, the same at both bounce counts" python3 - "$TMP/r/efficiency.csv" <<'PY'
+import csv, sys
+f = {(e["pass"], e["radiosity_bounces"]): (e["kind"], float(e["fetches"])) for e in csv.DictReader(open(sys.argv[1]))}
+d = [f[("gi.radiosity_display", b)] for b in ("2", "4")]
+assert d[0] == d[1] and d[0][0] == "raster_r16f_depth_fill", d
+assert d[0][1] >= f[("gbuffer", "2")][1] > 0, f
+PY
 # ... and the deep-umbra test on (its default) against off: it reads only its chain of maxima (4
 # unfiltered lookups per level, level 0 and at most one coarser one per VPL whose filtered
 # visibility found blockers and is above 0), after the filtered lookups it leaves as they were.
@@ -207,6 +221,31 @@ for k in ("tex2d_rgba32f_nearest", "tex2d_rgba8_trilinear", "tex2d_rgba16f_trili
     assert f[("on", k)] == f[("off", k)] > 0, f
 extra = f[("on", u)] - f.get(("off", u), 0.0)
 assert extra > 0 and extra % 4 == 0, f
+PY
+# the renderer's own passes (app/render/render_work.c; tests/gpu/test_render_work.c hand-counts
+# them): the G-buffer's fragments follow the render size, the compose reads the HDR image once per
+# output pixel whatever the render scale (its bilinear upsample); in every run above, every row
+# has both, the same in rows that share the view
+bench_rows s render_scale "the renderer's passes at two render scales" --scenes cornell --methods none \
+    --sweep "'render_scale=0.5,1'"
+check "gbuffer and compose: fragments by the render size, lookups by the output size" python3 - $TMP/b $TMP/v $TMP/m \
+    $TMP/i $TMP/l $TMP/r $TMP/u $TMP/s <<'PY'
+import csv, sys
+for d in sys.argv[1:]:
+    rows = {}
+    for e in csv.DictReader(open(d + "/efficiency.csv")):
+        if e["pass"] in ("gbuffer", "compose"):
+            rows.setdefault(e["pass"], []).append((e["render_scale"], e["kind"], float(e["fetches"])))
+    assert len(rows["gbuffer"]) == len(rows["compose"]) == 2, (d, rows)
+    assert all(k == "tex2d_rgba16f_trilinear" and n == 80 * 60 for _, k, n in rows["compose"]), (d, rows)
+    assert all(k == "raster_r16f_depth_fill" for _, k, _n in rows["gbuffer"]), (d, rows)
+    g = {s: n for s, _, n in rows["gbuffer"]}
+    if d.endswith("/s"):
+        # half the scale, a quarter of the fragments, up to the pixel centres along the edges:
+        # measured 1000 / 4061 = 0.246 (the open box leaves some of the view empty); bound 5x that
+        assert g["1"] > 40 * 30 and abs(g["0.5"] / g["1"] - 0.25) < 0.02, g
+    else:
+        assert len(set(n for _, _, n in rows["gbuffer"])) == 1, (d, rows)
 PY
 printf 'name,format,size,fetches,median_ms,fetches_per_s\ntex3d_rgba16f_trilinear,rgba16f,64,1,1,fast\n' >"$TMP/bad.csv"
 expect_exit 2 "a roofline.csv with a rate that is not a number" "$GIKIOSK" bench --scenes cornell --methods vct \
