@@ -158,6 +158,10 @@ for k, v in f.items():
         assert v["1024"] == v["4096"] > 0, (k, v)
 lists = f[("gi.ispm_lists", "ssbo_r32ui_atomic")]["1024"]
 assert lists % 5 == 0, lists
+# the upsample (counted; tests/gpu/test_ispm_work.c): the splat texels of each lit pixel's bilinear
+# footprint, at most 2 a side at ispm_splat=0.5 (3 next to the edge), the same view at both counts
+up = f[("gi.ispm_upsample", "tex2d_rgba32f_nearest")]
+assert 0 < up["1024"] <= (2 * 80 + 2) * (2 * 60 + 2), up
 for k in caustic - {("gi.ispm_lists", "ssbo_r32ui_atomic")}:
     assert f[k]["4096"] > f[k]["1024"] > 0, (k, f[k])
 PY
