@@ -26,9 +26,8 @@ bool gk_renderer_count_work(gk_renderer *r, bool on)
    counting variant, else "". */
 static const char *count_begin(gk_counters *c, bool on, int n, const char *define)
 {
-    c->n = n;
-    c->binding = 6;
-    return gk_counters_begin(c, on) ? define : "";
+    const char *d = gk_counters_variant(c, on, n, 6, define);
+    return d ? d : "";
 }
 
 const char *gk_render_work_begin(gk_renderer *r)

@@ -181,6 +181,12 @@ assert 0 < c[0] == c[1] <= 80 * 60, f
 for k in ("2500", "10000"):
     reads = f[("gi.lightmap_caustic_filter", "tex2d_r16f_nearest", k)]
     assert 0 < reads <= (7 * 80 - 12) * (7 * 60 - 12), f
+# the UV pass's fragments (counted; the charted geometry, at least the compose's pixels) and the IIM
+# blend's two reads per atlas texel (tests/gpu/test_lightmap_work.c): the same view and atlas in both
+uv = [f[("gi.lightmap_uv", "raster_r16f_depth_fill", k)] for k in ("2500", "10000")]
+assert uv[0] == uv[1] >= c[0], (uv, c)
+blend = [f[("gi.lightmap_blend", "tex2d_rgba32f_nearest", k)] for k in ("2500", "10000")]
+assert blend[0] == blend[1] > 0 and blend[0] % 2 == 0, blend
 PY
 # radiosity's bounces (app/gi/radiosity/rad_work.c): one radiance load per link per bounce, so with
 # the same links (lockstep: the worker's first link set in both rows) 4 bounces load twice what 2 do

@@ -1,10 +1,11 @@
-/* The lightmap compose pass's work model (app/gi/lightmap/lm_work.c, #21) against a hand count: a
- * grey floor 6 m square (charted) lit by a point light, seen straight down from 2 m over a point
- * 0.6 m inside its edge, so that about a fifth of the view is background. The compose looks the
- * light map up once per pixel whose visible surface is charted: here the pixels where the G-buffer
- * holds the floor (albedo > 0; the background is cleared to 0), counted on the CPU. Without
- * count_work nothing is reported. (The caustic filter's model is checked in
- * test_lightmap_caustics.c.) */
+/* The lightmap passes' work models (app/gi/lightmap/lm_work.c, #21) against hand counts: a grey
+ * floor 6 m square (charted) lit by a point light, seen straight down from 2 m over a point 0.6 m
+ * inside its edge, so that about a fifth of the view is background. The compose looks the light map
+ * up once per pixel whose visible surface is charted, and the UV pass rasterizes the charted
+ * geometry, here one layer: both are the pixels where the G-buffer holds the floor (albedo > 0; the
+ * background is cleared to 0), counted on the CPU. The IIM blend reads two texels per atlas texel:
+ * 2 x the atlas's size (gk_lightmap_stats). Without count_work nothing is reported. (The caustic
+ * filter's model is checked in test_lightmap_caustics.c.) */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -65,6 +66,8 @@ static double compose_lookups(void)
     return tpw_fetches(&gk_gi_lightmap, LM, "gi.lightmap_compose", "tex2d_rgba16f_trilinear");
 }
 
+static double work_of(const char *pass, const char *kind) { return tpw_fetches(&gk_gi_lightmap, LM, pass, kind); }
+
 static void compose_lookups_match_the_charted_pixels(void **state)
 {
     (void)state;
@@ -72,6 +75,8 @@ static void compose_lookups_match_the_charted_pixels(void **state)
     assert_int_equal(ih_frame_of(&H, &gk_gi_lightmap, LM), 0);
     assert_true(gk_lightmap_get_stats(LM)->shown);
     assert_true(compose_lookups() < 0.0); /* not a counting frame: nothing counted */
+    assert_true(work_of("gi.lightmap_uv", "raster_r16f_depth_fill") < 0.0);
+    assert_true(work_of("gi.lightmap_blend", "tex2d_rgba32f_nearest") < 0.0);
     H.count_work = true;
     assert_int_equal(ih_frame_of(&H, &gk_gi_lightmap, LM), 0);
     H.count_work = false;
@@ -83,6 +88,12 @@ static void compose_lookups_match_the_charted_pixels(void **state)
     /* the view's edge is the floor's: part of it background, the rest the floor */
     assert_true(floor > W * HH / 2 && floor < W * HH);
     assert_true(counted == (double)floor);
+    double uv = work_of("gi.lightmap_uv", "raster_r16f_depth_fill");
+    double blend = work_of("gi.lightmap_blend", "tex2d_rgba32f_nearest");
+    const gk_lightmap_stats *st = gk_lightmap_get_stats(LM);
+    print_message("# uv: %.0f fragments; blend: %.0f texel reads, atlas %dx%d\n", uv, blend, st->atlas_w, st->atlas_h);
+    assert_true(uv == (double)floor);
+    assert_true(st->atlas_w > 0 && blend == 2.0 * st->atlas_w * st->atlas_h);
 }
 
 int main(void)

@@ -47,9 +47,8 @@ void ispm_work_splat_end(ispm_state *s) { gk_counters_end(&s->splat_fragments); 
 
 const char *ispm_work_upsample_begin(ispm_state *s)
 {
-    s->upsample_fetches.n = 1;
-    s->upsample_fetches.binding = 6; /* ispm/upsample.frag UpsampleFetches */
-    return gk_counters_begin(&s->upsample_fetches, s->counting) ? "#define UPSAMPLE_COUNT_FETCHES 1\n" : NULL;
+    /* ispm/upsample.frag UpsampleFetches */
+    return gk_counters_variant(&s->upsample_fetches, s->counting, 1, 6, "#define UPSAMPLE_COUNT_FETCHES 1\n");
 }
 
 void ispm_work_upsample_end(ispm_state *s) { gk_counters_end(&s->upsample_fetches); }

@@ -11,14 +11,25 @@
  *     the tiles' rects (lm_caustic_filter_reads).
  * tests/gpu/test_lightmap_work.c checks the compose's count against the pixels a CPU count of the
  * G-buffer finds charted geometry in; tests/gpu/test_lightmap_caustics.c the filter's reads against
- * a pixel-by-pixel count. Not modelled: the UV pass (rasterized), the final gather and the IIM
- * blend, the caustic count and cull passes. */
+ * a pixel-by-pixel count.
+ *   lightmap_uv (uv.frag): the charted geometry drawn into the UV target with a depth test and
+ *     without culling, bound by the raster: every fragment it rasterizes (hidden ones included:
+ *     with the atomic the depth test runs after the shader), at the roofline's fill rate, counted by
+ *     a variant (UV_COUNT_FRAGMENTS) on binding 5: the compose's counters sit on 6 across this draw.
+ *   lightmap_blend (iim_blend.comp): every atlas texel mixes the shown IIM with the gathered one,
+ *     two unfiltered RGBA16F texelFetches (the roofline's unfiltered RGBA32F kind stands for them),
+ *     counted by a variant (BLEND_COUNT_FETCHES) so that a test holds the dispatch to the atlas.
+ * tests/gpu/test_lightmap_work.c checks the UV pass's count against the charted pixels and the
+ * blend's against 2 x the atlas's texels. Not modelled: the final gather (a hemisphere rendered
+ * per gathered texel), the caustic count and cull passes. */
 #include "lm_internal.h"
 
 void lm_work_frame(lm_state *s, const gk_gi_frame *f)
 {
     s->counting = f->count_work;
     s->compose_lookups.counted = false; /* a frame without the compose reports none */
+    s->uv_fragments.counted = false;
+    s->blend_fetches.counted = false;
     s->caustic_reads = -1.0;
 }
 
@@ -30,6 +41,22 @@ const char *lm_work_compose_begin(lm_state *s)
 }
 
 void lm_work_compose_end(lm_state *s) { gk_counters_end(&s->compose_lookups); }
+
+const char *lm_work_uv_begin(lm_state *s)
+{
+    /* lightmap/uv.frag UvFragments */
+    return gk_counters_variant(&s->uv_fragments, s->counting, 1, 5, "#define UV_COUNT_FRAGMENTS 1\n");
+}
+
+void lm_work_uv_end(lm_state *s) { gk_counters_end(&s->uv_fragments); }
+
+const char *lm_work_blend_begin(lm_state *s)
+{
+    /* lightmap/iim_blend.comp BlendFetches */
+    return gk_counters_variant(&s->blend_fetches, s->counting, 1, 6, "#define BLEND_COUNT_FETCHES 1\n");
+}
+
+void lm_work_blend_end(lm_state *s) { gk_counters_end(&s->blend_fetches); }
 
 void lm_work_caustics(lm_state *s)
 {
@@ -44,10 +71,21 @@ int lm_pass_work(void *self, gk_pass_work *out, int max)
     if (s->compose_lookups.counted && s->compose_lookups.value[0] > 0.0 && n < max)
         out[n++] = (gk_pass_work){.pass = "gi.lightmap_compose", .kind = "tex2d_rgba16f_trilinear",
                                   .fetches = s->compose_lookups.value[0]};
+    if (s->uv_fragments.counted && s->uv_fragments.value[0] > 0.0 && n < max)
+        out[n++] = (gk_pass_work){.pass = "gi.lightmap_uv", .kind = "raster_r16f_depth_fill",
+                                  .fetches = s->uv_fragments.value[0]};
+    if (s->blend_fetches.counted && s->blend_fetches.value[0] > 0.0 && n < max)
+        out[n++] = (gk_pass_work){.pass = "gi.lightmap_blend", .kind = "tex2d_rgba32f_nearest",
+                                  .fetches = s->blend_fetches.value[0]};
     if (s->caustic_reads > 0.0 && n < max)
         out[n++] = (gk_pass_work){.pass = "gi.lightmap_caustic_filter", .kind = "tex2d_r16f_nearest",
                                   .fetches = s->caustic_reads};
     return n;
 }
 
-void lm_work_free(lm_state *s) { gk_counters_free(&s->compose_lookups); }
+void lm_work_free(lm_state *s)
+{
+    gk_counters_free(&s->compose_lookups);
+    gk_counters_free(&s->uv_fragments);
+    gk_counters_free(&s->blend_fetches);
+}

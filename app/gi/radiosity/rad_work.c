@@ -17,9 +17,8 @@
 
 const char *rad_work_display_begin(rad_state *s, const gk_gi_frame *f)
 {
-    s->display_fragments.n = 1;
-    s->display_fragments.binding = 6; /* radiosity/display.frag DisplayFragments */
-    return gk_counters_begin(&s->display_fragments, f->count_work) ? "#define DISPLAY_COUNT_FRAGMENTS 1\n" : NULL;
+    /* radiosity/display.frag DisplayFragments */
+    return gk_counters_variant(&s->display_fragments, f->count_work, 1, 6, "#define DISPLAY_COUNT_FRAGMENTS 1\n");
 }
 
 void rad_work_display_end(rad_state *s) { gk_counters_end(&s->display_fragments); }
