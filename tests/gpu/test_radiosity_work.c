@@ -1,6 +1,5 @@
-/* The radiosity display pass's work model (app/gi/radiosity/rad_work.c, #21) against a hand count:
- * a grey floor 6 m square lit by a point light, seen straight down from 2 m over a point 0.6 m
- * inside its edge, so that about a fifth of the view is background. The display draws the
+/* The radiosity display pass's work model (app/gi/radiosity/rad_work.c, #21) against a hand count
+ * on the floor view (test_floor_view.h: about a fifth of it background). The display draws the
  * radiosity mesh -- the floor's surfels, tiling the quad in one layer -- without depth test or
  * culling, so it rasterizes one fragment per pixel whose G-buffer holds the floor (albedo > 0; the
  * background is cleared to 0), counted on the CPU. Without count_work nothing is reported, and the
@@ -12,11 +11,11 @@
 #include <cmocka.h>
 
 #include "gi/radiosity/radiosity.h"
-#include "test_ispm_harness.h"
+#include "test_floor_view.h"
 #include "test_pass_work.h"
 
-#define W 160
-#define HH 120
+#define W TFV_W
+#define HH TFV_H
 
 static gkt_scene T;
 static ispm_h H; /* the ispm harness's scene, G-buffer and frame (ih_frame_of) */
@@ -25,29 +24,9 @@ static void *RAD;
 static int setup(void **state)
 {
     (void)state;
-    gkt_scene_init(&T, "radiosity-work-floor");
-    int grey = gkt_material_lambert(&T, v3(0.75f, 0.75f, 0.75f));
-    gkt_quad(&T, v3(-3, 0, -3), v3(3, 0, -3), v3(3, 0, 3), v3(-3, 0, 3), v3(0, 1, 0), grey);
-    gkt_light(&T, GK_LIGHT_POINT, GK_SHAPE_POINT, 10.0f, v3(1.0f, 1.5f, 0.0f), v3(1, 1, 0));
-    gkt_camera(&T, v3(2.4f, 2.0f, 0), v3(2.4f, 0, 0), 40.0f * (float)M_PI / 180.0f);
-    gkt_scene_bounds(&T);
-    if (ih_open_built(&H, &T, W, HH))
-        return -1;
-    gk_err e = {0};
-    gk_gi_context ctx = {.programs = H.programs, .gles_version = H.gl.egl.gles_version};
-    RAD = gk_gi_radiosity.create(&ctx, &e);
-    if (!RAD) {
-        fprintf(stderr, "radiosity: %s\n", e.msg);
-        return -1;
-    }
-    gk_budget_init(&H.budget);
-    gk_gi_radiosity.declare_knobs(&H.budget);
     /* lockstep: the first frame waits for the worker's first result, so it shows the radiosity */
-    if (gk_gi_radiosity.set_scene(RAD, &T.s, &e) || gk_budget_pin_list(&H.budget, "radiosity_sync=lockstep", &e)) {
-        fprintf(stderr, "radiosity: %s\n", e.msg);
-        return -1;
-    }
-    return 0;
+    RAD = tfv_open(&H, &T, "radiosity-work-floor", &gk_gi_radiosity, NULL, "radiosity_sync=lockstep");
+    return RAD ? 0 : -1;
 }
 
 static int teardown(void **state)
@@ -74,9 +53,7 @@ static void display_fragments_match_the_floor_pixels(void **state)
     H.count_work = true;
     assert_int_equal(ih_frame_of(&H, &gk_gi_radiosity, RAD), 0);
     H.count_work = false;
-    long floor = 0;
-    for (int i = 0; i < W * HH; i++)
-        floor += H.albedo[i * 4] > 0.0f;
+    long floor = tfv_floor_pixels(&H);
     double counted = display_fragments();
     print_message("# display: %.0f fragments counted, %ld floor pixels of %d\n", counted, floor, W * HH);
     /* the view's edge is the floor's: part of it background, the rest the floor */
