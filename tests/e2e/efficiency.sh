@@ -187,6 +187,13 @@ uv = [f[("gi.lightmap_uv", "raster_r16f_depth_fill", k)] for k in ("2500", "1000
 assert uv[0] == uv[1] >= c[0], (uv, c)
 blend = [f[("gi.lightmap_blend", "tex2d_rgba32f_nearest", k)] for k in ("2500", "10000")]
 assert blend[0] == blend[1] > 0 and blend[0] % 2 == 0, blend
+# the caustic count's point fragments (counted: one per photon on the screen, so at most the
+# budget, and more with 4x the photons) and the cull's tile queries (the dilated tiles' areas:
+# the same screen in both rows, at least the screen once) (tests/gpu/test_lightmap_caustics.c)
+pts = [f[("gi.lightmap_caustic_count", "raster_r16f_depth_fill", k)] for k in ("2500", "10000")]
+assert 0 < pts[0] <= 2500 and pts[0] < pts[1] <= 10000, pts
+cull = [f[("gi.lightmap_caustic_cull", "raster_r16f_depth_fill", k)] for k in ("2500", "10000")]
+assert cull[0] == cull[1] >= 80 * 60, cull
 PY
 # radiosity's bounces (app/gi/radiosity/rad_work.c): one radiance load per link per bounce, so with
 # the same links (lockstep: the worker's first link set in both rows) 4 bounces load twice what 2 do

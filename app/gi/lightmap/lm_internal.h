@@ -61,6 +61,8 @@ typedef struct lm_state {
     gk_counters uv_fragments;    /* the UV pass's */
     gk_counters blend_fetches;   /* the IIM blend's texel reads */
     double caustic_reads;        /* the caustic filter's count texels in it, -1 when it did not run */
+    double caustic_points_drawn; /* the count pass's point fragments in it (-1: not counted) */
+    double caustic_cull_fragments; /* the cull's fragments in it (0: no cull) */
 } lm_state;
 
 /* lm_display.c */

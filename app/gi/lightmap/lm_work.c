@@ -20,8 +20,15 @@
  *     two unfiltered RGBA16F texelFetches (the roofline's unfiltered RGBA32F kind stands for them),
  *     counted by a variant (BLEND_COUNT_FETCHES) so that a test holds the dispatch to the atlas.
  * tests/gpu/test_lightmap_work.c checks the UV pass's count against the charted pixels and the
- * blend's against 2 x the atlas's texels. Not modelled: the final gather (a hemisphere rendered
- * per gathered texel), the caustic count and cull passes. */
+ * blend's against 2 x the atlas's texels.
+ *   lightmap_caustic_count (caustic_count.frag): the caustic photons drawn as points, one fragment
+ *     each that lands on the screen (hidden ones included: the shader discards them), additive
+ *     blend and stencil increment, at the fill rate; counted by a variant (CAUSTIC_COUNT_FRAGMENTS).
+ *   lightmap_caustic_cull: per tile a full-screen triangle scissored to the tile dilated by the
+ *     kernel's 3 pixels, under the stencil test and an occlusion query: the rects' areas, from the
+ *     parameters (lm_caustic_gpu.c), at the fill rate.
+ * tests/gpu/test_lightmap_caustics.c checks both against hand counts. Not modelled: the final
+ * gather (a hemisphere rendered per gathered texel). */
 #include "lm_internal.h"
 
 void lm_work_frame(lm_state *s, const gk_gi_frame *f)
@@ -31,6 +38,9 @@ void lm_work_frame(lm_state *s, const gk_gi_frame *f)
     s->uv_fragments.counted = false;
     s->blend_fetches.counted = false;
     s->caustic_reads = -1.0;
+    s->caustic_points_drawn = -1.0;
+    s->caustic_cull_fragments = 0.0;
+    s->caustic.count_work = s->counting;
 }
 
 const char *lm_work_compose_begin(lm_state *s)
@@ -61,7 +71,11 @@ void lm_work_blend_end(lm_state *s) { gk_counters_end(&s->blend_fetches); }
 void lm_work_caustics(lm_state *s)
 {
     if (s->counting)
+    {
         s->caustic_reads = s->caustic.n_points > 0 ? s->caustic.filter_reads : -1.0;
+        s->caustic_points_drawn = s->caustic.count_fragments.counted ? s->caustic.count_fragments.value[0] : -1.0;
+        s->caustic_cull_fragments = s->caustic.cull_fragments;
+    }
 }
 
 int lm_pass_work(void *self, gk_pass_work *out, int max)
@@ -77,6 +91,12 @@ int lm_pass_work(void *self, gk_pass_work *out, int max)
     if (s->blend_fetches.counted && s->blend_fetches.value[0] > 0.0 && n < max)
         out[n++] = (gk_pass_work){.pass = "gi.lightmap_blend", .kind = "tex2d_rgba32f_nearest",
                                   .fetches = s->blend_fetches.value[0]};
+    if (s->caustic_points_drawn > 0.0 && n < max)
+        out[n++] = (gk_pass_work){.pass = "gi.lightmap_caustic_count", .kind = "raster_r16f_depth_fill",
+                                  .fetches = s->caustic_points_drawn};
+    if (s->caustic_cull_fragments > 0.0 && n < max)
+        out[n++] = (gk_pass_work){.pass = "gi.lightmap_caustic_cull", .kind = "raster_r16f_depth_fill",
+                                  .fetches = s->caustic_cull_fragments};
     if (s->caustic_reads > 0.0 && n < max)
         out[n++] = (gk_pass_work){.pass = "gi.lightmap_caustic_filter", .kind = "tex2d_r16f_nearest",
                                   .fetches = s->caustic_reads};
