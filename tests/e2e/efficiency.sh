@@ -194,6 +194,14 @@ pts = [f[("gi.lightmap_caustic_count", "raster_r16f_depth_fill", k)] for k in ("
 assert 0 < pts[0] <= 2500 and pts[0] < pts[1] <= 10000, pts
 cull = [f[("gi.lightmap_caustic_cull", "raster_r16f_depth_fill", k)] for k in ("2500", "10000")]
 assert cull[0] == cull[1] >= 80 * 60, cull
+# the final gather's reduction (counted, tests/gpu/test_lightmap_gather.c): lightmap_gather² tile
+# texels per texel gathered, at most lightmap_iim texels a frame
+for e in csv.DictReader(open(sys.argv[1])):
+    if e["pass"] == "gi.lightmap_gather":
+        res2, texels = int(e["lightmap_gather"]) ** 2, float(e["fetches"])
+        assert e["kind"] == "tex2d_rgba32f_nearest" and texels % res2 == 0, e
+        assert 0 < texels / res2 <= int(e["lightmap_iim"]), e
+assert ("gi.lightmap_gather", "tex2d_rgba32f_nearest", "2500") in f, f
 PY
 # radiosity's bounces (app/gi/radiosity/rad_work.c): one radiance load per link per bounce, so with
 # the same links (lockstep: the worker's first link set in both rows) 4 bounces load twice what 2 do

@@ -261,6 +261,7 @@ int lm_display_gather(lm_state *s, const gk_gi_frame *f, int texels, int res, gk
         gather_draw_ctx dc = {s, f, gp, gu};
         vec3 ext = v3_sub(f->scene->bmax, f->scene->bmin);
         float diam = v3_len(ext) > 0.0f ? v3_len(ext) : 1.0f;
+        s->gather.count_work = s->counting;
         gk_pass_begin(f->pass, "lightmap_gather");
         int rc = lm_gather_run(&s->gather, s->ctx.programs, s->jobs, n, 0.005f * a->texel_size, 4.0f * diam,
                                gather_draw, &dc, s->iim_gathered, e);

@@ -27,8 +27,11 @@
  *   lightmap_caustic_cull: per tile a full-screen triangle scissored to the tile dilated by the
  *     kernel's 3 pixels, under the stencil test and an occlusion query: the rects' areas, from the
  *     parameters (lm_caustic_gpu.c), at the fill rate.
- * tests/gpu/test_lightmap_caustics.c checks both against hand counts. Not modelled: the final
- * gather (a hemisphere rendered per gathered texel). */
+ * tests/gpu/test_lightmap_caustics.c checks both against hand counts.
+ *   lightmap_gather: the reduction's reads, res² RGBA32UI texels (16 bytes: the roofline's RGBA32F
+ *     kind) per gathered texel's tile, counted by a variant of gather_reduce.comp
+ *     (REDUCE_COUNT_FETCHES); tests/gpu/test_lightmap_gather.c checks res² per job. Not modelled:
+ *     the same pass's draws, the scene rendered into every tile, which are most of its time. */
 #include "lm_internal.h"
 
 void lm_work_frame(lm_state *s, const gk_gi_frame *f)
@@ -41,6 +44,7 @@ void lm_work_frame(lm_state *s, const gk_gi_frame *f)
     s->caustic_points_drawn = -1.0;
     s->caustic_cull_fragments = 0.0;
     s->caustic.count_work = s->counting;
+    s->gather.reduce_fetches.counted = false; /* a frame without a gather reports none */
 }
 
 const char *lm_work_compose_begin(lm_state *s)
@@ -91,6 +95,9 @@ int lm_pass_work(void *self, gk_pass_work *out, int max)
     if (s->blend_fetches.counted && s->blend_fetches.value[0] > 0.0 && n < max)
         out[n++] = (gk_pass_work){.pass = "gi.lightmap_blend", .kind = "tex2d_rgba32f_nearest",
                                   .fetches = s->blend_fetches.value[0]};
+    if (s->gather.reduce_fetches.counted && s->gather.reduce_fetches.value[0] > 0.0 && n < max)
+        out[n++] = (gk_pass_work){.pass = "gi.lightmap_gather", .kind = "tex2d_rgba32f_nearest",
+                                  .fetches = s->gather.reduce_fetches.value[0]};
     if (s->caustic_points_drawn > 0.0 && n < max)
         out[n++] = (gk_pass_work){.pass = "gi.lightmap_caustic_count", .kind = "raster_r16f_depth_fill",
                                   .fetches = s->caustic_points_drawn};
