@@ -29,6 +29,13 @@ bool gk_counters_begin(gk_counters *c, bool on)
     return true;
 }
 
+const char *gk_counters_variant(gk_counters *c, bool on, int n, GLuint binding, const char *define)
+{
+    c->n = n;
+    c->binding = binding;
+    return gk_counters_begin(c, on) ? define : NULL;
+}
+
 void gk_counters_end(gk_counters *c)
 {
     if (!c->counting)

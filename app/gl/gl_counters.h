@@ -21,6 +21,9 @@ typedef struct gk_counters {
 /* Before a pass: when `on` and fragment shaders may write storage buffers (GLES 3.1 allows none),
  * zeroes and binds the counters and returns true (the pass then runs its counting variant). */
 bool gk_counters_begin(gk_counters *c, bool on);
+/* gk_counters_begin for a pass with a counting variant: n counters at `binding`; returns `define`
+ * (the variant's #define) when the pass counts this frame, else NULL. */
+const char *gk_counters_variant(gk_counters *c, bool on, int n, GLuint binding, const char *define);
 /* After it: reads the counters back when the pass counted. */
 void gk_counters_end(gk_counters *c);
 void gk_counters_free(gk_counters *c);

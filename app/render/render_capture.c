@@ -18,7 +18,7 @@ static int read_image_overlay(gk_renderer *r, GLenum format, bool linear, bool r
     if (gk_target_create(&t, linear ? "capture (linear)" : "capture (display)", w, h, 1, &format, GL_NEAREST,
                          false, e) != 0)
         return -1;
-    int rc = gk_render_compose(r, t.fbo, w, h, linear, e);
+    int rc = gk_render_compose(r, t.fbo, w, h, linear, NULL, e);
     if (rc == 0 && overlay && !linear)
         overlay(user, NULL, t.fbo);
     float *px = NULL;

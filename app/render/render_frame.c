@@ -172,12 +172,14 @@ static const gk_uniform_field compose_fields[] = {GK_UNIFORM(compose_uniforms, u
 
 static int pass_gbuffer(gk_renderer *r, const mat4 *viewproj, vec3 eye, gk_err *e)
 {
-    GLuint prog = gk_program_get(r->progs, "gbuffer/gbuffer.vert", "gbuffer/gbuffer.frag", gk_render_gbuffer_defines(r), e);
-    if (!prog)
+    char defines[128];
+    snprintf(defines, sizeof defines, "%s%s", gk_render_gbuffer_defines(r), gk_render_work_gbuffer_begin(r));
+    GLuint prog = gk_program_get(r->progs, "gbuffer/gbuffer.vert", "gbuffer/gbuffer.frag", defines, e);
+    const gbuffer_uniforms *u = prog ? gk_program_uniforms(r->progs, prog, GK_FIELDS(gbuffer_fields), sizeof *u, e) : NULL;
+    if (!u) {
+        gk_render_work_gbuffer_end(r);
         return -1;
-    const gbuffer_uniforms *u = gk_program_uniforms(r->progs, prog, GK_FIELDS(gbuffer_fields), sizeof *u, e);
-    if (!u)
-        return -1;
+    }
     glBindFramebuffer(GL_FRAMEBUFFER, r->gbuf.fbo);
     glViewport(0, 0, r->render_w, r->render_h);
     glEnable(GL_DEPTH_TEST);
@@ -199,6 +201,7 @@ static int pass_gbuffer(gk_renderer *r, const mat4 *viewproj, vec3 eye, gk_err *
     glUniformMatrix4fv(u->u_viewproj, 1, GL_FALSE, viewproj->m);
     glUniform3f(u->u_eye, eye.x, eye.y, eye.z);
     gk_scene_gpu_draw(&r->gpu, r->scene, &u->draw, GK_DRAW_MATERIALS | GK_DRAW_SKIP_GLASS | GK_DRAW_SKIP_BLEND | GK_DRAW_CULL_SINGLE_SIDED);
+    gk_render_work_gbuffer_end(r);
     return 0;
 }
 
@@ -260,10 +263,13 @@ static int pass_direct(gk_renderer *r, const gk_frame_knobs *fk, const frame_lig
     return rc;
 }
 
-int gk_render_compose(gk_renderer *r, GLuint fbo, int w, int h, bool linear_out, gk_err *e)
+int gk_render_compose(gk_renderer *r, GLuint fbo, int w, int h, bool linear_out, const char *count_define, gk_err *e)
 {
+    char defines[96];
+    snprintf(defines, sizeof defines, "%s%s", linear_out ? "#define GK_LINEAR_OUT 1\n" : "",
+             count_define ? count_define : "");
     GLuint prog = gk_program_get(r->progs, "common/fullscreen.vert", "compose/compose.frag",
-                                 linear_out ? "#define GK_LINEAR_OUT 1\n" : NULL, e);
+                                 defines[0] ? defines : NULL, e);
     const compose_uniforms *u = prog ? gk_program_uniforms(r->progs, prog, GK_FIELDS(compose_fields), sizeof *u, e) : NULL;
     if (!u)
         return -1;
@@ -454,7 +460,8 @@ int gk_renderer_draw(gk_renderer *r, const gk_frame_params *fp, unsigned target_
         if (!r->exposure_known)
             measure_exposure(r); /* once per scene, outside every pass: a one-off read-back */
         gk_pass_begin(&ctx, "compose");
-        rc = gk_render_compose(r, target_fbo, r->opts.width, r->opts.height, false, e);
+        rc = gk_render_compose(r, target_fbo, r->opts.width, r->opts.height, false, gk_render_work_compose_begin(r), e);
+        gk_render_work_compose_end(r);
         gk_pass_end(&ctx);
     }
     if (rc == 0 && !abandoned && fp && fp->overlay && !(abandoned = stop_before(fp, "hud", &last))) {

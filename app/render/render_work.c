@@ -1,8 +1,17 @@
 /* What the bench divides by a pass's time (#21, app/gl/pass_work.h): the renderer's own passes'
- * useful fetches, and the GI method's. The direct pass's shadow lookups depend on the data (PCSS
- * shrinks its PCF grid with the penumbra, VSSM subdivides kernels that straddle depths), so they
- * are counted: a counting variant of the lighting pass (SHADOW_COUNT_FETCHES, shaders_gles/shadow/
- * common.glsl) adds each pixel's fetches to a storage buffer, in frames the bench does not time. */
+ * useful work, and the GI method's. Each is counted by a counting variant of its pass's shader that
+ * adds to a storage buffer, in frames the bench does not time:
+ *   gbuffer (GBUFFER_COUNT_FRAGMENTS, gbuffer/gbuffer.frag): the draws' fragments, every fragment
+ *     rasterized after face culling (occluded and alpha-masked ones included: with the atomic the
+ *     depth test runs after the shader), at the roofline's fill rate. The pass is bound by the
+ *     raster and its 4-5 render targets' writes; its material texture fetches are not counted.
+ *   direct: the shadow lookups depend on the data (PCSS shrinks its PCF grid with the penumbra,
+ *     VSSM subdivides kernels that straddle depths), so SHADOW_COUNT_FETCHES (shaders_gles/shadow/
+ *     common.glsl) counts them per format.
+ *   compose (HDR_COUNT_FETCHES, compose/compose.frag): one bilinear lookup of the RGBA16F HDR
+ *     image per output pixel, the upsample when render_scale < 1 -- a constant of the output size,
+ *     counted all the same so that a test holds the pass to it (tests/gpu/test_render_work.c).
+ * The GBuffer and HDR counters sit on binding 6 as the shadow counters do: one pass at a time. */
 #include "gl/gl_counters.h"
 #include "render_gi.h"
 #include "renderer_internal.h"
@@ -13,20 +22,53 @@ bool gk_renderer_count_work(gk_renderer *r, bool on)
     return r->count_work || !on;
 }
 
+/* Zeroes and binds c (n counters at binding 6) when this frame counts: the define of its pass's
+   counting variant, else "". */
+static const char *count_begin(gk_counters *c, bool on, int n, const char *define)
+{
+    const char *d = gk_counters_variant(c, on, n, 6, define);
+    return d ? d : "";
+}
+
 const char *gk_render_work_begin(gk_renderer *r)
 {
-    r->shadow_fetches.n = 5;
-    r->shadow_fetches.binding = 6; /* direct/light.frag ShadowFetches */
-    return gk_counters_begin(&r->shadow_fetches, r->count_work) ? "#define SHADOW_COUNT_FETCHES 1\n" : "";
+    return count_begin(&r->shadow_fetches, r->count_work, 5, "#define SHADOW_COUNT_FETCHES 1\n");
 }
 
 void gk_render_work_end(gk_renderer *r) { gk_counters_end(&r->shadow_fetches); }
 
-void gk_render_work_destroy(gk_renderer *r) { gk_counters_free(&r->shadow_fetches); }
+const char *gk_render_work_gbuffer_begin(gk_renderer *r)
+{
+    return count_begin(&r->gbuffer_fragments, r->count_work, 1, "#define GBUFFER_COUNT_FRAGMENTS 1\n");
+}
+
+void gk_render_work_gbuffer_end(gk_renderer *r) { gk_counters_end(&r->gbuffer_fragments); }
+
+const char *gk_render_work_compose_begin(gk_renderer *r)
+{
+    return count_begin(&r->compose_fetches, r->count_work, 1, "#define HDR_COUNT_FETCHES 1\n");
+}
+
+void gk_render_work_compose_end(gk_renderer *r) { gk_counters_end(&r->compose_fetches); }
+
+void gk_render_work_destroy(gk_renderer *r)
+{
+    gk_counters_free(&r->gbuffer_fragments);
+    gk_counters_free(&r->shadow_fetches);
+    gk_counters_free(&r->compose_fetches);
+}
+
+/* Appends c's first counter as pass/kind when it counted some. */
+static int add_counted(const gk_counters *c, const char *pass, const char *kind, gk_pass_work *out, int n, int max)
+{
+    if (c->counted && c->value[0] > 0.0 && n < max)
+        out[n++] = (gk_pass_work){.pass = pass, .kind = kind, .fetches = c->value[0]};
+    return n;
+}
 
 int gk_renderer_pass_work(const gk_renderer *r, const char *method, gk_pass_work *out, int max)
 {
-    int n = 0;
+    int n = add_counted(&r->gbuffer_fragments, "gbuffer", "raster_r16f_depth_fill", out, 0, max);
     /* by the format read, in the order of direct/light.frag's ShadowFetches: the 32-bit depth map,
        R32F min/max mips and CSSM's range, R32UI SATs, CSSM_SAT's RGBA32UI bases (16-byte texels
        as RGBA32F's), all unfiltered; CSSM's mipmapped RGBA16F bases */
@@ -35,5 +77,6 @@ int gk_renderer_pass_work(const gk_renderer *r, const char *method, gk_pass_work
     for (int k = 0; k < 5 && r->shadow_fetches.counted; k++)
         if (r->shadow_fetches.value[k] > 0.0 && n < max)
             out[n++] = (gk_pass_work){.pass = "direct", .kind = kinds[k], .fetches = r->shadow_fetches.value[k]};
+    n = add_counted(&r->compose_fetches, "compose", "tex2d_rgba16f_trilinear", out, n, max);
     return n + gk_render_gi_pass_work(r->gi, method, out + n, max - n);
 }

@@ -91,13 +91,14 @@ void gk_renderer_cut(gk_renderer *r);
 /* True when the GI method failed on the current scene (logged once by the renderer; it is not
  * run again until the next scene). */
 bool gk_renderer_gi_failed(const gk_renderer *r, const char *method);
-/* The bench's efficiency (#21, render_work.c). While on, passes whose work depends on the data run
- * a variant that counts it (an atomic add per pixel: not for timed frames): the direct pass's shadow
- * lookups, and the GI method's (gk_gi_frame.count_work). Returns false, and counts nothing, where
- * the fragment stage has no storage buffers. */
+/* The bench's efficiency (#21, render_work.c). While on, passes run a variant that counts their
+ * work (atomic adds per fragment or pixel: not for timed frames): the G-buffer's fragments, the
+ * direct pass's shadow lookups, the compose's HDR lookups, and the GI method's (gk_gi_frame.
+ * count_work). Returns false, and counts nothing, where the fragment stage has no storage buffers. */
 bool gk_renderer_count_work(gk_renderer *r, bool on);
-/* The useful fetches of the last frame's passes (app/gl/pass_work.h): the `direct` pass's shadow
- * lookups when that frame counted them, then GI method `method`'s passes. Up to max entries,
+/* The useful fetches of the last frame's passes (app/gl/pass_work.h) when that frame counted them:
+ * the `gbuffer` pass's fragments, the `direct` pass's shadow lookups and the `compose` pass's HDR
+ * lookups, then GI method `method`'s passes. Up to max entries,
  * returns how many. May stall on a GPU counter. */
 int gk_renderer_pass_work(const gk_renderer *r, const char *method, gk_pass_work *out, int max);
 

@@ -102,17 +102,24 @@ struct gk_renderer {
     bool exposure_known;
     bool have_frame;            /* hdr holds a finished frame for capture */
 
-    /* The bench's count of the shadow lookups' fetches (render_work.c, #21) */
-    bool count_work;            /* this frame's passes use their counting variants (the lighting
-                                   pass's shadow lookups; the GI method's, gk_gi_frame.count_work) */
-    gk_counters shadow_fetches; /* two: unfiltered 32-bit fetches, filtered RGBA16F fetches */
+    /* The bench's counts of the renderer's passes' work (render_work.c, #21) */
+    bool count_work;            /* this frame's passes use their counting variants (the G-buffer's
+                                   fragments, the lighting pass's shadow lookups, the compose's
+                                   HDR lookups; the GI method's, gk_gi_frame.count_work) */
+    gk_counters gbuffer_fragments; /* one: the G-buffer draws' fragments */
+    gk_counters shadow_fetches; /* five: the shadow lookups by format (render_work.c's kinds) */
+    gk_counters compose_fetches; /* one: the compose's bilinear HDR lookups */
 };
 
 /* render_work.c: around the direct pass's lights, when r->count_work: zero and bind the
  * counter before them (returns the define the shadowed lights' programs add, "" when not counting),
- * read it back after them. */
+ * read it back after them. The same around the G-buffer pass and the frame's compose. */
 const char *gk_render_work_begin(gk_renderer *r);
 void gk_render_work_end(gk_renderer *r);
+const char *gk_render_work_gbuffer_begin(gk_renderer *r);
+void gk_render_work_gbuffer_end(gk_renderer *r);
+const char *gk_render_work_compose_begin(gk_renderer *r);
+void gk_render_work_compose_end(gk_renderer *r);
 void gk_render_work_destroy(gk_renderer *r);
 
 /* renderer_knobs.c: handles set up at creation; the frame's values from budget b (NULL: defaults). */
@@ -167,7 +174,8 @@ int gk_render_blend(gk_renderer *r, const gk_gbuffer_view *gb, int env_lights, g
 void gk_render_fullscreen(gk_renderer *r);
 
 /* Compose pass into fbo (w x h): tonemapped, or linear when linear_out. */
-int gk_render_compose(gk_renderer *r, GLuint fbo, int w, int h, bool linear_out, gk_err *e);
+/* count_define: the bench's counting variant (gk_render_work_compose_begin), NULL or "" without. */
+int gk_render_compose(gk_renderer *r, GLuint fbo, int w, int h, bool linear_out, const char *count_define, gk_err *e);
 
 /* The G-buffer's 5th target, the geometric normal, needs 5 draw buffers (GLES 3.1 guarantees 4;
  * llvmpipe, Mali Bifrost and later, Adreno have 8). Without them the shading normal stands in (the

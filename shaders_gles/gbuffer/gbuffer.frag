@@ -6,9 +6,17 @@
 // before the normal map, facing the viewer; only with GK_GEOM_NORMAL_TARGET 1, which the renderer
 // defines when the driver has 5 draw buffers: an output location past GL_MAX_DRAW_BUFFERS fails to
 // link); depth 32F. The material itself: common/material.glsl.
+// GBUFFER_COUNT_FRAGMENTS: the bench's counting variant (#21, app/render/render_work.c), one atomic
+// add per fragment the draws rasterize (before the alpha mask's discard; with the atomic the depth
+// test runs after the shader, so occluded fragments count too); fragment-stage storage buffers
+// capability-checked by the caller. Never in the kiosk's frames.
 // @variant GK_GEOM_NORMAL_TARGET=0
 // @variant GK_GEOM_NORMAL_TARGET=1
+// @variant GK_GEOM_NORMAL_TARGET=1 GBUFFER_COUNT_FRAGMENTS
 precision highp float;
+#ifdef GBUFFER_COUNT_FRAGMENTS
+layout(std430, binding = 6) buffer GBufferFragments { highp uint fragments; } gbuffer_counted;
+#endif
 uniform vec3 u_eye;
 #include "common/material.glsl"
 layout(location = 0) out mediump vec4 o_albedo;
@@ -26,6 +34,9 @@ uniform float u_alpha_cutoff;
 
 void main()
 {
+#ifdef GBUFFER_COUNT_FRAGMENTS
+    atomicAdd(gbuffer_counted.fragments, 1u);
+#endif
     gk_frag_material f = gk_eval_material();
     // glTF alphaMode MASK: below the cutoff the surface is not there (shadow/depth.frag cuts the
     // same holes in the shadow maps, the tracer's any-hit test in its rays).

@@ -4,7 +4,15 @@
 //   w = bilinear · max(n·n', 0)^k · 1/(1 + |d − d'|)   (d = distance to the camera, metres),
 // the low-resolution normal and distance being the G-buffer's at the texel's pixel (the splat read
 // the same pixel); w = 0 gives 0.
+// UPSAMPLE_COUNT_FETCHES: the bench's counting variant (#21, app/gi/ispm/ispm_work.c), the splat
+// texels read, one atomic add per pixel (fragment-stage storage buffers capability-checked by the
+// caller). Never in the kiosk's frames.
+// @variant -
+// @variant UPSAMPLE_COUNT_FETCHES
 precision highp float;
+#ifdef UPSAMPLE_COUNT_FETCHES
+layout(std430, binding = 6) buffer UpsampleFetches { highp uint texels; } upsample_counted;
+#endif
 #include "common/gbuffer.glsl"
 uniform highp sampler2D u_low;
 uniform float u_to_low;        // splat pixels per full pixel (≤ 1)
@@ -24,6 +32,9 @@ void main()
     ivec2 c = ivec2(floor(lp + 0.5));
     vec3 acc = vec3(0.0);
     float wsum = 0.0;
+#ifdef UPSAMPLE_COUNT_FETCHES
+    highp uint fetched = 0u;
+#endif
     for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
             ivec2 q = clamp(c + ivec2(dx, dy), ivec2(0), lsize - 1);
@@ -40,7 +51,14 @@ void main()
             float w = wx * wn * wd;
             acc += w * texelFetch(u_low, q, 0).rgb;
             wsum += w;
+#ifdef UPSAMPLE_COUNT_FETCHES
+            fetched++;
+#endif
         }
+#ifdef UPSAMPLE_COUNT_FETCHES
+    if (fetched > 0u)
+        atomicAdd(upsample_counted.texels, fetched);
+#endif
     vec3 E = wsum > 0.0 ? acc / wsum : vec3(0.0);
     // the diffuse part of the glTF BRDF lit by the caustic's irradiance, as vpl's compose does it
     o_color = vec4(gk_brdf_diffuse_gathered(s.m, dot(s.n, s.v)) * E, 0.0);

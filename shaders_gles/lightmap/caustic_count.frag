@@ -4,13 +4,24 @@
 // it lies behind the visible surface's plane and farther from the eye (the plane test keeps
 // photons lying on that surface itself, which a depth comparison would half lose: M19). A photon
 // counted also increments the stencil (the tile culling's "stencil > 0").
+// CAUSTIC_COUNT_FRAGMENTS: the bench's counting variant (#21, app/gi/lightmap/lm_work.c), one atomic
+// add per point fragment, before the discards (fragment-stage storage buffers capability-checked by
+// the caller). Never in the kiosk's frames.
+// @variant -
+// @variant CAUSTIC_COUNT_FRAGMENTS
 precision highp float;
+#ifdef CAUSTIC_COUNT_FRAGMENTS
+layout(std430, binding = 6) buffer PointFragments { highp uint fragments; } points_counted;
+#endif
 #include "common/gbuffer.glsl"
 uniform float u_count_scale; // what the target holds for n photons: n / u_count_scale
 in vec3 v_world;
 layout(location = 0) out vec4 o_count;
 void main()
 {
+#ifdef CAUSTIC_COUNT_FRAGMENTS
+    atomicAdd(points_counted.fragments, 1u);
+#endif
     ivec2 px = ivec2(gl_FragCoord.xy);
     float depth = gb_depth(px);
     if (gb_background(depth))

@@ -3,8 +3,16 @@
 // where the G-buffer shows this very surface: the mesh is drawn without a depth buffer of its own,
 // and a fragment whose world position is not the G-buffer's (a hidden surface, a light proxy drawn
 // in front) adds nothing.
+// DISPLAY_COUNT_FRAGMENTS: the bench's counting variant (#21, app/gi/radiosity/rad_work.c), one
+// atomic add per fragment the mesh rasterizes, before the tests that discard it (fragment-stage
+// storage buffers capability-checked by the caller). Never in the kiosk's frames.
+// @variant -
+// @variant DISPLAY_COUNT_FRAGMENTS
 precision highp float;
 precision highp int;
+#ifdef DISPLAY_COUNT_FRAGMENTS
+layout(std430, binding = 6) buffer DisplayFragments { highp uint fragments; } display_counted;
+#endif
 #include "common/gbuffer.glsl"
 in vec3 v_irradiance;
 in vec3 v_world;
@@ -13,6 +21,9 @@ layout(location = 0) out vec4 o_color;
 
 void main()
 {
+#ifdef DISPLAY_COUNT_FRAGMENTS
+    atomicAdd(display_counted.fragments, 1u);
+#endif
     ivec2 px = ivec2(gl_FragCoord.xy);
     float depth = gb_depth(px);
     if (gb_background(depth) || gb_emission(px).a > 0.5)

@@ -3,8 +3,9 @@
 # work model, each of its numbers recomputed here another way -- the pass time from bench.csv's own
 # column, the limit from roofline.csv, the rate and the efficiency from those and the fetches -- the
 # bars chart is drawn per scene, vpl's gather counts agree between two visibilities, the models of
-# vct, vpl (both gathers), ispm (its caustic passes too), lightmap and radiosity hold across their
-# rows, and a broken roofline.csv is bad input naming its file and line.
+# vct, vpl (both gathers), ispm (its caustic passes too), lightmap, radiosity (its display too) and
+# the renderer's own passes (the G-buffer, the compose) hold across their rows, and a broken
+# roofline.csv is bad input naming its file and line.
 . tests/e2e/lib.sh
 export EGL_PLATFORM=surfaceless
 
@@ -72,9 +73,11 @@ import csv, sys
 eff = list(csv.DictReader(open(sys.argv[1])))
 passes = {(e["vct_cones"], e["pass"]) for e in eff}
 # each row: the cone trace, the voxelizer's atomics, the injection's shadow fetches and the mips'
-# loads (rebuilt each frame), and the direct pass's shadow lookups (cornell's light is shadowed)
+# loads (rebuilt each frame), the direct pass's shadow lookups (cornell's light is shadowed), and the
+# renderer's G-buffer fragments and compose lookups
 assert passes == {(c, p) for c in ("4", "9")
-                  for p in ("gi.vct_trace", "gi.vct_voxelize", "gi.vct_inject", "gi.vct_mips", "direct")}, passes
+                  for p in ("gi.vct_trace", "gi.vct_voxelize", "gi.vct_inject", "gi.vct_mips", "direct",
+                            "gbuffer", "compose")}, passes
 # the cones do not change the voxels: the same voxelization, injection and mips at both counts
 for p in ("gi.vct_voxelize", "gi.vct_inject", "gi.vct_mips"):
     f = {e["vct_cones"]: float(e["fetches"]) for e in eff if e["pass"] == p}
@@ -155,6 +158,10 @@ for k, v in f.items():
         assert v["1024"] == v["4096"] > 0, (k, v)
 lists = f[("gi.ispm_lists", "ssbo_r32ui_atomic")]["1024"]
 assert lists % 5 == 0, lists
+# the upsample (counted; tests/gpu/test_ispm_work.c): the splat texels of each lit pixel's bilinear
+# footprint, at most 2 a side at ispm_splat=0.5 (3 next to the edge), the same view at both counts
+up = f[("gi.ispm_upsample", "tex2d_rgba32f_nearest")]
+assert 0 < up["1024"] <= (2 * 80 + 2) * (2 * 60 + 2), up
 for k in caustic - {("gi.ispm_lists", "ssbo_r32ui_atomic")}:
     assert f[k]["4096"] > f[k]["1024"] > 0, (k, f[k])
 PY
@@ -174,6 +181,27 @@ assert 0 < c[0] == c[1] <= 80 * 60, f
 for k in ("2500", "10000"):
     reads = f[("gi.lightmap_caustic_filter", "tex2d_r16f_nearest", k)]
     assert 0 < reads <= (7 * 80 - 12) * (7 * 60 - 12), f
+# the UV pass's fragments (counted; the charted geometry, at least the compose's pixels) and the IIM
+# blend's two reads per atlas texel (tests/gpu/test_lightmap_work.c): the same view and atlas in both
+uv = [f[("gi.lightmap_uv", "raster_r16f_depth_fill", k)] for k in ("2500", "10000")]
+assert uv[0] == uv[1] >= c[0], (uv, c)
+blend = [f[("gi.lightmap_blend", "tex2d_rgba32f_nearest", k)] for k in ("2500", "10000")]
+assert blend[0] == blend[1] > 0 and blend[0] % 2 == 0, blend
+# the caustic count's point fragments (counted: one per photon on the screen, so at most the
+# budget, and more with 4x the photons) and the cull's tile queries (the dilated tiles' areas:
+# the same screen in both rows, at least the screen once) (tests/gpu/test_lightmap_caustics.c)
+pts = [f[("gi.lightmap_caustic_count", "raster_r16f_depth_fill", k)] for k in ("2500", "10000")]
+assert 0 < pts[0] <= 2500 and pts[0] < pts[1] <= 10000, pts
+cull = [f[("gi.lightmap_caustic_cull", "raster_r16f_depth_fill", k)] for k in ("2500", "10000")]
+assert cull[0] == cull[1] >= 80 * 60, cull
+# the final gather's reduction (counted, tests/gpu/test_lightmap_gather.c): lightmap_gather² tile
+# texels per texel gathered, at most lightmap_iim texels a frame
+for e in csv.DictReader(open(sys.argv[1])):
+    if e["pass"] == "gi.lightmap_gather":
+        res2, texels = int(e["lightmap_gather"]) ** 2, float(e["fetches"])
+        assert e["kind"] == "tex2d_rgba32f_nearest" and texels % res2 == 0, e
+        assert 0 < texels / res2 <= int(e["lightmap_iim"]), e
+assert ("gi.lightmap_gather", "tex2d_rgba32f_nearest", "2500") in f, f
 PY
 # radiosity's bounces (app/gi/radiosity/rad_work.c): one radiance load per link per bounce, so with
 # the same links (lockstep: the worker's first link set in both rows) 4 bounces load twice what 2 do
@@ -187,6 +215,17 @@ import csv, sys
 f = {e["radiosity_bounces"]: float(e["fetches"]) for e in csv.DictReader(open(sys.argv[1]))
      if e["pass"] == "gi.radiosity_bounce" and e["kind"] == "ssbo_rgba32f_load"}
 assert f["2"] > 0 and f["4"] == 2 * f["2"], f
+PY
+# ... and its display (rad_work.c; tests/gpu/test_radiosity_work.c counts a lone floor's pixels):
+# the mesh's fragments, at the fill rate, the same view and mesh at both bounce counts; drawn
+# without culling or depth test, the same surfaces as the G-buffer's, which culls back faces: at
+# least the G-buffer's fragments (measured 4606 against 4061 at 80x60)
+check "radiosity_display: the mesh's fragments, the same at both bounce counts" python3 - "$TMP/r/efficiency.csv" <<'PY'
+import csv, sys
+f = {(e["pass"], e["radiosity_bounces"]): (e["kind"], float(e["fetches"])) for e in csv.DictReader(open(sys.argv[1]))}
+d = [f[("gi.radiosity_display", b)] for b in ("2", "4")]
+assert d[0] == d[1] and d[0][0] == "raster_r16f_depth_fill", d
+assert d[0][1] >= f[("gbuffer", "2")][1] > 0, f
 PY
 # ... and the deep-umbra test on (its default) against off: it reads only its chain of maxima (4
 # unfiltered lookups per level, level 0 and at most one coarser one per VPL whose filtered
@@ -208,8 +247,7 @@ for k in ("tex2d_rgba32f_nearest", "tex2d_rgba8_trilinear", "tex2d_rgba16f_trili
 extra = f[("on", u)] - f.get(("off", u), 0.0)
 assert extra > 0 and extra % 4 == 0, f
 PY
-# A bench run of two rows told apart by KNOB (argv: DIR KNOB WHAT BENCH-ARGS...), each number of its
-# efficiency.csv recomputed; $TMP/fetches.py reads its fetches by (pass, kind) and row for the checks.
+# $TMP/fetches.py reads a bench_rows run's fetches by (pass, kind) and row for the checks below.
 cat >"$TMP/fetches.py" <<'PY'
 import csv
 def by_row(path, knob):
@@ -218,22 +256,14 @@ def by_row(path, knob):
         f.setdefault((e["pass"], e["kind"]), {})[e[knob]] = float(e["fetches"])
     return f
 PY
-two_rows() {
-    _dir=$1 _knob=$2 _what=$3
-    shift 3
-    expect_exit 0 "bench --roofline-csv: $_what" sh -c "'$GIKIOSK' bench $* --size 80x60 --frames 1 --warmup 1 \
-        --roofline-csv '$TMP/roofline.csv' --out '$TMP/$_dir' 2>'$TMP/$_dir.log'"
-    check "$_what: every number of efficiency.csv recomputed" \
-        python3 "$TMP/recompute.py" "$TMP/$_dir/bench.csv" "$TMP/$_dir/efficiency.csv" "$TMP/roofline.csv" "$_knob"
-}
 # lgv's passes (app/gi/lgv/lgv_work.c), the maps rendered each frame (--rebuild-gi), without and with
 # the gathering iterations: the maps' fragments and the lookup's volume reads do not depend on them,
 # the gathering's loads grow by 2 x (4 per neighbour pair + 3 per cell), whose pairs and cells must be
 # those of a grid of at most 32 cells a side (lgv_size=32)
-two_rows l lgv_iters "lgv with 0 and 2 gathering iterations" --scenes glass --methods lgv \
+bench_rows lg lgv_iters "lgv with 0 and 2 gathering iterations" --scenes glass --methods lgv \
     --sweep "'lgv_iters=0,2'" --budget lgv_photons=16384 --rebuild-gi
 check "lgv: each pass's kinds, the maps and lookup alike in both rows, the gathering's loads a grid's" \
-    env PYTHONPATH="$TMP" python3 - "$TMP/l/efficiency.csv" <<'PY'
+    env PYTHONPATH="$TMP" python3 - "$TMP/lg/efficiency.csv" <<'PY'
 import sys
 from fetches import by_row
 f = by_row(sys.argv[1], "lgv_iters")
@@ -260,10 +290,10 @@ PY
 # one shadow texel per step (48) and light (glass-fog's 2 spots); each ray generation invocation reads
 # its own light-view texel, the 2 lights' 256^2 at least, and at most 64 march steps, 32 + 10 glass
 # steps and 2 more texels besides
-two_rows c vc_march "volcaustics at two airlight resolutions" --scenes glass-fog --methods volcaustics \
+bench_rows vc vc_march "volcaustics at two airlight resolutions" --scenes glass-fog --methods volcaustics \
     --sweep "'vc_march=0.25,0.5'"
 check "volcaustics: the rays, lines and splats alike at both airlight resolutions, each count within its bounds" \
-    env PYTHONPATH="$TMP" python3 - "$TMP/c/efficiency.csv" <<'PY'
+    env PYTHONPATH="$TMP" python3 - "$TMP/vc/efficiency.csv" <<'PY'
 import sys
 from fetches import by_row
 f = by_row(sys.argv[1], "vc_march")
@@ -276,6 +306,31 @@ texels = 2 * 256 * 256
 assert texels <= rays["0.25"] <= texels * (1 + 64 + 32 + 10 + 2), rays
 for march, (w, h) in (("0.25", (20, 15)), ("0.5", (40, 30))):
     assert w * h < air[march] <= w * h * (1 + 48 * 2), (march, air)
+PY
+# the renderer's own passes (app/render/render_work.c; tests/gpu/test_render_work.c hand-counts
+# them): the G-buffer's fragments follow the render size, the compose reads the HDR image once per
+# output pixel whatever the render scale (its bilinear upsample); in every run above, every row
+# has both, the same in rows that share the view
+bench_rows s render_scale "the renderer's passes at two render scales" --scenes cornell --methods none \
+    --sweep "'render_scale=0.5,1'"
+check "gbuffer and compose: fragments by the render size, lookups by the output size" python3 - $TMP/b $TMP/v $TMP/m \
+    $TMP/i $TMP/l $TMP/r $TMP/u $TMP/lg $TMP/vc $TMP/s <<'PY'
+import csv, sys
+for d in sys.argv[1:]:
+    rows = {}
+    for e in csv.DictReader(open(d + "/efficiency.csv")):
+        if e["pass"] in ("gbuffer", "compose"):
+            rows.setdefault(e["pass"], []).append((e["render_scale"], e["kind"], float(e["fetches"])))
+    assert len(rows["gbuffer"]) == len(rows["compose"]) == 2, (d, rows)
+    assert all(k == "tex2d_rgba16f_trilinear" and n == 80 * 60 for _, k, n in rows["compose"]), (d, rows)
+    assert all(k == "raster_r16f_depth_fill" for _, k, _n in rows["gbuffer"]), (d, rows)
+    g = {s: n for s, _, n in rows["gbuffer"]}
+    if d.endswith("/s"):
+        # half the scale, a quarter of the fragments, up to the pixel centres along the edges:
+        # measured 1000 / 4061 = 0.246 (the open box leaves some of the view empty); bound 5x that
+        assert g["1"] > 40 * 30 and abs(g["0.5"] / g["1"] - 0.25) < 0.02, g
+    else:
+        assert len(set(n for _, _, n in rows["gbuffer"])) == 1, (d, rows)
 PY
 printf 'name,format,size,fetches,median_ms,fetches_per_s\ntex3d_rgba16f_trilinear,rgba16f,64,1,1,fast\n' >"$TMP/bad.csv"
 expect_exit 2 "a roofline.csv with a rate that is not a number" "$GIKIOSK" bench --scenes cornell --methods vct \

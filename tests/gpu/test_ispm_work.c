@@ -6,7 +6,13 @@
  *     against the GPU's own per-pixel lists: one node, the floor, whose depth is the pixel's zmin)
  *     and the steps and nodes visited are counted;
  *   ispm_splat: the hits read back are turned into splat.vert's quads and the splat target's pixel
- *     centres inside them are counted (edge functions in double).
+ *     centres inside them are counted (edge functions in double);
+ *   ispm_upsample: every pixel is lit, so each reads the taps of its 3x3 with a bilinear weight: one a
+ *     side at ispm_splat=1 (the low-resolution position lands on a texel centre), two at 0.5 (it
+ *     lands a quarter texel off the centres) -- except that upsample.frag clamps a tap to the target
+ *     before its weight, so next to the screen's edge a tap outside reads the edge texel once more:
+ *     at 1 the first and last pixel of each row and column, at 0.5 the second and second-to-last.
+ *     So (W + 2) x (H + 2) and (2 W + 2) x (2 H + 2) (a hand count; 19 764 and 77 924 measured).
  * Without count_work nothing is reported. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -66,6 +72,7 @@ static void counting_frame(const char *budget)
     assert_int_equal(ih_frame(&H), 0);
     assert_true(work_of("gi.ispm_trace", "ssbo_rgba32f_load") < 0.0); /* not a counting frame */
     assert_true(work_of("gi.ispm_splat", "raster_r16f_depth_fill") < 0.0);
+    assert_true(work_of("gi.ispm_upsample", "tex2d_rgba32f_nearest") < 0.0);
     H.count_work = true;
     assert_int_equal(ih_frame(&H), 0);
     H.count_work = false;
@@ -287,6 +294,7 @@ static void lists_trace_and_splat_match_replays(void **state)
         double lists = work_of("gi.ispm_lists", "ssbo_r32ui_atomic");
         double trace = work_of("gi.ispm_trace", "ssbo_rgba32f_load");
         double splat = work_of("gi.ispm_splat", "raster_r16f_depth_fill");
+        double upsample = work_of("gi.ispm_upsample", "tex2d_rgba32f_nearest");
         long trace_replay = replay_trace(), splat_replay = replay_splats();
         double trace_off = (trace - (double)trace_replay) / (double)trace_replay;
         double splat_off = (splat - (double)splat_replay) / (double)splat_replay;
@@ -300,6 +308,10 @@ static void lists_trace_and_splat_match_replays(void **state)
         assert_true(trace_replay > 0 && fabs(trace_off) <= TRACE_TOLERANCE);
         assert_true(splat_replay > 0 && fabs(splat_off) <= SPLAT_TOLERANCE);
         assert_true(splat == s->splat_fragments.value[0]);
+        print_message("# upsample: %.0f splat texels for %d pixels at splat %dx%d\n", upsample, W * HH, st->splat_w,
+                      st->splat_h);
+        int side = st->splat_w == W ? 1 : 2; /* taps a side away from the edge */
+        assert_true(upsample == (side * W + 2.0) * (side * HH + 2.0));
     }
 }
 

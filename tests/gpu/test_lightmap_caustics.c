@@ -8,6 +8,9 @@
  *    filtering the whole screen, with photons 1 pixel from a tile border and at the screen's edge
  *    (M16), and filters fewer tiles than there are;
  *  - a photon behind the visible surface is not counted; photons on it are (M19);
+ *  - the count and cull passes' work (#21): one point fragment per photon on the screen, hidden
+ *    ones included (counted by the pass's counting variant), and the cull's dilated tiles' areas
+ *    against a pixel-by-pixel count of the tiles each pixel's query draws it in;
  *  - 300 photons in one pixel count 255 (the seed's 8-bit count, M14), and 300 in the R16F count
  *    target of lightmap_count=float. */
 #include <setjmp.h>
@@ -151,6 +154,20 @@ static double culled_reads(const float *pts, int n, int tile)
     return reads;
 }
 
+/* The cull's fragments, pixel by pixel: each pixel is drawn once per tile whose rect dilated by
+   k = 3 (and clipped to the screen) holds it -- once inside a tile, twice within 3 px of a border,
+   4 times near a corner. */
+static double cull_fragments(int tile)
+{
+    double n = 0.0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++)
+            for (int ty = 0; ty * tile < H; ty++)
+                for (int tx = 0; tx * tile < W; tx++)
+                    n += x >= tx * tile - 3 && x < (tx + 1) * tile + 3 && y >= ty * tile - 3 && y < (ty + 1) * tile + 3;
+    return n;
+}
+
 static void test_culling_is_bit_identical(void **state)
 {
     (void)state;
@@ -161,12 +178,20 @@ static void test_culling_is_bit_identical(void **state)
                          72.2f, 43.7f, 0, 0.5f,  0.5f,  0, 99.5f, 59.5f, 0};
     int n = (int)(sizeof pts / sizeof pts[0] / 3);
     vec3 flux = v3(1.0f, 0.8f, 0.3f);
+    g.count_work = true;
     float *culled = filter(pts, n, flux, true, &g);
+    g.count_work = false;
     int tiles = g.tiles_filtered, total = g.tiles_x * g.tiles_y;
-    double culled_reads_model = g.filter_reads;
+    double culled_reads_model = g.filter_reads, culled_fragments = g.cull_fragments;
+    /* the count pass: one point fragment per photon, all on the screen */
+    assert_true(g.count_fragments.counted && g.count_fragments.value[0] == (double)n);
+    print_message("culling: %.0f fragments in the tile queries (%d tiles of %d px)\n", culled_fragments, total, g.tile);
+    assert_true(culled_fragments == cull_fragments(g.tile));
     float *full = filter(pts, n, flux, false, &g);
     print_message("culling: %d of %d tiles filtered\n", tiles, total);
     assert_memory_equal(culled, full, sizeof(float) * 4 * W * H);
+    assert_false(g.count_fragments.counted); /* not a counting draw */
+    assert_true(g.cull_fragments == 0.0);    /* no cull, no queries */
     /* the photon at x = 29.5 lights x = 30..32 in the next tile: only the dilation filters it */
     assert_true(culled[4 * (45 * W + 31)] > 0.0f);
     /* the photons' tiles and the ones within 3 px of them: 10 of 60 measured */
@@ -185,7 +210,11 @@ static void test_hidden_photons_and_saturation(void **state)
     lm_caustic_gpu g = {0};
     /* behind the plane (z = -0.5 is farther from the eye at z = +100): not counted */
     const float behind[3] = {50.5f, 30.5f, -0.5f};
+    g.count_work = true;
     float *out = filter(behind, 1, v3(1, 1, 1), true, &g);
+    g.count_work = false;
+    /* ... but rasterized: the count pass's work includes the fragments it discards */
+    assert_true(g.count_fragments.counted && g.count_fragments.value[0] == 1.0);
     for (int i = 0; i < W * H; i++)
         assert_true(out[4 * i] == 0.0f);
     free(out);

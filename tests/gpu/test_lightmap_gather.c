@@ -5,7 +5,8 @@
  *  - a uniform environment of radiance L gathers E/π = L within 0.5% (fp32 sums, fp16 store);
  *  - a constant-radiance square of half-width 1 at distance 1 gives F = Σ F_h = 0.5541 (the
  *    closed form (4/π)(a/√(1+a²)) atan(a/√(1+a²))) within 0.5% at 16² and 32²;
- *  - the result lands in every target texel of the job (a texel and its gutter copies). */
+ *  - the result lands in every target texel of the job (a texel and its gutter copies);
+ *  - the reduction's reads (#21, app/gi/lightmap/lm_work.c): res² for the one job. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -97,8 +98,10 @@ static float gather(int res, int tx, int ty, float *other)
     glBindTexture(GL_TEXTURE_2D, iim);
     glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA16F, 4, 4);
     lm_gather_job j = {v3(0, 0, 0), v3(0, 0, -1), v3(0, 1, 0), 2, {{tx, ty}, {3, 3}}};
+    g.count_work = true;
     if (lm_gather_run(&g, P, &j, 1, 0.01f, 100.0f, draw, NULL, iim, &e))
         fail_msg("%s", e.msg);
+    assert_true(g.reduce_fetches.counted && g.reduce_fetches.value[0] == (double)res * res);
     assert_int_equal(glGetError(), GL_NO_ERROR);
     GLuint fbo;
     glGenFramebuffers(1, &fbo);

@@ -1,10 +1,10 @@
-/* The lightmap compose pass's work model (app/gi/lightmap/lm_work.c, #21) against a hand count: a
- * grey floor 6 m square (charted) lit by a point light, seen straight down from 2 m over a point
- * 0.6 m inside its edge, so that about a fifth of the view is background. The compose looks the
- * light map up once per pixel whose visible surface is charted: here the pixels where the G-buffer
- * holds the floor (albedo > 0; the background is cleared to 0), counted on the CPU. Without
- * count_work nothing is reported. (The caustic filter's model is checked in
- * test_lightmap_caustics.c.) */
+/* The lightmap passes' work models (app/gi/lightmap/lm_work.c, #21) against hand counts on the
+ * floor view (test_floor_view.h: the floor charted, about a fifth of the view background). The
+ * compose looks the light map up once per pixel whose visible surface is charted, and the UV pass
+ * rasterizes the charted geometry, here one layer: both are the pixels where the G-buffer holds the
+ * floor, counted on the CPU. The IIM blend reads two texels per atlas texel: 2 x the atlas's size
+ * (gk_lightmap_stats). Without count_work nothing is reported. (The caustic filter's model is
+ * checked in test_lightmap_caustics.c.) */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -12,43 +12,24 @@
 #include <cmocka.h>
 
 #include "gi/lightmap/lightmap.h"
-#include "test_ispm_harness.h"
+#include "test_floor_view.h"
 #include "test_pass_work.h"
 
-#define W 160
-#define HH 120
+#define W TFV_W
+#define HH TFV_H
 
 static gkt_scene T;
 static ispm_h H; /* the ispm harness's scene, G-buffer and frame (ih_frame_of) */
 static void *LM;
 
+static void one_thread(void *self) { gk_lightmap_set_threads(self, 1); }
+
 static int setup(void **state)
 {
     (void)state;
-    gkt_scene_init(&T, "lightmap-work-floor");
-    int grey = gkt_material_lambert(&T, v3(0.75f, 0.75f, 0.75f));
-    gkt_quad(&T, v3(-3, 0, -3), v3(3, 0, -3), v3(3, 0, 3), v3(-3, 0, 3), v3(0, 1, 0), grey);
-    gkt_light(&T, GK_LIGHT_POINT, GK_SHAPE_POINT, 10.0f, v3(1.0f, 1.5f, 0.0f), v3(1, 1, 0));
-    gkt_camera(&T, v3(2.4f, 2.0f, 0), v3(2.4f, 0, 0), 40.0f * (float)M_PI / 180.0f);
-    gkt_scene_bounds(&T);
-    if (ih_open_built(&H, &T, W, HH))
-        return -1;
-    gk_err e = {0};
-    gk_gi_context ctx = {.programs = H.programs, .gles_version = H.gl.egl.gles_version};
-    LM = gk_gi_lightmap.create(&ctx, &e);
-    if (!LM) {
-        fprintf(stderr, "lightmap: %s\n", e.msg);
-        return -1;
-    }
-    gk_lightmap_set_threads(LM, 1);
-    gk_budget_init(&H.budget);
-    gk_gi_lightmap.declare_knobs(&H.budget);
     /* lockstep: the first frame waits for the worker's first result, so it shows the light map */
-    if (gk_gi_lightmap.set_scene(LM, &T.s, &e) || gk_budget_pin_list(&H.budget, "lightmap_sync=lockstep", &e)) {
-        fprintf(stderr, "lightmap: %s\n", e.msg);
-        return -1;
-    }
-    return 0;
+    LM = tfv_open(&H, &T, "lightmap-work-floor", &gk_gi_lightmap, one_thread, "lightmap_sync=lockstep");
+    return LM ? 0 : -1;
 }
 
 static int teardown(void **state)
@@ -65,6 +46,8 @@ static double compose_lookups(void)
     return tpw_fetches(&gk_gi_lightmap, LM, "gi.lightmap_compose", "tex2d_rgba16f_trilinear");
 }
 
+static double work_of(const char *pass, const char *kind) { return tpw_fetches(&gk_gi_lightmap, LM, pass, kind); }
+
 static void compose_lookups_match_the_charted_pixels(void **state)
 {
     (void)state;
@@ -72,17 +55,23 @@ static void compose_lookups_match_the_charted_pixels(void **state)
     assert_int_equal(ih_frame_of(&H, &gk_gi_lightmap, LM), 0);
     assert_true(gk_lightmap_get_stats(LM)->shown);
     assert_true(compose_lookups() < 0.0); /* not a counting frame: nothing counted */
+    assert_true(work_of("gi.lightmap_uv", "raster_r16f_depth_fill") < 0.0);
+    assert_true(work_of("gi.lightmap_blend", "tex2d_rgba32f_nearest") < 0.0);
     H.count_work = true;
     assert_int_equal(ih_frame_of(&H, &gk_gi_lightmap, LM), 0);
     H.count_work = false;
-    long floor = 0;
-    for (int i = 0; i < W * HH; i++)
-        floor += H.albedo[i * 4] > 0.0f;
+    long floor = tfv_floor_pixels(&H);
     double counted = compose_lookups();
     print_message("# compose: %.0f light-map lookups counted, %ld floor pixels of %d\n", counted, floor, W * HH);
     /* the view's edge is the floor's: part of it background, the rest the floor */
     assert_true(floor > W * HH / 2 && floor < W * HH);
     assert_true(counted == (double)floor);
+    double uv = work_of("gi.lightmap_uv", "raster_r16f_depth_fill");
+    double blend = work_of("gi.lightmap_blend", "tex2d_rgba32f_nearest");
+    const gk_lightmap_stats *st = gk_lightmap_get_stats(LM);
+    print_message("# uv: %.0f fragments; blend: %.0f texel reads, atlas %dx%d\n", uv, blend, st->atlas_w, st->atlas_h);
+    assert_true(uv == (double)floor);
+    assert_true(st->atlas_w > 0 && blend == 2.0 * st->atlas_w * st->atlas_h);
 }
 
 int main(void)

@@ -197,10 +197,13 @@ int ispm_splat(ispm_state *s, const gk_gi_frame *f, gk_err *e)
 
 int ispm_upsample(ispm_state *s, const gk_gi_frame *f, gk_err *e)
 {
-    GLuint prog = gk_program_get(s->ctx.programs, "common/fullscreen.vert", "ispm/upsample.frag", NULL, e);
+    GLuint prog = gk_program_get(s->ctx.programs, "common/fullscreen.vert", "ispm/upsample.frag",
+                                 ispm_work_upsample_begin(s), e);
     const up_uniforms *u = prog ? gk_program_uniforms(s->ctx.programs, prog, GK_FIELDS(up_fields), sizeof *u, e) : NULL;
-    if (!u)
+    if (!u) {
+        ispm_work_upsample_end(s);
         return -1;
+    }
     glBindFramebuffer(GL_FRAMEBUFFER, f->hdr_fbo);
     glViewport(0, 0, f->width, f->height);
     glUseProgram(prog);
@@ -222,5 +225,6 @@ int ispm_upsample(ispm_state *s, const gk_gi_frame *f, gk_err *e)
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindVertexArray(0);
     glDisable(GL_BLEND);
+    ispm_work_upsample_end(s);
     return 0;
 }

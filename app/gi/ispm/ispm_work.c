@@ -11,10 +11,18 @@
  *     discarded or not, counted by a variant (SPLAT_COUNT_FRAGMENTS, one atomic add per fragment) in
  *     the bench's untimed counting frame. With ispm_radius=density or footprint the pass's time also
  *     holds those radii's compute passes, which are not counted.
+ *   ispm_upsample (upsample.frag): the joint bilateral upsample reads, for each lit pixel, the
+ *     splat texels of its 3x3 low-resolution neighbourhood that have a bilinear weight and a
+ *     surface: the bilinear footprint, 1 texel at ispm_splat=1 (the pixel's own) and 4 below (2 a
+ *     side; one more a side next to the screen's edge, where a tap clamped to the target gets a
+ *     weight; fewer next to the background) -- unfiltered texelFetches of the RGBA32F (or RGBA16F)
+ *     splat target, the roofline's RGBA32F kind for both. Which pixels are lit depends on the view,
+ *     so a variant counts them (UPSAMPLE_COUNT_FETCHES). Its G-buffer reads (depth and normal per
+ *     tap) are not counted, as no pass's are.
  * The lists' and the trace's numbers are read back with the frame's other counters, synchronously in
  * a counting frame (not one frame late). tests/gpu/test_ispm_work.c checks them against a hand count
- * (the lists) and CPU replays (the march, the quads' rasterization). ispm_photons (the RSM, the mask
- * pyramid, the emission) and ispm_upsample have no model. */
+ * (the lists, the upsample's taps) and CPU replays (the march, the quads' rasterization).
+ * ispm_photons (the RSM, the mask pyramid, the emission) has no model. */
 #include "ispm_internal.h"
 
 /* ll_build.frag's atomics per fragment kept in the lists and per fragment the full pool dropped */
@@ -25,6 +33,7 @@ void ispm_work_frame(ispm_state *s, const gk_gi_frame *f)
     s->counting = f->count_work;
     s->work_counted = false;
     s->splat_fragments.counted = false; /* a frame without splats reports none */
+    s->upsample_fetches.counted = false;
 }
 
 const char *ispm_work_splat_begin(ispm_state *s)
@@ -35,6 +44,14 @@ const char *ispm_work_splat_begin(ispm_state *s)
 }
 
 void ispm_work_splat_end(ispm_state *s) { gk_counters_end(&s->splat_fragments); }
+
+const char *ispm_work_upsample_begin(ispm_state *s)
+{
+    /* ispm/upsample.frag UpsampleFetches */
+    return gk_counters_variant(&s->upsample_fetches, s->counting, 1, 6, "#define UPSAMPLE_COUNT_FETCHES 1\n");
+}
+
+void ispm_work_upsample_end(ispm_state *s) { gk_counters_end(&s->upsample_fetches); }
 
 void ispm_work_counters(ispm_state *s, unsigned trace_loads, unsigned list_fragments, unsigned list_dropped)
 {
@@ -66,7 +83,14 @@ int ispm_caustic_work(const ispm_state *s, gk_pass_work *out, int max)
     if (s->splat_fragments.counted && s->splat_fragments.value[0] > 0.0 && n < max)
         out[n++] = (gk_pass_work){.pass = "gi.ispm_splat", .kind = "raster_r16f_depth_fill",
                                   .fetches = s->splat_fragments.value[0]};
+    if (s->upsample_fetches.counted && s->upsample_fetches.value[0] > 0.0 && n < max)
+        out[n++] = (gk_pass_work){.pass = "gi.ispm_upsample", .kind = "tex2d_rgba32f_nearest",
+                                  .fetches = s->upsample_fetches.value[0]};
     return n;
 }
 
-void ispm_work_free(ispm_state *s) { gk_counters_free(&s->splat_fragments); }
+void ispm_work_free(ispm_state *s)
+{
+    gk_counters_free(&s->splat_fragments);
+    gk_counters_free(&s->upsample_fetches);
+}

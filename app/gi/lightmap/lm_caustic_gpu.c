@@ -136,16 +136,22 @@ double lm_caustic_filter_reads(const int r[4], int w, int h)
 int lm_caustic_gpu_draw(lm_caustic_gpu *g, gk_program_cache *programs, const gk_gbuffer_view *gb, vec3 flux, bool cull,
                         GLuint out_fbo, const gk_pass_ctx *pass, gk_err *e)
 {
-    g->tiles_filtered = 0, g->pixels_filtered = 0, g->filter_reads = 0.0;
+    g->tiles_filtered = 0, g->pixels_filtered = 0, g->filter_reads = 0.0, g->cull_fragments = 0.0;
+    g->count_fragments.counted = false;
     if (g->n_points <= 0 || !g->vao)
         return 0;
-    GLuint cp = gk_program_get(programs, "lightmap/caustic_count.vert", "lightmap/caustic_count.frag", NULL, e);
+    /* lightmap/caustic_count.frag PointFragments */
+    const char *count_define =
+        gk_counters_variant(&g->count_fragments, g->count_work, 1, 6, "#define CAUSTIC_COUNT_FRAGMENTS 1\n");
+    GLuint cp = gk_program_get(programs, "lightmap/caustic_count.vert", "lightmap/caustic_count.frag", count_define, e);
     const count_uniforms *cu = cp ? gk_program_uniforms(programs, cp, GK_FIELDS(count_fields), sizeof *cu, e) : NULL;
     GLuint qp = cu ? gk_program_get(programs, "common/fullscreen.vert", "lightmap/caustic_cull.frag", NULL, e) : 0;
     GLuint fp = qp ? gk_program_get(programs, "common/fullscreen.vert", "lightmap/caustic_filter.frag", NULL, e) : 0;
     const filter_uniforms *fu = fp ? gk_program_uniforms(programs, fp, GK_FIELDS(filter_fields), sizeof *fu, e) : NULL;
-    if (!fu || ensure_target(g, gb->width, gb->height, e))
+    if (!fu || ensure_target(g, gb->width, gb->height, e)) {
+        gk_counters_end(&g->count_fragments);
         return -1;
+    }
 
     gk_pass_begin(pass, "lightmap_caustic_count");
     glBindFramebuffer(GL_FRAMEBUFFER, g->fbo);
@@ -175,6 +181,7 @@ int lm_caustic_gpu_draw(lm_caustic_gpu *g, gk_program_cache *programs, const gk_
     glDrawArrays(GL_POINTS, 0, g->n_points);
     glBindVertexArray(0);
     glDisable(GL_BLEND);
+    gk_counters_end(&g->count_fragments);
     gk_pass_end(pass);
 
     bool *on = calloc((size_t)(g->tiles_x * g->tiles_y), sizeof *on);
@@ -195,6 +202,7 @@ int lm_caustic_gpu_draw(lm_caustic_gpu *g, gk_program_cache *programs, const gk_
                 int r[4];
                 tile_rect(g, tx, ty, LM_CAUSTIC_K, r);
                 glScissor(r[0], r[1], r[2], r[3]);
+                g->cull_fragments += (double)r[2] * r[3]; /* the triangle's fragments in the scissor */
                 glBeginQuery(GL_ANY_SAMPLES_PASSED, g->queries[ty * g->tiles_x + tx]);
                 glDrawArrays(GL_TRIANGLES, 0, 3);
                 glEndQuery(GL_ANY_SAMPLES_PASSED);
@@ -262,6 +270,7 @@ void lm_caustic_gpu_free(lm_caustic_gpu *g)
 {
     GLenum keep = g->count_format; /* the caller's choice outlives the GL objects */
     free_target(g);
+    gk_counters_free(&g->count_fragments);
     if (g->vao)
         glDeleteVertexArrays(1, &g->vao);
     if (g->empty_vao)

@@ -20,6 +20,7 @@
 
 #include "gl/gbuffer_bind.h"
 #include "gl/gl.h"
+#include "gl/gl_counters.h"
 #include "gl/gl_program.h"
 #include "gl/pass.h"
 
@@ -28,6 +29,7 @@ typedef struct lm_caustic_gpu {
        or GL_R16F (1 a photon, exact to 2,048; colour-renderable on GLES 3.2 or with
        EXT_color_buffer_half_float: the caller checks). Set before a draw; 0 means GL_R8. */
     GLenum count_format;
+    bool count_work;         /* set before a draw: the count pass runs its counting variant (#21) */
     GLuint vao, vbo, empty_vao;
     int n_points, cap_points;
     GLuint fbo, count_tex, stencil_rb;
@@ -39,6 +41,8 @@ typedef struct lm_caustic_gpu {
     int tiles_filtered;      /* tiles whose query found a counted photon (all when not culling) */
     long pixels_filtered;    /* pixels the filter ran on */
     double filter_reads;     /* the count texels they read (#21: lm_caustic_filter_reads) */
+    double cull_fragments;   /* the cull's fragments, Σ of the dilated tiles' areas (#21; 0: no cull) */
+    gk_counters count_fragments; /* the count pass's point fragments, when count_work (#21) */
 } lm_caustic_gpu;
 
 /* The filter's work (#21, app/gl/pass_work.h): the count texels caustic_filter.frag reads for the

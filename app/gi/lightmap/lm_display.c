@@ -261,6 +261,7 @@ int lm_display_gather(lm_state *s, const gk_gi_frame *f, int texels, int res, gk
         gather_draw_ctx dc = {s, f, gp, gu};
         vec3 ext = v3_sub(f->scene->bmax, f->scene->bmin);
         float diam = v3_len(ext) > 0.0f ? v3_len(ext) : 1.0f;
+        s->gather.count_work = s->counting;
         gk_pass_begin(f->pass, "lightmap_gather");
         int rc = lm_gather_run(&s->gather, s->ctx.programs, s->jobs, n, 0.005f * a->texel_size, 4.0f * diam,
                                gather_draw, &dc, s->iim_gathered, e);
@@ -269,10 +270,12 @@ int lm_display_gather(lm_state *s, const gk_gi_frame *f, int texels, int res, gk
             return -1;
     }
     /* the shown IIM follows the gathered one: 1 - exp(-dt / τ) a frame, at once on a scene's first */
-    GLuint bp = gk_program_get_compute(s->ctx.programs, "lightmap/iim_blend.comp", NULL, e);
+    GLuint bp = gk_program_get_compute(s->ctx.programs, "lightmap/iim_blend.comp", lm_work_blend_begin(s), e);
     const blend_uniforms *bu = bp ? gk_program_uniforms(s->ctx.programs, bp, GK_FIELDS(blend_fields), sizeof *bu, e) : NULL;
-    if (!bu)
+    if (!bu) {
+        lm_work_blend_end(s);
         return -1;
+    }
     double dt = f->time_s - s->last_time;
     float alpha = !s->iim_blend_started || dt <= 0.0 ? 1.0f : (float)(1.0 - exp(-dt / LM_IIM_TAU_S));
     s->iim_blend_started = true;
@@ -291,20 +294,23 @@ int lm_display_gather(lm_state *s, const gk_gi_frame *f, int texels, int res, gk
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     glActiveTexture(GL_TEXTURE0);
     s->iim_cur = 1 - s->iim_cur;
+    lm_work_blend_end(s);
     gk_pass_end(f->pass);
     return 0;
 }
 
 int lm_display_draw(lm_state *s, const gk_gi_frame *f, gk_err *e)
 {
-    GLuint up = gk_program_get(s->ctx.programs, "lightmap/uv.vert", "lightmap/uv.frag", NULL, e);
+    GLuint up = gk_program_get(s->ctx.programs, "lightmap/uv.vert", "lightmap/uv.frag", lm_work_uv_begin(s), e);
     const uv_uniforms *uu = up ? gk_program_uniforms(s->ctx.programs, up, GK_FIELDS(uv_fields), sizeof *uu, e) : NULL;
     GLuint cp = uu ? gk_program_get(s->ctx.programs, "common/fullscreen.vert", "lightmap/compose.frag",
                                     lm_work_compose_begin(s), e) : 0;
     const compose_uniforms *uc =
         cp ? gk_program_uniforms(s->ctx.programs, cp, GK_FIELDS(compose_fields), sizeof *uc, e) : NULL;
-    if (!uc || ensure_uv_target(s, f->width, f->height, e))
+    if (!uc || ensure_uv_target(s, f->width, f->height, e)) {
+        lm_work_uv_end(s);
         return -1;
+    }
 
     gk_pass_begin(f->pass, "lightmap_uv");
     glBindFramebuffer(GL_FRAMEBUFFER, s->uv_fbo);
@@ -335,6 +341,7 @@ int lm_display_draw(lm_state *s, const gk_gi_frame *f, gk_err *e)
     }
     glBindVertexArray(0);
     glDisable(GL_DEPTH_TEST);
+    lm_work_uv_end(s);
     gk_pass_end(f->pass);
 
     gk_pass_begin(f->pass, "lightmap_compose");

@@ -56,6 +56,7 @@ void lm_gather_free(lm_gather *g)
         glDeleteRenderbuffers(1, &g->depth);
     if (g->jobs_ssbo)
         glDeleteBuffers(1, &g->jobs_ssbo);
+    gk_counters_free(&g->reduce_fetches);
     memset(g, 0, sizeof *g);
 }
 
@@ -71,10 +72,16 @@ int lm_gather_run(lm_gather *g, gk_program_cache *pc, const lm_gather_job *jobs,
     if (n <= 0)
         return 0;
     n = n < g->max_tiles ? n : g->max_tiles;
-    GLuint rp = gk_program_get_compute(pc, "lightmap/gather_reduce.comp", NULL, e);
+    g->reduce_fetches.counted = false;
+    /* lightmap/gather_reduce.comp ReduceFetches, bound on 6 (the jobs on 0) */
+    const char *count_define =
+        gk_counters_variant(&g->reduce_fetches, g->count_work, 1, 6, "#define REDUCE_COUNT_FETCHES 1\n");
+    GLuint rp = gk_program_get_compute(pc, "lightmap/gather_reduce.comp", count_define, e);
     const reduce_uniforms *ru = rp ? gk_program_uniforms(pc, rp, GK_FIELDS(reduce_fields), sizeof *ru, e) : NULL;
-    if (!ru)
+    if (!ru) {
+        gk_counters_end(&g->reduce_fetches);
         return -1;
+    }
     glBindFramebuffer(GL_FRAMEBUFFER, g->fbo);
     const GLenum b1[1] = {GL_COLOR_ATTACHMENT0};
     glDrawBuffers(1, b1);
@@ -99,6 +106,7 @@ int lm_gather_run(lm_gather *g, gk_program_cache *pc, const lm_gather_job *jobs,
         mat4 vp = m4_mul(proj, m4_look_at(j->eye, v3_add(j->eye, j->dir), j->up));
         if (draw(ctx, &vp, e)) {
             glDisable(GL_DEPTH_TEST);
+            gk_counters_end(&g->reduce_fetches);
             return -1;
         }
     }
@@ -126,5 +134,6 @@ int lm_gather_run(lm_gather *g, gk_program_cache *pc, const lm_gather_job *jobs,
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, g->jobs_ssbo);
     glDispatchCompute((GLuint)n, 1, 1);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    gk_counters_end(&g->reduce_fetches);
     return 0;
 }

@@ -16,6 +16,7 @@
 #include "base/err.h"
 #include "core/vecmath.h"
 #include "gl/gl.h"
+#include "gl/gl_counters.h"
 #include "gl/gl_program.h"
 
 #define LM_GATHER_HALF_WIDTH 2.0f   /* the enlarged face: double the hemicube's side */
@@ -30,6 +31,8 @@ typedef struct lm_gather_job {
 typedef struct lm_gather {
     int res, max_tiles;
     GLuint fbo, tiles, depth, jobs_ssbo;
+    bool count_work;             /* set before a run: the reduction runs its counting variant (#21) */
+    gk_counters reduce_fetches;  /* its tile texel reads, when count_work */
 } lm_gather;
 
 /* Draws the scene's radiance into the bound tile for view_proj (the gather program is bound by

@@ -58,7 +58,11 @@ typedef struct lm_state {
     /* the bench's counting frame (lm_work.c) */
     bool counting;               /* this frame is one (gk_gi_frame.count_work) */
     gk_counters compose_lookups;
+    gk_counters uv_fragments;    /* the UV pass's */
+    gk_counters blend_fetches;   /* the IIM blend's texel reads */
     double caustic_reads;        /* the caustic filter's count texels in it, -1 when it did not run */
+    double caustic_points_drawn; /* the count pass's point fragments in it (-1: not counted) */
+    double caustic_cull_fragments; /* the cull's fragments in it (0: no cull) */
 } lm_state;
 
 /* lm_display.c */
@@ -78,6 +82,11 @@ int lm_display_caustics(lm_state *s, const gk_gi_frame *f, gk_err *e);
 void lm_work_frame(lm_state *s, const gk_gi_frame *f);
 const char *lm_work_compose_begin(lm_state *s);
 void lm_work_compose_end(lm_state *s);
+/* The same around the UV draw and the IIM blend's dispatch. */
+const char *lm_work_uv_begin(lm_state *s);
+void lm_work_uv_end(lm_state *s);
+const char *lm_work_blend_begin(lm_state *s);
+void lm_work_blend_end(lm_state *s);
 void lm_work_caustics(lm_state *s);
 int lm_pass_work(void *self, gk_pass_work *out, int max);
 void lm_work_free(lm_state *s);

@@ -214,10 +214,12 @@ int rad_gpu_display(rad_state *s, const gk_gi_frame *f, gk_err *e)
 {
     rad_gpu *g = &s->gpu;
     gk_program_cache *pc = s->ctx.programs;
-    GLuint dp = gk_program_get(pc, "radiosity/display.vert", "radiosity/display.frag", NULL, e);
+    GLuint dp = gk_program_get(pc, "radiosity/display.vert", "radiosity/display.frag", rad_work_display_begin(s, f), e);
     const display_uniforms *du = dp ? gk_program_uniforms(pc, dp, GK_FIELDS(display_fields), sizeof *du, e) : NULL;
-    if (!du)
+    if (!du) {
+        rad_work_display_end(s);
         return -1;
+    }
     gk_pass_begin(f->pass, "radiosity_display");
     glBindFramebuffer(GL_FRAMEBUFFER, f->hdr_fbo);
     const GLenum b1[1] = {GL_COLOR_ATTACHMENT0};
@@ -244,6 +246,7 @@ int rad_gpu_display(rad_state *s, const gk_gi_frame *f, gk_err *e)
     glBindVertexArray(0);
     glDisable(GL_BLEND);
     glActiveTexture(GL_TEXTURE0);
+    rad_work_display_end(s);
     gk_pass_end(f->pass);
     return 0;
 }

@@ -3,6 +3,7 @@
 #define GK_RAD_INTERNAL_H
 
 #include "gl/gl.h"
+#include "gl/gl_counters.h"
 #include "gl/gl_program.h"
 #include "radiosity.h"
 #include "scene/wall_split.h"
@@ -45,6 +46,7 @@ typedef struct rad_state {
     uint64_t seen;
     bool logged_failure;
     rad_gpu gpu;
+    gk_counters display_fragments;   /* the bench's count of the display's fragments (rad_work.c) */
 } rad_state;
 
 /* rad_method.c: the worker's settings for a scene at knob values (tess: edge = diagonal / tess) */
@@ -56,7 +58,11 @@ int rad_gpu_bounce(rad_state *s, const gk_gi_frame *f, int bounces, gk_err *e);
 int rad_gpu_display(rad_state *s, const gk_gi_frame *f, gk_err *e);
 void rad_gpu_free(rad_gpu *g);
 long rad_gpu_memory(const rad_gpu *g);
-/* rad_work.c: gk_gi_method.pass_work, the last frame's bounces' link gathers */
+/* rad_work.c: gk_gi_method.pass_work, the last frame's bounces' link gathers and display fragments */
 int rad_pass_work(void *self, gk_pass_work *out, int max);
+/* rad_work.c: around the display draw; begin returns the define of its counting variant when
+   f->count_work (NULL otherwise), end reads the count back. */
+const char *rad_work_display_begin(rad_state *s, const gk_gi_frame *f);
+void rad_work_display_end(rad_state *s);
 
 #endif

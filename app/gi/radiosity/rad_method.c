@@ -125,6 +125,7 @@ static void teardown_scene(rad_state *s)
     rad_worker_destroy(s->worker); /* joins its thread before what it reads goes */
     s->worker = NULL;
     rad_gpu_free(&s->gpu);
+    gk_counters_free(&s->display_fragments);
     gk_scene_free(s->own_scene);
     s->own_scene = NULL;
     gk_wall_regions_free(&s->regions);
@@ -200,6 +201,7 @@ static int render(void *self, const gk_gi_frame *f, gk_err *e)
     }
     s->st.shown = s->gpu.geometry_id != 0 && s->gpu.have_b0;
     s->st.bounces = 0;
+    s->display_fragments.counted = false; /* a frame without the display reports none */
     if (!s->st.shown)
         return 0; /* no complete result yet: direct light only */
     if (rad_gpu_bounce(s, f, (int)gk_knob_number(b, &s->knob[K_BOUNCES], 4.0f), e) || rad_gpu_display(s, f, e))
