@@ -135,17 +135,13 @@ highp float vssm_z(ivec2 p, int layer)
 }
 
 // 2x2 point samples (quadrant centres) of the box [lo, hi]: (occluders, sum of their depths, each
-// less its receiver-plane shift so that they compare with d); n = 2, or 0 where the caller needs no
-// PCF (then (0, 0)). The count is a variable and the call is not inside the caller's branch (#21):
-// llvmpipe runs both sides of a branch under a lane mask and would unroll a constant 2x2, so the four
-// fetches ran on every grid cell and quadtree node; a loop no lane of the SIMD block enters runs its
-// body once, masked.
-highp vec2 vssm_pcf4(ivec2 lo, ivec2 hi, int layer, highp float d, int n)
+// less its receiver-plane shift so that they compare with d).
+highp vec2 vssm_pcf4(ivec2 lo, ivec2 hi, int layer, highp float d)
 {
     highp vec2 a = vec2(lo), b = vec2(hi + 1);
     highp vec2 r = vec2(0.0);
-    for (int j = 0; j < n; j++)
-        for (int i = 0; i < n; i++) {
+    for (int j = 0; j < 2; j++)
+        for (int i = 0; i < 2; i++) {
             ivec2 t = ivec2(floor(mix(a, b, (vec2(float(i), float(j)) + 0.5) * 0.5)));
             highp float z = vssm_z(t, layer) - vssm_plane(vec2(t) + 0.5);
             if (z < d)
@@ -248,16 +244,15 @@ highp vec2 vssm_blocker(highp vec2 tc, highp vec2 w, int layer, highp float d)
                     mc = vssm_shift(mc, vssm_plane(0.5 * vec2(px + xc + 2, py + yc + 2)));
                     a_all += area;
                     highp float var = mc.y - mc.x * mc.x;
-                    // planar and lit (the §5.2 acceleration): neither Chebyshev nor PCF
-                    bool planar_lit = mc.x >= d && var < u_vssm.w + vssm_plane_var(vec2(xc - px, yc - py));
-                    bool pcf = !planar_lit && mc.x >= d;
-                    ivec2 slo = ivec2(vssm_split(lo.x, hi.x, i - 1, m_sub).x, y0);
-                    highp vec2 pc = vssm_pcf4(slo, ivec2(x, y), layer, d, pcf ? 2 : 0);
-                    if (mc.x < d) {
+                    if (mc.x >= d && var < u_vssm.w + vssm_plane_var(vec2(xc - px, yc - py))) {
+                        // planar and lit (the §5.2 acceleration): no PCF
+                    } else if (mc.x < d) {
                         a_vsm += area;
                         ex += mc.x * area;
                         ex2 += mc.y * area;
-                    } else if (pcf) {
+                    } else {
+                        ivec2 slo = ivec2(vssm_split(lo.x, hi.x, i - 1, m_sub).x, y0);
+                        highp vec2 pc = vssm_pcf4(slo, ivec2(x, y), layer, d);
                         a_pcf += 0.25 * area * pc.x;
                         z_pcf += 0.25 * area * pc.y;
                     }
@@ -314,10 +309,7 @@ highp float vssm_adaptive(ivec2 lo, ivec2 hi, int layer, highp float d)
             ivec2 clo = clamp(slo, ivec2(0), top), chi = clamp(shi, clo, top); // the box vssm_moments read
             mc.xy = vssm_shift(mc.xy, vssm_plane(0.5 * vec2(clo + chi + 1)));
             highp float var = mc.y - mc.x * mc.x;
-            bool planar_lit = mc.x >= d && var < u_vssm.w + vssm_plane_var(vec2(chi - clo + 1));
-            bool leaf_pcf = !planar_lit && mc.x >= d && l >= h_sub; // a non-planar leaf
-            highp vec2 pc = vssm_pcf4(slo, shi, layer, d, leaf_pcf ? 2 : 0);
-            if (planar_lit) {
+            if (mc.x >= d && var < u_vssm.w + vssm_plane_var(vec2(chi - clo + 1))) {
                 a_lit += mc.z;
             } else if (mc.x < d) {
                 a_vsm += mc.z;
@@ -326,6 +318,7 @@ highp float vssm_adaptive(ivec2 lo, ivec2 hi, int layer, highp float d)
             } else if (l < h_sub) {
                 descend = true;
             } else {
+                highp vec2 pc = vssm_pcf4(slo, shi, layer, d);
                 a_pcf += mc.z;
                 b_pcf += 0.25 * mc.z * pc.x;
             }
@@ -371,18 +364,13 @@ highp float vssm_pcf_bilinear(highp vec2 tc, int layer, highp float d)
     return mix(mix(v00, v10, f.x), mix(v01, v11, f.x), f.y);
 }
 
-// Contact fallback (§7.5.4, after [Bavoil08]): 3x3 jittered bilinear PCF over the penumbra kernel,
-// n x n taps with n = 3 where the pixel takes the fallback, else 0. The count is a variable, not a
-// branch around the call (#21): llvmpipe runs both sides of every branch under a lane mask and
-// unrolls constant loops, so the 36 fetches of the unrolled 3x3 ran for every shaded pixel (the
-// fallback fires on about a dozen of cornell's); a loop runs its body once, masked, when no lane
-// of the SIMD block needs it. The taps and their sum are those of the 3x3 loop.
-highp float vssm_contact(highp vec2 tc, highp vec2 w, int layer, highp float d, int n)
+// Contact fallback (§7.5.4, after [Bavoil08]): 3x3 jittered bilinear PCF over the penumbra kernel.
+highp float vssm_contact(highp vec2 tc, highp vec2 w, int layer, highp float d)
 {
     highp float jit = gk_shadow_noise();
     highp float sum = 0.0;
-    for (int j = 0; j < n; j++)
-        for (int i = 0; i < n; i++) {
+    for (int j = 0; j < 3; j++)
+        for (int i = 0; i < 3; i++) {
             highp vec2 g = (vec2(float(i), float(j)) + fract(jit + vec2(0.0, 0.5))) / 3.0 - 0.5;
             sum += vssm_pcf_bilinear(tc + g * w, layer, d);
         }
@@ -401,7 +389,7 @@ highp float shadow_visibility(highp vec3 world_pos, highp vec3 world_normal)
     highp vec2 tc = c.uv * u_shadow_light.w;
     highp float d = gk_soft_norm(c.d);
     // 1. Blocker search kernel from the near plane; HSM early-out over it (1 texel margin for the
-    //    interpolated box; with VSSM_SEARCH_BOUND over the bounded kernel below).
+    //    interpolated box).
     highp vec2 wi = gk_soft_kernel(c.d, u_shadow_proj.x);
     ivec2 lo, hi;
     gk_soft_box(tc, wi, lo, hi);
@@ -412,20 +400,19 @@ highp float shadow_visibility(highp vec3 world_pos, highp vec3 world_normal)
     // lit-mask max error 1.0 on T1).
     highp float tol = 1e-4 + gk_shadow_texel_world(c.d) / (u_shadow_proj.y - u_shadow_proj.x);
     d -= tol;
-#if VSSM_SEARCH_BOUND
-    // The early-outs over the bounded kernel only: its box lies within the first one (gk_soft_box
-    // is monotone in the width), so its HSM cells lie within the first lookup's and its (min, max)
-    // within the first's -- every pixel the first lookup would end, this one ends the same way, and
-    // the first lookup's zmax is never read (#21: on llvmpipe an early return only masks lanes, the
-    // code after it still runs; every fetch of the straight-line code is paid by every pixel).
-    wi = min(wi, gk_soft_kernel(c.d, gk_soft_denorm(mm.x)));
-    gk_soft_box(tc, wi, lo, hi);
-    mm = vssm_hsm(lo - 1, hi + 1, layer);
-#endif
     if (d <= mm.x)
         return 1.0;
     if (d > mm.y)
         return 0.0;
+#if VSSM_SEARCH_BOUND
+    wi = min(wi, gk_soft_kernel(c.d, gk_soft_denorm(mm.x)));
+    gk_soft_box(tc, wi, lo, hi);
+    mm = vssm_hsm(lo - 1, hi + 1, layer);
+    if (d <= mm.x)
+        return 1.0;
+    if (d > mm.y)
+        return 0.0;
+#endif
     // the receiver plane only after the HSM's early-outs, which do not use it (two unprojections)
     vssm_receiver_plane(c, world_pos, world_normal);
     // 2. Average blocker depth.
@@ -452,10 +439,8 @@ highp float shadow_visibility(highp vec3 world_pos, highp vec3 world_normal)
         return 1.0;
 #endif
 #if VSSM_CONTACT
-    bool contact = abs(zocc - d) < u_vssm.z;
-    highp float v_contact = vssm_contact(tc, wp, layer, d, contact ? 3 : 0);
-    if (contact)
-        return v_contact;
+    if (abs(zocc - d) < u_vssm.z)
+        return vssm_contact(tc, wp, layer, d);
 #endif
     highp vec2 m = gk_sat_moments_smooth(u_vssm_sat_z, u_vssm_sat_z2, tc, wp, layer, u_vssm.x);
     if (m.x < d && vssm_plane_var(wp) < u_vssm.w)
