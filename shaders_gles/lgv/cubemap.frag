@@ -1,6 +1,7 @@
 // One texel of a distance cube-map (lgv/common.glsl): distance from the centre, normal, base colour
 // and material code. u_glass = (ior, transmission) per material (render_gi.c's draw_scene sets it
 // when the program declares it), u_refractor = the refractor map of the mesh being drawn (-1: none).
+// u_leave_glass = 1: an exit map (lgv_maps.c), which leaves glass out.
 precision highp float;
 precision highp int;
 in vec3 v_world;
@@ -14,6 +15,7 @@ uniform int u_mat_flags;
 uniform vec4 u_specular;
 uniform vec2 u_glass;
 uniform int u_refractor;
+uniform int u_leave_glass;
 layout(location = 0) out highp uint o_dist;
 layout(location = 1) out mediump vec4 o_normal;
 layout(location = 2) out mediump vec4 o_albedo;
@@ -21,6 +23,8 @@ void main()
 {
     // glTF alphaMode MASK: through a hole the map sees what is behind it
     if (gk_alpha_cut())
+        discard;
+    if (u_leave_glass == 1 && u_glass.y > 0.0)
         discard;
     o_dist = floatBitsToUint(length(v_world - u_centre));
     vec3 n = normalize(v_normal);
