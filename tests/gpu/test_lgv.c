@@ -771,7 +771,7 @@ static void fig9_regions(void **state)
     /* Measured (llvmpipe, deterministic photons): with the lattice maps the floor under the sphere's
        part rose with the grid, 0.270 / 0.518 / 0.626 (the whole's rise, 0.563 / 0.728 / 0.816): no
        lattice map sees that floor, which the sphere hides from every centre outside it, so the
-       photons the sphere focuses there (from the ceiling's bright spot above the lamp) landed on the
+       photons the sphere focuses there (light from the walls and ceiling) landed on the
        floor the maps see beside it, a crescent the finer grids draw sharper. On the exit maps the
        part is flat, 0.192 / 0.183 / 0.189. The sphere's part, 0.289 / 0.289 / 0.288, does not
        depend on the grid: these pixels show the floor behind the sphere (the harness draws no glass
