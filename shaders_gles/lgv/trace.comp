@@ -11,7 +11,8 @@
 // glass (code >= 128) reflects or refracts by Fresnel with its ior; inside glass the exit is found
 // on the refractor map nearest the photon (a map centred in the object, Szirmay-Kalos et al. [32]),
 // with total internal reflection keeping the photon inside; a photon that has just left glass
-// (refracted out of it or reflected off it) is traced on that glass's exit map (u_exit_maps).
+// (refracted out of it or reflected off it) is traced on that glass's exit map (u_exit_maps,
+// tracer.glsl lgv_trace_from).
 // u_probe = 1 (tests): no emission; each invocation traces one ray of the Probe buffer once and
 // writes where it hit (w = 1) or that it left the scene (w = 0).
 precision highp float;
@@ -46,7 +47,7 @@ uniform int u_caustic_cap;
 uniform int u_sphere_normals; // 1 (tests): glass normals from the refractor map's centre, exact on a sphere centred there
 uniform int u_refractor_surface; // 1: glass hits placed on its refractor map (enter_glass), normals interpolated there
 uniform int u_snap;           // 1: diffuse hits moved onto the map's surface (lgv_internal.h LGV_SNAP_HITS)
-uniform int u_exit_maps;      // 1: a photon leaving glass is traced on its exit map (trace_exit)
+uniform int u_exit_maps;      // 1: a photon leaving glass is traced on its exit map (tracer.glsl lgv_trace_from)
 
 highp uint g_rng;
 highp float rnd()
@@ -144,30 +145,6 @@ bool other_glass_before(int own, highp vec3 x, highp vec3 r, highp float d)
     return false;
 }
 
-// Where a photon that has just left the glass of refractor map `refractor` (on its surface, going
-// away from it) meets the scene: on the exit map, centred in the glass with the glass left out
-// ([32]'s environment map of the refractor). The lattice maps see a glass sphere as a solid: the
-// floor under it, hidden from every centre outside it, is where the sphere focuses the light of
-// the room above it, and those photons landed on what the lattice maps saw beside the sphere.
-// Exact for convex glass, which the photon cannot meet again; falls back to the lattice maps when
-// the exit map finds nothing or another glass object lies on the way.
-highp float trace_exit(int refractor, highp vec3 x, highp vec3 r, out int map)
-{
-    int m = refractor + u_n_refractors;
-    highp vec3 itp;
-    highp float exit_d = lgv_exit(x, r);
-    highp float d0 = lgv_itp_angle(m, x, r, itp) ? dot(itp - x, r) : exit_d;
-    if (!(d0 < exit_d))
-        d0 = exit_d;
-    // no skip at the start: the surface the photon leaves is not in this map
-    highp float d = lgv_secant(m, x, r, d0, 1e-4, exit_d);
-    if (d >= 0.0 && !other_glass_before(refractor, x, r, d)) {
-        map = m;
-        return d;
-    }
-    return lgv_trace(x, r, map);
-}
-
 // Where ray x + d r enters the glass of refractor map m near a lattice map's hit on it at distance d:
 // the first outside-to-inside change of the refractor map's error in [d - 2w, d + w] (w: two of the
 // lattice map's texel footprints there), refined by the secant. -1 when the ray does not enter the
@@ -211,8 +188,16 @@ void main()
     int events = 0, left_glass = -1; // the refractor map of the glass the photon has just left
     for (int bounce = 0; bounce < u_bounces; bounce++) {
         int map;
-        highp float d = inside ? trace_inside(x, r, map)
-                               : (left_glass >= 0 ? trace_exit(left_glass, x, r, map) : lgv_trace(x, r, map));
+        // A photon that has just left glass is traced on its exit map, centred in the glass with the
+        // glass left out ([32]'s environment map of the refractor): the lattice maps see a glass
+        // sphere as a solid, and the floor under it, hidden from every centre outside it, is where
+        // the sphere focuses the light of the room above; those photons landed on what the lattice
+        // maps saw beside the sphere. Exact for convex glass, which the photon cannot meet again;
+        // when another glass object lies on the way the segment is traced on the lattice maps.
+        int exit_map = left_glass >= 0 ? left_glass + u_n_refractors : -1;
+        highp float d = inside ? trace_inside(x, r, map) : lgv_trace_from(exit_map, x, r, map);
+        if (exit_map >= 0 && map == exit_map && d >= 0.0 && other_glass_before(left_glass, x, r, d))
+            d = lgv_trace(x, r, map);
         left_glass = -1;
         atomicAdd(st[0], 1u);
         if (d < 0.0) {
