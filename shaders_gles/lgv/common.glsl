@@ -1,7 +1,8 @@
 // Shared declarations of the lgv passes (seed 002, vct-003-grid-photon-002.md Part B). Layouts are
 // std430 and mirrored in app/gi/lgv/lgv_internal.h.
 //
-// Distance cube-maps: 2D array textures of 6 layers per map (layer = 6 * map + face), face f looks
+// Distance cube-maps: 2D array textures of 6 layers per map (layer = 6 * map + face; maps: the
+// lattice's, then the refractor maps, then the refractors' exit maps, lgv_maps.c), face f looks
 // along axis f / 2 with sign + for even f; its image plane coordinates are (u, v) = (dot(d, U_f),
 // dot(d, V_f)) / dot(d, W_f) in [-1, 1] (a 90-degree perspective), texel ((u, v) * 0.5 + 0.5) * res.
 // The same mapping renders (cubemap.vert) and reads (lgv_texel), so no cube-map seam filtering is

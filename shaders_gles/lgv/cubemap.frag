@@ -1,6 +1,7 @@
 // One texel of a distance cube-map (lgv/common.glsl): distance from the centre, normal, base colour
 // and material code. u_glass = (ior, transmission) per material (render_gi.c's draw_scene sets it
 // when the program declares it), u_refractor = the refractor map of the mesh being drawn (-1: none).
+// u_leave_glass = 1: an exit map (lgv_maps.c), which leaves glass out.
 // MAPS_COUNT_FRAGMENTS: the bench's counting variant (app/gi/lgv/lgv_work.c), one atomic add per
 // fragment shaded, discarded or not (fragment-stage storage buffers capability-checked by the
 // caller). Never in the kiosk's frames.
@@ -22,6 +23,7 @@ uniform int u_mat_flags;
 uniform vec4 u_specular;
 uniform vec2 u_glass;
 uniform int u_refractor;
+uniform int u_leave_glass;
 layout(location = 0) out highp uint o_dist;
 layout(location = 1) out mediump vec4 o_normal;
 layout(location = 2) out mediump vec4 o_albedo;
@@ -32,6 +34,8 @@ void main()
 #endif
     // glTF alphaMode MASK: through a hole the map sees what is behind it
     if (gk_alpha_cut())
+        discard;
+    if (u_leave_glass == 1 && u_glass.y > 0.0)
         discard;
     o_dist = floatBitsToUint(length(v_world - u_centre));
     vec3 n = normalize(v_normal);

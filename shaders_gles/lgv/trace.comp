@@ -10,7 +10,9 @@
 // Then Russian roulette on the albedo, cosine scattering. Mirrors reflect (times their colour);
 // glass (code >= 128) reflects or refracts by Fresnel with its ior; inside glass the exit is found
 // on the refractor map nearest the photon (a map centred in the object, Szirmay-Kalos et al. [32]),
-// with total internal reflection keeping the photon inside.
+// with total internal reflection keeping the photon inside; a photon that has just left glass
+// (refracted out of it or reflected off it) is traced on that glass's exit map (u_exit_maps,
+// tracer.glsl lgv_trace_from).
 // u_probe = 1 (tests): no emission; each invocation traces one ray of the Probe buffer once and
 // writes where it hit (w = 1) or that it left the scene (w = 0).
 // TRACE_COUNT_FETCHES: the bench's counting variant (app/gi/lgv/lgv_work.c): the distance-map texels
@@ -54,6 +56,7 @@ uniform int u_caustic_cap;
 uniform int u_sphere_normals; // 1 (tests): glass normals from the refractor map's centre, exact on a sphere centred there
 uniform int u_refractor_surface; // 1: glass hits placed on its refractor map (enter_glass), normals interpolated there
 uniform int u_snap;           // 1: diffuse hits moved onto the map's surface (lgv_internal.h LGV_SNAP_HITS)
+uniform int u_exit_maps;      // 1: a photon leaving glass is traced on its exit map (tracer.glsl lgv_trace_from)
 
 highp uint g_rng;
 highp float rnd()
@@ -142,6 +145,19 @@ highp float trace_inside(highp vec3 x, highp vec3 r, out int map)
     return -1.0;
 }
 
+// Whether ray x + d r passes through the bounding sphere of a refractor other than `own` before
+// distance d: the exit maps leave all glass out, so such a segment is traced on the lattice maps.
+bool other_glass_before(int own, highp vec3 x, highp vec3 r, highp float d)
+{
+    for (int m = u_n_maps; m < u_n_maps + u_n_refractors; m++) {
+        highp vec3 oc = x - centre[m].xyz;
+        highp float b = dot(oc, r), c = dot(oc, oc) - centre[m].w * centre[m].w;
+        if (m != own && b * b - c > 0.0 && -b - sqrt(b * b - c) < d && -b + sqrt(b * b - c) > 0.0)
+            return true;
+    }
+    return false;
+}
+
 // Where ray x + d r enters the glass of refractor map m near a lattice map's hit on it at distance d:
 // the first outside-to-inside change of the refractor map's error in [d - 2w, d + w] (w: two of the
 // lattice map's texel footprints there), refined by the secant. -1 when the ray does not enter the
@@ -182,10 +198,20 @@ void trace_invocation()
     highp vec3 x, r, flux;
     emit(x, r, flux);
     bool specular_only = true, inside = false;
-    int events = 0;
+    int events = 0, left_glass = -1; // the refractor map of the glass the photon has just left
     for (int bounce = 0; bounce < u_bounces; bounce++) {
         int map;
-        highp float d = inside ? trace_inside(x, r, map) : lgv_trace(x, r, map);
+        // A photon that has just left glass is traced on its exit map, centred in the glass with the
+        // glass left out ([32]'s environment map of the refractor): the lattice maps see a glass
+        // sphere as a solid, and the floor under it, hidden from every centre outside it, is where
+        // the sphere focuses the light of the room above; those photons landed on what the lattice
+        // maps saw beside the sphere. Exact for convex glass, which the photon cannot meet again;
+        // when another glass object lies on the way the segment is traced on the lattice maps.
+        int exit_map = left_glass >= 0 ? left_glass + u_n_refractors : -1;
+        highp float d = inside ? trace_inside(x, r, map) : lgv_trace_from(exit_map, x, r, map);
+        if (exit_map >= 0 && map == exit_map && d >= 0.0 && other_glass_before(left_glass, x, r, d))
+            d = lgv_trace(x, r, map);
+        left_glass = -1;
         atomicAdd(st[0], 1u);
         if (d < 0.0) {
             atomicAdd(st[3], 1u);
@@ -230,6 +256,8 @@ void trace_invocation()
                 flux *= alb.rgb;
                 inside = entering;
             }
+            if (!inside && u_exit_maps == 1 && refractor < u_n_maps + u_n_refractors)
+                left_glass = refractor;
             x = hit + r * 1e-4;
             events++;
             continue;

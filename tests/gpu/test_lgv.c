@@ -8,7 +8,8 @@
  *             masks (energy, rel. RMSE) and the share of caustic photons the SSLGV accepts;
  *   item 13   the energy (LGV and SSLGV) constant as the photon count N and C0 vary;
  *   Fig. 9    the indirect light's error against glass-indirect.exr per LGV size, without and with
- *             the gathering iterations (eq. 6);
+ *             the gathering iterations (eq. 6); by region (the sphere, the floor under it, the rest),
+ *             with the photons leaving glass traced on its exit map and on the lattice maps;
  *   item 6    the LGV's temporal noise with new photons every frame; the same photons twice: identical;
  *   G         eq. (6)'s fuzzy occlusion: on light-leak the gathering carries no flux through the wall;
  *   work      each pass's work for the bench's efficiency (lgv_work.c) against hand counts on the
@@ -17,8 +18,8 @@
  *   sweep     (GK_LGV_SWEEP=1, alone) iterations x LGV sizes against the indirect references (README);
  *   Fig. 9's cause (GK_LGV_FIG9=1, alone) the error per LGV size at 1M, 4M and 16M photons;
  * GK_LGV_ONLY=NAME runs one test; GK_LGV_EVENTS, GK_LGV_OFFSET, GK_LGV_SEEING, GK_LGV_BOUNDS,
- * GK_LGV_SPHERE set the debug switches max_events, lookup_offset, seeing_maps, bounds_hits and
- * sphere_normals for the README's experiments.
+ * GK_LGV_SPHERE, GK_LGV_EXIT set the debug switches max_events, lookup_offset, seeing_maps,
+ * bounds_hits, sphere_normals and exit_maps for the README's experiments.
  * (The other B.5 tests are not written yet: see the README's lgv section.)
  * Bounds come from the measurements printed with each test (see the comments there). */
 #include <setjmp.h>
@@ -67,6 +68,7 @@ static bool OCCLUSION = true; /* eq. (6)'s G of the next frames (the leak test t
 static bool REPLACE = false;  /* the lookup reads the last gathering iteration alone */
 static bool REFRACTOR = true; /* glass hits placed and shaded on its refractor map (gk_lgv_debug.refractor_surface) */
 static bool COUNT = false;    /* the next frames are the bench's counting frames (lgv_work.c) */
+static bool EXIT_MAPS = true; /* photons leaving glass traced on its exit map (gk_lgv_debug.exit_maps) */
 
 static int draw_scene(void *ctx, unsigned prog, gk_err *e)
 {
@@ -151,7 +153,7 @@ static void frame(const char *list, int parts, unsigned seed)
     gk_lgv_debug d;
     gk_lgv_default_debug(&d);
     d.parts = parts, d.seed = seed, d.c0 = C0, d.occlusion = OCCLUSION, d.gather_replace = REPLACE;
-    d.refractor_surface = REFRACTOR;
+    d.refractor_surface = REFRACTOR, d.exit_maps = EXIT_MAPS;
     d.max_events = getenv("GK_LGV_EVENTS") ? atoi(getenv("GK_LGV_EVENTS")) : 0;
     if (getenv("GK_LGV_OFFSET"))
         d.lookup_offset = (float)atof(getenv("GK_LGV_OFFSET"));
@@ -161,6 +163,8 @@ static void frame(const char *list, int parts, unsigned seed)
         d.sphere_normals = atoi(getenv("GK_LGV_SPHERE")) != 0;
     if (getenv("GK_LGV_BOUNDS"))
         d.bounds_hits = atoi(getenv("GK_LGV_BOUNDS")) != 0;
+    if (getenv("GK_LGV_EXIT"))
+        d.exit_maps = atoi(getenv("GK_LGV_EXIT")) != 0;
     gk_lgv_set_debug(H.self, &d);
     gk_gi_frame f = {0};
     f.scene = H.scene, f.width = W, f.height = HH, f.scene_changed = false;
@@ -530,19 +534,29 @@ static void caustic_against_reference(void **state)
         caustic_on("glass", "lgv_photons=262144,lgv_map_res=128", &g, &ga);
         caustic_on("caustic-ring", "lgv_photons=262144,lgv_map_res=128,lgv_maps=64", &c, &ca);
     }
-    /* Measured (llvmpipe, 0.26M photons, 27 maps of 64^2, SSLGV 256 wide): glass 0.974 in the mask
-       (0.892 in the mask grown by 2 pixels, 0.854 over the image), 2223 of 2312 caustic photons
-       accepted (0.962). With glass as the lattice maps see it (REFRACTOR false) 0.708 in the mask and
-       0.667 over the image: the loss was not the focus blurred out of the mask but photons lost on the
+    /* Measured (llvmpipe, 0.26M photons, 27 maps of 64^2, SSLGV 256 wide): glass 0.729 in the mask,
+       rel. RMSE inside 0.314 (0.876 in the mask grown by 2 pixels, 0.848 over the image), 2230 of 2316
+       caustic photons accepted (0.963). Before the exit maps (gk_lgv_debug.exit_maps: the photons
+       leaving the sphere traced on the lattice maps, which do not see the floor next to its contact
+       point) 0.974 in the mask but rel. RMSE inside 0.993: a small bright triangle where the
+       reference has an ellipse, the photons of the hidden floor piled onto the floor the maps saw
+       beside it, some into the 30-pixel mask; the ellipse now has the reference's shape and place,
+       its energy over the image as before (0.854), so the issue's +-15% in the mask, met then by the
+       misplaced pile, is not met now (README lgv). With glass as the lattice maps see it (REFRACTOR
+       false) 0.697 in the mask, rel. RMSE inside 0.362 (before the exit maps 0.708 in the mask and
+       0.667 over the image): the loss was not the focus blurred out of the mask but photons lost on the
        way (1844 caustic photons): a photon leaving the sphere met the lattice maps' coarse copy of it,
        up to a texel footprint outside, at once (3,944 of 5,093 glass hits after leaving glass lay
        within 2 cm), and bounced in and out until the 6-event cap; exact sphere normals alone
        (gk_lgv_debug.sphere_normals) gave 0.804. Before the acceptance fixes 0.189 with 524 accepted.
        caustic-ring 0.510 (most of its caustic photons land off screen at the references' view; 24
-       events instead of 6: 0.568, its ring needs several mirror bounces). Bounds: glass the issue's
-       +-15%, the lattice-only glass below 0.80 (the refractor's part), caustic-ring the measurement
-       +- 0.05. */
-    assert_true(g.energy > 0.85 && g.energy < 1.15);
+       events instead of 6: 0.568, its ring needs several mirror bounces). Bounds: glass's shape in the
+       mask (rel. RMSE < 0.40, 0.99 before the exit maps), its energy in the mask grown by 2 pixels
+       within the issue's +-15% and in the mask itself the measurement - 0.05 (the issue's 0.85 is not
+       met), the lattice-only glass below 0.80, caustic-ring the measurement +- 0.05. */
+    assert_true(g.rel_in < 0.40);
+    assert_true(g.energy_near[0] > 0.85 && g.energy_near[0] < 1.15);
+    assert_true(g.energy > 0.68 && g.energy < 1.15);
     assert_true(ga > 0.92);
     assert_true(g0.energy < 0.80);
     assert_true(c.energy > 0.46 && c.energy < 0.56);
@@ -631,7 +645,8 @@ static void indirect_on(const char *scene, const char *budget, ruler *r)
 /* Seed Fig. 9, the LGV-size trade-off: the indirect light (the LGV's eq. 7 lookup, no caustic) against
    glass-indirect.exr per lgv_size, with no gathering iterations (the density estimate alone, the
    default) and with 2, at 1M photons (4 frames of 262144 averaged). The time side is the bench's
-   (tools/bench.sh, sweep lgv); the photon study (GK_LGV_FIG9) says why the error rises with the size. */
+   (tools/bench.sh, sweep lgv); fig9_regions says where the error lies, the photon study (GK_LGV_FIG9)
+   what more photons change. */
 static void lgv_size_tradeoff(void **state)
 {
     (void)state;
@@ -650,18 +665,21 @@ static void lgv_size_tradeoff(void **state)
         printf("# glass indirect (LGV, %s gathering iterations) vs glass-indirect.exr: rel. RMSE %.3f / %.3f / %.3f at "
                "16 / 32 / 48 cells; energy ratio %.3f / %.3f / %.3f\n", iters[k], err[k][0], err[k][1], err[k][2],
                ratio[k][0], ratio[k][1], ratio[k][2]);
-    /* Measured (llvmpipe, 4 x 262144 photons): no iterations rel. RMSE 0.563 / 0.728 / 0.816, energy
-       0.937 / 0.897 / 0.875; 2 iterations (with G) 0.870 / 1.046 / 1.160, energy 1.448 / 1.390 / 1.356.
+    /* Measured (llvmpipe, 4 x 262144 photons): no iterations rel. RMSE 0.523 / 0.526 / 0.537, energy
+       0.951 / 0.910 / 0.888; 2 iterations (with G) 0.860 / 0.854 / 0.844, energy 1.467 / 1.408 / 1.375.
+       Before the exit maps (photons leaving glass traced on the lattice maps, fig9_regions) no
+       iterations 0.563 / 0.728 / 0.816, energy 0.937 / 0.897 / 0.875; 2 iterations 0.870 / 1.046 /
+       1.160.
        Before the tracer's bounds hits and glass on its refractor map the density estimate had 0.621 /
        0.594 / 0.580 of the energy (photons lost at the walls: 9.9% of the photon-like rays meeting a
        surface found none) and the iterations' sum made it up (4 iterations: 1.08 / 1.04 / 1.01, the
        default then); with the photons found the sum adds ~50% on top, so the gathering now raises the
        error at every size and the default is no iterations. Fig. 9's trend (error falling as the grid
-       grows) is NOT reproduced at these photons: the error rises with the size (README lgv: the
-       photon noise per cell). Bounds: the measurements + 0.03 (rel. RMSE); the energy without
+       grows) is NOT reproduced without gathering: the error is flat (README lgv). Bounds: the
+       measurements + 0.03 (rel. RMSE); the energy without
        gathering in [0.84, 1] and independent of the grid size within 8% (the normalisation k does
        not depend on l); 2 iterations add at least 30% and raise the error (the default's reason). */
-    static const double bound0[3] = {0.60, 0.76, 0.85};
+    static const double bound0[3] = {0.56, 0.56, 0.57};
     for (int i = 0; i < 3; i++) {
         assert_true(err[0][i] < bound0[i]);
         assert_true(ratio[0][i] > 0.84 && ratio[0][i] < 1.0);
@@ -669,6 +687,112 @@ static void lgv_size_tradeoff(void **state)
         assert_true(ratio[1][i] > 1.3 * ratio[0][i]);
         assert_true(err[1][i] > err[0][i]);
     }
+}
+
+/* Where Fig. 9's error lies: glass's pixels in three regions, from the scene's "sphere" param and the
+   view rays through the pixels' centres (top row first, as the references): the sphere's own pixels,
+   the floor within 2.5 radii of its contact point (where the sphere focuses the room's light: L D
+   S+ D, in the LGV), the rest. */
+enum { REGION_REST, REGION_SPHERE, REGION_FLOOR, REGIONS };
+static const char *const REGION_NAMES[REGIONS] = {"rest", "sphere", "floor under it"};
+
+static void glass_regions(unsigned char *region)
+{
+    gk_scene *s = load("glass");
+    float sp[4];
+    assert_int_equal(gk_scene_param(s, "sphere", sp, 4), 4);
+    gk_scene_free(s);
+    vec3 c = v3(sp[0], sp[1], sp[2]);
+    float rad = sp[3], floor_y = sp[1] - sp[3];
+    for (int y = 0; y < HH; y++)
+        for (int x = 0; x < W; x++) {
+            vec4 q = m4_vec4(H.inv_vp, (vec4){2.0f * ((float)x + 0.5f) / W - 1.0f, 1.0f - 2.0f * ((float)y + 0.5f) / HH, 1.0f, 1.0f});
+            vec3 d = v3_norm(v3_sub(v3(q.x / q.w, q.y / q.w, q.z / q.w), H.eye)), oc = v3_sub(H.eye, c);
+            float b = v3_dot(oc, d), disc = b * b - (v3_dot(oc, oc) - rad * rad);
+            unsigned char k = REGION_REST;
+            if (disc > 0 && -b - sqrtf(disc) > 0)
+                k = REGION_SPHERE;
+            else if (d.y < 0) {
+                vec3 p = v3_add(H.eye, v3_scale(d, (floor_y - H.eye.y) / d.y));
+                if (hypotf(p.x - c.x, p.z - c.z) < 2.5f * rad)
+                    k = REGION_FLOOR;
+            }
+            region[y * W + x] = k;
+        }
+}
+
+/* Each region's part of the rel. RMSE of `ours` against `ref` (both top row first): sqrt(its squared
+   error / all values) / the reference's mean, so the parts' squares add up to the whole's square. */
+static void region_parts(const gk_image *ref, const gk_image *ours, const unsigned char *region, double part[REGIONS])
+{
+    double sq[REGIONS] = {0}, mean = 0;
+    for (int i = 0; i < W * HH; i++)
+        for (int ch = 0; ch < 3; ch++) {
+            double r = ref->pixels[i * ref->channels + ch], o = ours->pixels[i * 3 + ch];
+            sq[region[i]] += (o - r) * (o - r);
+            mean += r;
+        }
+    double values = 3.0 * W * HH;
+    mean /= values;
+    for (int k = 0; k < REGIONS; k++)
+        part[k] = sqrt(sq[k] / values) / mean;
+}
+
+/* Fig. 9's bias, by region (GK_LGV_DUMP keeps the images): glass's indirect light (LGV, no gathering,
+   4 x 262144 photons) per lgv_size with the photons leaving glass traced on its exit map (the
+   default) and on the lattice maps. */
+static void fig9_regions(void **state)
+{
+    (void)state;
+    static const char *const sizes[3] = {"16", "32", "48"};
+    unsigned char region[W * HH];
+    gk_image ref = {0}, ours = {0};
+    gk_err e = {0};
+    assert_int_equal(gk_image_read("tests/references/glass-indirect.exr", &ref, &e), 0);
+    double part[2][3][REGIONS], whole[2][3];
+    for (int ex = 0; ex < 2; ex++)
+        for (int i = 0; i < 3; i++) {
+            char budget[96];
+            snprintf(budget, sizeof budget, "lgv_photons=262144,lgv_size=%s,lgv_iters=0", sizes[i]);
+            EXIT_MAPS = ex == 0;
+            ruler r;
+            indirect_on("glass", budget, &r); /* leaves the camera in H and the 4 frames' average in H.img */
+            glass_regions(region);
+            as_image(&ours);
+            region_parts(&ref, &ours, region, part[ex][i]);
+            gk_image_free(&ours);
+            whole[ex][i] = r.rel_all;
+            double sum_sq = 0;
+            for (int k = 0; k < REGIONS; k++)
+                sum_sq += part[ex][i][k] * part[ex][i][k];
+            assert_true(fabs(sqrt(sum_sq) - r.rel_all) < 1e-3); /* the parts make up gk_metrics' whole */
+        }
+    EXIT_MAPS = true;
+    gk_image_free(&ref);
+    for (int ex = 0; ex < 2; ex++)
+        for (int k = 0; k < REGIONS; k++)
+            printf("# fig9 regions, %s: %s's part of the rel. RMSE %.3f / %.3f / %.3f at 16 / 32 / 48 cells (whole %.3f / "
+                   "%.3f / %.3f)\n", ex == 0 ? "exit maps" : "lattice maps", REGION_NAMES[k], part[ex][0][k],
+                   part[ex][1][k], part[ex][2][k], whole[ex][0], whole[ex][1], whole[ex][2]);
+    /* Measured (llvmpipe, deterministic photons): with the lattice maps the floor under the sphere's
+       part rose with the grid, 0.270 / 0.518 / 0.626 (the whole's rise, 0.563 / 0.728 / 0.816): no
+       lattice map sees that floor, which the sphere hides from every centre outside it, so the
+       photons the sphere focuses there (light from the walls and ceiling) landed on the
+       floor the maps see beside it, a crescent the finer grids draw sharper. On the exit maps the
+       part is flat, 0.192 / 0.183 / 0.189. The sphere's part, 0.289 / 0.289 / 0.288, does not
+       depend on the grid: these pixels show the floor behind the sphere (the harness draws no glass
+       pass; the renderer's refracts the image there, render_glass.c), the reference the room seen
+       through the glass. The rest, 0.391 / 0.400 / 0.412, is the one part that rises (README lgv).
+       Bounds: the flat floor part < 0.22 and within 15% across sizes; the lattice maps' rising at
+       least 2x from 16 to 48 cells (measured 2.32) and at 48 cells at least 2.5x the exit maps'
+       (3.3); the sphere's part within 0.01 across sizes. */
+    for (int i = 0; i < 3; i++) {
+        assert_true(part[0][i][REGION_FLOOR] < 0.22);
+        assert_true(part[0][i][REGION_FLOOR] < 1.15 * part[0][0][REGION_FLOOR] && part[0][i][REGION_FLOOR] > part[0][0][REGION_FLOOR] / 1.15);
+        assert_true(fabs(part[0][i][REGION_SPHERE] - part[0][0][REGION_SPHERE]) < 0.01);
+    }
+    assert_true(part[1][2][REGION_FLOOR] > 2.0 * part[1][0][REGION_FLOOR]);
+    assert_true(part[1][2][REGION_FLOOR] > 2.5 * part[0][2][REGION_FLOOR]);
 }
 
 /* Eq. (6)'s gathering: iterations 0 / 2 / 4 / 8 / 12 x LGV size 16 / 32 / 48 against the indirect
@@ -853,8 +977,8 @@ static void temporal_noise_and_determinism(void **state)
         }
     printf("# glass, LGV at 65536 photons, 8 frames with new photons: mean relative temporal std %.4f over %d pixels; "
            "the same frame twice identical: %s\n", sum / n, n, same ? "yes" : "no");
-    /* Measured (llvmpipe): 0.232 over 13873 pixels with the default, no gathering iterations (eq. 7
-       alone is a one-cell density estimate: the seed's "temporal discontinuity" at the default
+    /* Measured (llvmpipe): 0.234 over 16118 pixels with the default, no gathering iterations (0.232
+       over 13873 before the exit maps; eq. 7 alone is a one-cell density estimate: the seed's "temporal discontinuity" at the default
        photons); 0.157 over 14872 with 4 iterations (their sum spreads each photon over more cells;
        before the tracer's bounds hits, 0.197 with 4 and 0.293 without); identical twice. Bound: the
        measurement + 0.04. */
@@ -1025,6 +1149,7 @@ int main(void)
         cmocka_unit_test(caustic_against_reference),
         cmocka_unit_test(energy_constant_in_n_and_c0),
         cmocka_unit_test(lgv_size_tradeoff),
+        cmocka_unit_test(fig9_regions),
         cmocka_unit_test(temporal_noise_and_determinism),
         cmocka_unit_test(occlusion_blocks_a_wall),
         cmocka_unit_test(work_counts_on_the_furnace_box),

@@ -23,6 +23,7 @@ typedef struct gk_lgv_debug {
     bool bounds_hits;  /* a ray reaching the bounds where the map sees a surface met it there (default; false: left the scene) */
     bool refractor_surface; /* glass hits placed on its refractor map, normals interpolated there (default; false: the hit map's texel) */
     bool sphere_normals; /* tests: glass normals from the refractor map's centre (exact for a sphere centred there) */
+    bool exit_maps;    /* a photon leaving glass is traced on that glass's exit map (default; false: on the lattice maps) */
     bool seeing_maps;  /* a ray's maps: the nearest that see its point (tracer.glsl lgv_seeing_map) */
     float lookup_offset; /* eq. (7) reads the LGV this many cells along the normal (default 0.5, research B.5 item 8) */
     int max_events;    /* longest photon path in surface events (0: LGV_BOUNCES) */
@@ -46,7 +47,8 @@ const gk_lgv_stats *gk_lgv_get_stats(void *self);
 int gk_lgv_probe(void *self, const float *rays, int n, float *hits, double *fetches, gk_err *e);
 /* The gathering pass's storage-buffer loads in vec4s (lgv_work.c): LGV dims, iterations, occlusion. */
 double gk_lgv_gather_loads(const int dims[3], int iters, bool occlusion);
-/* Map centres of the current scene (xyz, w) and their count (lattice first, then refractors). */
+/* Map centres of the current scene (xyz, w) and their count (lattice first, then refractors, then
+ * the refractors' exit maps). */
 int gk_lgv_centres(const void *self, float *out, int cap);
 /* The LGV the last frame's lookup read (the iterations' sum, or the last one), 12 floats per cell (R, G, B x 4 SH; x fastest, dims in
  * the stats), into out (cap floats); the count or -1. */

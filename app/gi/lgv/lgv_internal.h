@@ -10,7 +10,7 @@
 
 #define LGV_MAX_MAPS 64          /* lattice maps (4^3 at most) */
 #define LGV_MAX_REFRACTORS 4     /* refractor maps: one per transmissive mesh of the scene, nearest first */
-#define LGV_MAP_LAYERS_MAX ((LGV_MAX_MAPS + LGV_MAX_REFRACTORS) * 6)
+#define LGV_MAP_LAYERS_MAX ((LGV_MAX_MAPS + 2 * LGV_MAX_REFRACTORS) * 6)
 #define LGV_CAUSTIC_BYTES 48     /* Caustic in trace.comp */
 #define LGV_CAUSTIC_HEADER 16
 #define LGV_FAR_BITS 0x7149f2caU /* 1e30f: "nothing in this direction" */
@@ -57,7 +57,9 @@ typedef struct lgv_state {
     float diag, area;
     int lattice;                 /* maps per axis */
     int n_maps, n_refractors;
-    float centres[(LGV_MAX_MAPS + LGV_MAX_REFRACTORS) * 4]; /* xyz, w = radius (refractors) */
+    /* xyz, w = radius (refractors): the lattice maps, the refractor maps, then each refractor's exit
+       map (the same centre, its glass left out; lgv_maps.c) */
+    float centres[(LGV_MAX_MAPS + 2 * LGV_MAX_REFRACTORS) * 4];
     bool maps_valid;
     int maps_res, maps_count;    /* what the map textures were made for */
     GLuint dist_tex, nrm_tex, alb_tex, map_depth, map_fbo, centres_ssbo;

@@ -6,7 +6,12 @@
  * LGV_CENTRE_CLEARANCE_REL of the spacing to a triangle is pushed out: the first free point of the
  * six axis directions at steps of 1/8 of the spacing (nearest first), else it stays. Glass needs one more map per transmissive mesh (up to
  * LGV_MAX_REFRACTORS): a refractor map centred in its bounds, where photons inside the glass find
- * their exit (Szirmay-Kalos et al. [32]).
+ * their exit (Szirmay-Kalos et al. [32]). And one more at the same centre with the glass left out,
+ * the exit map ([32]'s environment distance map): where a photon that has just left the glass
+ * (refracted out of it or reflected off it) lands (gk_lgv_debug.exit_maps). No lattice map sees the
+ * floor under a glass sphere, which the sphere hides from every centre outside it; photons focused
+ * there by the sphere landed on whatever surface those maps see beside it (glass's indirect light,
+ * test_lgv's fig9_regions: the floor around the sphere).
  *
  * Each map: 6 faces of res^2 in 2D array layers (lgv/common.glsl's face mapping), distance as R32UI
  * float bits with min-reduced mips (mip_min.comp), normal and base colour + material code in RGBA8.
@@ -186,18 +191,22 @@ int lgv_place_maps(lgv_state *s, const gk_scene *sc, int per_axis, gk_err *e)
             o[0] = c.x, o[1] = c.y, o[2] = c.z, o[3] = 0.5f * v3_len(v3_sub(hi, lo));
         }
     }
+    /* the exit maps: the refractors' centres again, after them (lgv/common.glsl's layer order) */
+    memcpy(&s->centres[4 * (s->n_maps + s->n_refractors)], &s->centres[4 * s->n_maps],
+           sizeof(float) * 4 * (size_t)s->n_refractors);
     free(w.p), free(w.mesh);
     return 0;
 }
 
 /* lgv/cubemap.{vert,frag} */
 typedef struct cubemap_uniforms {
-    GLint u_centre, u_face, u_near_far;
+    GLint u_centre, u_face, u_near_far, u_leave_glass;
 } cubemap_uniforms;
 static const gk_uniform_field cubemap_fields[] = {
     GK_UNIFORM(cubemap_uniforms, u_centre),
     GK_UNIFORM(cubemap_uniforms, u_face),
     GK_UNIFORM(cubemap_uniforms, u_near_far),
+    GK_UNIFORM(cubemap_uniforms, u_leave_glass),
 };
 
 /* lgv/mip_min.comp */
@@ -221,7 +230,7 @@ static GLuint array_texture(GLenum fmt, int res, int layers, int levels)
 
 static int ensure_maps(lgv_state *s, gk_err *e)
 {
-    int count = s->n_maps + s->n_refractors;
+    int count = s->n_maps + 2 * s->n_refractors;
     if (s->dist_tex && s->maps_res == s->map_res && s->maps_count == count)
         return 0;
     GLuint tex[3] = {s->dist_tex, s->nrm_tex, s->alb_tex};
@@ -276,8 +285,9 @@ int lgv_render_maps(lgv_state *s, const gk_gi_frame *f, gk_err *e)
     glUniform2f(u->u_near_far, 1e-3f * s->diag, 4.0f * s->diag);
     const GLuint far_bits[4] = {LGV_FAR_BITS, 0, 0, 0};
     const float zero[4] = {0, 0, 0, 0};
-    for (int m = 0; m < s->n_maps + s->n_refractors; m++) {
+    for (int m = 0; m < s->maps_count; m++) {
         glUniform3f(u->u_centre, s->centres[4 * m], s->centres[4 * m + 1], s->centres[4 * m + 2]);
+        glUniform1i(u->u_leave_glass, m >= s->n_maps + s->n_refractors); /* the exit maps */
         for (int face = 0; face < 6; face++) {
             int layer = 6 * m + face;
             glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, s->dist_tex, 0, layer);
@@ -299,7 +309,7 @@ int lgv_render_maps(lgv_state *s, const gk_gi_frame *f, gk_err *e)
     glBindFramebuffer(GL_FRAMEBUFFER, f->hdr_fbo);
     /* min-reduced mips, every layer in one dispatch per level */
     glUseProgram(mip);
-    int layers = 6 * (s->n_maps + s->n_refractors);
+    int layers = 6 * s->maps_count;
     for (int l = 0; l + 1 < s->levels; l++) {
         int dst = s->map_res >> (l + 1);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);

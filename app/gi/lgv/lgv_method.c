@@ -60,6 +60,7 @@ void gk_lgv_default_debug(gk_lgv_debug *d)
     d->snap_hits = true;
     d->bounds_hits = true;
     d->refractor_surface = true;
+    d->exit_maps = true;
     d->occlusion = true;
     d->lookup_offset = 0.5f;
     d->c0 = LGV_C0;
@@ -240,7 +241,7 @@ const gk_lgv_stats *gk_lgv_get_stats(void *self)
 int gk_lgv_centres(const void *self, float *out, int cap)
 {
     const lgv_state *s = self;
-    int n = s->n_maps + s->n_refractors;
+    int n = s->n_maps + 2 * s->n_refractors;
     n = n < cap ? n : cap;
     memcpy(out, s->centres, sizeof(float) * 4 * (size_t)n);
     return n;
