@@ -188,25 +188,32 @@ f = {e["radiosity_bounces"]: float(e["fetches"]) for e in csv.DictReader(open(sy
      if e["pass"] == "gi.radiosity_bounce" and e["kind"] == "ssbo_rgba32f_load"}
 assert f["2"] > 0 and f["4"] == 2 * f["2"], f
 PY
-# ... and the deep-umbra test on (its default) against off: it reads only its chain of maxima (4
-# unfiltered lookups per level, level 0 and at most one coarser one per VPL whose filtered
-# visibility found blockers and is above 0), after the filtered lookups it leaves as they were.
-# Measured on cornell at 160x120: filtered counts equal, unfiltered 200106 -> 272882 (+4 x 18194; R16F-nearest since the
-# efficiency kinds split by format: 0 -> 72776).
+# ... and the deep-umbra test against off. `on` reads only its chain of maxima (4 unfiltered
+# lookups per level, level 0 and at most one coarser one per VPL whose filtered visibility found
+# blockers and is above 0), after the filtered lookups it leaves as they were. Measured on cornell
+# at 160x120: filtered counts equal, unfiltered 200106 -> 272882 (+4 x 18194; R16F-nearest since the
+# efficiency kinds split by format: 0 -> 72776). `plane` (the default) reads the 4 texels' planes
+# (RGBA32F here, unfiltered) instead of level 0 of the chain, and the chain only at the kernel's level:
+# at 80x60 off / on / plane R16F 0 / 18712 / 2620, RGBA32F 50832 / 50832 / 67000 (+4 x 4042).
 expect_exit 0 "bench --roofline-csv: vpl with and without the deep-umbra test" sh -c "'$GIKIOSK' bench \
-    --scenes cornell --methods vpl --size 80x60 --frames 1 --warmup 1 --sweep 'vpl_umbra=off,on' \
+    --scenes cornell --methods vpl --size 80x60 --frames 1 --warmup 1 --sweep 'vpl_umbra=off,on,plane' \
     --roofline-csv '$TMP/roofline.csv' --out '$TMP/u' 2>'$TMP/u.log'"
-check "vpl_gather: the deep-umbra test adds whole chain lookups and no filtered ones" python3 - "$TMP/u/efficiency.csv" <<'PY'
+check "vpl_gather: the deep-umbra test adds whole unfiltered lookups and no filtered ones" python3 - "$TMP/u/efficiency.csv" <<'PY'
 import csv, sys
 f = {}
 for e in csv.DictReader(open(sys.argv[1])):
     if e["pass"] == "gi.vpl_gather":
         f[(e["vpl_umbra"], e["kind"])] = float(e["fetches"])
-u = "tex2d_r16f_nearest"   # the chain is RG16F, read by texelFetch
-for k in ("tex2d_rgba32f_nearest", "tex2d_rgba8_trilinear", "tex2d_rgba16f_trilinear"):
-    assert f[("on", k)] == f[("off", k)] > 0, f
-extra = f[("on", u)] - f.get(("off", u), 0.0)
-assert extra > 0 and extra % 4 == 0, f
+u, p = "tex2d_r16f_nearest", "tex2d_rgba32f_nearest"   # the chain is RG16F, the planes RGBA32F
+for k in ("tex2d_rgba8_trilinear", "tex2d_rgba16f_trilinear"):
+    assert f[("on", k)] == f[("off", k)] == f[("plane", k)] > 0, f
+assert f[("on", p)] == f[("off", p)] > 0, f
+for mode, kind in (("on", u), ("plane", p)):
+    extra = f[(mode, kind)] - f.get(("off", kind), 0.0)
+    assert extra > 0 and extra % 4 == 0, (mode, kind, f)
+assert f.get(("plane", u), 0.0) % 4 == 0, f
+print("# vpl_gather fetches (off / on / plane): R16F %g / %g / %g, RGBA32F %g / %g / %g" % (
+    f.get(("off", u), 0.0), f[("on", u)], f.get(("plane", u), 0.0), f[("off", p)], f[("on", p)], f[("plane", p)]))
 PY
 printf 'name,format,size,fetches,median_ms,fetches_per_s\ntex3d_rgba16f_trilinear,rgba16f,64,1,1,fast\n' >"$TMP/bad.csv"
 expect_exit 2 "a roofline.csv with a rate that is not a number" "$GIKIOSK" bench --scenes cornell --methods vct \
