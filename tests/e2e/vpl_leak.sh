@@ -27,8 +27,8 @@
 # foot, allowed; convex ones not), takes the blocker's depth from that plane, and reads rim texels
 # as no gap (also for `on`: 0.0215 -> 0.0196): 0.000591, cornell, cornell-spot and atrium within
 # 2e-5 (README, vpl). What stays (RMSE 0.0025 in the gather without the blur): 68% where a texel
-# around the receiver holds a convex edge or no plane, 32% on receivers in a VAL's negative
-# half-space (no map there).
+# around the receiver holds no plane (left out of the map: the VAL's side of its plane), 32% on
+# receivers in a VAL's negative half-space (no map there).
 . tests/e2e/lib.sh
 export EGL_PLATFORM=surfaceless
 L_WALL_NITS=2.94
