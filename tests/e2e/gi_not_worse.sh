@@ -23,8 +23,9 @@ REFS=tests/references
 #   it: a wall thinner than a voxel cannot be resolved by any level 0, only by finer voxels;
 #   light-leak/vpl: rmse 0.000591 with the deep-umbra test by planes (vpl_umbra=plane, the default;
 #   0.0196 with its depth margin, vpl_umbra=on, 0.0632 without); what stays lies where a texel
-#   around the receiver holds a convex edge or no plane, or in a VAL's negative half-space (no map
-#   there); vpl_vis=exact leaks 0.0074 (its hard test's constant bias, 10 cm) (vpl_leak.sh);
+#   around the receiver lies on a VAL's own side of its plane (no plane there), or the receiver in
+#   a VAL's negative half-space (no map there); vpl_vis=exact leaks 0.0074 (its hard test's
+#   constant bias, 10 cm) (vpl_leak.sh);
 # light-leak/radiosity was here while links crossed the wall that the bins cannot resolve (rmse
 # 0.562); radiosity_vis=rays (the default since issue 11: walls split the surfaces, a shadow ray per
 # link, rad_vis.h) renders the dark room black: rmse 0, as none (radiosity.sh, test_radiosity_vis.c).
