@@ -227,25 +227,32 @@ d = [f[("gi.radiosity_display", b)] for b in ("2", "4")]
 assert d[0] == d[1] and d[0][0] == "raster_r16f_depth_fill", d
 assert d[0][1] >= f[("gbuffer", "2")][1] > 0, f
 PY
-# ... and the deep-umbra test on (its default) against off: it reads only its chain of maxima (4
-# unfiltered lookups per level, level 0 and at most one coarser one per VPL whose filtered
-# visibility found blockers and is above 0), after the filtered lookups it leaves as they were.
-# Measured on cornell at 160x120: filtered counts equal, unfiltered 200106 -> 272882 (+4 x 18194; R16F-nearest since the
-# efficiency kinds split by format: 0 -> 72776).
+# ... and the deep-umbra test against off. `on` reads only its chain of maxima (4 unfiltered
+# lookups per level, level 0 and at most one coarser one per VPL whose filtered visibility found
+# blockers and is above 0), after the filtered lookups it leaves as they were. Measured on cornell
+# at 160x120: filtered counts equal, unfiltered 200106 -> 272882 (+4 x 18194; R16F-nearest since the
+# efficiency kinds split by format: 0 -> 72776). `plane` (the default) reads the 4 texels' planes
+# (RGBA32F here, unfiltered) instead of level 0 of the chain, and the chain only at the kernel's level:
+# at 80x60 off / on / plane R16F 0 / 18712 / 2620, RGBA32F 50832 / 50832 / 67000 (+4 x 4042).
 expect_exit 0 "bench --roofline-csv: vpl with and without the deep-umbra test" sh -c "'$GIKIOSK' bench \
-    --scenes cornell --methods vpl --size 80x60 --frames 1 --warmup 1 --sweep 'vpl_umbra=off,on' \
+    --scenes cornell --methods vpl --size 80x60 --frames 1 --warmup 1 --sweep 'vpl_umbra=off,on,plane' \
     --roofline-csv '$TMP/roofline.csv' --out '$TMP/u' 2>'$TMP/u.log'"
-check "vpl_gather: the deep-umbra test adds whole chain lookups and no filtered ones" python3 - "$TMP/u/efficiency.csv" <<'PY'
+check "vpl_gather: the deep-umbra test adds whole unfiltered lookups and no filtered ones" python3 - "$TMP/u/efficiency.csv" <<'PY'
 import csv, sys
 f = {}
 for e in csv.DictReader(open(sys.argv[1])):
     if e["pass"] == "gi.vpl_gather":
         f[(e["vpl_umbra"], e["kind"])] = float(e["fetches"])
-u = "tex2d_r16f_nearest"   # the chain is RG16F, read by texelFetch
-for k in ("tex2d_rgba32f_nearest", "tex2d_rgba8_trilinear", "tex2d_rgba16f_trilinear"):
-    assert f[("on", k)] == f[("off", k)] > 0, f
-extra = f[("on", u)] - f.get(("off", u), 0.0)
-assert extra > 0 and extra % 4 == 0, f
+u, p = "tex2d_r16f_nearest", "tex2d_rgba32f_nearest"   # the chain is RG16F, the planes RGBA32F
+for k in ("tex2d_rgba8_trilinear", "tex2d_rgba16f_trilinear"):
+    assert f[("on", k)] == f[("off", k)] == f[("plane", k)] > 0, f
+assert f[("on", p)] == f[("off", p)] > 0, f
+for mode, kind in (("on", u), ("plane", p)):
+    extra = f[(mode, kind)] - f.get(("off", kind), 0.0)
+    assert extra > 0 and extra % 4 == 0, (mode, kind, f)
+assert f.get(("plane", u), 0.0) % 4 == 0, f
+print("# vpl_gather fetches (off / on / plane): R16F %g / %g / %g, RGBA32F %g / %g / %g" % (
+    f.get(("off", u), 0.0), f[("on", u)], f.get(("plane", u), 0.0), f[("off", p)], f[("on", p)], f[("plane", p)]))
 PY
 # $TMP/fetches.py reads a bench_rows run's fetches by (pass, kind) and row for the checks below.
 cat >"$TMP/fetches.py" <<'PY'
@@ -321,7 +328,8 @@ for d in sys.argv[1:]:
     for e in csv.DictReader(open(d + "/efficiency.csv")):
         if e["pass"] in ("gbuffer", "compose"):
             rows.setdefault(e["pass"], []).append((e["render_scale"], e["kind"], float(e["fetches"])))
-    assert len(rows["gbuffer"]) == len(rows["compose"]) == 2, (d, rows)
+    # one of each per row: two rows a run (three in the deep-umbra run)
+    assert len(rows["gbuffer"]) == len(rows["compose"]) == (3 if d.endswith("/u") else 2), (d, rows)
     assert all(k == "tex2d_rgba16f_trilinear" and n == 80 * 60 for _, k, n in rows["compose"]), (d, rows)
     assert all(k == "raster_r16f_depth_fill" for _, k, _n in rows["gbuffer"]), (d, rows)
     g = {s: n for s, _, n in rows["gbuffer"]}

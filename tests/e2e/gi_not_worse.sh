@@ -21,11 +21,11 @@ REFS=tests/references
 #   injected dark; tests/e2e/vct_leak.sh). An anisotropic level 0 hides the lit face but not the lit
 #   floor and ceiling beside it, which face the dark room's cones as any floor faces a viewer above
 #   it: a wall thinner than a voxel cannot be resolved by any level 0, only by finer voxels;
-#   vpl's RMSE is 0.0215 with its deep-umbra test (vpl_umbra=on, the default; 0.0632 without):
-#   what stays is where a receiver lies behind the wall by less than its margin against its own
-#   surface in the VAL's map (r·tanφ·2.83/res: ~0.1-0.3 m on the dark room's floor and ceiling,
-#   estimated; 0.0130 at vpl_val_map=256, a quarter of the margin), and vpl_vis=exact still leaks
-#   0.0074 (its hard test's bias, 10 cm) (vpl_leak.sh);
+#   light-leak/vpl: rmse 0.000591 with the deep-umbra test by planes (vpl_umbra=plane, the default;
+#   0.0196 with its depth margin, vpl_umbra=on, 0.0632 without); what stays lies where a texel
+#   around the receiver lies on a VAL's own side of its plane (no plane there), or the receiver in
+#   a VAL's negative half-space (no map there); vpl_vis=exact leaks 0.0074 (its hard test's
+#   constant bias, 10 cm) (vpl_leak.sh);
 # light-leak/radiosity was here while links crossed the wall that the bins cannot resolve (rmse
 # 0.562); radiosity_vis=rays (the default since issue 11: walls split the surfaces, a shadow ray per
 # link, rad_vis.h) renders the dark room black: rmse 0, as none (radiosity.sh, test_radiosity_vis.c).

@@ -84,6 +84,7 @@ static const gk_uniform_field gather_fields[] = {
     GK_UNIFORM(vpl_gather_uniforms, u_bz),
     GK_UNIFORM(vpl_gather_uniforms, u_bmom),
     GK_UNIFORM(vpl_gather_uniforms, u_bzmax),
+    GK_UNIFORM(vpl_gather_uniforms, u_bplane),
     GK_UNIFORM(vpl_gather_uniforms, u_umbra),
     GK_UNIFORM_AS(vpl_gather_uniforms, u_mr_t[0], "u_mr_t0"),
     GK_UNIFORM_AS(vpl_gather_uniforms, u_mr_t[1], "u_mr_t1"),
@@ -200,7 +201,8 @@ void vpl_bind_visibility(vpl_state *s, const vpl_gather_uniforms *u)
     /* Always on its own unit: left at unit 0 it would share it with a sampler2D of the multires
        gather. With vpl_umbra=off the chain is not built and the shader does not read it. */
     vpl_bind_tex(14, GL_TEXTURE_2D_ARRAY, s->zmax, u->u_bzmax);
-    glUniform1i(u->u_umbra, s->zmax != 0 && s->vis != GK_VPL_VIS_EXACT);
+    vpl_bind_tex(15, GL_TEXTURE_2D_ARRAY, s->zplane, u->u_bplane);
+    glUniform1i(u->u_umbra, s->zmax != 0 && s->vis != GK_VPL_VIS_EXACT ? s->map_umbra : VPL_UMBRA_OFF);
 }
 
 int vpl_gather(vpl_state *s, const gk_gi_frame *f, float fade, gk_err *e)

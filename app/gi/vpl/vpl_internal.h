@@ -13,6 +13,7 @@
 #define VPL_MR_MAX_LEVELS 6  /* 000: coarsest regions 32×32 pixels (16×16 of them at 512²) */
 
 #define VPL_KNOBS 10              /* knobs declared by vpl_method.c */
+enum { VPL_UMBRA_OFF, VPL_UMBRA_ON, VPL_UMBRA_PLANE };   /* vpl_umbra's levels */
 
 typedef struct vpl_state {
     gk_gi_context ctx;
@@ -24,7 +25,8 @@ typedef struct vpl_state {
     int n, m_knob, val_res, block, blur_radius, vis;
     float res_scale;
     bool clamp;
-    bool umbra;   /* vpl_umbra: the deep-umbra test on each map's chain of maxima (gather.frag) */
+    int umbra;    /* vpl_umbra: the deep-umbra test on each map's chain of maxima (gather.frag):
+                     VPL_UMBRA_OFF, _ON (a depth margin) or _PLANE (the blocker's plane) */
     /* scene */
     float diam;
     float origin[3];   /* bounds centre: positions in render targets are stored relative to it */
@@ -49,9 +51,10 @@ typedef struct vpl_state {
     /* VAL maps (texture arrays) */
     GLuint map_fbo, basis_fbo, map_depth;
     GLuint z_arr, bcos, bsin, bzcos, bzsin, bmom;
-    GLuint zmax;   /* chain of maxima, RG16F: depth, slope (level 0) or gap (vpl_umbra=on) */
+    GLuint zmax;   /* chain of maxima, RG16F: depth, slope (level 0) or gap (vpl_umbra on, plane) */
+    GLuint zplane; /* the surface's plane per texel, target format, one level (vpl_umbra=plane) */
     int map_res, map_layers, map_vis;
-    bool map_umbra;
+    int map_umbra;
     /* indirect buffers */
     GLuint ind_fbo, ind_tex, pos_tex, nrm_tex;
     GLuint blur_fbo, blur_tex, out_fbo[2], out_tex[2];
@@ -103,7 +106,7 @@ float vpl_target_max(const vpl_state *s);
 typedef struct vpl_gather_uniforms {
     gk_gbuffer_uniforms gb;
     GLint u_ind_size, u_vpl, u_val, u_n, u_block, u_dmin2, u_origin, u_out_max;
-    GLint u_bcos, u_bsin, u_bzcos, u_bzsin, u_bz, u_bmom, u_bzmax, u_umbra;
+    GLint u_bcos, u_bsin, u_bzcos, u_bzsin, u_bz, u_bmom, u_bzmax, u_bplane, u_umbra;
     GLint u_mr_t[4], u_mr_p[3], u_mr_level, u_mr_top, u_tau_z, u_tau_n;
 } vpl_gather_uniforms;
 const vpl_gather_uniforms *vpl_gather_uniforms_of(vpl_state *s, GLuint prog, gk_err *e);

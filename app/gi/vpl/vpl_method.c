@@ -37,8 +37,10 @@ static const gk_knob_def knobs[K_COUNT] = {
     {"vpl_clamp", "vpl", 2, {"off", "on"}, {1.0f, 1.0f}, 1, 0, .fixed = true},
     {"vpl_gather", "vpl", 2, {"interleaved", "multires"}, {1.0f, 1.4f}, 0, 0, false, .scales_pass = "gi"},
     /* The deep-umbra test (gather.frag; not in the thesis): exact depths decide where the whole VAL
-       is hidden, which the filtered visibility cannot near a thin wall (tests/e2e/vpl_leak.sh). */
-    {"vpl_umbra", "vpl", 2, {"off", "on"}, {1.0f, 1.0f}, 1, 0, .fixed = true},
+       is hidden, which the filtered visibility cannot near a thin wall (tests/e2e/vpl_leak.sh);
+       `on` tells the receiver's own surface from a blocker by a depth margin scaled by its slope,
+       `plane` (the default) by the plane of the surface the map holds. */
+    {"vpl_umbra", "vpl", 3, {"off", "on", "plane"}, {1.0f, 1.0f, 1.0f}, 2, 0, .fixed = true},
 };
 
 static void declare_knobs(gk_budget *b)
@@ -160,7 +162,7 @@ static void read_budget(vpl_state *s, const gk_budget *b)
     if (s->dbg.vis_override >= 0)
         s->vis = s->dbg.vis_override;
     s->clamp = gk_knob_level(b, &s->knob[K_CLAMP], 1) == 1;
-    s->umbra = gk_knob_level(b, &s->knob[K_UMBRA], 1) == 1;
+    s->umbra = gk_knob_level(b, &s->knob[K_UMBRA], VPL_UMBRA_PLANE);
     s->multires = gk_knob_level(b, &s->knob[K_GATHER], GATHER_INTERLEAVED) == GATHER_MULTIRES;
 }
 
@@ -264,6 +266,8 @@ static long memory_bytes(const void *self)
     b += texels * per * (s->map_vis == GK_VPL_VIS_EXACT ? 3 : 4) / 3; /* mips add ⅓ */
     if (s->map_umbra)
         b += texels * 4 * 4 / 3; /* the chain of maxima, RG16F with mips */
+    if (s->map_umbra == VPL_UMBRA_PLANE)
+        b += texels * px; /* the planes, one level in the target format */
     b += (long)s->map_res * s->map_res * 4;
     b += (long)s->iw * s->ih * (px * 6);
     b += s->proxy.bytes;

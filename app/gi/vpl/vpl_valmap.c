@@ -1,9 +1,9 @@
 /* One paraboloid shadow map per VAL (thesis §6.3.2, §6.5 steps 7–8): linear radial depth into a
  * texture array layer (GLES 3.1 has no geometry shader, so one draw per layer), then the CSSM basis
  * (4 Fourier terms: cos/sin in RGBA8, z·cos/z·sin in RGBA16F, plus z itself) or the two moments,
- * and mipmaps for the prefiltered lookups; with vpl_umbra=on also the chain of maxima (depth, gap)
- * the deep-umbra test reads. The exact-visibility reference uses the same pass with one hard map
- * per VPL. Also the tables the gather reads (VPLs with labels, emitters). */
+ * and mipmaps for the prefiltered lookups; with vpl_umbra on or plane also the chain of maxima
+ * (depth, gap) the deep-umbra test reads, and with plane the surface's plane per texel. The
+ * exact-visibility reference uses the same pass with one hard map per VPL. Also the tables the gather reads (VPLs with labels, emitters). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -12,11 +12,11 @@
 
 static void free_maps(vpl_state *s)
 {
-    GLuint tex[7] = {s->z_arr, s->bcos, s->bsin, s->bzcos, s->bzsin, s->bmom, s->zmax};
-    for (int i = 0; i < 7; i++)
+    GLuint tex[8] = {s->z_arr, s->bcos, s->bsin, s->bzcos, s->bzsin, s->bmom, s->zmax, s->zplane};
+    for (int i = 0; i < 8; i++)
         if (tex[i])
             glDeleteTextures(1, &tex[i]);
-    s->z_arr = s->bcos = s->bsin = s->bzcos = s->bzsin = s->bmom = s->zmax = 0;
+    s->z_arr = s->bcos = s->bsin = s->bzcos = s->bzsin = s->bmom = s->zmax = s->zplane = 0;
     if (s->map_depth)
         glDeleteRenderbuffers(1, &s->map_depth);
     s->map_depth = 0;
@@ -40,7 +40,7 @@ static GLuint array_tex(GLenum fmt, int res, int layers, bool mips)
     return t;
 }
 
-static void ensure_maps(vpl_state *s, int res, int layers, int vis, bool umbra)
+static void ensure_maps(vpl_state *s, int res, int layers, int vis, int umbra)
 {
     if (s->map_layers >= layers && s->map_res == res && s->map_vis == vis && s->map_umbra == umbra)
         return;
@@ -51,6 +51,10 @@ static void ensure_maps(vpl_state *s, int res, int layers, int vis, bool umbra)
         glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
         glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     }
+    /* Unit normal and distance: fp32 where float targets render, else fp16 (gather.frag's
+       tolerance covers its rounding). Read by texelFetch only. */
+    if (umbra == VPL_UMBRA_PLANE)
+        s->zplane = array_tex(s->tgt_fmt, res, layers, false);
     s->z_arr = array_tex(GL_R16F, res, layers, vis == GK_VPL_VIS_CSSM);
     if (vis == GK_VPL_VIS_CSSM) {
         s->bcos = array_tex(GL_RGBA8, res, layers, true);
@@ -160,7 +164,7 @@ int vpl_build_maps(vpl_state *s, const gk_gi_frame *f, const gk_val *em, int cou
     }
     bool exact = s->vis == GK_VPL_VIS_EXACT;
     int res = exact ? VPL_EXACT_RES : s->val_res;
-    bool umbra = s->umbra && !exact;
+    int umbra = exact ? VPL_UMBRA_OFF : s->umbra;
     ensure_maps(s, res, exact ? s->n : GK_VPL_MAX_M, s->vis, umbra);
     GLuint prog = gk_program_get(s->ctx.programs, "vpl/val_depth.vert", "vpl/val_depth.frag", count_define, e);
     const val_depth_uniforms *u = prog ? gk_program_uniforms(s->ctx.programs, prog, GK_FIELDS(val_depth_fields), sizeof *u, e) : NULL;
@@ -168,8 +172,8 @@ int vpl_build_maps(vpl_state *s, const gk_gi_frame *f, const gk_val *em, int cou
         return -1;
     glBindFramebuffer(GL_FRAMEBUFFER, s->map_fbo);
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, s->map_depth);
-    const GLenum b2[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-    glDrawBuffers(umbra ? 2 : 1, b2);
+    const GLenum b3[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+    glDrawBuffers(umbra == VPL_UMBRA_PLANE ? 3 : umbra ? 2 : 1, b3);
     glViewport(0, 0, res, res);
     glDisable(GL_BLEND);
     glDisable(GL_CULL_FACE);
@@ -180,6 +184,7 @@ int vpl_build_maps(vpl_state *s, const gk_gi_frame *f, const gk_val *em, int cou
     for (int k = 0; k < count; k++) {
         glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, s->z_arr, 0, k);
         glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, umbra ? s->zmax : 0, 0, k);
+        glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, s->zplane, 0, k);
         if (k == 0 && glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
             vpl_work_maps_end(s, 0);
             return gk_fail(e, GK_ERUNTIME, "vpl: paraboloid map framebuffer (R16F %d²) incomplete", res);
@@ -191,6 +196,9 @@ int vpl_build_maps(vpl_state *s, const gk_gi_frame *f, const gk_val *em, int cou
         glClearBufferfv(GL_COLOR, 0, far_z);
         if (umbra)
             glClearBufferfv(GL_COLOR, 1, empty);
+        const GLfloat no_plane[4] = {0, 0, 0, 0};
+        if (umbra == VPL_UMBRA_PLANE)
+            glClearBufferfv(GL_COLOR, 2, no_plane);
         glClear(GL_DEPTH_BUFFER_BIT);
         float c[3], rnear, far;
         vpl_emitter_params(s, &em[k], exact, c, &rnear, &far);
@@ -205,6 +213,7 @@ int vpl_build_maps(vpl_state *s, const gk_gi_frame *f, const gk_val *em, int cou
     glDisable(GL_DEPTH_TEST);
     vpl_work_maps_end(s, exact ? 0 : (long)res * res * count);
     glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, 0, 0, 0);
+    glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, 0, 0, 0);
     if (exact)
         return 0;
     if (umbra && build_zmax(s, count, e))
