@@ -61,6 +61,7 @@ void gk_lgv_default_debug(gk_lgv_debug *d)
     d->bounds_hits = true;
     d->refractor_surface = true;
     d->exit_maps = true;
+    d->refractor_entry = true;
     d->occlusion = true;
     d->lookup_offset = 0.5f;
     d->c0 = LGV_C0;
