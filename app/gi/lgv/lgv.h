@@ -25,6 +25,7 @@ typedef struct gk_lgv_debug {
     bool sphere_normals; /* tests: glass normals from the refractor map's centre (exact for a sphere centred there) */
     bool exit_maps;    /* a photon leaving glass is traced on that glass's exit map (default; false: on the lattice maps) */
     bool refractor_entry; /* a photon on a specular chain meets glass where its refractor map says (default; false: where the lattice maps do) */
+    int sslgv_iters;   /* tests: the SSLGV's gathering iterations (0: LGV_SSLGV_ITERS) */
     bool seeing_maps;  /* a ray's maps: the nearest that see its point (tracer.glsl lgv_seeing_map) */
     float lookup_offset; /* eq. (7) reads the LGV this many cells along the normal (default 0.5, research B.5 item 8) */
     int max_events;    /* longest photon path in surface events (0: LGV_BOUNCES) */

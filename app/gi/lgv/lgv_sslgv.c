@@ -104,7 +104,8 @@ int lgv_sslgv(lgv_state *s, const gk_gi_frame *f, gk_err *e)
     glUniform1f(gu->u_fixed, s->fixed_scale);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, s->ss_grid);
     GLuint a = s->ss_a, b = s->ss_b;
-    for (int it = 0; it < LGV_SSLGV_ITERS; it++) {
+    int iters = s->dbg.sslgv_iters > 0 ? s->dbg.sslgv_iters : LGV_SSLGV_ITERS;
+    for (int it = 0; it < iters; it++) {
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
         glUniform1i(gu->u_from_ints, it == 0 ? 1 : 0);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, a);
