@@ -25,6 +25,7 @@ typedef struct gk_lgv_debug {
     bool sphere_normals; /* tests: glass normals from the refractor map's centre (exact for a sphere centred there) */
     bool exit_maps;    /* a photon leaving glass is traced on that glass's exit map (default; false: on the lattice maps) */
     bool seeing_maps;  /* a ray's maps: the nearest that see its point (tracer.glsl lgv_seeing_map) */
+    bool inject_lobe;  /* eq. (4)-(5) inject a cosine lobe around -n without (Theta, n)+ (research B.2.4's A/B, the default: eq. 4's (Theta, n)+ counts the arrival angle twice; false: the seed's) */
     float lookup_offset; /* eq. (7) reads the LGV this many cells along the normal (default 0.5, research B.5 item 8) */
     int max_events;    /* longest photon path in surface events (0: LGV_BOUNCES) */
     bool gather_replace; /* the lookup reads the last gathering iteration alone (default false: their sum, LPV's) */

@@ -63,6 +63,7 @@ void gk_lgv_default_debug(gk_lgv_debug *d)
     d->exit_maps = true;
     d->occlusion = true;
     d->lookup_offset = 0.5f;
+    d->inject_lobe = true;
     d->c0 = LGV_C0;
 }
 
