@@ -53,6 +53,7 @@ uniform float u_cell;
 uniform ivec3 u_dims;
 uniform float u_inject_scale; // eq. (4)'s constant with the errata fixed (lgv_internal.h)
 uniform float u_fixed;        // fixed-point units per unit of SH coefficient
+uniform int u_inject_lobe;    // 1: a clamped cosine lobe around -n, no (Theta, n)+ (gk_lgv_debug.inject_lobe)
 uniform int u_caustic_cap;
 uniform int u_sphere_normals; // 1 (tests): glass normals from the refractor map's centre, exact on a sphere centred there
 uniform int u_refractor_surface; // 1: glass hits placed on its refractor map (enter_glass), normals interpolated there
@@ -97,9 +98,14 @@ void inject(highp vec3 x, highp vec3 theta, highp vec3 n, highp vec3 flux_fr)
     if (any(lessThan(c, ivec3(-1))) || any(greaterThan(c, u_dims)))
         return;
     c = clamp(c, ivec3(0), u_dims - 1);
-    // eq. (4) I_j = k (Theta_j, n)+ Phi_p f_r; eq. (5) c += I_j y(-Theta_j)
-    highp vec3 i = u_inject_scale * max(dot(theta, n), 0.0) * flux_fr;
-    highp vec4 y = lgv_sh(-theta);
+    // eq. (4) I_j = k (Theta_j, n)+ Phi_p f_r; eq. (5) c += I_j y(-Theta_j). With u_inject_lobe,
+    // research B.2.4's A/B: c += k Phi_p f_r lobe(-n), the clamped cosine's SH (pi, 2 pi / 3 per
+    // band) around -n. A photon's arrival angle is already in the photons' density on the surface;
+    // eq. (4)'s (Theta, n)+ times eq. (7)'s y(-n) weighs it again, cos g (0.25 + 0.75 cos g) (k makes
+    // that right only for cosine-distributed arrivals); the lobe read back by eq. (7) on its own
+    // surface weighs every photon alike (0.75), the photon density estimate.
+    highp vec3 i = u_inject_scale * (u_inject_lobe != 0 ? 1.0 : max(dot(theta, n), 0.0)) * flux_fr;
+    highp vec4 y = u_inject_lobe != 0 ? vec4(3.14159265, vec3(2.0943951)) * lgv_sh(-n) : lgv_sh(-theta);
     int base = 12 * ((c.z * u_dims.y + c.y) * u_dims.x + c.x);
     for (int ch = 0; ch < 3; ch++)
         for (int k = 0; k < 4; k++) {

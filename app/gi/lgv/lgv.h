@@ -27,6 +27,7 @@ typedef struct gk_lgv_debug {
     bool refractor_entry; /* a photon on a specular chain meets glass where its refractor map says (default; false: where the lattice maps do) */
     int sslgv_iters;   /* tests: the SSLGV's gathering iterations (0: LGV_SSLGV_ITERS) */
     bool seeing_maps;  /* a ray's maps: the nearest that see its point (tracer.glsl lgv_seeing_map) */
+    bool inject_lobe;  /* eq. (4)-(5) inject a cosine lobe around -n without (Theta, n)+ (research B.2.4's A/B, the default: eq. 4's (Theta, n)+ counts the arrival angle twice; false: the seed's) */
     float lookup_offset; /* eq. (7) reads the LGV this many cells along the normal (default 0.5, research B.5 item 8) */
     int max_events;    /* longest photon path in surface events (0: LGV_BOUNCES) */
     bool gather_replace; /* the lookup reads the last gathering iteration alone (default false: their sum, LPV's) */

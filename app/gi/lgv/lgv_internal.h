@@ -33,6 +33,10 @@ enum { LGV_ST_RAYS = 0, LGV_ST_INJECTED = 1, LGV_ST_CAUSTIC = 2, LGV_ST_ESCAPED 
  * Phi f_r / l^2; averaged over cosine-distributed arrivals E[cos g (0.25 + 0.75 cos g)] = 0.5417,
  * so k = pi / (4 x 0.5417). Independent of N and C0 by construction (B.5 item 13 checks it). */
 #define LGV_INJECT_SCALE 1.44993f
+/* The same with the cosine lobe around -n (gk_lgv_debug.inject_lobe, trace.comp): eq. (7) reads one
+ * photon on its own surface as 4 k (pi y0^2 + (2 pi / 3) a^2) Phi f_r / l^2 = 3 k Phi f_r / l^2 at
+ * every angle, so k = 1 / 3. */
+#define LGV_INJECT_SCALE_LOBE (1.0f / 3.0f)
 
 /* The geometry volume (lgv_geometry.c): fixed-point units per unit of opacity (projected area / l^2;
  * a texel adds at most 10 x its area, a cell's sum stays far below 2^32 / 65536). */

@@ -56,8 +56,8 @@ static const gk_uniform_field tracer_fields[] = {
 /* lgv/trace.comp's own */
 typedef struct trace_uniforms {
     GLint u_probe, u_photons, u_first, u_frame, u_light_kind, u_light_pos, u_light_dir, u_light_u, u_light_v, u_cone,
-        u_power, u_bounces, u_grid_min, u_cell, u_dims, u_inject_scale, u_fixed, u_caustic_cap, u_snap, u_sphere_normals, u_refractor_surface,
-        u_exit_maps, u_refractor_entry;
+        u_power, u_bounces, u_grid_min, u_cell, u_dims, u_inject_scale, u_inject_lobe, u_fixed, u_caustic_cap, u_snap,
+        u_sphere_normals, u_refractor_surface, u_exit_maps, u_refractor_entry;
 } trace_uniforms;
 static const gk_uniform_field trace_fields[] = {
     GK_UNIFORM(trace_uniforms, u_probe),       GK_UNIFORM(trace_uniforms, u_photons),
@@ -68,6 +68,7 @@ static const gk_uniform_field trace_fields[] = {
     GK_UNIFORM(trace_uniforms, u_power),       GK_UNIFORM(trace_uniforms, u_bounces),
     GK_UNIFORM(trace_uniforms, u_grid_min),    GK_UNIFORM(trace_uniforms, u_cell),
     GK_UNIFORM(trace_uniforms, u_dims),        GK_UNIFORM(trace_uniforms, u_inject_scale),
+    GK_UNIFORM(trace_uniforms, u_inject_lobe),
     GK_UNIFORM(trace_uniforms, u_fixed),       GK_UNIFORM(trace_uniforms, u_caustic_cap),
     GK_UNIFORM(trace_uniforms, u_snap),        GK_UNIFORM(trace_uniforms, u_sphere_normals),
     GK_UNIFORM(trace_uniforms, u_refractor_surface),
@@ -207,7 +208,8 @@ int lgv_trace_photons(lgv_state *s, const gk_gi_frame *f, gk_err *e)
     glUniform3f(u->u_grid_min, s->grid_min.x, s->grid_min.y, s->grid_min.z);
     glUniform1f(u->u_cell, s->cell);
     glUniform3i(u->u_dims, s->dims[0], s->dims[1], s->dims[2]);
-    glUniform1f(u->u_inject_scale, LGV_INJECT_SCALE);
+    glUniform1f(u->u_inject_scale, s->dbg.inject_lobe ? LGV_INJECT_SCALE_LOBE : LGV_INJECT_SCALE);
+    glUniform1i(u->u_inject_lobe, s->dbg.inject_lobe ? 1 : 0);
     glUniform1f(u->u_fixed, s->fixed_scale);
     glUniform1i(u->u_caustic_cap, cap);
     glUniform1i(u->u_snap, s->dbg.snap_hits ? 1 : 0);
