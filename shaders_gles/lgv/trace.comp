@@ -153,14 +153,23 @@ highp float trace_inside(highp vec3 x, highp vec3 r, out int map)
     return -1.0;
 }
 
+// The chord [t0, t1] of ray x + t r through refractor map m's bounding sphere (centre, radius w);
+// false when the line misses it.
+bool refractor_chord(int m, highp vec3 x, highp vec3 r, out highp float t0, out highp float t1)
+{
+    highp vec3 oc = x - centre[m].xyz;
+    highp float b = dot(oc, r), disc = b * b - (dot(oc, oc) - centre[m].w * centre[m].w);
+    t0 = -b - sqrt(max(disc, 0.0)), t1 = -b + sqrt(max(disc, 0.0));
+    return disc > 0.0;
+}
+
 // Whether ray x + d r passes through the bounding sphere of a refractor other than `own` before
 // distance d: the exit maps leave all glass out, so such a segment is traced on the lattice maps.
 bool other_glass_before(int own, highp vec3 x, highp vec3 r, highp float d)
 {
     for (int m = u_n_maps; m < u_n_maps + u_n_refractors; m++) {
-        highp vec3 oc = x - centre[m].xyz;
-        highp float b = dot(oc, r), c = dot(oc, oc) - centre[m].w * centre[m].w;
-        if (m != own && b * b - c > 0.0 && -b - sqrt(b * b - c) < d && -b + sqrt(b * b - c) > 0.0)
+        highp float t0, t1;
+        if (m != own && refractor_chord(m, x, r, t0, t1) && t0 < d && t1 > 0.0)
             return true;
     }
     return false;
@@ -200,11 +209,11 @@ highp float glass_entry(int skip, highp vec3 x, highp vec3 r, highp float d, out
     highp float best = -1.0;
     glass = -1;
     for (int m = u_n_maps; m < u_n_maps + u_n_refractors; m++) {
-        highp vec3 oc = x - centre[m].xyz;
-        highp float b = dot(oc, r), disc = b * b - (dot(oc, oc) - centre[m].w * centre[m].w);
-        if (m == skip || disc <= 0.0)
+        highp float t0, t1;
+        if (m == skip || !refractor_chord(m, x, r, t0, t1))
             continue;
-        highp float t0 = max(-b - sqrt(disc), 0.0), t1 = -b + sqrt(disc);
+        highp vec3 oc = x - centre[m].xyz;
+        t0 = max(t0, 0.0);
         if (d >= 0.0)
             t1 = min(t1, d);
         if (t1 <= t0 || (best >= 0.0 && t0 >= best))
