@@ -87,7 +87,8 @@ typedef struct gk_gi_frame {
        `u_metallic_roughness` (vec2), `u_mat_flags` (int), `u_specular` (vec4, scene_gpu.h) per
        material: the program's source must declare all six (the compiler may drop the ones it does not use). Returns -1 with e filled
        when it does not. A program that also declares `u_glass` (vec2) gets (KHR_materials_ior's ior,
-       KHR_materials_transmission's factor) per material. One that includes common/alpha_mask.glsl
+       KHR_materials_transmission's factor) per material, and one that declares `u_node_mesh` (ivec2)
+       the (node, mesh) indices of each draw. One that includes common/alpha_mask.glsl
        gets what its alphaMode MASK test reads (u_base_tex on unit 0, u_alpha_cutoff, u_tex_xf,
        u_tex_uv1). Attribute locations: 0 position, 1 normal, 2 uv, 3 COLOR_0, 5 TEXCOORD_1. */
     int (*draw_scene)(void *draw_ctx, unsigned program, gk_err *e);

@@ -201,6 +201,8 @@ static int draw_scene_cb(void *ctx, unsigned program, gk_err *e)
     du.u_alpha_cutoff = glGetUniformLocation(program, "u_alpha_cutoff");
     du.u_tex_xf = glGetUniformLocation(program, "u_tex_xf");
     du.u_tex_uv1 = glGetUniformLocation(program, "u_tex_uv1");
+    /* ... and which draw it is (lgv's cube maps tell the glass instances apart) */
+    du.u_node_mesh = glGetUniformLocation(program, "u_node_mesh");
     gk_scene_gpu_draw(&r->gpu, r->scene, &du, GK_DRAW_MATERIALS | GK_DRAW_SKIP_PROXIES);
     return 0;
 }

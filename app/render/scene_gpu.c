@@ -180,6 +180,7 @@ void gk_draw_uniforms_lookup(GLuint prog, gk_draw_uniforms *u)
     u->u_tex_xf = glGetUniformLocation(prog, "u_tex_xf");
     u->u_tex_uv1 = glGetUniformLocation(prog, "u_tex_uv1");
     u->u_alpha_cutoff = glGetUniformLocation(prog, "u_alpha_cutoff");
+    u->u_node_mesh = glGetUniformLocation(prog, "u_node_mesh");
 }
 
 static void set_node(const gk_node *node, const gk_draw_uniforms *u)
@@ -192,7 +193,7 @@ static void set_node(const gk_node *node, const gk_draw_uniforms *u)
     glFrontFace(gk_node_mirrored(node) ? GL_CW : GL_CCW);
 }
 
-static void draw_one(const gk_scene_gpu *g, const gk_scene *s, const gk_draw_uniforms *u, int flags, int k)
+static void draw_one(const gk_scene_gpu *g, const gk_scene *s, const gk_draw_uniforms *u, int flags, int n, int k)
 {
     const gk_mesh *mesh = &s->meshes[k];
     const gk_material *mat = &s->materials[mesh->material >= 0 && mesh->material < s->n_materials ? mesh->material : 0];
@@ -210,6 +211,8 @@ static void draw_one(const gk_scene_gpu *g, const gk_scene *s, const gk_draw_uni
         else
             glEnable(GL_CULL_FACE);
     }
+    if (u->u_node_mesh >= 0)
+        glUniform2i(u->u_node_mesh, n, k);
     glBindVertexArray(g->vao[k]);
     glDrawElements(GL_TRIANGLES, g->index_count[k], GL_UNSIGNED_INT, NULL);
 }
@@ -237,7 +240,7 @@ void gk_scene_gpu_draw(const gk_scene_gpu *g, const gk_scene *s, const gk_draw_u
         set_node(node, u);
         for (int k = node->mesh_first; k < node->mesh_first + node->mesh_count && k < g->n_meshes; k++)
             if (k >= 0)
-                draw_one(g, s, u, flags, k);
+                draw_one(g, s, u, flags, n, k);
     }
     glBindVertexArray(0);
     glFrontFace(GL_CCW);
@@ -251,7 +254,7 @@ void gk_scene_gpu_draw_mesh(const gk_scene_gpu *g, const gk_scene *s, const gk_d
         return;
     set_sampler_units(u, flags);
     set_node(&s->nodes[n], u);
-    draw_one(g, s, u, flags, k);
+    draw_one(g, s, u, flags, n, k);
     glBindVertexArray(0);
     glFrontFace(GL_CCW);
     if (flags & GK_DRAW_CULL_SINGLE_SIDED)

@@ -71,6 +71,10 @@ typedef struct gk_draw_uniforms {
        reads TEXCOORD_1 (attribute 5). Slots in enum gk_tex_slot's order. */
     GLint u_tex_xf, u_tex_uv1;
     GLint u_alpha_cutoff;      /* alphaMode MASK's alphaCutoff (GK_MAT_ALPHA_MASK) */
+    /* ivec2 (node, mesh): which draw this is, set per draw, for a pass that tells mesh instances
+       apart (lgv's cube maps name each glass instance's refractor map; a mesh drawn by two nodes is
+       two instances) */
+    GLint u_node_mesh;
 } gk_draw_uniforms;
 
 /* The uniforms a depth-only pass lists so that alpha-masked materials cut their holes in it too
@@ -87,8 +91,9 @@ const char *gk_scene_gpu_depth_defines(const gk_scene *s);
 int gk_scene_gpu_depth_flags(const gk_scene *s);
 
 /* Draws every node's meshes (after gk_scene_evaluate) with the bound program: sets u_model and
- * u_normal_matrix per node; textures on units 0 (base colour), 1 (metallic-roughness), 2 (specular),
- * 3 (specular colour), 4 (emissive), 5 (normal) and 6 (occlusion). */
+ * u_normal_matrix per node and u_node_mesh per draw; textures on units 0 (base colour),
+ * 1 (metallic-roughness), 2 (specular), 3 (specular colour), 4 (emissive), 5 (normal) and
+ * 6 (occlusion). */
 void gk_scene_gpu_draw(const gk_scene_gpu *g, const gk_scene *s, const gk_draw_uniforms *u, int flags);
 /* Draws mesh k of node n alone (the node's matrices, the material's uniforms with
  * GK_DRAW_MATERIALS, back faces of single-sided materials culled with GK_DRAW_CULL_SINGLE_SIDED). */

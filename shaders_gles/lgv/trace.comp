@@ -9,10 +9,10 @@
 //   every other diffuse hit is injected into the LGV (eq. 4-5) by fixed-point atomics.
 // Then Russian roulette on the albedo, cosine scattering. Mirrors reflect (times their colour);
 // glass (code >= 128) reflects or refracts by Fresnel with its ior; inside glass the exit is found
-// on the refractor map nearest the photon (a map centred in the object, Szirmay-Kalos et al. [32]),
-// with total internal reflection keeping the photon inside; a photon that has just left glass
-// (refracted out of it or reflected off it) is traced on that glass's exit map (u_exit_maps,
-// tracer.glsl lgv_trace_from). A photon on a specular chain (from the light, or off mirrors and glass)
+// on the refractor map the code named where the photon entered (a map centred in the object,
+// Szirmay-Kalos et al. [32]), with total internal reflection keeping the photon inside; a photon
+// that has just left glass (refracted out of it or reflected off it) is traced on that glass's exit
+// map (u_exit_maps, tracer.glsl lgv_trace_from). A photon on a specular chain (from the light, or off mirrors and glass)
 // meets glass where that glass's refractor map says (glass_entry), not where the lattice maps do.
 // u_probe = 1 (tests): no emission; each invocation traces one ray of the Probe buffer once and
 // writes where it hit (w = 1) or that it left the scene (w = 0).
@@ -136,11 +136,12 @@ void emit(out highp vec3 x, out highp vec3 d, out highp vec3 power)
         power *= clamp((z - u_cone.x) / max(u_cone.y - u_cone.x, 1e-4), 0.0, 1.0);
 }
 
-// The exit of a photon inside glass at x going r: the refractor map nearest x, marched from x until
-// behind the object's surface, then secant. Returns the distance or -1.
-highp float trace_inside(highp vec3 x, highp vec3 r, out int map)
+// The exit of a photon inside glass at x going r: on the refractor map of the glass it is in (`glass`,
+// named by the material code of the surface it entered), marched from x until behind the object's
+// surface, then secant. Returns the distance or -1.
+highp float trace_inside(int glass, highp vec3 x, highp vec3 r, out int map)
 {
-    map = lgv_nearest_map(x, u_n_maps, u_n_refractors);
+    map = glass;
     highp vec3 x0 = x - centre[map].xyz;
     highp float reach = 2.0 * centre[map].w, step = reach / 16.0; // the object's diameter in 16 steps
     highp float dl = 1e-4, el = lgv_err(map, x0, r, dl);
@@ -250,6 +251,7 @@ void trace_invocation()
     emit(x, r, flux);
     bool specular_only = true, inside = false;
     int events = 0, left_glass = -1; // the refractor map of the glass the photon has just left
+    int in_glass = -1;               // ... and of the glass it is in (while inside)
     for (int bounce = 0; bounce < u_bounces; bounce++) {
         int map;
         // A photon that has just left glass is traced on its exit map, centred in the glass with the
@@ -259,7 +261,7 @@ void trace_invocation()
         // maps saw beside the sphere. Exact for convex glass, which the photon cannot meet again;
         // when another glass object lies on the way the segment is traced on the lattice maps.
         int exit_map = left_glass >= 0 ? left_glass + u_n_refractors : -1;
-        highp float d = inside ? trace_inside(x, r, map) : lgv_trace_from(exit_map, x, r, map);
+        highp float d = inside ? trace_inside(in_glass, x, r, map) : lgv_trace_from(exit_map, x, r, map);
         if (exit_map >= 0 && map == exit_map && d >= 0.0 && other_glass_before(left_glass, x, r, d))
             d = lgv_trace(x, r, map);
         bool on_refractor = false; // the hit was found on its refractor map (glass_entry)
@@ -280,7 +282,7 @@ void trace_invocation()
         highp vec3 n = normalize(texelFetch(u_nrm, tx, 0).xyz * 2.0 - 1.0);
         highp vec4 alb = texelFetch(u_alb, tx, 0);
         int code = int(alb.a * 255.0 + 0.5);
-        int refractor = u_n_maps + (code - 128) / 32;
+        int refractor = u_n_maps + (code - 128) / 32; // code 128 + 32 r + q: refractor map r, ior 1 + 0.05 q
         if (code >= 128 && refractor < u_n_maps + u_n_refractors) {
             // Glass is seen from afar by the lattice maps (a sphere of glass: a few texels each),
             // whose nearest texel's place and normal scatter the refraction: its refractor map,
@@ -303,7 +305,7 @@ void trace_invocation()
         highp vec3 ns = front ? n : -n; // facing the incoming photon
         if (code >= 128) {
             // glass: entering when the photon meets the outside of the surface
-            highp float ior = 1.0 + 0.05 * float(code - 128);
+            highp float ior = 1.0 + 0.05 * float((code - 128) % 32);
             bool entering = !inside;
             highp float eta = entering ? ior : 1.0 / ior;
             highp float ci = abs(dot(r, ns));
@@ -313,6 +315,7 @@ void trace_invocation()
                 r = refract(r, ns, 1.0 / eta);
                 flux *= alb.rgb;
                 inside = entering;
+                in_glass = refractor;
             }
             if (!inside && u_exit_maps == 1 && refractor < u_n_maps + u_n_refractors)
                 left_glass = refractor;

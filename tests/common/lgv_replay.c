@@ -17,6 +17,11 @@ static vec3 face_w(int f)
 static vec3 face_u(int f) { return f / 2 == 0 ? v3(0, 0, 1) : v3(1, 0, 0); }
 static vec3 face_v(int f) { return f / 2 == 1 ? v3(0, 0, 1) : v3(0, 1, 0); }
 
+vec3 gkt_lgv_face_dir(int f, float u, float v)
+{
+    return v3_add(face_w(f), v3_add(v3_scale(face_u(f), u), v3_scale(face_v(f), v)));
+}
+
 static int face_of(vec3 d, float *u, float *v)
 {
     float ax = fabsf(d.x), ay = fabsf(d.y), az = fabsf(d.z);

@@ -18,6 +18,10 @@ typedef struct gkt_lgv_replay {
     long fetches;            /* distance texels read so far */
 } gkt_lgv_replay;
 
+/* The direction (not unit) from a map's centre through image-plane point (u, v) in [-1, 1] of face f
+ * (lgv/common.glsl's face mapping): texel (x, y) of a res^2 face is u = (x + 0.5) / res * 2 - 1. */
+vec3 gkt_lgv_face_dir(int f, float u, float v);
+
 /* Where ray x + d r first meets the scene by the maps (the hit distance, or -1), as lgv_trace. */
 float gkt_lgv_replay_trace(gkt_lgv_replay *R, vec3 x, vec3 r);
 

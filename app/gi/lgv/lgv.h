@@ -7,6 +7,7 @@
 #define GK_LGV_H
 
 #include <stdbool.h>
+#include <stdint.h>
 
 #include "gi/gi.h"
 
@@ -59,6 +60,14 @@ long gk_lgv_read_lgv(void *self, float *out, long cap, gk_err *e);
 /* The geometry volume (eq. 6's G, built at the first frame with gathering iterations): 3 opacities
  * (projected areas / l^2 along x, y, z) per LGV cell corner, dims = the LGV's + 1; the count or -1. */
 long gk_lgv_read_geometry(void *self, float *out, long cap, int dims[3], gk_err *e);
+
+/* The maps' material codes (lgv/common.glsl: 0 diffuse, 1 mirror, 128 + 32 r + q glass of refractor
+ * map r), level 0 of the lattice and refractor maps' layers as gk_lgv_read_maps lays out its level 0,
+ * into out (cap bytes); the count or -1. */
+long gk_lgv_read_codes(void *self, uint8_t *out, long cap, gk_err *e);
+/* The last frame's caustic photons (trace.comp's list, in no particular order): position xyz and
+ * power rgb, 6 floats each, into out (cap floats); how many photons, or -1. */
+long gk_lgv_read_caustics(void *self, float *out, long cap, gk_err *e);
 
 /* The distance maps and what the tracer reads them with (tests replay the tracer on the CPU). */
 typedef struct gk_lgv_maps_info {

@@ -9,7 +9,7 @@
 #include "lgv.h"
 
 #define LGV_MAX_MAPS 64          /* lattice maps (4^3 at most) */
-#define LGV_MAX_REFRACTORS 4     /* refractor maps: one per transmissive mesh of the scene, nearest first */
+#define LGV_MAX_REFRACTORS 4     /* refractor maps: one per transmissive mesh instance, the first four in node order */
 #define LGV_MAP_LAYERS_MAX ((LGV_MAX_MAPS + 2 * LGV_MAX_REFRACTORS) * 6)
 #define LGV_CAUSTIC_BYTES 48     /* Caustic in trace.comp */
 #define LGV_CAUSTIC_HEADER 16
@@ -64,6 +64,9 @@ typedef struct lgv_state {
     /* xyz, w = radius (refractors): the lattice maps, the refractor maps, then each refractor's exit
        map (the same centre, its glass left out; lgv_maps.c) */
     float centres[(LGV_MAX_MAPS + 2 * LGV_MAX_REFRACTORS) * 4];
+    /* each refractor map's glass: the (node, mesh) of its draw, for the maps' material code
+       (cubemap.frag's u_node_mesh) */
+    int refractor_draw[LGV_MAX_REFRACTORS * 2];
     bool maps_valid;
     int maps_res, maps_count;    /* what the map textures were made for */
     GLuint dist_tex, nrm_tex, alb_tex, map_depth, map_fbo, centres_ssbo;

@@ -187,6 +187,7 @@ int lgv_place_maps(lgv_state *s, const gk_scene *sc, int per_axis, gk_err *e)
                 hi = v3(fmaxf(hi.x, p.x), fmaxf(hi.y, p.y), fmaxf(hi.z, p.z));
             }
             vec3 c = v3_scale(v3_add(lo, hi), 0.5f);
+            s->refractor_draw[2 * s->n_refractors] = i, s->refractor_draw[2 * s->n_refractors + 1] = k;
             float *o = &s->centres[4 * (s->n_maps + s->n_refractors++)];
             o[0] = c.x, o[1] = c.y, o[2] = c.z, o[3] = 0.5f * v3_len(v3_sub(hi, lo));
         }
@@ -200,13 +201,15 @@ int lgv_place_maps(lgv_state *s, const gk_scene *sc, int per_axis, gk_err *e)
 
 /* lgv/cubemap.{vert,frag} */
 typedef struct cubemap_uniforms {
-    GLint u_centre, u_face, u_near_far, u_leave_glass;
+    GLint u_centre, u_face, u_near_far, u_leave_glass, u_n_refractors, u_refractor_draws;
 } cubemap_uniforms;
 static const gk_uniform_field cubemap_fields[] = {
     GK_UNIFORM(cubemap_uniforms, u_centre),
     GK_UNIFORM(cubemap_uniforms, u_face),
     GK_UNIFORM(cubemap_uniforms, u_near_far),
     GK_UNIFORM(cubemap_uniforms, u_leave_glass),
+    GK_UNIFORM(cubemap_uniforms, u_n_refractors),
+    GK_UNIFORM(cubemap_uniforms, u_refractor_draws),
 };
 
 /* lgv/mip_min.comp */
@@ -283,6 +286,11 @@ int lgv_render_maps(lgv_state *s, const gk_gi_frame *f, gk_err *e)
     glDisable(GL_CULL_FACE);
     glUseProgram(prog);
     glUniform2f(u->u_near_far, 1e-3f * s->diag, 4.0f * s->diag);
+    /* which draw is which refractor's glass: the material code names it (draw_scene sets
+       u_node_mesh per draw) */
+    glUniform1i(u->u_n_refractors, s->n_refractors);
+    if (s->n_refractors > 0)
+        glUniform2iv(u->u_refractor_draws, s->n_refractors, s->refractor_draw);
     const GLuint far_bits[4] = {LGV_FAR_BITS, 0, 0, 0};
     const float zero[4] = {0, 0, 0, 0};
     for (int m = 0; m < s->maps_count; m++) {
