@@ -12,7 +12,9 @@
  *            through the two analytic spheres in the box (Fresnel reflection or refraction chosen as
  *            trace.comp chooses them), inside each sphere's floor mask (the cells that hold 90% of the
  *            floor caustic of photons whose first glass is that sphere, grown by 2 cm).
- * Bounds from the measurements printed with each test (see the comments there). */
+ * The scene, G-buffer and frame come from the ispm tests' harness (test_ispm_harness.h: ih_frame_of
+ * runs any GI method; the ispm instance it opens is not used). Bounds from the measurements printed
+ * with each test (see the comments there). */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
