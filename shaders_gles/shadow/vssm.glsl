@@ -187,6 +187,37 @@ highp vec2 vssm_hsm(ivec2 lo, ivec2 hi, int layer)
     return r;
 }
 
+// Both SATs' sums at the prefix corner (x, y) (clamped to [-1, top]; -1: left of / below the map,
+// the empty prefix 0).
+highp uvec2 vssm_corner(int x, int y, int layer)
+{
+    bool inside = x >= 0 && y >= 0;
+    GK_SHADOW_COUNT(r32ui, inside ? 2 : 0);
+    ivec3 p = ivec3(x, y, layer);
+    return inside ? uvec2(texelFetch(u_vssm_sat_z, p, 0).r, texelFetch(u_vssm_sat_z2, p, 0).r) : uvec2(0u);
+}
+
+// One box of a subdivision, between corners p0 (exclusive) and p1 (inclusive) clamped as
+// vssm_corner takes them, from the SAT sums s00, s10, s01, s11 at its corners (x0 y0, x1 y0, x0 y1,
+// x1 y1): m = its moments shifted by the receiver plane at its centre, and its area (texels).
+// Returns 0 for an empty box (wholly outside the map, or a part of a kernel narrower than the
+// subdivision), 1 planar and lit (the §5.2 acceleration: E(z) >= d and a variance within
+// Threshold plus the receiver plane's own), 2 in front of d (Chebyshev), 3 non-planar (subdivide
+// or point-sample).
+int vssm_box(highp uvec2 s00, highp uvec2 s10, highp uvec2 s01, highp uvec2 s11, ivec2 p0, ivec2 p1,
+             highp float d, out highp vec3 m)
+{
+    ivec2 e = p1 - p0;
+    m.z = float(e.x * e.y);
+    highp uvec2 s = s11 - s01 - s10 + s00;
+    m.xy = vssm_shift(vec2(s) * (u_vssm.x / max(m.z, 1.0)), vssm_plane(0.5 * vec2(p0 + p1 + 2)));
+    if (m.z <= 0.0)
+        return 0;
+    if (m.x >= d && m.y - m.x * m.x < u_vssm.w + vssm_plane_var(vec2(e)))
+        return 1;
+    return m.x < d ? 2 : 3;
+}
+
 // Average blocker depth (Eq. 7.4, z_unocc = d) over the search kernel, and the blocker fraction
 // (0: no blocker, lit).
 highp vec2 vssm_blocker(highp vec2 tc, highp vec2 w, int layer, highp float d)
@@ -202,7 +233,7 @@ highp vec2 vssm_blocker(highp vec2 tc, highp vec2 w, int layer, highp float d)
     // The §5.2 planar-lit acceleration on the whole kernel, before subdividing it: E(z) >= d and a
     // variance no more than the receiver plane's own (VSSM_PLANAR_SLACK x) plus Threshold: the
     // kernel holds only the (sloped) receiver, no blocker. Without it every pixel of a receiver
-    // inclined to the map paid the m x m grid ((m + 1)^2 corners x 2 tables + a 2 x 2 PCF per
+    // inclined to the map paid the m x m grid (2 m (m + 1) corners x 2 tables + a 2 x 2 PCF per
     // sub-kernel) for nothing: the shadow-planes floor's outer metre on the cube's side faces.
     if (m.x >= d && m.y - m.x * m.x < u_vssm.w + VSSM_PLANAR_SLACK * vssm_plane_var(w))
         return vec2(d, 0.0);
@@ -210,59 +241,43 @@ highp vec2 vssm_blocker(highp vec2 tc, highp vec2 w, int layer, highp float d)
     gk_soft_box(tc, w, lo, hi);
     highp float a_all = 0.0, a_vsm = 0.0, ex = 0.0, ex2 = 0.0, a_pcf = 0.0, z_pcf = 0.0;
     int m_sub = clamp(int(u_vssm_sub.x + 0.5), 1, VSSM_M_MAX);
-    // The m x m sub-boxes tile [lo, hi] (vssm_split) and share their corners: each table is read
-    // once per corner of the grid, (m + 1)^2 fetches, not 4 m^2, one row of corners at a time.
-    // Corners are clamped to the map as gk_sat_moments clamps a box (a corner left of the map reads
-    // 0, past it the last texel); a sub-box wholly outside the map has area 0 and is left out
-    // (gk_sat_moments would count the map's edge texel for it).
     ivec2 top = ivec2(int(u_shadow_light.w) - 1);
-    highp uint pz[VSSM_M_MAX + 1], pz2[VSSM_M_MAX + 1];   // the previous row's corner sums
-    int py = 0;                                            // and its clamped y
-    for (int j = 0; j <= VSSM_M_MAX; j++) {
-        if (j > m_sub)
+    // The m x m sub-boxes tile [lo, hi] (vssm_split), a row at a time; each cell reads the two
+    // corners on its right and takes those on its left from the cell before (the row's first from
+    // before the loop). Corners are clamped to the map as gk_sat_moments clamps a box (a corner left
+    // of the map reads 0, past it the last texel); a sub-box wholly outside the map has area 0 and
+    // is left out (gk_sat_moments would count the map's edge texel for it). No arrays of the
+    // previous row's corners: llvmpipe reads and writes an array at a varying index lane by lane;
+    // two more corner fetches per cell measured cheaper (#21, README), images bit-identical.
+    for (int j = 0; j < VSSM_M_MAX; j++) {
+        if (j >= m_sub)
             break;
-        int y = j == 0 ? lo.y - 1 : vssm_split(lo.y, hi.y, j - 1, m_sub).y;
-        int yc = clamp(y, -1, top.y);
-        int y0 = j == 0 ? 0 : vssm_split(lo.y, hi.y, j - 1, m_sub).x;   // the sub-box row's first texel
-        highp uint cz[VSSM_M_MAX + 1], cz2[VSSM_M_MAX + 1];
-        int px = 0;
-        for (int i = 0; i <= VSSM_M_MAX; i++) {
-            if (i > m_sub)
+        ivec2 sy = vssm_split(lo.y, hi.y, j, m_sub);
+        ivec4 q = clamp(ivec4(lo.x - 1, sy.x - 1, lo.x - 1, sy.y), ivec4(-1), top.xyxy);
+        highp uvec2 sb = vssm_corner(q.x, q.y, layer), st = vssm_corner(q.x, q.w, layer);
+        for (int i = 0; i < VSSM_M_MAX; i++) {
+            if (i >= m_sub)
                 break;
-            int x = i == 0 ? lo.x - 1 : vssm_split(lo.x, hi.x, i - 1, m_sub).y;
-            int xc = clamp(x, -1, top.x);
-            bool inside = xc >= 0 && yc >= 0;
-            GK_SHADOW_COUNT(r32ui, inside ? 2 : 0);
-            cz[i] = inside ? texelFetch(u_vssm_sat_z, ivec3(xc, yc, layer), 0).r : 0u;
-            cz2[i] = inside ? texelFetch(u_vssm_sat_z2, ivec3(xc, yc, layer), 0).r : 0u;
-            if (i > 0 && j > 0) {
-                highp float area = float((xc - px) * (yc - py));
-                if (area > 0.0) {
-                    highp uint s1 = cz[i] - cz[i - 1] - pz[i] + pz[i - 1];
-                    highp uint s2 = cz2[i] - cz2[i - 1] - pz2[i] + pz2[i - 1];
-                    highp vec2 mc = vec2(float(s1), float(s2)) * (u_vssm.x / area);
-                    mc = vssm_shift(mc, vssm_plane(0.5 * vec2(px + xc + 2, py + yc + 2)));
-                    a_all += area;
-                    highp float var = mc.y - mc.x * mc.x;
-                    if (mc.x >= d && var < u_vssm.w + vssm_plane_var(vec2(xc - px, yc - py))) {
-                        // planar and lit (the §5.2 acceleration): no PCF
-                    } else if (mc.x < d) {
-                        a_vsm += area;
-                        ex += mc.x * area;
-                        ex2 += mc.y * area;
-                    } else {
-                        ivec2 slo = ivec2(vssm_split(lo.x, hi.x, i - 1, m_sub).x, y0);
-                        highp vec2 pc = vssm_pcf4(slo, ivec2(x, y), layer, d);
-                        a_pcf += 0.25 * area * pc.x;
-                        z_pcf += 0.25 * area * pc.y;
-                    }
-                }
+            ivec2 sx = vssm_split(lo.x, hi.x, i, m_sub);
+            int x1 = clamp(sx.y, -1, top.x);
+            highp uvec2 rb = vssm_corner(x1, q.y, layer), rt = vssm_corner(x1, q.w, layer);
+            highp vec3 mc;
+            int cls = vssm_box(sb, rb, st, rt, q.xy, ivec2(x1, q.w), d, mc);
+            if (cls > 0)
+                a_all += mc.z;
+            if (cls == 2) {
+                a_vsm += mc.z;
+                ex += mc.x * mc.z;
+                ex2 += mc.y * mc.z;
+            } else if (cls == 3) {
+                highp vec2 pc = vssm_pcf4(ivec2(sx.x, sy.x), ivec2(sx.y, sy.y), layer, d);
+                a_pcf += 0.25 * mc.z * pc.x;
+                z_pcf += 0.25 * mc.z * pc.y;
             }
-            px = xc;
+            q.x = x1;
+            sb = rb;
+            st = rt;
         }
-        pz = cz;
-        pz2 = cz2;
-        py = yc;
     }
     highp float a1 = 0.0, d1 = 0.0;
     if (a_vsm > 0.0) {
