@@ -21,9 +21,9 @@
  *   Fig. 9's cause (GK_LGV_FIG9=1, alone) the error per LGV size at 1M, 4M and 16M photons, and by
  *             region at 1M and 16M;
  * GK_LGV_ONLY=NAME runs one test; GK_LGV_EVENTS, GK_LGV_OFFSET, GK_LGV_OWN, GK_LGV_SEEING,
- * GK_LGV_BOUNDS, GK_LGV_SPHERE, GK_LGV_EXIT, GK_LGV_LOBE set the debug switches max_events,
- * lookup_offset, lookup_own_cell, seeing_maps, bounds_hits, sphere_normals, exit_maps and inject_lobe
- * for the README's experiments.
+ * GK_LGV_BOUNDS, GK_LGV_SPHERE, GK_LGV_EXIT, GK_LGV_LOBE, GK_LGV_SNAP set the debug switches
+ * max_events, lookup_offset, lookup_own_cell, seeing_maps, bounds_hits, sphere_normals, exit_maps,
+ * inject_lobe and snap_hits for the README's experiments.
  * (The other B.5 tests are not written yet: see the README's lgv section.)
  * Bounds come from the measurements printed with each test (see the comments there). */
 #include <setjmp.h>
@@ -166,6 +166,8 @@ static void frame(const char *list, int parts, unsigned seed)
     if (getenv("GK_LGV_OFFSET"))
         d.lookup_offset = (float)atof(getenv("GK_LGV_OFFSET"));
     d.lookup_own_cell = OWN_CELL;
+    if (getenv("GK_LGV_SNAP"))
+        d.snap_hits = atoi(getenv("GK_LGV_SNAP")) != 0;
     if (getenv("GK_LGV_OWN"))
         d.lookup_own_cell = atoi(getenv("GK_LGV_OWN")) != 0;
     if (getenv("GK_LGV_SEEING"))
