@@ -1,8 +1,9 @@
 // Final shading of the lgv method (seed 002 §4.2-4.3), added to the HDR image: the LGV by eq. (7),
-// L = 4 (c_p . y(-n))+ / l^2, c_p trilinear at the pixel's position moved half a cell along its
-// normal (so a surface does not read back the cell its own photons landed in first; research B.5
-// item 8), plus the SSLGV's caustics, L = 4 (c . y(-n))+ / A(p), A(p) the world area of the SSLGV
-// pixel on the surface (research B.2.7's footprint, exact for a square pixel).
+// L = 4 (c_p . y(-n))+ / l^2, c_p read at the centre of the pixel's own cell along the axis nearest
+// its normal and trilinear across the other two (own_cell_uvw; or, with u_own_cell off, trilinear at
+// the pixel's position moved u_offset cells along its normal, research B.5 item 8), plus the SSLGV's
+// caustics, L = 4 (c . y(-n))+ / A(p), A(p) the world area of the SSLGV pixel on the surface
+// (research B.2.7's footprint, exact for a square pixel).
 // @variant -
 // LOOKUP_COUNT_FETCHES: the bench's counting variant (app/gi/lgv/lgv_work.c): per fragment its
 // trilinear reads of the three LGV volumes and its reads of the three SSLGV images, added to
