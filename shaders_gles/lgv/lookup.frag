@@ -1,8 +1,9 @@
 // Final shading of the lgv method (seed 002 §4.2-4.3), added to the HDR image: the LGV by eq. (7),
-// L = 4 (c_p . y(-n))+ / l^2, c_p trilinear at the pixel's position moved half a cell along its
-// normal (so a surface does not read back the cell its own photons landed in first; research B.5
-// item 8), plus the SSLGV's caustics, L = 4 (c . y(-n))+ / A(p), A(p) the world area of the SSLGV
-// pixel on the surface (research B.2.7's footprint, exact for a square pixel).
+// L = 4 (c_p . y(-n))+ / l^2, c_p read at the centre of the pixel's own cell along the axis nearest
+// its normal and trilinear across the other two (own_cell_uvw; or, with u_own_cell off, trilinear at
+// the pixel's position moved u_offset cells along its normal, research B.5 item 8), plus the SSLGV's
+// caustics, L = 4 (c . y(-n))+ / A(p), A(p) the world area of the SSLGV pixel on the surface
+// (research B.2.7's footprint, exact for a square pixel).
 // @variant -
 // LOOKUP_COUNT_FETCHES: the bench's counting variant (app/gi/lgv/lgv_work.c): per fragment its
 // trilinear reads of the three LGV volumes and its reads of the three SSLGV images, added to
@@ -27,6 +28,7 @@ uniform vec2 u_tan_half;      // tan of the camera's half field of view, x and y
 uniform vec3 u_forward;       // camera forward (unit)
 uniform int u_parts;          // 1 LGV, 2 SSLGV, 3 both
 uniform float u_offset;       // cells along the normal the LGV is read at (0.5; gk_lgv_debug.lookup_offset)
+uniform int u_own_cell;       // 1: the surface's own cell along the axis nearest n (gk_lgv_debug.lookup_own_cell)
 out vec4 o_color;
 #ifdef LOOKUP_COUNT_FETCHES
 layout(std430, binding = 6) buffer LookupFetches { highp uint volume; highp uint screen; } lookup_counted;
@@ -65,6 +67,18 @@ vec3 ss_sample(ivec2 px, vec4 yn)
         }
     return max(sum / max(wsum, 1e-12), vec3(0.0));
 }
+// Where eq. (7) reads the LGV for a surface at x with normal n: at the centre of the cell x lies in
+// along the axis nearest n (the cell its own photons were injected into, trace.comp inject: the
+// density estimate f_r sum Phi / l^2 the injection's constant is made for), trilinear across the
+// other two. Half a cell along n reads that cell at its centre only for a surface on a cell face; a
+// surface f of a cell inside its cell reads 1 - f of its photons and f of the empty cell in front.
+vec3 own_cell_uvw(vec3 x, vec3 n)
+{
+    vec3 g = (x - u_grid_min) / u_cell, dims = u_grid_size / u_cell, a = abs(n);
+    int k = (a.x >= a.y && a.x >= a.z) ? 0 : (a.y >= a.z ? 1 : 2);
+    g[k] = clamp(floor(g[k]), 0.0, dims[k] - 1.0) + 0.5; // a surface at the bounds: the boundary cell (inject's clamp)
+    return g / dims;
+}
 void main()
 {
     ivec2 px = ivec2(gl_FragCoord.xy);
@@ -77,6 +91,8 @@ void main()
     vec3 c = vec3(0.0);
     if ((u_parts & 1) != 0) {
         vec3 uvw = (x + u_offset * u_cell * n - u_grid_min) / u_grid_size;
+        if (u_own_cell != 0)
+            uvw = own_cell_uvw(x, n);
         vec3 e = vec3(max(dot(texture(u_vol_r, uvw), yn), 0.0), max(dot(texture(u_vol_g, uvw), yn), 0.0),
                       max(dot(texture(u_vol_b, uvw), yn), 0.0));
         c += 4.0 * e / (u_cell * u_cell);

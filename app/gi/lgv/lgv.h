@@ -29,7 +29,9 @@ typedef struct gk_lgv_debug {
     int sslgv_iters;   /* tests: the SSLGV's gathering iterations (0: LGV_SSLGV_ITERS) */
     bool seeing_maps;  /* a ray's maps: the nearest that see its point (tracer.glsl lgv_seeing_map) */
     bool inject_lobe;  /* eq. (4)-(5) inject a cosine lobe around -n without (Theta, n)+ (research B.2.4's A/B, the default: eq. 4's (Theta, n)+ counts the arrival angle twice; false: the seed's) */
-    float lookup_offset; /* eq. (7) reads the LGV this many cells along the normal (default 0.5, research B.5 item 8) */
+    float lookup_offset; /* eq. (7) reads the LGV this many cells along the normal (0.5, research B.5 item 8) when lookup_own_cell is off */
+    bool lookup_own_cell; /* eq. (7) reads the surface's own cell at its centre along the axis nearest the normal (default;
+                             false: lookup_offset cells along the normal, which reads 1 - f of a surface f of a cell inside it) */
     int max_events;    /* longest photon path in surface events (0: LGV_BOUNCES) */
     bool gather_replace; /* the lookup reads the last gathering iteration alone (default false: their sum, LPV's) */
 } gk_lgv_debug;

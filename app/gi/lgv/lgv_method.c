@@ -64,6 +64,7 @@ void gk_lgv_default_debug(gk_lgv_debug *d)
     d->refractor_entry = true;
     d->occlusion = true;
     d->lookup_offset = 0.5f;
+    d->lookup_own_cell = true;
     d->inject_lobe = true;
     d->c0 = LGV_C0;
 }

@@ -130,7 +130,7 @@ int lgv_sslgv(lgv_state *s, const gk_gi_frame *f, gk_err *e)
 typedef struct lookup_uniforms {
     gk_gbuffer_uniforms gb;
     GLint u_vol_r, u_vol_g, u_vol_b, u_ss_r, u_ss_g, u_ss_b, u_grid_min, u_grid_size, u_cell, u_ss_size, u_tan_half,
-        u_forward, u_parts, u_offset;
+        u_forward, u_parts, u_offset, u_own_cell;
 } lookup_uniforms;
 static const gk_uniform_field lookup_fields[] = {
     GK_GBUFFER_FIELDS(lookup_uniforms, gb),
@@ -141,6 +141,7 @@ static const gk_uniform_field lookup_fields[] = {
     GK_UNIFORM(lookup_uniforms, u_cell),      GK_UNIFORM(lookup_uniforms, u_ss_size),
     GK_UNIFORM(lookup_uniforms, u_tan_half),  GK_UNIFORM(lookup_uniforms, u_forward),
     GK_UNIFORM(lookup_uniforms, u_parts),     GK_UNIFORM(lookup_uniforms, u_offset),
+    GK_UNIFORM(lookup_uniforms, u_own_cell),
 };
 
 int lgv_lookup(lgv_state *s, const gk_gi_frame *f, gk_err *e)
@@ -172,6 +173,7 @@ int lgv_lookup(lgv_state *s, const gk_gi_frame *f, gk_err *e)
     glUniform3f(u->u_grid_size, s->cell * (float)s->dims[0], s->cell * (float)s->dims[1], s->cell * (float)s->dims[2]);
     glUniform1f(u->u_cell, s->cell);
     glUniform1f(u->u_offset, s->dbg.lookup_offset);
+    glUniform1i(u->u_own_cell, s->dbg.lookup_own_cell ? 1 : 0);
     glUniform2f(u->u_ss_size, (float)s->ss_w, (float)s->ss_h);
     /* proj[0][0] = 1 / tan(fov_x / 2), proj[1][1] = 1 / tan(fov_y / 2) */
     glUniform2f(u->u_tan_half, 1.0f / f->proj.m[0], 1.0f / f->proj.m[5]);
