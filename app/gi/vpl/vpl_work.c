@@ -15,7 +15,17 @@
  * them (VAL_COUNT_FRAGMENTS, one atomic add per fragment in the same untimed frame); the CSSM/VSM
  * basis pass is one full-screen triangle per map, res² fragments each, added from the parameters.
  * The mips (glGenerateMipmap) are not modelled. tests/gpu/test_vpl_work.c replays the depth draws'
- * rasterization on the CPU. */
+ * rasterization on the CPU.
+ * The geometry-aware blur (vpl_blur) and the compose (vpl_compose) read the indirect-resolution
+ * targets (RGBA32F, or RGBA16F without float render targets), unfiltered: the blur per pixel its
+ * position (and normal where it is a surface), per tap inside the image its position, then its
+ * normal where it is a surface, then its irradiance where the normals agree (and last frame's
+ * result where the cross-fade mixes it in); the compose per shaded pixel its 2x2 upsample taps'
+ * positions, and their normals and irradiance where they are surfaces. Which taps pass the tests
+ * depends on the data, so blur.frag and compose.frag count them (BLUR_COUNT_FETCHES,
+ * VPL_COMPOSE_COUNT_FETCHES) in the same untimed frame; the compose's G-buffer reads are not
+ * counted. tests/gpu/test_vpl_work.c replays the blur's taps over the targets read back and
+ * hand-counts the compose's 12 a pixel inside the box. */
 #include "vpl_internal.h"
 
 const char *vpl_work_begin(vpl_state *s, const gk_gi_frame *f)
@@ -40,6 +50,28 @@ void vpl_work_maps_end(vpl_state *s, long basis_fragments)
     s->map_basis_fragments = basis_fragments;
 }
 
+/* One counter at binding 6 (blur.frag's and compose.frag's block), zeroed and bound when f counts:
+   the define of the pass's counting variant, else "". */
+static const char *count_one(gk_counters *c, const gk_gi_frame *f, const char *define)
+{
+    const char *d = gk_counters_variant(c, f->count_work, 1, 6, define);
+    return d ? d : "";
+}
+
+const char *vpl_work_blur_begin(vpl_state *s, const gk_gi_frame *f)
+{
+    return count_one(&s->blur_fetches, f, "#define BLUR_COUNT_FETCHES 1\n");
+}
+
+void vpl_work_blur_end(vpl_state *s) { gk_counters_end(&s->blur_fetches); }
+
+const char *vpl_work_compose_begin(vpl_state *s, const gk_gi_frame *f)
+{
+    return count_one(&s->compose_fetches, f, "#define VPL_COMPOSE_COUNT_FETCHES 1\n");
+}
+
+void vpl_work_compose_end(vpl_state *s) { gk_counters_end(&s->compose_fetches); }
+
 int vpl_pass_work(void *self, gk_pass_work *out, int max)
 {
     const vpl_state *s = self;
@@ -55,6 +87,11 @@ int vpl_pass_work(void *self, gk_pass_work *out, int max)
     double fragments = s->map_fragments.value[0] + (double)s->map_basis_fragments;
     if (s->map_fragments.counted && fragments > 0.0 && n < max)
         out[n++] = (gk_pass_work){.pass = "gi.vpl_valsm", .kind = "raster_r16f_depth_fill", .fetches = fragments};
+    if (s->blur_fetches.counted && s->blur_fetches.value[0] > 0.0 && n < max)
+        out[n++] = (gk_pass_work){.pass = "gi.vpl_blur", .kind = "tex2d_rgba32f_nearest", .fetches = s->blur_fetches.value[0]};
+    if (s->compose_fetches.counted && s->compose_fetches.value[0] > 0.0 && n < max)
+        out[n++] = (gk_pass_work){.pass = "gi.vpl_compose", .kind = "tex2d_rgba32f_nearest",
+                                  .fetches = s->compose_fetches.value[0]};
     return n;
 }
 
@@ -62,4 +99,6 @@ void vpl_work_free(vpl_state *s)
 {
     gk_counters_free(&s->gather_fetches);
     gk_counters_free(&s->map_fragments);
+    gk_counters_free(&s->blur_fetches);
+    gk_counters_free(&s->compose_fetches);
 }
