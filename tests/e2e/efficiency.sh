@@ -283,7 +283,8 @@ PY
 # lgv's passes (app/gi/lgv/lgv_work.c), the maps rendered each frame (--rebuild-gi), without and with
 # the gathering iterations: the maps' fragments and the lookup's volume reads do not depend on them,
 # the gathering's loads grow by 2 x (4 per neighbour pair + 3 per cell), whose pairs and cells must be
-# those of a grid of at most 32 cells a side (lgv_size=32)
+# those of a grid of at most 32 cells a side (lgv_size=32); the maps' min mips and the geometry volume
+# (tests/gpu/test_lgv.c hand-counts both on the furnace box)
 bench_rows lg lgv_iters "lgv with 0 and 2 gathering iterations" --scenes glass --methods lgv \
     --sweep "'lgv_iters=0,2'" --budget lgv_photons=16384 --rebuild-gi
 check "lgv: each pass's kinds, the maps and lookup alike in both rows, the gathering's loads a grid's" \
@@ -292,13 +293,24 @@ import sys
 from fetches import by_row
 f = by_row(sys.argv[1], "lgv_iters")
 assert {k for k in f if k[0].startswith("gi.")} == {
-    ("gi.lgv_maps", "raster_r16f_depth_fill"), ("gi.lgv_trace", "tex2d_r32ui_nearest"),
+    ("gi.lgv_maps", "raster_r16f_depth_fill"), ("gi.lgv_maps", "image3d_rgba16f_load"),
+    ("gi.lgv_gather", "tex2d_r32ui_nearest"), ("gi.lgv_gather", "ssbo_r32ui_atomic"),
+    ("gi.lgv_trace", "tex2d_r32ui_nearest"),
     ("gi.lgv_trace", "ssbo_r32ui_atomic"), ("gi.lgv_gather", "ssbo_rgba32f_load"),
     ("gi.lgv_sslgv", "ssbo_r32ui_atomic"), ("gi.lgv_sslgv", "ssbo_rgba32f_load"),
     ("gi.lgv_sslgv", "tex2d_depth32f_nearest"), ("gi.lgv_lookup", "tex3d_rgba16f_trilinear"),
     ("gi.lgv_lookup", "tex2d_rgba16f_trilinear")}, sorted(f)
-for k in (("gi.lgv_maps", "raster_r16f_depth_fill"), ("gi.lgv_lookup", "tex3d_rgba16f_trilinear")):
+for k in (("gi.lgv_maps", "raster_r16f_depth_fill"), ("gi.lgv_maps", "image3d_rgba16f_load"),
+          ("gi.lgv_lookup", "tex3d_rgba16f_trilinear")):
     assert f[k]["0"] == f[k]["2"] > 0, (k, f[k])
+# the min mips: 4 loads per texel of levels 1 and 2 of the 6 faces of each map at lgv_map_res=64
+assert f[("gi.lgv_maps", "image3d_rgba16f_load")]["0"] % (4 * 6 * (32 * 32 + 16 * 16)) == 0, f
+# the geometry volume, rebuilt with the maps only where the gathering iterates (the occlusion): a
+# distance read per texel of the 6 faces of each lattice map (64^2), 3 atomics per texel that sees
+# an opaque surface (glass transmits)
+reads, atomics = f[("gi.lgv_gather", "tex2d_r32ui_nearest")], f[("gi.lgv_gather", "ssbo_r32ui_atomic")]
+assert set(reads) == set(atomics) == {"2"} and reads["2"] % (6 * 64 * 64) == 0, (reads, atomics)
+assert 0 < atomics["2"] <= 3 * reads["2"] and atomics["2"] % 3 == 0, (reads, atomics)
 # the lookup: 3 volume reads per shaded pixel, at most every pixel of 80x60
 look = f[("gi.lgv_lookup", "tex3d_rgba16f_trilinear")]["0"]
 assert look % 3 == 0 and look <= 3 * 80 * 60, look
