@@ -342,6 +342,15 @@ texels = 2 * 256 * 256
 assert texels <= rays["0.25"] <= texels * (1 + 64 + 32 + 10 + 2), rays
 for march, (w, h) in (("0.25", (20, 15)), ("0.5", (40, 30))):
     assert w * h < air[march] <= w * h * (1 + 48 * 2), (march, air)
+# the composite (tests/gpu/test_vc_work.c hand-counts it): per pixel of 80x60 two depth reads, one
+# bilinear airlight lookup (its image upsampled, whatever its resolution), one lines' texel and one
+# surface caustics' texel where a surface is
+comp = {k: f[("gi.vc_composite", k)] for k in ("tex2d_depth32f_nearest", "tex2d_rgba16f_trilinear",
+                                               "tex2d_rgba32f_nearest")}
+for march in ("0.25", "0.5"):
+    assert comp["tex2d_depth32f_nearest"][march] == 2 * 80 * 60, comp
+    assert comp["tex2d_rgba16f_trilinear"][march] == 80 * 60, comp
+    assert 80 * 60 < comp["tex2d_rgba32f_nearest"][march] <= 2 * 80 * 60, comp
 PY
 # the renderer's own passes (app/render/render_work.c; tests/gpu/test_render_work.c hand-counts
 # them): the G-buffer's fragments follow the render size, the compose reads the HDR image once per

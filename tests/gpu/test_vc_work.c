@@ -1,4 +1,5 @@
-/* volcaustics' counted airlight reads (app/gi/volcaustics/vc_work.c, #21) against a hand count, on
+/* volcaustics' counted airlight and composite reads (app/gi/volcaustics/vc_work.c, #21) against hand
+ * counts (the composite's: composite_reads_by_hand, below), on
  * glass-fog through vpl's harness (tests/gpu/test_vpl_harness.h: its loaded-scene set-up, G-buffer
  * and frame, with volcaustics in place of vpl): with its medium filling all of space (every
  * view ray marches through it: none is empty), its light made a point light (no spot cone skips a
@@ -12,11 +13,13 @@
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
+#include <stdlib.h>
 
 #include <cmocka.h>
 
 #include "gi/volcaustics/volcaustics.h"
 #include "scene/scene.h"
+#include "test_pass_work.h"
 #include "test_vpl_harness.h"
 
 extern const gk_gi_method gk_gi_volcaustics;
@@ -52,22 +55,21 @@ static int teardown(void **state)
     return 0;
 }
 
-/* One counting frame at `list`; the airlight's counted reads (0 when none). */
-static double airlight_reads(const char *list)
+/* One counting frame (the bench's) at `list`. */
+static void counting_frame(const char *list)
 {
     assert_int_equal(h_budget(&H, list), 0);
     H.count_work = true;
     assert_int_equal(h_frame(&H, 0.0), 0);
     H.count_work = false;
-    gk_pass_work w[GK_MAX_PASS_WORK];
-    int n = H.m->pass_work(H.self, w, GK_MAX_PASS_WORK);
-    double reads = 0;
-    for (int i = 0; i < n; i++)
-        if (!strcmp(w[i].pass, "gi.vc_airlight")) {
-            assert_string_equal(w[i].kind, "tex2d_depth32f_nearest");
-            reads += w[i].fetches;
-        }
-    return reads;
+}
+
+/* One counting frame at `list`; the airlight's counted reads (0 when none). */
+static double airlight_reads(const char *list)
+{
+    counting_frame(list);
+    double reads = tpw_fetches(H.m, H.self, "gi.vc_airlight", "tex2d_depth32f_nearest");
+    return reads < 0.0 ? 0.0 : reads;
 }
 
 static void airlight_reads_by_hand(void **state)
@@ -99,8 +101,44 @@ static void airlight_reads_by_hand(void **state)
     assert_true(shadowed == pixels * (1 + AIR_STEPS));
 }
 
+/* One counting frame at `list`: the composite's counted reads by kind (depth, airlight, caustic
+   images; -1 where none). */
+static void composite_reads(const char *list, double r[3])
+{
+    static const char *const kinds[3] = {"tex2d_depth32f_nearest", "tex2d_rgba16f_trilinear", "tex2d_rgba32f_nearest"};
+    counting_frame(list);
+    for (int k = 0; k < 3; k++)
+        r[k] = tpw_fetches(H.m, H.self, "gi.vc_composite", kinds[k]);
+    printf("# glass-fog %s: composite %.0f depth, %.0f airlight, %.0f caustic texels\n", list, r[0], r[1], r[2]);
+}
+
+/* The composite's reads against a hand count on glass-fog as shipped (its spot lights the glass:
+   lines and surface caustics to show). With every term shown, per pixel: the depth for the
+   attenuated surfaces and again for the surface caustics, the airlight image and the lines' image
+   once, and the surface caustics' irradiance at each pixel that holds a surface -- here every one:
+   the camera is inside the room (the G-buffer's albedo, read back, is set at every pixel). With the
+   airlight term alone: its image once a pixel, nothing else. */
+static void composite_reads_by_hand(void **state)
+{
+    (void)state;
+    double r[3], pixels = (double)W * HH;
+    unsigned char *albedo = malloc((size_t)W * HH * 4);
+    gkt_read_rgba(&H.gbuf, 0, GL_UNSIGNED_BYTE, albedo);
+    long surfaces = 0;
+    for (int i = 0; i < W * HH; i++)
+        surfaces += albedo[4 * i] || albedo[4 * i + 1] || albedo[4 * i + 2];
+    free(albedo);
+    composite_reads("vc_output=all,vc_surface=splat", r);
+    const gk_volcaustics_stats *st = gk_volcaustics_get_stats(H.self);
+    assert_true(st->light_ok);
+    assert_true(surfaces == W * HH);
+    assert_true(r[0] == 2 * pixels && r[1] == pixels && r[2] == pixels + (double)surfaces);
+    composite_reads("vc_output=airlight", r);
+    assert_true(r[0] == -1.0 && r[1] == pixels && r[2] == -1.0);
+}
+
 int main(void)
 {
-    const struct CMUnitTest tests[] = {cmocka_unit_test(airlight_reads_by_hand)};
+    const struct CMUnitTest tests[] = {cmocka_unit_test(composite_reads_by_hand), cmocka_unit_test(airlight_reads_by_hand)};
     return cmocka_run_group_tests(tests, setup, teardown);
 }

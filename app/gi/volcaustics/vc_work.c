@@ -11,19 +11,29 @@
  *   vc_airlight reads the G-buffer's depth once per march pixel and, per step and light whose cone
  *     holds the step's point, that light's shadow map where the point projects into it: counted by
  *     airlight.frag's variant (AIRLIGHT_COUNT_FETCHES), as depth texels.
- * vc_composite is not modelled. tests/e2e/efficiency.sh checks the
+ *   vc_composite's two full-screen draws read, per pixel, the G-buffer's depth for the attenuated
+ *     surfaces (C) and again for the surface caustics, the airlight image (bilinear, RGBA16F) and
+ *     the lines' image, and the surface caustics' irradiance where a surface is (unfiltered, RGBA32F
+ *     or 16F), each as the terms shown (vc_output) ask: counted by composite.frag's variant
+ *     (COMPOSITE_COUNT_FETCHES, three counters by kind); its G-buffer albedo reads are not counted.
+ * The light views' rasterization is not modelled. tests/e2e/efficiency.sh checks the
  * counts against each other (each pass's count unchanged by another pass's knob) and against their
- * ceilings from the parameters. */
+ * ceilings from the parameters; tests/gpu/test_vc_work.c the airlight's and the composite's against
+ * hand counts. */
 #include "vc_internal.h"
 
-/* Per VC_WORK_* pass: its shader variant (one counter at binding 6), its pass and its kind. */
+/* Per VC_WORK_* pass: its shader variant (counters at binding 6), its pass and each counter's kind. */
 static const struct {
-    const char *define, *pass, *kind;
+    const char *define, *pass;
+    int n;
+    const char *kind[3];
 } variants[VC_WORK_N] = {
-    [VC_WORK_RAYGEN] = {"#define RAYGEN_COUNT_FETCHES 1\n", "gi.vc_light", "tex2d_depth32f_nearest"},
-    [VC_WORK_LINES] = {"#define LINES_COUNT_FRAGMENTS 1\n", "gi.vc_lines", "raster_r16f_depth_fill"},
-    [VC_WORK_SURFACE] = {"#define SURFACE_COUNT_FRAGMENTS 1\n", "gi.vc_surface", "raster_r16f_depth_fill"},
-    [VC_WORK_AIRLIGHT] = {"#define AIRLIGHT_COUNT_FETCHES 1\n", "gi.vc_airlight", "tex2d_depth32f_nearest"},
+    [VC_WORK_RAYGEN] = {"#define RAYGEN_COUNT_FETCHES 1\n", "gi.vc_light", 1, {"tex2d_depth32f_nearest"}},
+    [VC_WORK_LINES] = {"#define LINES_COUNT_FRAGMENTS 1\n", "gi.vc_lines", 1, {"raster_r16f_depth_fill"}},
+    [VC_WORK_SURFACE] = {"#define SURFACE_COUNT_FRAGMENTS 1\n", "gi.vc_surface", 1, {"raster_r16f_depth_fill"}},
+    [VC_WORK_AIRLIGHT] = {"#define AIRLIGHT_COUNT_FETCHES 1\n", "gi.vc_airlight", 1, {"tex2d_depth32f_nearest"}},
+    [VC_WORK_COMPOSITE] = {"#define COMPOSITE_COUNT_FETCHES 1\n", "gi.vc_composite", 3,
+                           {"tex2d_depth32f_nearest", "tex2d_rgba16f_trilinear", "tex2d_rgba32f_nearest"}},
 };
 
 void vc_work_frame(vc_state *s, const gk_gi_frame *f)
@@ -37,7 +47,7 @@ void vc_work_frame(vc_state *s, const gk_gi_frame *f)
 const char *vc_work_begin(vc_state *s, int pass)
 {
     gk_counters *c = &s->work[pass];
-    c->n = 1;
+    c->n = variants[pass].n;
     c->binding = 6; /* the shaders' counting blocks */
     return gk_counters_begin(c, s->count_work) ? variants[pass].define : "";
 }
@@ -49,8 +59,10 @@ int vc_pass_work(void *self, gk_pass_work *out, int max)
     const vc_state *s = self;
     int n = 0;
     for (int k = 0; k < VC_WORK_N; k++)
-        if (s->work[k].counted && s->work[k].value[0] > 0.0 && n < max)
-            out[n++] = (gk_pass_work){.pass = variants[k].pass, .kind = variants[k].kind, .fetches = s->work[k].value[0]};
+        for (int i = 0; i < variants[k].n; i++)
+            if (s->work[k].counted && s->work[k].value[i] > 0.0 && n < max)
+                out[n++] = (gk_pass_work){.pass = variants[k].pass, .kind = variants[k].kind[i],
+                                          .fetches = s->work[k].value[i]};
     return n;
 }
 
