@@ -340,6 +340,10 @@ assert rays["0.25"] == rays["0.5"] and lines["0.25"] == lines["0.5"] > 0 and spl
     (rays, lines, splats)
 texels = 2 * 256 * 256
 assert texels <= rays["0.25"] <= texels * (1 + 64 + 32 + 10 + 2), rays
+# the light views' fragments (tests/gpu/test_vc_work.c hand-counts them): 3 views of 256^2 per light,
+# each filled by the room at least once (measured 552 228 = 1.40 x 3 x 2 x 256^2), alike in both rows
+views = f[("gi.vc_light", "raster_r16f_depth_fill")]
+assert views["0.25"] == views["0.5"] >= 3 * texels, views
 for march, (w, h) in (("0.25", (20, 15)), ("0.5", (40, 30))):
     assert w * h < air[march] <= w * h * (1 + 48 * 2), (march, air)
 # the composite (tests/gpu/test_vc_work.c hand-counts it): per pixel of 80x60 two depth reads, one

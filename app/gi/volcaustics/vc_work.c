@@ -4,7 +4,12 @@
  *     through the depth without the specular objects (up to VC_P2_STEPS), and for glass the march
  *     and bisection through the back faces' depth. How far a ray marches is data, so the variant
  *     counts the reads (RAYGEN_COUNT_FETCHES) in the bench's untimed counting frame, as depth
- *     texels; its normal and colour reads (RGBA8) and the light views' rasterization are not counted.
+ *     texels; its normal and colour reads (RGBA8) are not counted. The light views it starts from
+ *     (per light the front view, the view without the specular objects and their back faces) are
+ *     rasterized: their fragments, every surface in the light's frustum in each of the three views
+ *     (the ones a view then discards included: the counter comes first), at the fill rate, counted
+ *     by lightview.frag's variant (LIGHTVIEW_COUNT_FRAGMENTS, at binding 7: the ray generation's
+ *     counter holds binding 6 across the same loop).
  *   vc_lines is rasterized: its work is the lines' fragments (each filters its line's samples
  *     onto the view ray), at the fill rate, counted by lines.frag's variant (LINES_COUNT_FRAGMENTS);
  *     so is vc_surface, the rays' ends splatted as point sprites (SURFACE_COUNT_FRAGMENTS).
@@ -16,24 +21,26 @@
  *     the lines' image, and the surface caustics' irradiance where a surface is (unfiltered, RGBA32F
  *     or 16F), each as the terms shown (vc_output) ask: counted by composite.frag's variant
  *     (COMPOSITE_COUNT_FETCHES, three counters by kind); its G-buffer albedo reads are not counted.
- * The light views' rasterization is not modelled. tests/e2e/efficiency.sh checks the
+ * tests/e2e/efficiency.sh checks the
  * counts against each other (each pass's count unchanged by another pass's knob) and against their
- * ceilings from the parameters; tests/gpu/test_vc_work.c the airlight's and the composite's against
- * hand counts. */
+ * ceilings from the parameters; tests/gpu/test_vc_work.c the airlight's, the composite's and the
+ * light views' against hand counts. */
 #include "vc_internal.h"
 
-/* Per VC_WORK_* pass: its shader variant (counters at binding 6), its pass and each counter's kind. */
+/* Per VC_WORK_* pass: its shader variant, its counters' binding, its pass and each counter's kind. */
 static const struct {
     const char *define, *pass;
+    GLuint binding;
     int n;
     const char *kind[3];
 } variants[VC_WORK_N] = {
-    [VC_WORK_RAYGEN] = {"#define RAYGEN_COUNT_FETCHES 1\n", "gi.vc_light", 1, {"tex2d_depth32f_nearest"}},
-    [VC_WORK_LINES] = {"#define LINES_COUNT_FRAGMENTS 1\n", "gi.vc_lines", 1, {"raster_r16f_depth_fill"}},
-    [VC_WORK_SURFACE] = {"#define SURFACE_COUNT_FRAGMENTS 1\n", "gi.vc_surface", 1, {"raster_r16f_depth_fill"}},
-    [VC_WORK_AIRLIGHT] = {"#define AIRLIGHT_COUNT_FETCHES 1\n", "gi.vc_airlight", 1, {"tex2d_depth32f_nearest"}},
-    [VC_WORK_COMPOSITE] = {"#define COMPOSITE_COUNT_FETCHES 1\n", "gi.vc_composite", 3,
+    [VC_WORK_RAYGEN] = {"#define RAYGEN_COUNT_FETCHES 1\n", "gi.vc_light", 6, 1, {"tex2d_depth32f_nearest"}},
+    [VC_WORK_LINES] = {"#define LINES_COUNT_FRAGMENTS 1\n", "gi.vc_lines", 6, 1, {"raster_r16f_depth_fill"}},
+    [VC_WORK_SURFACE] = {"#define SURFACE_COUNT_FRAGMENTS 1\n", "gi.vc_surface", 6, 1, {"raster_r16f_depth_fill"}},
+    [VC_WORK_AIRLIGHT] = {"#define AIRLIGHT_COUNT_FETCHES 1\n", "gi.vc_airlight", 6, 1, {"tex2d_depth32f_nearest"}},
+    [VC_WORK_COMPOSITE] = {"#define COMPOSITE_COUNT_FETCHES 1\n", "gi.vc_composite", 6, 3,
                            {"tex2d_depth32f_nearest", "tex2d_rgba16f_trilinear", "tex2d_rgba32f_nearest"}},
+    [VC_WORK_LIGHTVIEW] = {"#define LIGHTVIEW_COUNT_FRAGMENTS 1\n", "gi.vc_light", 7, 1, {"raster_r16f_depth_fill"}},
 };
 
 void vc_work_frame(vc_state *s, const gk_gi_frame *f)
@@ -48,7 +55,7 @@ const char *vc_work_begin(vc_state *s, int pass)
 {
     gk_counters *c = &s->work[pass];
     c->n = variants[pass].n;
-    c->binding = 6; /* the shaders' counting blocks */
+    c->binding = variants[pass].binding;
     return gk_counters_begin(c, s->count_work) ? variants[pass].define : "";
 }
 
