@@ -224,9 +224,7 @@ static int blur(vpl_state *s, const gk_gi_frame *f, float fade, gk_err *e)
 {
     glBindVertexArray(s->empty_vao);
     glViewport(0, 0, s->iw, s->ih);
-    char defines[64];
-    snprintf(defines, sizeof defines, "%s", vpl_work_blur_begin(s, f));
-    GLuint b = gk_program_get(s->ctx.programs, "common/fullscreen.vert", "vpl/blur.frag", defines[0] ? defines : NULL, e);
+    GLuint b = gk_program_get(s->ctx.programs, "common/fullscreen.vert", "vpl/blur.frag", vpl_work_blur_begin(s, f), e);
     const blur_uniforms *ub = b ? gk_program_uniforms(s->ctx.programs, b, GK_FIELDS(blur_fields), sizeof *ub, e) : NULL;
     if (!ub) {
         vpl_work_blur_end(s);
@@ -256,9 +254,8 @@ static int blur(vpl_state *s, const gk_gi_frame *f, float fade, gk_err *e)
 /* Compose: L += ρ_d/π · E into the renderer's HDR image. */
 static int compose(vpl_state *s, const gk_gi_frame *f, gk_err *e)
 {
-    char defines[64];
-    snprintf(defines, sizeof defines, "%s", vpl_work_compose_begin(s, f));
-    GLuint c = gk_program_get(s->ctx.programs, "common/fullscreen.vert", "vpl/compose.frag", defines[0] ? defines : NULL, e);
+    GLuint c = gk_program_get(s->ctx.programs, "common/fullscreen.vert", "vpl/compose.frag", vpl_work_compose_begin(s, f),
+                              e);
     const compose_uniforms *uc = c ? gk_program_uniforms(s->ctx.programs, c, GK_FIELDS(compose_fields), sizeof *uc, e) : NULL;
     if (!uc) {
         vpl_work_compose_end(s);

@@ -97,8 +97,8 @@ void vpl_work_end(vpl_state *s);
 /* The same around the VAL maps' depth draws (vpl_valmap.c; the define val_depth.frag adds). */
 const char *vpl_work_maps_begin(vpl_state *s, const gk_gi_frame *f);
 void vpl_work_maps_end(vpl_state *s, long basis_fragments);
-/* The same around the blur's two passes and the compose (vpl_gather.c; the defines blur.frag and
-   compose.frag add). */
+/* The same around the blur's two passes and the compose (vpl_gather.c): the define blur.frag or
+   compose.frag adds, NULL when not counting. */
 const char *vpl_work_blur_begin(vpl_state *s, const gk_gi_frame *f);
 void vpl_work_blur_end(vpl_state *s);
 const char *vpl_work_compose_begin(vpl_state *s, const gk_gi_frame *f);

@@ -50,24 +50,17 @@ void vpl_work_maps_end(vpl_state *s, long basis_fragments)
     s->map_basis_fragments = basis_fragments;
 }
 
-/* One counter at binding 6 (blur.frag's and compose.frag's block), zeroed and bound when f counts:
-   the define of the pass's counting variant, else "". */
-static const char *count_one(gk_counters *c, const gk_gi_frame *f, const char *define)
-{
-    const char *d = gk_counters_variant(c, f->count_work, 1, 6, define);
-    return d ? d : "";
-}
-
+/* One counter at binding 6 (blur.frag's and compose.frag's block) each. */
 const char *vpl_work_blur_begin(vpl_state *s, const gk_gi_frame *f)
 {
-    return count_one(&s->blur_fetches, f, "#define BLUR_COUNT_FETCHES 1\n");
+    return gk_counters_variant(&s->blur_fetches, f->count_work, 1, 6, "#define BLUR_COUNT_FETCHES 1\n");
 }
 
 void vpl_work_blur_end(vpl_state *s) { gk_counters_end(&s->blur_fetches); }
 
 const char *vpl_work_compose_begin(vpl_state *s, const gk_gi_frame *f)
 {
-    return count_one(&s->compose_fetches, f, "#define VPL_COMPOSE_COUNT_FETCHES 1\n");
+    return gk_counters_variant(&s->compose_fetches, f->count_work, 1, 6, "#define VPL_COMPOSE_COUNT_FETCHES 1\n");
 }
 
 void vpl_work_compose_end(vpl_state *s) { gk_counters_end(&s->compose_fetches); }
