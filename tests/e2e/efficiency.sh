@@ -124,13 +124,19 @@ for e in csv.DictReader(open(sys.argv[1])):
         f[(e["vpl_vis"], e["kind"])] = float(e["fetches"])
     # the VAL maps: fragments at the fill rate, their depth draws' (counted) and the basis pass's
     # (res^2 per map), the same maps under both visibilities (tests/gpu/test_vpl_work.c replays them)
-    if e["pass"] == "gi.vpl_valsm":
-        assert e["kind"] == "raster_r16f_depth_fill", e
+    if e["pass"] == "gi.vpl_valsm" and e["kind"] == "raster_r16f_depth_fill":
         f[(e["vpl_vis"], "valsm")] = float(e["fetches"])
+    # ... and their mips (vpl_work.c, from the parameters; tests/gpu/test_vpl_work.c hand-counts
+    # them): VSM's one 16-bit moment chain, CSSM's 2 RGBA8 and 3 16-bit chains, of the same maps
+    if e["pass"] == "gi.vpl_valsm" and e["kind"] != "raster_r16f_depth_fill":
+        f[(e["vpl_vis"], "mips", e["kind"])] = float(e["fetches"])
 u, h = "tex2d_rgba32f_nearest", "tex2d_rgba16f_trilinear"
 assert f[("vsm", u)] > 0 and f[("vsm", u)] == f[("cssm", u)], f
 assert f[("vsm", h)] > 0 and f[("vsm", h)] == f[("cssm", "tex2d_rgba8_trilinear")] - 2 * f[("cssm", h)] / 3, f
 assert f[("vsm", "valsm")] > 64 * 64 and f[("vsm", "valsm")] == f[("cssm", "valsm")], f
+m16, m8 = "tex2d_rgba16f_trilinear", "tex2d_rgba8_trilinear"
+assert ("vsm", "mips", m8) not in f and f[("vsm", "mips", m16)] % 1365 == 0, f   # 1365 texels a map at 64^2
+assert f[("cssm", "mips", m16)] == 3 * f[("vsm", "mips", m16)] and f[("cssm", "mips", m8)] == 2 * f[("vsm", "mips", m16)], f
 PY
 # the multi-resolution gather counts its regions' VPL loops (tests/gpu/test_vpl_work.c: regions x the
 # dense gather's reads a pixel): both gathers' rows recomputed; the VAL maps do not depend on the gather

@@ -115,6 +115,16 @@ static void val_map_fragments_match_a_replay(void **state)
         assert_true(s->st.m > 0 && replay > 0);
         assert_true(fabs(counted - (double)replay) <= TOLERANCE * (double)replay);
         assert_true(valsm_fragments() == counted + (double)basis);
+        /* the mips, a hand count: one lookup per texel of levels 1.. of each map in use, VSM's one
+           moment chain at 64² (32² + ... + 1² = 1365 a map), CSSM's 2 RGBA8 and 3 16-bit chains at
+           128² (5461 a map) */
+        double rgba8 = tpw_fetches(H.m, H.self, "gi.vpl_valsm", "tex2d_rgba8_trilinear");
+        double f16 = tpw_fetches(H.m, H.self, "gi.vpl_valsm", "tex2d_rgba16f_trilinear");
+        print_message("# mips: %.0f RGBA8 and %.0f 16-bit lookups\n", rgba8, f16);
+        if (b == 0)
+            assert_true(rgba8 < 0.0 && f16 == 1365.0 * s->st.m);
+        else
+            assert_true(rgba8 == 2 * 5461.0 * s->st.m && f16 == 3 * 5461.0 * s->st.m);
     }
 }
 

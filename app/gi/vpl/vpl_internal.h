@@ -72,6 +72,7 @@ typedef struct vpl_state {
     gk_counters blur_fetches;   /* texels the geometry-aware blur's two passes read (vpl/blur.frag) */
     gk_counters compose_fetches; /* texels the compose's upsample reads (vpl/compose.frag) */
     long map_basis_fragments;   /* the basis pass's, res² per map (not counted: a full-screen pass) */
+    double map_mip_lookups[2];  /* the maps' mip chains' bilinear lookups: RGBA8, 16-bit (from the parameters) */
 } vpl_state;
 
 /* vpl_rsm.c: RSM of every light + VPL generation + readback into st.vpl; returns VPL count. */
@@ -97,6 +98,9 @@ void vpl_work_end(vpl_state *s);
 /* The same around the VAL maps' depth draws (vpl_valmap.c; the define val_depth.frag adds). */
 const char *vpl_work_maps_begin(vpl_state *s, const gk_gi_frame *f);
 void vpl_work_maps_end(vpl_state *s, long basis_fragments);
+/* After the maps' glGenerateMipmap: `rgba8` and `f16` chains (RG32F moments counted with the 16-bit
+   ones) of res² for `layers` maps. */
+void vpl_work_maps_mips(vpl_state *s, int res, int layers, int rgba8, int f16);
 /* The same around the blur's two passes and the compose (vpl_gather.c): the define blur.frag or
    compose.frag adds, NULL when not counting. */
 const char *vpl_work_blur_begin(vpl_state *s, const gk_gi_frame *f);
