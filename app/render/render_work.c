@@ -20,6 +20,10 @@
  *     its two bilinear lookups of the image behind (bent and unbent), plus the copy of that image
  *     into the glass target the pass starts with, one lookup a pixel (from the render size): the
  *     draws' vertex work and blending are not counted.
+ *   gi.blend_hold, gi.blend (the GI cross-fade, render_gi_blend.c), from the render size: the copy
+ *     of the image before GI, a blit of one RGBA16F texel a pixel (unfiltered: the roofline's
+ *     unfiltered kind, whose 16-byte texels are twice these), and during a transition the blend's
+ *     three bilinear lookups a pixel (the image before GI, the new one and the held contribution).
  *   compose (HDR_COUNT_FETCHES, compose/compose.frag): one bilinear lookup of the RGBA16F HDR
  *     image per output pixel, the upsample when render_scale < 1 -- a constant of the output size,
  *     counted all the same so that a test holds the pass to it (tests/gpu/test_render_work.c).
@@ -119,6 +123,10 @@ int gk_renderer_pass_work(const gk_renderer *r, const char *method, gk_pass_work
     if (g->counted && g->value[0] > 0.0 && n < max)
         out[n++] = (gk_pass_work){.pass = "glass", .kind = "tex2d_rgba16f_trilinear",
                                   .fetches = g->value[1] + (double)r->glass_copy_lookups};
+    if (r->blend.work_hold > 0.0 && n < max)
+        out[n++] = (gk_pass_work){.pass = "gi.blend_hold", .kind = "tex2d_rgba32f_nearest", .fetches = r->blend.work_hold};
+    if (r->blend.work_blend > 0.0 && n < max)
+        out[n++] = (gk_pass_work){.pass = "gi.blend", .kind = "tex2d_rgba16f_trilinear", .fetches = r->blend.work_blend};
     n = add_counted(&r->compose_fetches, "compose", "tex2d_rgba16f_trilinear", out, n, max);
     return n + gk_render_gi_pass_work(r->gi, method, out + n, max - n);
 }

@@ -87,7 +87,10 @@ passes = {(e["vct_cones"], e["pass"]) for e in eff}
 # renders them every frame too)
 assert passes == {(c, p) for c in ("4", "9")
                   for p in ("gi.vct_trace", "gi.vct_voxelize", "gi.vct_inject", "gi.vct_mips", "direct",
-                            "gbuffer", "compose", "shadow.shadow_depth")}, passes
+                            "gbuffer", "compose", "shadow.shadow_depth", "gi.blend_hold")}, passes
+# the GI cross-fade's copy of the image before GI (render_work.c; tests/gpu/test_gi_blend.c): one
+# texel a pixel in every GI row (gi_blend=4 by default); the bench cuts between rows, so no row blends
+assert all(float(e["fetches"]) == 80 * 60 for e in eff if e["pass"] == "gi.blend_hold"), eff
 # the cones do not change the voxels nor the light's view: the same voxelization, injection, mips
 # and shadow maps at both counts
 for p in ("gi.vct_voxelize", "gi.vct_inject", "gi.vct_mips", "shadow.shadow_depth"):
@@ -302,6 +305,7 @@ import sys
 from fetches import by_row
 f = by_row(sys.argv[1], "lgv_iters")
 assert {k for k in f if k[0].startswith("gi.")} == {
+    ("gi.blend_hold", "tex2d_rgba32f_nearest"),
     ("gi.lgv_maps", "raster_r16f_depth_fill"), ("gi.lgv_maps", "image3d_rgba16f_load"),
     ("gi.lgv_gather", "tex2d_r32ui_nearest"), ("gi.lgv_gather", "ssbo_r32ui_atomic"),
     ("gi.lgv_trace", "tex2d_r32ui_nearest"),
