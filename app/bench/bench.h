@@ -14,6 +14,9 @@
 
 #define GK_BENCH_MAX_AXES 6
 #define GK_BENCH_MAX_ROWS 1024
+/* Pass columns of one bench run: the union of every row's frame report (a frame has at most
+   GK_MAX_PASSES; every method of a scene together has more: cornell's about 40) */
+#define GK_BENCH_MAX_PASSES 96
 
 /* One sweep: the cartesian product of each axis's values. */
 typedef struct gk_bench_sweep {
@@ -62,7 +65,7 @@ typedef struct gk_bench_row {
                                                  how right the caustic is, which a
                                                  small bright region barely moves in the whole-image
                                                  error. NaN where the scene has no mask */
-    double pass_ms[GK_MAX_PASSES];            /* medians, in the order of pass_names */
+    double pass_ms[GK_BENCH_MAX_PASSES];      /* medians, in the order of pass_names */
     int n_work;                               /* the useful fetches of the passes with a work model
                                                  (app/gl/pass_work.h), of the last timed frame */
     gk_pass_work work[GK_MAX_PASS_WORK];
@@ -83,7 +86,7 @@ bool gk_bench_black_reference(const gk_bench_row *rows, int n, const char *scene
 typedef struct gk_bench_result {
     gk_budget budget;          /* the knob set (names, values) the levels refer to */
     int n_passes;
-    char pass_names[GK_MAX_PASSES][GK_PASS_PATH_LEN]; /* dotted report paths: "shadow", "gi.vct_trace" */
+    char pass_names[GK_BENCH_MAX_PASSES][GK_PASS_PATH_LEN]; /* dotted report paths: "shadow", "gi.vct_trace" */
     int n_rows;
     gk_bench_row rows[GK_BENCH_MAX_ROWS];
     int frames;                /* timed frames per row (the spread bars' sample) */

@@ -45,7 +45,7 @@ static int pass_column(gk_bench_result *r, const char *name)
     for (int i = 0; i < r->n_passes; i++)
         if (strcmp(r->pass_names[i], name) == 0)
             return i;
-    if (r->n_passes >= GK_MAX_PASSES)
+    if (r->n_passes >= GK_BENCH_MAX_PASSES)
         return -1;
     snprintf(r->pass_names[r->n_passes], sizeof r->pass_names[0], "%s", name);
     return r->n_passes++;
@@ -89,7 +89,7 @@ static int measure(bench_run *b, const char *method, const char *pins, gk_err *e
     gk_renderer_cut(b->renderer); /* no cross-fade from the previous configuration's GI */
     int frames = b->o->frames, total = b->o->warmup + frames;
     double *frame_ms = calloc((size_t)frames, sizeof *frame_ms);
-    double *pass_ms = calloc((size_t)frames * GK_MAX_PASSES, sizeof *pass_ms);
+    double *pass_ms = calloc((size_t)frames * GK_BENCH_MAX_PASSES, sizeof *pass_ms);
     if (!frame_ms || !pass_ms) {
         free(frame_ms);
         free(pass_ms);
@@ -122,7 +122,7 @@ static int measure(bench_run *b, const char *method, const char *pins, gk_err *e
                 gk_frame_report_path(&report, p, path, sizeof path);
                 int col = pass_column(r, path);
                 if (col >= 0)
-                    pass_ms[(size_t)k * GK_MAX_PASSES + (size_t)col] = report.pass[p].ms;
+                    pass_ms[(size_t)k * GK_BENCH_MAX_PASSES + (size_t)col] = report.pass[p].ms;
             }
         }
     }
@@ -146,7 +146,7 @@ static int measure(bench_run *b, const char *method, const char *pins, gk_err *e
         double col_vals[64];
         for (int p = 0; p < r->n_passes; p++) {
             for (int k = 0; k < frames && k < 64; k++)
-                col_vals[k] = pass_ms[(size_t)k * GK_MAX_PASSES + (size_t)p];
+                col_vals[k] = pass_ms[(size_t)k * GK_BENCH_MAX_PASSES + (size_t)p];
             row->pass_ms[p] = percentile(col_vals, frames < 64 ? frames : 64, 0.5);
         }
         /* the useful fetches (the efficiency's numerator), of the last frame: a static scene's

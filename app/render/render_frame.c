@@ -66,8 +66,9 @@ static void *shadow_state(gk_renderer *r, const gk_shadow_method *m, gk_err *e)
     return r->shadow_state[mi];
 }
 
+/* count_define: the depth draws' counting variant (gk_render_work_shadow_begin), "" without. */
 static int pass_shadows(gk_renderer *r, const gk_frame_knobs *fk, const gk_pass_ctx *pctx, frame_light *fl, int n,
-                        gk_err *e)
+                        const char *count_define, gk_err *e)
 {
     const gk_shadow_method *m = fk->shadow;
     int map_size = fk->shadow_map;
@@ -75,7 +76,7 @@ static int pass_shadows(gk_renderer *r, const gk_frame_knobs *fk, const gk_pass_
         return 0;
     const gk_shadow_method *env_m = gk_render_env_shadow_method();
     gk_shadow_ctx ctx = {.progs = r->progs, .scene = r->scene, .gpu = &r->gpu, .caps = &r->caps,
-                         .subdiv = fk->shadow_subdiv, .pass = pctx};
+                         .subdiv = fk->shadow_subdiv, .pass = pctx, .count_define = count_define};
     /* Static scene, same lights, same shadow knobs: the maps of the last frame are still right, so
        only the views are rebuilt (they are cheap and the lighting pass binds them). Most kiosk
        scenes are static, and the prefiltered maps (SAT, Fourier bases) cost more than the rest of
@@ -430,7 +431,8 @@ int gk_renderer_draw(gk_renderer *r, const gk_frame_params *fp, unsigned target_
     int rc = 0;
     if (!abandoned) {
         gk_pass_begin(&ctx, "shadow");
-        rc = pass_shadows(r, &fk, &ctx, fl, n, e);
+        rc = pass_shadows(r, &fk, &ctx, fl, n, gk_render_work_shadow_begin(r), e);
+        gk_render_work_shadow_end(r);
         gk_pass_end(&ctx);
     }
     if (rc == 0 && !abandoned && !(abandoned = stop_before(fp, "gbuffer", &last))) {

@@ -77,6 +77,7 @@ static int hold_last_contribution(gk_renderer *r, gk_err *e)
 void gk_gi_blend_begin_frame(gk_renderer *r, const char *method, const gk_budget *b, int blend_frames)
 {
     gk_gi_blend *g = &r->blend;
+    g->work_hold = g->work_blend = 0.0;
     const char *m = method ? method : "none";
     int n = b ? b->n : 0;
     bool changed = g->have_last &&
@@ -124,6 +125,8 @@ int gk_gi_blend_before_method(gk_renderer *r, const gk_pass_ctx *ctx, int blend_
                           GL_NEAREST);
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
         g->pre_valid = true;
+        if (r->count_work) /* the blit: one texel a pixel */
+            g->work_hold = (double)r->render_w * r->render_h;
     }
     gk_pass_end(ctx);
     return rc;
@@ -151,6 +154,8 @@ int gk_gi_blend_after_method(gk_renderer *r, const gk_pass_ctx *ctx, gk_err *e)
         gk_render_fullscreen(r);
         glActiveTexture(GL_TEXTURE0);
         r->shown = g->out.color[0];
+        if (r->count_work) /* gi_blend.frag: pre, cur and held, one bilinear lookup each a pixel */
+            g->work_blend = 3.0 * r->render_w * r->render_h;
         g->frames_left--;
     }
     gk_pass_end(ctx);

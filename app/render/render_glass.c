@@ -54,10 +54,14 @@ int gk_render_glass(gk_renderer *r, const gk_gbuffer_view *gb, gk_err *e)
         return -1;
     GLuint copy = gk_program_get(r->progs, "common/fullscreen.vert", "compose/compose.frag", "#define GK_LINEAR_OUT 1\n", e);
     const copy_uniforms *cu = copy ? gk_program_uniforms(r->progs, copy, GK_FIELDS(copy_fields), sizeof *cu, e) : NULL;
-    GLuint prog = gk_program_get(r->progs, "gbuffer/gbuffer.vert", "glass/refract.frag", NULL, e);
+    const char *count_define = gk_render_work_glass_begin(r);
+    GLuint prog = gk_program_get(r->progs, "gbuffer/gbuffer.vert", "glass/refract.frag",
+                                 count_define[0] ? count_define : NULL, e);
     const glass_uniforms *u = prog ? gk_program_uniforms(r->progs, prog, GK_FIELDS(glass_fields), sizeof *u, e) : NULL;
-    if (!cu || !u)
+    if (!cu || !u) {
+        gk_render_work_glass_end(r, 0);
         return -1;
+    }
     glBindFramebuffer(GL_FRAMEBUFFER, r->glass.fbo);
     glViewport(0, 0, r->render_w, r->render_h);
     glDisable(GL_BLEND);
@@ -88,6 +92,7 @@ int gk_render_glass(gk_renderer *r, const gk_gbuffer_view *gb, gk_err *e)
     glUniform3f(u->u_eye, gb->eye.x, gb->eye.y, gb->eye.z);
     glUniform2f(u->u_size, (float)r->render_w, (float)r->render_h);
     gk_scene_gpu_draw(&r->gpu, r->scene, &u->draw, GK_DRAW_MATERIALS | GK_DRAW_ONLY_GLASS);
+    gk_render_work_glass_end(r, (long)r->render_w * r->render_h); /* the copy: one lookup a pixel */
     glDisable(GL_DEPTH_TEST);
     glDepthMask(GL_FALSE);
     r->shown = r->glass.color[0];

@@ -53,6 +53,8 @@ typedef struct gk_gi_blend {
     int n_levels;
     int levels[GK_MAX_KNOBS];
     bool have_last;
+    /* the bench's counting frame (render_work.c): this frame's texels the copy and the blend read */
+    double work_hold, work_blend;
 } gk_gi_blend;
 
 /* The shadow maps of a static scene are kept while this stays the same (compared by value). */
@@ -107,17 +109,25 @@ struct gk_renderer {
                                    fragments, the lighting pass's shadow lookups, the compose's
                                    HDR lookups; the GI method's, gk_gi_frame.count_work) */
     gk_counters gbuffer_fragments; /* one: the G-buffer draws' fragments */
+    gk_counters depth_fragments; /* one: the shadow maps' depth draws' fragments */
     gk_counters shadow_fetches; /* five: the shadow lookups by format (render_work.c's kinds) */
     gk_counters compose_fetches; /* one: the compose's bilinear HDR lookups */
+    gk_counters glass_fetches;  /* two: the glass draws' G-buffer depth reads and bilinear lookups of
+                                   the image behind (glass/refract.frag) */
+    long glass_copy_lookups;    /* the glass pass's copy of the shown image: one lookup a pixel */
 };
 
 /* render_work.c: around the direct pass's lights, when r->count_work: zero and bind the
  * counter before them (returns the define the shadowed lights' programs add, "" when not counting),
- * read it back after them. The same around the G-buffer pass and the frame's compose. */
+ * read it back after them. The same around the shadow maps, the G-buffer pass and the frame's compose. */
 const char *gk_render_work_begin(gk_renderer *r);
 void gk_render_work_end(gk_renderer *r);
+const char *gk_render_work_shadow_begin(gk_renderer *r);
+void gk_render_work_shadow_end(gk_renderer *r);
 const char *gk_render_work_gbuffer_begin(gk_renderer *r);
 void gk_render_work_gbuffer_end(gk_renderer *r);
+const char *gk_render_work_glass_begin(gk_renderer *r);
+void gk_render_work_glass_end(gk_renderer *r, long copy_lookups);
 const char *gk_render_work_compose_begin(gk_renderer *r);
 void gk_render_work_compose_end(gk_renderer *r);
 void gk_render_work_destroy(gk_renderer *r);

@@ -7,7 +7,16 @@
 // refraction, not the two of a solid (the exit face is not known in screen space), and the
 // reflected share F is left out (no environment to reflect): a plausible lens, not the reference's
 // glass. Pixels whose lookup leaves the screen fall back to the unbent pixel behind.
+// GLASS_COUNT_FETCHES: the bench's counting variant (#21, app/render/render_work.c), per fragment
+// its depth read and, in front of the opaque scene, its two lookups of the image behind (with the
+// atomics the depth test runs after the shader: hidden fragments count too); fragment-stage storage
+// buffers capability-checked by the caller. Never in the kiosk's frames.
+// @variant -
+// @variant GLASS_COUNT_FETCHES
 precision highp float;
+#ifdef GLASS_COUNT_FETCHES
+layout(std430, binding = 6) buffer GlassFetches { highp uint depth; highp uint behind; } glass_counted;
+#endif
 in vec3 v_world;
 in vec3 v_normal;
 in vec2 v_uv;
@@ -31,8 +40,14 @@ void main()
 {
     vec2 uv = gl_FragCoord.xy / u_size;
     float behind_depth = texture(u_depth, uv).r;
+#ifdef GLASS_COUNT_FETCHES
+    atomicAdd(glass_counted.depth, 1u);
+#endif
     if (gl_FragCoord.z >= behind_depth)
         discard; // the opaque scene is in front of this glass
+#ifdef GLASS_COUNT_FETCHES
+    atomicAdd(glass_counted.behind, 2u); // seen and unbent, below
+#endif
     vec3 v = normalize(v_world - u_eye);
     vec3 n = normalize(v_normal);
     if (dot(n, v) > 0.0)

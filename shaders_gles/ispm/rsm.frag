@@ -4,8 +4,16 @@
 // the incident flux I·ΔΩ from the texel's direction (emit.comp), so nothing here needs a float
 // target (GLES 3.1 has none without extensions).
 // Specular as the scene features define it (app/scene/features.c): metallic > 0.5, roughness < 0.2.
+// RSM_COUNT_FRAGMENTS: the bench's counting variant (#21, app/gi/ispm/ispm_work.c), one atomic add
+// per fragment before any discard (with the atomic the depth test runs after the shader: hidden
+// fragments count too), in the bench's untimed frame only.
+// @variant -
+// @variant RSM_COUNT_FRAGMENTS
 precision highp float;
 precision highp int;
+#ifdef RSM_COUNT_FRAGMENTS
+layout(std430, binding = 6) buffer RsmFragments { highp uint fragments; } rsm_counted;
+#endif
 #include "ispm/common.glsl"
 in vec3 v_world;
 in vec3 v_normal;
@@ -25,6 +33,9 @@ const int MAT_LIGHT_PROXY = 4;
 
 void main()
 {
+#ifdef RSM_COUNT_FRAGMENTS
+    atomicAdd(rsm_counted.fragments, 1u);
+#endif
     if ((u_mat_flags & MAT_LIGHT_PROXY) != 0)
         discard;
     // glTF alphaMode MASK: a hole emits no photon, the light passes to what is behind it

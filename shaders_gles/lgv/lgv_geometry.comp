@@ -8,9 +8,16 @@
 // Blocking is two-sided (|n . axis|): a map sees only the side of a wall that faces it, and a 2-band
 // SH of |cos| keeps band 0 alone (no direction left), so the volume keeps the three axis projections,
 // which is all eq. (6) needs: G_{S_i -> D} depends on the pair of cells, whose link is an axis.
+// GEOMETRY_COUNT_FETCHES: the bench's counting variant (#21, app/gi/lgv/lgv_work.c): the distance
+// texels read and the atomics added, in the bench's untimed frame only.
+// @variant -
+// @variant GEOMETRY_COUNT_FETCHES
 precision highp float;
 precision highp int;
 layout(local_size_x = 8, local_size_y = 8) in;
+#ifdef GEOMETRY_COUNT_FETCHES
+layout(std430, binding = 5) buffer GeometryWork { highp uint dist_fetches; highp uint atomics; } geometry_counted;
+#endif
 #include "lgv/common.glsl"
 #include "lgv/tracer.glsl"
 layout(std430, binding = 1) buffer Tmp { highp uint tmp[]; }; // 3 per geometry cell: x, y, z
@@ -28,6 +35,9 @@ void main()
     int face = id.z;
     ivec3 t = ivec3(id.xy, u_map * 6 + face);
     highp float dist = uintBitsToFloat(texelFetch(u_dist, t, 0).r);
+#ifdef GEOMETRY_COUNT_FETCHES
+    atomicAdd(geometry_counted.dist_fetches, 1u);
+#endif
     if (dist >= 0.5 * LGV_FAR)
         return;
     int code = int(texelFetch(u_alb, t, 0).a * 255.0 + 0.5);
@@ -45,6 +55,9 @@ void main()
     ivec3 g = clamp(ivec3(floor((p - u_grid_min) / u_cell + 0.5)), ivec3(0), u_gdims - 1);
     highp vec3 opacity = area * abs(n) / (u_cell * u_cell);
     int b = 3 * ((g.z * u_gdims.y + g.y) * u_gdims.x + g.x);
+#ifdef GEOMETRY_COUNT_FETCHES
+    atomicAdd(geometry_counted.atomics, 3u);
+#endif
     for (int a = 0; a < 3; a++)
         atomicAdd(tmp[b + a], uint(opacity[a] * u_fixed + 0.5));
 }

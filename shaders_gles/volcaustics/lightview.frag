@@ -9,11 +9,20 @@
 //     where the light rays leaving them look for their end point p2.
 // Specular as the scene features define it (app/scene/features.c): a mirror is metallic > 0.5 with
 // roughness < 0.2; glass is transmission > 0.5 with roughness < 0.2 (the tracer's smooth dielectric).
+// LIGHTVIEW_COUNT_FRAGMENTS: the bench's counting variant (#21, app/gi/volcaustics/vc_work.c), one
+// atomic add per fragment, before any discard (with the atomic the depth test runs after the
+// shader: hidden fragments count too), in the bench's untimed frame only.
 // @variant VC_NO_SPECULAR
 // @variant VC_WITH_SPECULAR
 // @variant VC_BACK_FACES
+// @variant VC_NO_SPECULAR LIGHTVIEW_COUNT_FRAGMENTS
+// @variant VC_WITH_SPECULAR LIGHTVIEW_COUNT_FRAGMENTS
+// @variant VC_BACK_FACES LIGHTVIEW_COUNT_FRAGMENTS
 precision highp float;
 precision highp int;
+#ifdef LIGHTVIEW_COUNT_FRAGMENTS
+layout(std430, binding = 7) buffer LightViewFragments { highp uint fragments; } lightview_counted;
+#endif
 in vec3 v_world;
 in vec3 v_normal;
 uniform vec4 u_base_color;
@@ -31,6 +40,9 @@ const int MAT_LIGHT_PROXY = 4;
 
 void main()
 {
+#ifdef LIGHTVIEW_COUNT_FRAGMENTS
+    atomicAdd(lightview_counted.fragments, 1u);
+#endif
     if ((u_mat_flags & MAT_LIGHT_PROXY) != 0)
         discard;
     float metallic = clamp(u_metallic_roughness.x, 0.0, 1.0), rough = clamp(u_metallic_roughness.y, 0.0, 1.0);

@@ -4,7 +4,7 @@
 # column, the limit from roofline.csv, the rate and the efficiency from those and the fetches -- the
 # bars chart is drawn per scene, vpl's gather counts agree between two visibilities, the models of
 # vct, vpl (both gathers), ispm (its caustic passes too), lightmap, radiosity (its display too) and
-# the renderer's own passes (the G-buffer, the compose) hold across their rows, and a broken
+# the renderer's own passes (the shadow maps, the G-buffer, the compose) hold across their rows, and a broken
 # roofline.csv is bad input naming its file and line.
 . tests/e2e/lib.sh
 export EGL_PLATFORM=surfaceless
@@ -57,6 +57,15 @@ for e in eff:
 PY
 check "efficiency.csv: every number recomputed from bench.csv and roofline.csv" \
     python3 "$TMP/recompute.py" "$TMP/b/bench.csv" "$EFF" "$TMP/roofline.csv" vct_cones
+# $TMP/fetches.py reads a bench_rows run's fetches by (pass, kind) and row for the checks below.
+cat >"$TMP/fetches.py" <<'PY'
+import csv
+def by_row(path, knob):
+    f = {}
+    for e in csv.DictReader(open(path)):
+        f.setdefault((e["pass"], e["kind"]), {})[e[knob]] = float(e["fetches"])
+    return f
+PY
 # bench_rows DIR KEY WHAT ARGS...: a bench of two rows (ARGS: the scene, method and sweep) at 80x60
 # over the round-number roofline into $TMP/DIR, every number of its efficiency.csv recomputed (KEY:
 # the swept knob that tells the two rows apart)
@@ -74,12 +83,17 @@ eff = list(csv.DictReader(open(sys.argv[1])))
 passes = {(e["vct_cones"], e["pass"]) for e in eff}
 # each row: the cone trace, the voxelizer's atomics, the injection's shadow fetches and the mips'
 # loads (rebuilt each frame), the direct pass's shadow lookups (cornell's light is shadowed), and the
-# renderer's G-buffer fragments and compose lookups
+# renderer's G-buffer fragments and compose lookups, and the shadow maps' fragments (--rebuild-gi
+# renders them every frame too)
 assert passes == {(c, p) for c in ("4", "9")
                   for p in ("gi.vct_trace", "gi.vct_voxelize", "gi.vct_inject", "gi.vct_mips", "direct",
-                            "gbuffer", "compose")}, passes
-# the cones do not change the voxels: the same voxelization, injection and mips at both counts
-for p in ("gi.vct_voxelize", "gi.vct_inject", "gi.vct_mips"):
+                            "gbuffer", "compose", "shadow.shadow_depth", "gi.blend_hold")}, passes
+# the GI cross-fade's copy of the image before GI (render_work.c; tests/gpu/test_gi_blend.c): one
+# texel a pixel in every GI row (gi_blend=4 by default); the bench cuts between rows, so no row blends
+assert all(float(e["fetches"]) == 80 * 60 for e in eff if e["pass"] == "gi.blend_hold"), eff
+# the cones do not change the voxels nor the light's view: the same voxelization, injection, mips
+# and shadow maps at both counts
+for p in ("gi.vct_voxelize", "gi.vct_inject", "gi.vct_mips", "shadow.shadow_depth"):
     f = {e["vct_cones"]: float(e["fetches"]) for e in eff if e["pass"] == p}
     assert f["4"] == f["9"] > 0, (p, f)
 # the default shadows (PCSS) read the depth map only, at the depth kind's limit
@@ -113,13 +127,19 @@ for e in csv.DictReader(open(sys.argv[1])):
         f[(e["vpl_vis"], e["kind"])] = float(e["fetches"])
     # the VAL maps: fragments at the fill rate, their depth draws' (counted) and the basis pass's
     # (res^2 per map), the same maps under both visibilities (tests/gpu/test_vpl_work.c replays them)
-    if e["pass"] == "gi.vpl_valsm":
-        assert e["kind"] == "raster_r16f_depth_fill", e
+    if e["pass"] == "gi.vpl_valsm" and e["kind"] == "raster_r16f_depth_fill":
         f[(e["vpl_vis"], "valsm")] = float(e["fetches"])
+    # ... and their mips (vpl_work.c, from the parameters; tests/gpu/test_vpl_work.c hand-counts
+    # them): VSM's one 16-bit moment chain, CSSM's 2 RGBA8 and 3 16-bit chains, of the same maps
+    if e["pass"] == "gi.vpl_valsm" and e["kind"] != "raster_r16f_depth_fill":
+        f[(e["vpl_vis"], "mips", e["kind"])] = float(e["fetches"])
 u, h = "tex2d_rgba32f_nearest", "tex2d_rgba16f_trilinear"
 assert f[("vsm", u)] > 0 and f[("vsm", u)] == f[("cssm", u)], f
 assert f[("vsm", h)] > 0 and f[("vsm", h)] == f[("cssm", "tex2d_rgba8_trilinear")] - 2 * f[("cssm", h)] / 3, f
 assert f[("vsm", "valsm")] > 64 * 64 and f[("vsm", "valsm")] == f[("cssm", "valsm")], f
+m16, m8 = "tex2d_rgba16f_trilinear", "tex2d_rgba8_trilinear"
+assert ("vsm", "mips", m8) not in f and f[("vsm", "mips", m16)] % 1365 == 0, f   # 1365 texels a map at 64^2
+assert f[("cssm", "mips", m16)] == 3 * f[("vsm", "mips", m16)] and f[("cssm", "mips", m8)] == 2 * f[("vsm", "mips", m16)], f
 PY
 # the multi-resolution gather counts its regions' VPL loops (tests/gpu/test_vpl_work.c: regions x the
 # dense gather's reads a pixel): both gathers' rows recomputed; the VAL maps do not depend on the gather
@@ -138,6 +158,21 @@ assert f[("multires", "gi.vpl_gather", u)] > f[("interleaved", "gi.vpl_gather", 
 v = ("gi.vpl_valsm", "raster_r16f_depth_fill")
 assert f[("multires",) + v] == f[("interleaved",) + v] > 0, f
 PY
+# the blur's and the compose's texels (vpl_work.c; tests/gpu/test_vpl_work.c replays the blur's taps
+# and hand-counts the compose): they read the targets the gather leaves, whose positions and normals
+# are the G-buffer's whatever the gather and the visibility, so each is the same in both rows of the
+# visibility run and of the gather run; the blur at most 2 passes x (2 + 3 per tap) at each of the
+# 40x30 indirect pixels (vpl_res=0.5, vpl_blur=4: 9 taps), the compose at most 12 a pixel of 80x60
+check "vpl_blur and vpl_compose: their texels the same under both visibilities and both gathers" \
+    env PYTHONPATH="$TMP" python3 - "$TMP/v/efficiency.csv" vpl_vis "$TMP/m/efficiency.csv" vpl_gather <<'PY'
+import sys
+from fetches import by_row
+for path, knob in zip(sys.argv[1::2], sys.argv[2::2]):
+    f = by_row(path, knob)
+    blur, compose = f[("gi.vpl_blur", "tex2d_rgba32f_nearest")], f[("gi.vpl_compose", "tex2d_rgba32f_nearest")]
+    assert len(set(blur.values())) == 1 and 0 < min(blur.values()) <= 2 * 40 * 30 * (2 + 3 * 9), (path, blur)
+    assert len(set(compose.values())) == 1 and 0 < min(compose.values()) <= 12 * 80 * 60, (path, compose)
+PY
 # ispm's diffuse indirect part is vpl's (its passes by vpl's models): the same at any photon count
 bench_rows i ispm_photons "ispm at two photon counts" --scenes caustic-ring --methods ispm \
     --sweep "'ispm_photons=1024,4096'"
@@ -153,6 +188,9 @@ assert ("gi.vpl_valsm", "raster_r16f_depth_fill") in f and ("gi.vpl_gather", "te
 caustic = {("gi.ispm_lists", "ssbo_r32ui_atomic"), ("gi.ispm_trace", "ssbo_rgba32f_load"),
            ("gi.ispm_splat", "raster_r16f_depth_fill")}
 assert caustic <= set(f), f
+# the RSM's fragments (tests/gpu/test_ispm_work.c replays them): the light's view of the ring, the
+# same at both photon counts (checked with vpl's passes below), at most a few times its 256^2 texels
+assert 0 < f[("gi.ispm_photons", "raster_r16f_depth_fill")]["1024"] <= 4 * 256 * 256, f
 for k, v in f.items():
     if k not in caustic or k[0] == "gi.ispm_lists":
         assert v["1024"] == v["4096"] > 0, (k, v)
@@ -254,19 +292,11 @@ assert f.get(("plane", u), 0.0) % 4 == 0, f
 print("# vpl_gather fetches (off / on / plane): R16F %g / %g / %g, RGBA32F %g / %g / %g" % (
     f.get(("off", u), 0.0), f[("on", u)], f.get(("plane", u), 0.0), f[("off", p)], f[("on", p)], f[("plane", p)]))
 PY
-# $TMP/fetches.py reads a bench_rows run's fetches by (pass, kind) and row for the checks below.
-cat >"$TMP/fetches.py" <<'PY'
-import csv
-def by_row(path, knob):
-    f = {}
-    for e in csv.DictReader(open(path)):
-        f.setdefault((e["pass"], e["kind"]), {})[e[knob]] = float(e["fetches"])
-    return f
-PY
 # lgv's passes (app/gi/lgv/lgv_work.c), the maps rendered each frame (--rebuild-gi), without and with
 # the gathering iterations: the maps' fragments and the lookup's volume reads do not depend on them,
 # the gathering's loads grow by 2 x (4 per neighbour pair + 3 per cell), whose pairs and cells must be
-# those of a grid of at most 32 cells a side (lgv_size=32)
+# those of a grid of at most 32 cells a side (lgv_size=32); the maps' min mips and the geometry volume
+# (tests/gpu/test_lgv.c hand-counts both on the furnace box)
 bench_rows lg lgv_iters "lgv with 0 and 2 gathering iterations" --scenes glass --methods lgv \
     --sweep "'lgv_iters=0,2'" --budget lgv_photons=16384 --rebuild-gi
 check "lgv: each pass's kinds, the maps and lookup alike in both rows, the gathering's loads a grid's" \
@@ -275,13 +305,25 @@ import sys
 from fetches import by_row
 f = by_row(sys.argv[1], "lgv_iters")
 assert {k for k in f if k[0].startswith("gi.")} == {
-    ("gi.lgv_maps", "raster_r16f_depth_fill"), ("gi.lgv_trace", "tex2d_r32ui_nearest"),
+    ("gi.blend_hold", "tex2d_rgba32f_nearest"),
+    ("gi.lgv_maps", "raster_r16f_depth_fill"), ("gi.lgv_maps", "image3d_rgba16f_load"),
+    ("gi.lgv_gather", "tex2d_r32ui_nearest"), ("gi.lgv_gather", "ssbo_r32ui_atomic"),
+    ("gi.lgv_trace", "tex2d_r32ui_nearest"),
     ("gi.lgv_trace", "ssbo_r32ui_atomic"), ("gi.lgv_gather", "ssbo_rgba32f_load"),
     ("gi.lgv_sslgv", "ssbo_r32ui_atomic"), ("gi.lgv_sslgv", "ssbo_rgba32f_load"),
     ("gi.lgv_sslgv", "tex2d_depth32f_nearest"), ("gi.lgv_lookup", "tex3d_rgba16f_trilinear"),
     ("gi.lgv_lookup", "tex2d_rgba16f_trilinear")}, sorted(f)
-for k in (("gi.lgv_maps", "raster_r16f_depth_fill"), ("gi.lgv_lookup", "tex3d_rgba16f_trilinear")):
+for k in (("gi.lgv_maps", "raster_r16f_depth_fill"), ("gi.lgv_maps", "image3d_rgba16f_load"),
+          ("gi.lgv_lookup", "tex3d_rgba16f_trilinear")):
     assert f[k]["0"] == f[k]["2"] > 0, (k, f[k])
+# the min mips: 4 loads per texel of levels 1 and 2 of the 6 faces of each map at lgv_map_res=64
+assert f[("gi.lgv_maps", "image3d_rgba16f_load")]["0"] % (4 * 6 * (32 * 32 + 16 * 16)) == 0, f
+# the geometry volume, rebuilt with the maps only where the gathering iterates (the occlusion): a
+# distance read per texel of the 6 faces of each lattice map (64^2), 3 atomics per texel that sees
+# an opaque surface (glass transmits)
+reads, atomics = f[("gi.lgv_gather", "tex2d_r32ui_nearest")], f[("gi.lgv_gather", "ssbo_r32ui_atomic")]
+assert set(reads) == set(atomics) == {"2"} and reads["2"] % (6 * 64 * 64) == 0, (reads, atomics)
+assert 0 < atomics["2"] <= 3 * reads["2"] and atomics["2"] % 3 == 0, (reads, atomics)
 # the lookup: 3 volume reads per shaded pixel, at most every pixel of 80x60
 look = f[("gi.lgv_lookup", "tex3d_rgba16f_trilinear")]["0"]
 assert look % 3 == 0 and look <= 3 * 80 * 60, look
@@ -311,8 +353,21 @@ assert rays["0.25"] == rays["0.5"] and lines["0.25"] == lines["0.5"] > 0 and spl
     (rays, lines, splats)
 texels = 2 * 256 * 256
 assert texels <= rays["0.25"] <= texels * (1 + 64 + 32 + 10 + 2), rays
+# the light views' fragments (tests/gpu/test_vc_work.c hand-counts them): 3 views of 256^2 per light,
+# each filled by the room at least once (measured 552 228 = 1.40 x 3 x 2 x 256^2), alike in both rows
+views = f[("gi.vc_light", "raster_r16f_depth_fill")]
+assert views["0.25"] == views["0.5"] >= 3 * texels, views
 for march, (w, h) in (("0.25", (20, 15)), ("0.5", (40, 30))):
     assert w * h < air[march] <= w * h * (1 + 48 * 2), (march, air)
+# the composite (tests/gpu/test_vc_work.c hand-counts it): per pixel of 80x60 two depth reads, one
+# bilinear airlight lookup (its image upsampled, whatever its resolution), one lines' texel and one
+# surface caustics' texel where a surface is
+comp = {k: f[("gi.vc_composite", k)] for k in ("tex2d_depth32f_nearest", "tex2d_rgba16f_trilinear",
+                                               "tex2d_rgba32f_nearest")}
+for march in ("0.25", "0.5"):
+    assert comp["tex2d_depth32f_nearest"][march] == 2 * 80 * 60, comp
+    assert comp["tex2d_rgba16f_trilinear"][march] == 80 * 60, comp
+    assert 80 * 60 < comp["tex2d_rgba32f_nearest"][march] <= 2 * 80 * 60, comp
 PY
 # the renderer's own passes (app/render/render_work.c; tests/gpu/test_render_work.c hand-counts
 # them): the G-buffer's fragments follow the render size, the compose reads the HDR image once per
@@ -339,6 +394,41 @@ for d in sys.argv[1:]:
         assert g["1"] > 40 * 30 and abs(g["0.5"] / g["1"] - 0.25) < 0.02, g
     else:
         assert len(set(n for _, _, n in rows["gbuffer"])) == 1, (d, rows)
+PY
+# the shadow maps' depth draws (render_work.c; tests/gpu/test_shadow_map_work.c hand-counts them):
+# a shadow sweep renders them every frame; their fragments at the fill rate, the same light's view
+# at both sizes, so 4 x the fragments at twice the size, but for the texels whose centres an edge
+# crosses (measured 2 805 040 / 699 995 = 4.007 on cornell; bound 0.02, 3 x that); nothing counted
+# in the runs above that keep a static scene's maps
+bench_rows sm shadow_map "the shadow maps at two sizes" --scenes cornell --methods none \
+    --sweep "'shadow_map=512,1024'"
+check "shadow.shadow_depth: 4 x the fragments at twice the map size, only where the maps are drawn" \
+    env PYTHONPATH="$TMP" python3 - "$TMP/sm/efficiency.csv" $TMP/v $TMP/m $TMP/i $TMP/l $TMP/r $TMP/s <<'PY'
+import csv, sys
+from fetches import by_row
+f = by_row(sys.argv[1], "shadow_map")[("shadow.shadow_depth", "raster_r16f_depth_fill")]
+assert f["512"] > 0 and abs(f["1024"] / f["512"] - 4) < 0.02, f
+for d in sys.argv[2:]:
+    assert not [e for e in csv.DictReader(open(d + "/efficiency.csv")) if e["pass"].startswith("shadow")], d
+PY
+# the glass pass (render_work.c; tests/gpu/test_render_work.c hand-counts it): per glass fragment
+# one depth read, per one in front of the opaque scene two lookups of the image behind, and the copy
+# of that image, one lookup a pixel of the render size -- so W x H <= lookups <= W x H + 2 x depth
+# reads; at half the scale about a quarter of the fragments (measured 132 / 526 on glass at 80x60,
+# 0.251; bound 0.03, the glass sphere's rim pixels at this size); no glass pass on cornell
+bench_rows g render_scale "the glass pass at two render scales" --scenes glass --methods none \
+    --sweep "'render_scale=0.5,1'"
+check "glass: a depth read per fragment, two lookups per visible one and the copy's one a pixel" \
+    env PYTHONPATH="$TMP" python3 - "$TMP/g/efficiency.csv" $TMP/s $TMP/sm <<'PY'
+import csv, sys
+from fetches import by_row
+f = by_row(sys.argv[1], "render_scale")
+depth, look = f[("glass", "tex2d_depth32f_nearest")], f[("glass", "tex2d_rgba16f_trilinear")]
+for scale, (w, h) in (("0.5", (40, 30)), ("1", (80, 60))):
+    assert depth[scale] > 0 and w * h < look[scale] <= w * h + 2 * depth[scale], (scale, depth, look)
+assert abs(depth["0.5"] / depth["1"] - 0.25) < 0.03, depth
+for d in sys.argv[2:]:
+    assert not [e for e in csv.DictReader(open(d + "/efficiency.csv")) if e["pass"] == "glass"], d
 PY
 printf 'name,format,size,fetches,median_ms,fetches_per_s\ntex3d_rgba16f_trilinear,rgba16f,64,1,1,fast\n' >"$TMP/bad.csv"
 expect_exit 2 "a roofline.csv with a rate that is not a number" "$GIKIOSK" bench --scenes cornell --methods vct \

@@ -54,26 +54,35 @@ static int teardown(void **state)
 
 static float lum(const float *p) { return 0.2126f * p[0] + 0.7152f * p[1] + 0.0722f * p[2]; }
 
-/* Draws FRAMES frames: method_a/pins_a before SWITCH, method_b/pins_b from it on; img[f] gets each
-   frame's linear image (RGBA, W x H). common: pins of both sides (gi_blend). */
-static void draw_run(const char *common, const char *method_a, const char *pins_a, const char *method_b,
-                     const char *pins_b, float *img[FRAMES])
+/* A renderer on the Cornell box and the budgets of the two sides of a switch: `common` pinned in
+   both, pins_a in a, pins_b in b. */
+static gk_renderer *open_switch(const char *common, const char *pins_a, const char *pins_b, gk_budget *a, gk_budget *b)
 {
     gk_err e = {0};
     gk_render_opts o = {.width = W, .height = H, .gles_version = 31, .shader_dir = getenv("GK_SHADER_DIR")};
     gk_renderer *r = gk_renderer_create(&o, &e);
     assert_non_null(r);
     assert_int_equal(gk_renderer_set_scene(r, T.scene, &e), 0);
-    gk_budget a, b;
-    gk_budget_init(&a);
-    gk_budget_init(&b);
-    gk_renderer_declare_knobs(r, &a);
-    gk_renderer_declare_knobs(r, &b);
+    gk_budget_init(a);
+    gk_budget_init(b);
+    gk_renderer_declare_knobs(r, a);
+    gk_renderer_declare_knobs(r, b);
     char list[256];
     snprintf(list, sizeof list, "%s%s%s", common, pins_a[0] ? "," : "", pins_a);
-    assert_true(gk_budget_pin_list(&a, list, &e) >= 0);
+    assert_true(gk_budget_pin_list(a, list, &e) >= 0);
     snprintf(list, sizeof list, "%s%s%s", common, pins_b[0] ? "," : "", pins_b);
-    assert_true(gk_budget_pin_list(&b, list, &e) >= 0);
+    assert_true(gk_budget_pin_list(b, list, &e) >= 0);
+    return r;
+}
+
+/* Draws FRAMES frames: method_a/pins_a before SWITCH, method_b/pins_b from it on; img[f] gets each
+   frame's linear image (RGBA, W x H). common: pins of both sides (gi_blend). */
+static void draw_run(const char *common, const char *method_a, const char *pins_a, const char *method_b,
+                     const char *pins_b, float *img[FRAMES])
+{
+    gk_err e = {0};
+    gk_budget a, b;
+    gk_renderer *r = open_switch(common, pins_a, pins_b, &a, &b);
     for (int f = 0; f < FRAMES; f++) {
         bool after = f >= SWITCH;
         gk_frame_params fp = {.time_s = 0, .method = after ? method_b : method_a, .budget = after ? &b : &a};
@@ -192,6 +201,48 @@ static void render_scale_step_is_faded(void **state)
                  0.005);
 }
 
+/* The cross-fade's work (app/render/render_work.c, #21) against a hand count: in every frame with GI
+   and gi_blend > 1 the copy of the image before GI reads one texel a pixel (gi.blend_hold: W x H);
+   in a frame of a transition the blend reads three a pixel (gi.blend: 3 W x H); at render_scale 0.5
+   both count the render size's pixels; nothing is reported unless the frame counts. Cornell has no
+   occlusion texture (gi.occlusion does not run). */
+static double cross_fade_work(gk_renderer *r, const char *pass)
+{
+    gk_pass_work w[GK_MAX_PASS_WORK];
+    int n = gk_renderer_pass_work(r, "vct", w, GK_MAX_PASS_WORK);
+    for (int i = 0; i < n; i++)
+        if (!strcmp(w[i].pass, pass))
+            return w[i].fetches;
+    return -1.0;
+}
+
+static void cross_fade_work_by_hand(void **state)
+{
+    (void)state;
+    static const char *const scales[2] = {"1", "0.5"};
+    for (int k = 0; k < 2; k++) {
+        gk_err e = {0};
+        char common[64];
+        snprintf(common, sizeof common, "gi_blend=4,render_scale=%s", scales[k]);
+        gk_budget a, b;
+        gk_renderer *r = open_switch(common, "vct_mips=aniso", "vct_mips=iso", &a, &b);
+        double px = k == 0 ? (double)W * H : (double)(W / 2) * (H / 2);
+        for (int f = 0; f < 3; f++) {
+            assert_true(gk_renderer_count_work(r, f > 0));
+            gk_frame_params fp = {.time_s = 0, .method = "vct", .budget = f < 2 ? &a : &b};
+            gk_frame_report rep;
+            if (gk_renderer_draw(r, &fp, T.fb.fbo, &rep, &e) != 0)
+                fail_msg("frame %d: %s", f, e.msg);
+            double hold = cross_fade_work(r, "gi.blend_hold"), blend = cross_fade_work(r, "gi.blend");
+            printf("# render_scale=%s, frame %d%s: blend_hold %.0f, blend %.0f texels\n", scales[k], f,
+                   f == 2 ? " (the switch)" : "", hold, blend);
+            assert_true(hold == (f == 0 ? -1.0 : px));          /* frame 0 does not count */
+            assert_true(blend == (f == 2 ? 3.0 * px : -1.0));   /* only the switch's frame blends */
+        }
+        gk_renderer_destroy(r);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -199,6 +250,7 @@ int main(void)
         cmocka_unit_test(method_switch_off_is_faded),
         cmocka_unit_test(method_switch_on_is_faded),
         cmocka_unit_test(render_scale_step_is_faded),
+        cmocka_unit_test(cross_fade_work_by_hand),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -73,6 +73,7 @@ static void counting_frame(const char *budget)
     assert_true(work_of("gi.ispm_trace", "ssbo_rgba32f_load") < 0.0); /* not a counting frame */
     assert_true(work_of("gi.ispm_splat", "raster_r16f_depth_fill") < 0.0);
     assert_true(work_of("gi.ispm_upsample", "tex2d_rgba32f_nearest") < 0.0);
+    assert_true(work_of("gi.ispm_photons", "raster_r16f_depth_fill") < 0.0);
     H.count_work = true;
     assert_int_equal(ih_frame(&H), 0);
     H.count_work = false;
@@ -325,10 +326,37 @@ static void list_atomics_by_hand(void **state)
     assert_true(ispm_list_atomics(0, 0) == 0.0);
 }
 
+/* The RSM's fragments (gi.ispm_photons) against a replay of its rasterization: the light sits below
+   the mirror's level and the RSM is framed on the mirror's bounding sphere, so its frustum holds the
+   mirror and nothing else (the floor lies below its lower edge); the mirror's corners projected by
+   the RSM's view (ispm_state's, as rsm.vert projects them) and snapped to the rasterizer's sub-pixel
+   bits, their quad's texel centres counted. */
+static void rsm_fragments_match_a_replay(void **state)
+{
+    (void)state;
+    counting_frame("ispm_trace=64");
+    const ispm_state *s = H.self;
+    static const float corner[4][2] = {{-0.2f, -0.2f}, {0.2f, -0.2f}, {0.2f, 0.2f}, {-0.2f, 0.2f}};
+    double q[4][2];
+    for (int k = 0; k < 4; k++) {
+        vec4 p = m4_vec4(s->light.vp, (vec4){corner[k][0], 1.0f, corner[k][1], 1.0f});
+        for (int a = 0; a < 2; a++) {
+            q[k][a] = ((double)((a ? p.y : p.x) / p.w) + 1.0) * 0.5 * ISPM_RSM_RES;
+            q[k][a] = round(q[k][a] * SUBPIXELS) / SUBPIXELS;
+        }
+    }
+    long replay = quad_covered(q, ISPM_RSM_RES, ISPM_RSM_RES);
+    double counted = work_of("gi.ispm_photons", "raster_r16f_depth_fill");
+    printf("# RSM %d^2: %.0f fragments counted, %ld replayed (the mirror)\n", ISPM_RSM_RES, counted, replay);
+    assert_true(replay > 0 && replay < ISPM_RSM_RES * ISPM_RSM_RES);
+    assert_true(counted == (double)replay);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(list_atomics_by_hand),
+        cmocka_unit_test(rsm_fragments_match_a_replay),
         cmocka_unit_test(lists_trace_and_splat_match_replays),
     };
     return cmocka_run_group_tests_name("ispm_work", tests, setup, teardown);

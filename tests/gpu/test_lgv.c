@@ -1261,6 +1261,16 @@ static void work_counts_on_the_furnace_box(void **state)
     double maps = work_of("gi.lgv_maps", "raster_r16f_depth_fill");
     printf("# furnace, %d maps of 32^2: %.0f fragments counted\n", st->n_maps, maps);
     assert_true(maps == 6.0 * 32 * 32 * st->n_maps);
+    /* the min mips in the same pass: 4 loads per texel of levels 1 (16^2) and 2 (8^2) of every face */
+    assert_true(work_of("gi.lgv_maps", "image3d_rgba16f_load") == 4.0 * 6 * (16 * 16 + 8 * 8) * st->n_maps);
+    /* the geometry volume, built in this first frame's gathering (2 iterations: the occlusion): one
+       distance read per texel of each lattice map, and 3 opacity atomics for each, every texel
+       seeing a wall of the closed box */
+    double geo_reads = work_of("gi.lgv_gather", "tex2d_r32ui_nearest");
+    printf("# furnace: %.0f geometry distance reads, %.0f atomics\n", geo_reads,
+           work_of("gi.lgv_gather", "ssbo_r32ui_atomic"));
+    assert_true(geo_reads == 6.0 * 32 * 32 * st->n_maps);
+    assert_true(work_of("gi.lgv_gather", "ssbo_r32ui_atomic") == 3.0 * geo_reads);
     /* the lookup: 3 trilinear volume reads and 3 filtered SSLGV reads (128 wide < 160) per pixel it
        shades, the pixels where it wrote (alpha 1 over the cleared 0) */
     double shaded = 0;

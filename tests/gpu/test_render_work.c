@@ -6,7 +6,11 @@
  * y = 1.5 over the half x > 0 facing away, single-sided (culled: no fragments). So the G-buffer
  * draws rasterize W x H + (W / 2) x H fragments at render size W x H, and the compose reads the HDR
  * image once per output pixel whatever the render scale (the upsample). Without count_work nothing
- * is reported. */
+ * is reported. The glass pass on a second scene seen the same way: an opaque floor, a glass quad
+ * over the half x < 0 at y = 1 (in front) and one under the half x > 0 at y = -0.5 (hidden by the
+ * floor), both facing the camera: every glass fragment reads the G-buffer's depth once, W x H in all,
+ * and the W/2 x H in front look up the image behind twice, plus the pass's copy of that image, one
+ * lookup a pixel: 2 W x H lookups. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -51,6 +55,20 @@ static int teardown(void **state)
     gk_target_destroy(&FB);
     gkt_gl_close(&G);
     return 0;
+}
+
+/* The glass scene: the floor and the two glass halves under the same camera. */
+static void glass_halves(gkt_scene *t)
+{
+    gkt_scene_init(t, "render-work-glass");
+    int grey = gkt_material_lambert(t, v3(0.5f, 0.5f, 0.5f)), glass = gkt_material(t, v3(1, 1, 1), 0.0f, 0.0f);
+    t->mats[glass].transmission = 1.0f;
+    gkt_quad(t, v3(-10, 1, -10), v3(0, 1, -10), v3(0, 1, 10), v3(-10, 1, 10), v3(0, 1, 0), glass);
+    gkt_quad(t, v3(0, -0.5f, -10), v3(10, -0.5f, -10), v3(10, -0.5f, 10), v3(0, -0.5f, 10), v3(0, 1, 0), glass);
+    gkt_quad(t, v3(-10, 0, -10), v3(10, 0, -10), v3(10, 0, 10), v3(-10, 0, 10), v3(0, 1, 0), grey);
+    gkt_camera(t, v3(0, 2, 0), v3(0, 0, 0), 60.0f * (float)M_PI / 180.0f);
+    gkt_scene_bounds(t);
+    t->s.features.has_transmission = true; /* what gk_scene_derive_features finds in a loaded scene */
 }
 
 typedef struct counted {
@@ -116,12 +134,57 @@ static void half_scale_halves_the_gbuffer_not_the_compose(void **state)
     assert_true(c.compose == (double)W * H); /* the bilinear upsample: one lookup per output pixel */
 }
 
+/* The glass pass's reads by kind in one frame of method none, counting or not (-1: none reported). */
+static void glass_work(gkt_scene *t, bool count, double *depth, double *lookups)
+{
+    gk_err e = {0};
+    gk_render_opts o = {.width = W, .height = H, .gles_version = 31, .shader_dir = getenv("GK_SHADER_DIR")};
+    gk_renderer *r = gk_renderer_create(&o, &e);
+    assert_non_null(r);
+    assert_int_equal(gk_renderer_set_scene(r, &t->s, &e), 0);
+    assert_true(gk_renderer_count_work(r, count));
+    gk_frame_params fp = {.time_s = 0, .method = "none"};
+    gk_frame_report rep;
+    if (gk_renderer_draw(r, &fp, FB.fbo, &rep, &e) != 0)
+        fail_msg("glass: %s", e.msg);
+    assert_true(gk_frame_report_find(&rep, "glass") >= 0); /* the pass ran */
+    gk_pass_work w[GK_MAX_PASS_WORK];
+    int n = gk_renderer_pass_work(r, "none", w, GK_MAX_PASS_WORK);
+    *depth = *lookups = -1.0;
+    for (int i = 0; i < n; i++)
+        if (!strcmp(w[i].pass, "glass")) {
+            if (!strcmp(w[i].kind, "tex2d_depth32f_nearest"))
+                *depth = w[i].fetches;
+            else if (!strcmp(w[i].kind, "tex2d_rgba16f_trilinear"))
+                *lookups = w[i].fetches;
+            else
+                fail_msg("glass: kind %s", w[i].kind);
+        }
+    printf("# glass%s: %.0f depth reads, %.0f lookups\n", count ? "" : " (not counting)", *depth, *lookups);
+    gk_renderer_destroy(r);
+}
+
+static void glass_reads_depth_per_fragment_and_the_image_behind_per_visible_one(void **state)
+{
+    (void)state;
+    gkt_scene t;
+    glass_halves(&t);
+    double depth, lookups;
+    glass_work(&t, false, &depth, &lookups);
+    assert_true(depth == -1.0 && lookups == -1.0);
+    glass_work(&t, true, &depth, &lookups);
+    assert_true(depth == (double)W * H);
+    assert_true(lookups == 2.0 * (W / 2) * H + (double)W * H);
+    gkt_scene_free(&t);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(nothing_counted_unless_asked),
         cmocka_unit_test(gbuffer_fragments_and_compose_lookups_at_full_scale),
         cmocka_unit_test(half_scale_halves_the_gbuffer_not_the_compose),
+        cmocka_unit_test(glass_reads_depth_per_fragment_and_the_image_behind_per_visible_one),
     };
     return cmocka_run_group_tests_name("render_work", tests, setup, teardown);
 }

@@ -115,6 +115,16 @@ static void val_map_fragments_match_a_replay(void **state)
         assert_true(s->st.m > 0 && replay > 0);
         assert_true(fabs(counted - (double)replay) <= TOLERANCE * (double)replay);
         assert_true(valsm_fragments() == counted + (double)basis);
+        /* the mips, a hand count: one lookup per texel of levels 1.. of each map in use, VSM's one
+           moment chain at 64² (32² + ... + 1² = 1365 a map), CSSM's 2 RGBA8 and 3 16-bit chains at
+           128² (5461 a map) */
+        double rgba8 = tpw_fetches(H.m, H.self, "gi.vpl_valsm", "tex2d_rgba8_trilinear");
+        double f16 = tpw_fetches(H.m, H.self, "gi.vpl_valsm", "tex2d_rgba16f_trilinear");
+        print_message("# mips: %.0f RGBA8 and %.0f 16-bit lookups\n", rgba8, f16);
+        if (b == 0)
+            assert_true(rgba8 < 0.0 && f16 == 1365.0 * s->st.m);
+        else
+            assert_true(rgba8 == 2 * 5461.0 * s->st.m && f16 == 3 * 5461.0 * s->st.m);
     }
 }
 
@@ -159,11 +169,93 @@ static void multires_gather_counts_regions(void **state)
     gk_vpl_set_debug(H.self, &d);
 }
 
+/* RGBA of one of the gather's targets (attachment 1: positions, 2: normals), iw x ih floats x 4 */
+static float *read_ind_target(const vpl_state *s, int attachment)
+{
+    float *px = malloc(sizeof(float) * 4 * (size_t)s->iw * (size_t)s->ih);
+    assert_non_null(px);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, s->ind_fbo);
+    glReadBuffer(GL_COLOR_ATTACHMENT0 + (GLenum)attachment);
+    glReadPixels(0, 0, s->iw, s->ih, GL_RGBA, GL_FLOAT, px);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    return px;
+}
+
+/* vpl/blur.frag's texel reads, replayed over the targets the gather wrote (read back): per pixel and
+   pass its position, its normal where it is a surface, and per tap of the row or column inside the
+   image the tap's position, its normal where it is a surface, its irradiance where the normals
+   agree (dot > 0.8; no cross-fade here, so no history read). */
+static long replay_blur(const vpl_state *s, const float *pos, const float *nrm)
+{
+    long texels = 0;
+    int w = s->iw, h = s->ih, r = s->blur_radius;
+    for (int pass = 0; pass < 2; pass++)
+        for (int y = 0; y < h; y++)
+            for (int x = 0; x < w; x++) {
+                const float *pc = pos + 4 * ((size_t)y * w + x), *nc = nrm + 4 * ((size_t)y * w + x);
+                texels += pc[3] <= 0.0f ? 1 : 2;
+                if (pc[3] <= 0.0f)
+                    continue;
+                for (int k = -r; k <= r; k++) {
+                    int ox = x + (pass == 0) * k, oy = y + (pass == 1) * k;
+                    if (ox < 0 || oy < 0 || ox >= w || oy >= h)
+                        continue;
+                    size_t o = 4 * ((size_t)oy * w + ox);
+                    texels += pos[o + 3] <= 0.0f ? 1 : 2;
+                    if (pos[o + 3] > 0.0f && nrm[o] * nc[0] + nrm[o + 1] * nc[1] + nrm[o + 2] * nc[2] > 0.8f)
+                        texels++;
+                }
+            }
+    return texels;
+}
+
+/* The blur (gi.vpl_blur) against the replay of its taps, at two indirect resolutions and radii; the
+   compose (gi.vpl_compose) against a hand count: the camera is inside the box, so every pixel is
+   shaded and every texel of the indirect targets is a surface (checked on the read-back positions),
+   so each pixel reads its 2x2 taps' position, normal and irradiance: 12 x W x H. Neither depends on
+   the gather (interleaved or multires) that filled the targets. Exact: the same reads, counted. */
+static void blur_and_compose_reads_match_a_replay(void **state)
+{
+    (void)state;
+    gk_vpl_debug d;
+    gk_vpl_default_debug(&d);
+    d.fade_frames = 0; /* no cross-fade: the blur reads no history */
+    gk_vpl_set_debug(H.self, &d);
+    static const char *const budgets[] = {"vpl_n=256,vpl_m=4,vpl_res=0.5,vpl_blur=2",
+                                          "vpl_n=256,vpl_m=8,vpl_res=1,vpl_blur=8",
+                                          "vpl_n=256,vpl_m=8,vpl_res=0.5,vpl_blur=4,vpl_gather=multires"};
+    for (int b = 0; b < 3; b++) {
+        assert_int_equal(h_budget(&H, budgets[b]), 0);
+        assert_int_equal(h_frame(&H, 0), 0);
+        assert_true(tpw_fetches(H.m, H.self, "gi.vpl_blur", "tex2d_rgba32f_nearest") < 0.0); /* not counting */
+        H.count_work = true;
+        assert_int_equal(h_frame(&H, 0), 0);
+        H.count_work = false;
+        const vpl_state *s = H.self;
+        float *pos = read_ind_target(s, 1), *nrm = read_ind_target(s, 2);
+        long surfaces = 0, replay = replay_blur(s, pos, nrm);
+        for (int i = 0; i < s->iw * s->ih; i++)
+            surfaces += pos[4 * i + 3] > 0.0f;
+        free(pos);
+        free(nrm);
+        double blur = tpw_fetches(H.m, H.self, "gi.vpl_blur", "tex2d_rgba32f_nearest");
+        double compose = tpw_fetches(H.m, H.self, "gi.vpl_compose", "tex2d_rgba32f_nearest");
+        print_message("# %s: indirect %dx%d, radius %d: blur %.0f texels counted, %ld replayed; compose %.0f\n",
+                      budgets[b], s->iw, s->ih, s->blur_radius, blur, replay, compose);
+        assert_true(surfaces == (long)s->iw * s->ih);
+        assert_true(replay > 2L * 2 * s->iw * s->ih && blur == (double)replay);
+        assert_true(compose == 12.0 * W * HH);
+    }
+    gk_vpl_default_debug(&d);
+    gk_vpl_set_debug(H.self, &d);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(val_map_fragments_match_a_replay),
         cmocka_unit_test(multires_gather_counts_regions),
+        cmocka_unit_test(blur_and_compose_reads_match_a_replay),
     };
     return cmocka_run_group_tests_name("vpl_work", tests, setup, teardown);
 }

@@ -92,6 +92,7 @@ typedef struct ispm_state {
     unsigned work_trace_loads, work_list_fragments, work_list_dropped;
     gk_counters splat_fragments;
     gk_counters upsample_fetches;   /* the upsample's splat texels */
+    gk_counters rsm_fragments;      /* the RSM's fragments (ispm/rsm.frag) */
 } ispm_state;
 
 /* ispm_photons.c: frames the light onto the specular geometry, renders the RSM, builds the mask
@@ -121,6 +122,8 @@ void ispm_work_splat_end(ispm_state *s);
 /* The same around the upsample's draw. */
 const char *ispm_work_upsample_begin(ispm_state *s);
 void ispm_work_upsample_end(ispm_state *s);
+const char *ispm_work_rsm_begin(ispm_state *s);
+void ispm_work_rsm_end(ispm_state *s);
 void ispm_work_counters(ispm_state *s, unsigned trace_loads, unsigned list_fragments, unsigned list_dropped);
 /* ll_build.frag's storage-buffer atomics for `fragments` frustum fragments of which `dropped` found
    the pool full */

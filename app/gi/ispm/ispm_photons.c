@@ -131,10 +131,12 @@ static int ensure_photons(ispm_state *s)
 
 static int render_rsm(ispm_state *s, const gk_gi_frame *f, gk_err *e)
 {
-    GLuint prog = gk_program_get(s->ctx.programs, "ispm/rsm.vert", "ispm/rsm.frag", NULL, e);
+    GLuint prog = gk_program_get(s->ctx.programs, "ispm/rsm.vert", "ispm/rsm.frag", ispm_work_rsm_begin(s), e);
     const rsm_uniforms *u = prog ? gk_program_uniforms(s->ctx.programs, prog, GK_FIELDS(rsm_fields), sizeof *u, e) : NULL;
-    if (!u)
+    if (!u) {
+        ispm_work_rsm_end(s);
         return -1;
+    }
     glBindFramebuffer(GL_FRAMEBUFFER, s->rsm_fbo);
     const GLenum bufs[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
     glDrawBuffers(3, bufs);
@@ -152,6 +154,7 @@ static int render_rsm(ispm_state *s, const gk_gi_frame *f, gk_err *e)
     glUniformMatrix4fv(u->u_light_vp, 1, GL_FALSE, s->light.vp.m);
     glUniform3f(u->u_light_pos, s->light.pos.x, s->light.pos.y, s->light.pos.z);
     int rc = f->draw_scene(f->draw_ctx, prog, e);
+    ispm_work_rsm_end(s);
     glDisable(GL_DEPTH_TEST);
     return rc;
 }

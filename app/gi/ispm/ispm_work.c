@@ -22,7 +22,10 @@
  * The lists' and the trace's numbers are read back with the frame's other counters, synchronously in
  * a counting frame (not one frame late). tests/gpu/test_ispm_work.c checks them against a hand count
  * (the lists, the upsample's taps) and CPU replays (the march, the quads' rasterization).
- * ispm_photons (the RSM, the mask pyramid, the emission) has no model. */
+ * ispm_photons: the RSM is rasterized, its fragments (the scene in the light's frustum framed on the
+ * specular geometry, discarded ones included) counted by rsm.frag's variant (RSM_COUNT_FRAGMENTS),
+ * at the fill rate; the mask pyramid and the emission's compute passes that follow it in the same
+ * pass are not counted (tests/gpu/test_ispm_work.c replays the RSM's rasterization of the mirror). */
 #include "ispm_internal.h"
 
 /* ll_build.frag's atomics per fragment kept in the lists and per fragment the full pool dropped */
@@ -34,6 +37,7 @@ void ispm_work_frame(ispm_state *s, const gk_gi_frame *f)
     s->work_counted = false;
     s->splat_fragments.counted = false; /* a frame without splats reports none */
     s->upsample_fetches.counted = false;
+    s->rsm_fragments.counted = false;
 }
 
 const char *ispm_work_splat_begin(ispm_state *s)
@@ -52,6 +56,14 @@ const char *ispm_work_upsample_begin(ispm_state *s)
 }
 
 void ispm_work_upsample_end(ispm_state *s) { gk_counters_end(&s->upsample_fetches); }
+
+const char *ispm_work_rsm_begin(ispm_state *s)
+{
+    /* ispm/rsm.frag RsmFragments */
+    return gk_counters_variant(&s->rsm_fragments, s->counting, 1, 6, "#define RSM_COUNT_FRAGMENTS 1\n");
+}
+
+void ispm_work_rsm_end(ispm_state *s) { gk_counters_end(&s->rsm_fragments); }
 
 void ispm_work_counters(ispm_state *s, unsigned trace_loads, unsigned list_fragments, unsigned list_dropped)
 {
@@ -72,8 +84,11 @@ double ispm_list_atomics(unsigned fragments, unsigned dropped)
 int ispm_caustic_work(const ispm_state *s, gk_pass_work *out, int max)
 {
     int n = 0;
+    if (s->rsm_fragments.counted && s->rsm_fragments.value[0] > 0.0 && n < max)
+        out[n++] = (gk_pass_work){.pass = "gi.ispm_photons", .kind = "raster_r16f_depth_fill",
+                                  .fetches = s->rsm_fragments.value[0]};
     if (!s->work_counted)
-        return 0;
+        return n;
     double atomics = ispm_list_atomics(s->work_list_fragments, s->work_list_dropped);
     if (s->tier == GK_ISPM_TIER_LISTS && atomics > 0.0 && n < max)
         out[n++] = (gk_pass_work){.pass = "gi.ispm_lists", .kind = "ssbo_r32ui_atomic", .fetches = atomics};
@@ -93,4 +108,5 @@ void ispm_work_free(ispm_state *s)
 {
     gk_counters_free(&s->splat_fragments);
     gk_counters_free(&s->upsample_fetches);
+    gk_counters_free(&s->rsm_fragments);
 }

@@ -53,6 +53,9 @@ const gk_lgv_stats *gk_lgv_get_stats(void *self);
 int gk_lgv_probe(void *self, const float *rays, int n, float *hits, double *fetches, gk_err *e);
 /* The gathering pass's storage-buffer loads in vec4s (lgv_work.c): LGV dims, iterations, occlusion. */
 double gk_lgv_gather_loads(const int dims[3], int iters, bool occlusion);
+/* The min mips' image loads (lgv_work.c): 4 per texel of levels 1 .. levels - 1 of `layers` layers of
+   res² (mip_min.comp). */
+double gk_lgv_mip_loads(int res, int layers, int levels);
 /* Map centres of the current scene (xyz, w) and their count (lattice first, then refractors, then
  * the refractors' exit maps). */
 int gk_lgv_centres(const void *self, float *out, int cap);

@@ -24,12 +24,15 @@ int lgv_build_geometry(lgv_state *s, gk_err *e)
     if (s->geo_ssbo && s->geo_cell == s->cell && !memcmp(gd, s->geo_dims, sizeof gd) && s->geo_maps_stamp == s->maps_stamp)
         return 0;
     gk_program_cache *pc = s->ctx.programs;
-    GLuint prog = gk_program_get_compute(pc, "lgv/lgv_geometry.comp", NULL, e);
+    const char *count = lgv_work_begin(s, LGV_WORK_GEOMETRY);
+    GLuint prog = gk_program_get_compute(pc, "lgv/lgv_geometry.comp", count[0] ? count : NULL, e);
     const geometry_uniforms *u = prog ? gk_program_uniforms(pc, prog, GK_FIELDS(geometry_fields), sizeof *u, e) : NULL;
     GLuint merge = u ? gk_program_get_compute(pc, "lgv/lgv_geometry_max.comp", NULL, e) : 0;
     const merge_uniforms *mu = merge ? gk_program_uniforms(pc, merge, GK_FIELDS(merge_fields), sizeof *mu, e) : NULL;
-    if (!mu)
+    if (!mu) {
+        lgv_work_end(s, LGV_WORK_GEOMETRY);
         return -1;
+    }
     long values = 3L * gd[0] * gd[1] * gd[2];
     s->geo_ssbo = lgv_buffer(s->geo_ssbo, values * 4, true);
     GLuint tmp = lgv_buffer(0, values * 4, true);
@@ -37,6 +40,7 @@ int lgv_build_geometry(lgv_state *s, gk_err *e)
         glUseProgram(prog);
         if (lgv_bind_tracer(s, prog, e) != 0) {
             glDeleteBuffers(1, &tmp);
+            lgv_work_end(s, LGV_WORK_GEOMETRY);
             return -1;
         }
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, tmp);
@@ -55,6 +59,7 @@ int lgv_build_geometry(lgv_state *s, gk_err *e)
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
     glDeleteBuffers(1, &tmp);
+    lgv_work_end(s, LGV_WORK_GEOMETRY);
     memcpy(s->geo_dims, gd, sizeof gd);
     s->geo_cell = s->cell;
     s->geo_maps_stamp = s->maps_stamp;

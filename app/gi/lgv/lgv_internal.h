@@ -45,7 +45,7 @@ enum { LGV_ST_RAYS = 0, LGV_ST_INJECTED = 1, LGV_ST_CAUSTIC = 2, LGV_ST_ESCAPED 
 #define LGV_KNOBS 6
 
 /* The passes with a counting variant (lgv_work.c) */
-enum { LGV_WORK_TRACE, LGV_WORK_MAPS, LGV_WORK_SSLGV, LGV_WORK_LOOKUP, LGV_WORK_N };
+enum { LGV_WORK_TRACE, LGV_WORK_MAPS, LGV_WORK_SSLGV, LGV_WORK_LOOKUP, LGV_WORK_GEOMETRY, LGV_WORK_N };
 
 typedef struct lgv_state {
     gk_gi_context ctx;

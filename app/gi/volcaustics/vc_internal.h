@@ -17,7 +17,8 @@
 #define VC_GLASS_STEPS 32
 
 /* The passes with a counting variant (vc_work.c) */
-enum { VC_WORK_RAYGEN, VC_WORK_LINES, VC_WORK_SURFACE, VC_WORK_AIRLIGHT, VC_WORK_N };
+enum { VC_WORK_RAYGEN, VC_WORK_LINES, VC_WORK_SURFACE, VC_WORK_AIRLIGHT, VC_WORK_COMPOSITE, VC_WORK_LIGHTVIEW,
+       VC_WORK_N };
 
 /* A light whose reflections or refractions make a volume caustic this frame (vc_light.c). */
 typedef struct vc_light {

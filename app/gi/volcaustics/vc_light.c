@@ -9,6 +9,7 @@
  * whose view frames the specular objects; the light views are shared, each light keeps its own
  * caustic buffer for the lines pass (vc_lines.c). */
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "medium_uniforms.h"
@@ -229,21 +230,30 @@ int vc_light_rays(vc_state *s, const gk_gi_frame *f, int *n_lines, gk_err *e)
     if (f->scene_changed)
         vc_specular_bounds(s, f->scene);
     s->st.caustic_lights = 0;
-    const char *raygen_defines = vc_work_begin(s, VC_WORK_RAYGEN); /* one count over every light's rays */
+    /* one count over every light's rays, one over every light's views */
+    const char *raygen_defines = vc_work_begin(s, VC_WORK_RAYGEN), *view_count = vc_work_begin(s, VC_WORK_LIGHTVIEW);
+    char front[96], nospec[96], back[96];
+    snprintf(front, sizeof front, "#define VC_WITH_SPECULAR 1\n%s", view_count);
+    snprintf(nospec, sizeof nospec, "#define VC_NO_SPECULAR 1\n%s", view_count);
+    snprintf(back, sizeof back, "#define VC_BACK_FACES 1\n%s", view_count);
+    int rc = 0;
     for (int i = 0; i < f->n_lights && *n_lines < s->max_lights && *n_lines < VC_MAX_LIGHTS; i++) {
         vc_light *L = &s->light[*n_lines];
         frame_light(s, f, i, L);
         if (!L->ok)
             continue;
-        if (ensure_buffers(s, *n_lines + 1, e) ||
-            light_view(s, f, L, &s->lv, "#define VC_WITH_SPECULAR 1\n", false, e) ||
-            light_view(s, f, L, &s->lv_nospec, "#define VC_NO_SPECULAR 1\n", false, e) ||
-            light_view(s, f, L, &s->lv_back, "#define VC_BACK_FACES 1\n", true, e) ||
-            generate_rays(s, f, L, &s->cb[*n_lines], raygen_defines, e))
-            return -1;
+        if (ensure_buffers(s, *n_lines + 1, e) || light_view(s, f, L, &s->lv, front, false, e) ||
+            light_view(s, f, L, &s->lv_nospec, nospec, false, e) || light_view(s, f, L, &s->lv_back, back, true, e) ||
+            generate_rays(s, f, L, &s->cb[*n_lines], raygen_defines, e)) {
+            rc = -1;
+            break;
+        }
         ++*n_lines;
     }
     vc_work_end(s, VC_WORK_RAYGEN);
+    vc_work_end(s, VC_WORK_LIGHTVIEW);
+    if (rc)
+        return -1;
     s->st.caustic_lights = *n_lines;
     s->st.light_ok = *n_lines > 0;
     return 0;

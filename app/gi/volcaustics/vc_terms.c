@@ -4,6 +4,7 @@
  * one multiplies it by the medium's transmittances (C), one adds A (bilinear), B and the surface
  * caustics of (C) (composite.frag). */
 #include <math.h>
+#include <stdio.h>
 
 #include "medium_uniforms.h"
 #include "vc_internal.h"
@@ -171,10 +172,16 @@ int vc_composite(vc_state *s, const gk_gi_frame *f, bool have_lines, bool have_s
     glEnable(GL_BLEND);
     glBlendEquation(GL_FUNC_ADD);
     glBlendFunc(GL_ZERO, GL_SRC_COLOR);   /* C = HDR x T(v, p) T(s, p) */
-    if (composite_draw(s, f, "#define VC_ATTENUATE 1\n", have_lines, have_surface, e))
-        return -1;
-    glBlendFunc(GL_ONE, GL_ONE);          /* + A + B */
-    int rc = composite_draw(s, f, "#define VC_ADD 1\n", have_lines, have_surface, e);
+    const char *count = vc_work_begin(s, VC_WORK_COMPOSITE); /* one count over both draws */
+    char defines[96];
+    snprintf(defines, sizeof defines, "#define VC_ATTENUATE 1\n%s", count);
+    int rc = composite_draw(s, f, defines, have_lines, have_surface, e);
+    if (rc == 0) {
+        glBlendFunc(GL_ONE, GL_ONE);          /* + A + B */
+        snprintf(defines, sizeof defines, "#define VC_ADD 1\n%s", count);
+        rc = composite_draw(s, f, defines, have_lines, have_surface, e);
+    }
+    vc_work_end(s, VC_WORK_COMPOSITE);
     glDisable(GL_BLEND);
     return rc;
 }

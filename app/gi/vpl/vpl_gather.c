@@ -205,7 +205,8 @@ void vpl_bind_visibility(vpl_state *s, const vpl_gather_uniforms *u)
     glUniform1i(u->u_umbra, s->zmax != 0 && s->vis != GK_VPL_VIS_EXACT ? s->map_umbra : VPL_UMBRA_OFF);
 }
 
-int vpl_gather(vpl_state *s, const gk_gi_frame *f, float fade, gk_err *e)
+/* The gather (interleaved, or multires) at the indirect resolution into ind_tex, pos_tex, nrm_tex. */
+static int gather(vpl_state *s, const gk_gi_frame *f, gk_err *e)
 {
     int iw = (int)lrintf((float)f->width * s->res_scale), ih = (int)lrintf((float)f->height * s->res_scale);
     iw = iw < 1 ? 1 : iw, ih = ih < 1 ? 1 : ih;
@@ -215,16 +216,20 @@ int vpl_gather(vpl_state *s, const gk_gi_frame *f, float fade, gk_err *e)
     glDisable(GL_BLEND);
     glDisable(GL_CULL_FACE);
     glBindVertexArray(s->empty_vao);
-    if (s->multires ? vpl_gather_multires(s, f, e) : interleaved(s, f, e))
-        return -1;
+    return s->multires ? vpl_gather_multires(s, f, e) : interleaved(s, f, e);
+}
+
+/* Geometry-aware blur, horizontal into blur_tex, vertical into out_tex[cur]. */
+static int blur(vpl_state *s, const gk_gi_frame *f, float fade, gk_err *e)
+{
     glBindVertexArray(s->empty_vao);
     glViewport(0, 0, s->iw, s->ih);
-
-    /* Geometry-aware blur, horizontal into blur_tex, vertical into out_tex[cur]. */
-    GLuint b = gk_program_get(s->ctx.programs, "common/fullscreen.vert", "vpl/blur.frag", NULL, e);
+    GLuint b = gk_program_get(s->ctx.programs, "common/fullscreen.vert", "vpl/blur.frag", vpl_work_blur_begin(s, f), e);
     const blur_uniforms *ub = b ? gk_program_uniforms(s->ctx.programs, b, GK_FIELDS(blur_fields), sizeof *ub, e) : NULL;
-    if (!ub)
+    if (!ub) {
+        vpl_work_blur_end(s);
         return -1;
+    }
     glUseProgram(b);
     const GLenum b1[1] = {GL_COLOR_ATTACHMENT0};
     vpl_bind_tex(1, GL_TEXTURE_2D, s->pos_tex, ub->u_pos);
@@ -242,12 +247,22 @@ int vpl_gather(vpl_state *s, const gk_gi_frame *f, float fade, gk_err *e)
         glUniform1f(ub->u_fade, pass == 1 && s->have_hist ? fade : 1.0f);
         glDrawArrays(GL_TRIANGLES, 0, 3);
     }
+    vpl_work_blur_end(s);
+    return 0;
+}
 
-    /* Compose: L += ρ_d/π · E into the renderer's HDR image. */
-    GLuint c = gk_program_get(s->ctx.programs, "common/fullscreen.vert", "vpl/compose.frag", NULL, e);
+/* Compose: L += ρ_d/π · E into the renderer's HDR image. */
+static int compose(vpl_state *s, const gk_gi_frame *f, gk_err *e)
+{
+    GLuint c = gk_program_get(s->ctx.programs, "common/fullscreen.vert", "vpl/compose.frag", vpl_work_compose_begin(s, f),
+                              e);
     const compose_uniforms *uc = c ? gk_program_uniforms(s->ctx.programs, c, GK_FIELDS(compose_fields), sizeof *uc, e) : NULL;
-    if (!uc)
+    if (!uc) {
+        vpl_work_compose_end(s);
         return -1;
+    }
+    int cur = s->cur;
+    const GLenum b1[1] = {GL_COLOR_ATTACHMENT0};
     glBindFramebuffer(GL_FRAMEBUFFER, f->hdr_fbo);
     glDrawBuffers(1, b1);
     glViewport(0, 0, f->width, f->height);
@@ -263,6 +278,7 @@ int vpl_gather(vpl_state *s, const gk_gi_frame *f, float fade, gk_err *e)
     glUniform1f(uc->u_sigma, 0.05f * s->diam);
     glUniform3f(uc->u_origin, s->origin[0], s->origin[1], s->origin[2]);
     glDrawArrays(GL_TRIANGLES, 0, 3);
+    vpl_work_compose_end(s);
     glDisable(GL_BLEND);
     glBindVertexArray(0);
     glActiveTexture(GL_TEXTURE0);
@@ -270,6 +286,26 @@ int vpl_gather(vpl_state *s, const gk_gi_frame *f, float fade, gk_err *e)
     s->cur = 1 - cur;
     s->have_hist = true;
     return 0;
+}
+
+/* Steps 9-11, each a pass of the renderer's clock (nested under `gi`), so that each has its own
+   time beside its own work model (vpl_work.c). */
+int vpl_gather(vpl_state *s, const gk_gi_frame *f, float fade, gk_err *e)
+{
+    gk_pass_begin(f->pass, "vpl_gather");
+    int rc = gather(s, f, e);
+    gk_pass_end(f->pass);
+    if (rc == 0) {
+        gk_pass_begin(f->pass, "vpl_blur");
+        rc = blur(s, f, fade, e);
+        gk_pass_end(f->pass);
+    }
+    if (rc == 0) {
+        gk_pass_begin(f->pass, "vpl_compose");
+        rc = compose(s, f, e);
+        gk_pass_end(f->pass);
+    }
+    return rc;
 }
 
 void vpl_free_gpu(vpl_state *s)

@@ -69,7 +69,10 @@ typedef struct vpl_state {
     /* the bench's counts (vpl_work.c): the gather's fetches, the VAL maps' fragments */
     gk_counters gather_fetches; /* unfiltered RGBA32F, filtered RGBA8, filtered 16-bit float, R16F */
     gk_counters map_fragments;  /* fragments vpl/val_depth.frag shaded */
+    gk_counters blur_fetches;   /* texels the geometry-aware blur's two passes read (vpl/blur.frag) */
+    gk_counters compose_fetches; /* texels the compose's upsample reads (vpl/compose.frag) */
     long map_basis_fragments;   /* the basis pass's, res² per map (not counted: a full-screen pass) */
+    double map_mip_lookups[2];  /* the maps' mip chains' bilinear lookups: RGBA8, 16-bit (from the parameters) */
 } vpl_state;
 
 /* vpl_rsm.c: RSM of every light + VPL generation + readback into st.vpl; returns VPL count. */
@@ -79,7 +82,7 @@ int vpl_build_maps(vpl_state *s, const gk_gi_frame *f, const gk_val *emitters, i
 void vpl_free_maps(vpl_state *s);
 /* Uploads VPLs (with labels) and the emitter table the gather reads. */
 void vpl_upload(vpl_state *s, const gk_val *emitters, int count);
-/* vpl_gather.c: gather + blur + compose into f->hdr_fbo. */
+/* vpl_gather.c: gather + blur + compose into f->hdr_fbo, the passes vpl_gather, vpl_blur, vpl_compose. */
 int vpl_gather(vpl_state *s, const gk_gi_frame *f, float fade, gk_err *e);
 void vpl_free_gpu(vpl_state *s);
 /* vpl_multires.c: min–max mips, per-level gather of valid regions, interpolation into s->ind_tex
@@ -95,6 +98,15 @@ void vpl_work_end(vpl_state *s);
 /* The same around the VAL maps' depth draws (vpl_valmap.c; the define val_depth.frag adds). */
 const char *vpl_work_maps_begin(vpl_state *s, const gk_gi_frame *f);
 void vpl_work_maps_end(vpl_state *s, long basis_fragments);
+/* After the maps' glGenerateMipmap: `rgba8` and `f16` chains (RG32F moments counted with the 16-bit
+   ones) of res² for `layers` maps. */
+void vpl_work_maps_mips(vpl_state *s, int res, int layers, int rgba8, int f16);
+/* The same around the blur's two passes and the compose (vpl_gather.c): the define blur.frag or
+   compose.frag adds, NULL when not counting. */
+const char *vpl_work_blur_begin(vpl_state *s, const gk_gi_frame *f);
+void vpl_work_blur_end(vpl_state *s);
+const char *vpl_work_compose_begin(vpl_state *s, const gk_gi_frame *f);
+void vpl_work_compose_end(vpl_state *s);
 int vpl_pass_work(void *self, gk_pass_work *out, int max);
 void vpl_work_free(vpl_state *s);
 /* Largest value an indirect target stores (fp16 saturates at 65504; fp32: no cap). */

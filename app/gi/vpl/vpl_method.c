@@ -242,10 +242,7 @@ static int render(void *self, const gk_gi_frame *f, gk_err *e)
         fade = (float)(s->dbg.fade_frames - st->fade_left + 1) / (float)(s->dbg.fade_frames + 1);
         st->fade_left--;
     }
-    gk_pass_begin(f->pass, "vpl_gather");
-    rc = vpl_gather(s, f, fade, e);
-    gk_pass_end(f->pass);
-    if (rc)
+    if (vpl_gather(s, f, fade, e)) /* its passes vpl_gather, vpl_blur, vpl_compose */
         return -1;
     s->frame_index++;
     GLenum err = glGetError();

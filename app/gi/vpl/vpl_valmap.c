@@ -254,6 +254,7 @@ int vpl_build_maps(vpl_state *s, const gk_gi_frame *f, const gk_val *em, int cou
         glBindTexture(GL_TEXTURE_2D_ARRAY, mipped[i]);
         glGenerateMipmap(GL_TEXTURE_2D_ARRAY);
     }
+    vpl_work_maps_mips(s, res, count, vsm ? 0 : 2, vsm ? 1 : 3); /* the maps in use */
     return 0;
 }
 

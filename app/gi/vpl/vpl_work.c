@@ -14,8 +14,22 @@
  * paraboloid (and what the negative half-space discards costs as much), so val_depth.frag counts
  * them (VAL_COUNT_FRAGMENTS, one atomic add per fragment in the same untimed frame); the CSSM/VSM
  * basis pass is one full-screen triangle per map, res² fragments each, added from the parameters.
- * The mips (glGenerateMipmap) are not modelled. tests/gpu/test_vpl_work.c replays the depth draws'
- * rasterization on the CPU. */
+ * The mips (glGenerateMipmap of the basis or moment chains, and CSSM's depth) are modelled from the
+ * parameters as one bilinear lookup of level l - 1 per texel of level l >= 1 of each map in use
+ * (vpl_work_maps_mips), by the chain's format: RGBA8 (CSSM's cos/sin bases), 16-bit (its z bases,
+ * depth, and VSM's moments, RG32F ones included). The driver mips every allocated layer
+ * (GK_VPL_MAX_M), so the efficiency shows that waste. tests/gpu/test_vpl_work.c replays the depth
+ * draws' rasterization on the CPU and hand-counts the mips.
+ * The geometry-aware blur (vpl_blur) and the compose (vpl_compose) read the indirect-resolution
+ * targets (RGBA32F, or RGBA16F without float render targets), unfiltered: the blur per pixel its
+ * position (and normal where it is a surface), per tap inside the image its position, then its
+ * normal where it is a surface, then its irradiance where the normals agree (and last frame's
+ * result where the cross-fade mixes it in); the compose per shaded pixel its 2x2 upsample taps'
+ * positions, and their normals and irradiance where they are surfaces. Which taps pass the tests
+ * depends on the data, so blur.frag and compose.frag count them (BLUR_COUNT_FETCHES,
+ * VPL_COMPOSE_COUNT_FETCHES) in the same untimed frame; the compose's G-buffer reads are not
+ * counted. tests/gpu/test_vpl_work.c replays the blur's taps over the targets read back and
+ * hand-counts the compose's 12 a pixel inside the box. */
 #include "vpl_internal.h"
 
 const char *vpl_work_begin(vpl_state *s, const gk_gi_frame *f)
@@ -29,6 +43,7 @@ void vpl_work_end(vpl_state *s) { gk_counters_end(&s->gather_fetches); }
 
 const char *vpl_work_maps_begin(vpl_state *s, const gk_gi_frame *f)
 {
+    s->map_mip_lookups[0] = s->map_mip_lookups[1] = 0.0;
     s->map_fragments.n = 1;
     s->map_fragments.binding = 6; /* vpl/val_depth.frag ValFragments (the gather's comes later) */
     return gk_counters_begin(&s->map_fragments, f->count_work) ? "#define VAL_COUNT_FRAGMENTS 1\n" : "";
@@ -39,6 +54,30 @@ void vpl_work_maps_end(vpl_state *s, long basis_fragments)
     gk_counters_end(&s->map_fragments);
     s->map_basis_fragments = basis_fragments;
 }
+
+void vpl_work_maps_mips(vpl_state *s, int res, int layers, int rgba8, int f16)
+{
+    double texels = 0.0;
+    for (int r = res / 2; r >= 1; r /= 2)
+        texels += (double)r * r;
+    s->map_mip_lookups[0] = texels * layers * rgba8;
+    s->map_mip_lookups[1] = texels * layers * f16;
+}
+
+/* One counter at binding 6 (blur.frag's and compose.frag's block) each. */
+const char *vpl_work_blur_begin(vpl_state *s, const gk_gi_frame *f)
+{
+    return gk_counters_variant(&s->blur_fetches, f->count_work, 1, 6, "#define BLUR_COUNT_FETCHES 1\n");
+}
+
+void vpl_work_blur_end(vpl_state *s) { gk_counters_end(&s->blur_fetches); }
+
+const char *vpl_work_compose_begin(vpl_state *s, const gk_gi_frame *f)
+{
+    return gk_counters_variant(&s->compose_fetches, f->count_work, 1, 6, "#define VPL_COMPOSE_COUNT_FETCHES 1\n");
+}
+
+void vpl_work_compose_end(vpl_state *s) { gk_counters_end(&s->compose_fetches); }
 
 int vpl_pass_work(void *self, gk_pass_work *out, int max)
 {
@@ -55,6 +94,15 @@ int vpl_pass_work(void *self, gk_pass_work *out, int max)
     double fragments = s->map_fragments.value[0] + (double)s->map_basis_fragments;
     if (s->map_fragments.counted && fragments > 0.0 && n < max)
         out[n++] = (gk_pass_work){.pass = "gi.vpl_valsm", .kind = "raster_r16f_depth_fill", .fetches = fragments};
+    static const char *const mip_kinds[2] = {"tex2d_rgba8_trilinear", "tex2d_rgba16f_trilinear"};
+    for (int k = 0; k < 2 && s->map_fragments.counted; k++)
+        if (s->map_mip_lookups[k] > 0.0 && n < max)
+            out[n++] = (gk_pass_work){.pass = "gi.vpl_valsm", .kind = mip_kinds[k], .fetches = s->map_mip_lookups[k]};
+    if (s->blur_fetches.counted && s->blur_fetches.value[0] > 0.0 && n < max)
+        out[n++] = (gk_pass_work){.pass = "gi.vpl_blur", .kind = "tex2d_rgba32f_nearest", .fetches = s->blur_fetches.value[0]};
+    if (s->compose_fetches.counted && s->compose_fetches.value[0] > 0.0 && n < max)
+        out[n++] = (gk_pass_work){.pass = "gi.vpl_compose", .kind = "tex2d_rgba32f_nearest",
+                                  .fetches = s->compose_fetches.value[0]};
     return n;
 }
 
@@ -62,4 +110,6 @@ void vpl_work_free(vpl_state *s)
 {
     gk_counters_free(&s->gather_fetches);
     gk_counters_free(&s->map_fragments);
+    gk_counters_free(&s->blur_fetches);
+    gk_counters_free(&s->compose_fetches);
 }

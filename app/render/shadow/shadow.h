@@ -57,6 +57,8 @@ typedef struct gk_shadow_ctx {
     int subdiv;                   /* level of the knob shadow_subdiv (VSSM), resolved by the renderer */
     const gk_pass_ctx *pass;      /* the renderer's pass context: a method's sub-passes (depth maps,
                                      prefilters) nest under `shadow` on its clock; NULL in tests */
+    const char *count_define;     /* the depth draws' counting variant (the bench's counting frame,
+                                     app/render/render_work.c), NULL or "" in every other frame */
 } gk_shadow_ctx;
 
 typedef struct gk_shadow_method {

@@ -64,8 +64,10 @@ static int render_maps(gk_shadow_maps *m, const gk_shadow_ctx *ctx, int slot, co
         return gk_fail(e, GK_ERUNTIME, "shadow slot %d out of range", slot);
     if (ensure_texture(m, slot, v->map_size, v->n_faces, e) != 0)
         return -1;
-    GLuint prog = gk_program_get(ctx->progs, "shadow/depth.vert", "shadow/depth.frag",
-                                 gk_scene_gpu_depth_defines(ctx->scene), e);
+    const char *mask = gk_scene_gpu_depth_defines(ctx->scene), *count = ctx->count_define;
+    char defines[96];
+    snprintf(defines, sizeof defines, "%s%s", mask ? mask : "", count ? count : "");
+    GLuint prog = gk_program_get(ctx->progs, "shadow/depth.vert", "shadow/depth.frag", defines[0] ? defines : NULL, e);
     const depth_uniforms *u = prog ? gk_program_uniforms(ctx->progs, prog, GK_FIELDS(depth_fields), sizeof *u, e) : NULL;
     if (!u)
         return -1;

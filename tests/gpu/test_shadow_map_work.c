@@ -1,0 +1,177 @@
+/* The shadow maps' work model (app/render/render_work.c, #21: `shadow.shadow_depth`, the depth draws'
+ * fragments) against hand counts, on scenes whose coverage from the light is known by construction.
+ * The depth draws do not cull faces, and with the counting atomic the depth test runs after the
+ * shader, so every surface a face's frustum sees counts once per map texel it covers, hidden or not:
+ *   - a spot light 2 m over a floor that fills its one perspective face, looking straight down (its
+ *     map's u along world x, so the plane x = 0 falls on the boundary between the middle columns),
+ *     and two half planes between them: x < 0 at y = 1 facing up and x > 0 at y = 1.5 facing down
+ *     (the G-buffer would cull one of them, the depth draws draw both): S² + 2 x (S / 2) x S = 2 S²;
+ *   - a point light inside a closed box (off centre): every direction of each of the 6 cube faces
+ *     meets exactly one wall, so 6 S²; a rect light there, one-sided, skips its back face: 5 S².
+ * The count is the same under every shadow method (they share the depth maps), scales with the
+ * map's size, is reported only by a counting frame, and only by a frame that renders the maps (a
+ * static scene's next frame reuses them). */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "common/gl_fixture.h"
+#include "render/renderer.h"
+
+#define W 64
+#define H 48
+
+static gk_target FB;
+static gkt_gl G;
+
+static int setup(void **state)
+{
+    (void)state;
+    if (gkt_gl_open(&G) != 0)
+        return -1;
+    const GLenum fmt = GL_RGBA8;
+    return gkt_target(&FB, "shadow map work", W, H, 1, &fmt, false);
+}
+
+static int teardown(void **state)
+{
+    (void)state;
+    gk_target_destroy(&FB);
+    gkt_gl_close(&G);
+    return 0;
+}
+
+/* The floor and the two half planes under a spot light at (0, 2, 0) looking down (45 degree cone:
+   one perspective face of half angle 47.9 degrees, 2.2 m across on the floor, inside its 20 m). */
+static void spot_over_halves(gkt_scene *t)
+{
+    gkt_scene_init(t, "shadow-work-spot");
+    int grey = gkt_material_lambert(t, v3(0.5f, 0.5f, 0.5f));
+    gkt_quad(t, v3(-10, 1, -10), v3(0, 1, -10), v3(0, 1, 10), v3(-10, 1, 10), v3(0, 1, 0), grey);
+    gkt_quad(t, v3(0, 1.5f, -10), v3(10, 1.5f, -10), v3(10, 1.5f, 10), v3(0, 1.5f, 10), v3(0, -1, 0), grey);
+    gkt_quad(t, v3(-10, 0, -10), v3(10, 0, -10), v3(10, 0, 10), v3(-10, 0, 10), v3(0, 1, 0), grey);
+    gkt_light(t, GK_LIGHT_SPOT, GK_SHAPE_POINT, 10.0f, v3(0, 2, 0), v3(0, -1, 0));
+    gkt_camera(t, v3(0, 3, 3), v3(0, 0, 0), 1.0f);
+    gkt_scene_bounds(t);
+}
+
+/* The inside of the box [-1, 1]³ (six quads facing in, sharing their corners exactly, so that no
+   texel is covered by two walls or by none) lit by `shape` at an off-centre point facing down. */
+static void light_in_box(gkt_scene *t, enum gk_light_shape shape)
+{
+    gkt_scene_init(t, "shadow-work-box");
+    int grey = gkt_material_lambert(t, v3(0.5f, 0.5f, 0.5f));
+    for (int axis = 0; axis < 3; axis++)
+        for (int side = -1; side <= 1; side += 2) {
+            vec3 c[4];
+            for (int k = 0; k < 4; k++) {
+                float p[3];
+                p[axis] = (float)side;
+                p[(axis + 1) % 3] = k == 0 || k == 3 ? -1.0f : 1.0f;
+                p[(axis + 2) % 3] = k < 2 ? -1.0f : 1.0f;
+                c[k] = v3(p[0], p[1], p[2]);
+            }
+            float in[3] = {0, 0, 0};
+            in[axis] = (float)-side;
+            gkt_quad(t, c[0], c[1], c[2], c[3], v3(in[0], in[1], in[2]), grey);
+        }
+    gk_light *l = gkt_light(t, GK_LIGHT_POINT, shape, 10.0f, v3(0.2f, 0.6f, -0.3f), v3(0, -1, 0));
+    if (shape == GK_SHAPE_RECT)
+        l->size[0] = l->size[1] = 0.2f;
+    gkt_camera(t, v3(0, 0, 0.9f), v3(0, -0.5f, 0), 1.2f);
+    gkt_scene_bounds(t);
+}
+
+/* The shadow maps' counted fragments in each of `frames` frames of method none at `pins` (-1: no
+   shadow.shadow_depth entry), counting or not. */
+static void map_fragments(gkt_scene *t, const char *pins, bool count, int frames, double *out)
+{
+    gk_err e = {0};
+    gk_render_opts o = {.width = W, .height = H, .gles_version = 31, .shader_dir = getenv("GK_SHADER_DIR")};
+    gk_renderer *r = gk_renderer_create(&o, &e);
+    assert_non_null(r);
+    assert_int_equal(gk_renderer_set_scene(r, &t->s, &e), 0);
+    gk_budget b;
+    gk_budget_init(&b);
+    gk_renderer_declare_knobs(r, &b);
+    assert_true(gk_budget_pin_list(&b, pins, &e) >= 0);
+    assert_true(gk_renderer_count_work(r, count));
+    for (int f = 0; f < frames; f++) {
+        gk_frame_params fp = {.time_s = 0, .method = "none", .budget = &b};
+        gk_frame_report rep;
+        if (gk_renderer_draw(r, &fp, FB.fbo, &rep, &e) != 0)
+            fail_msg("%s: %s", pins, e.msg);
+        gk_pass_work w[GK_MAX_PASS_WORK];
+        int n = gk_renderer_pass_work(r, "none", w, GK_MAX_PASS_WORK);
+        out[f] = -1.0;
+        for (int i = 0; i < n; i++)
+            if (!strcmp(w[i].pass, "shadow.shadow_depth")) {
+                assert_string_equal(w[i].kind, "raster_r16f_depth_fill");
+                out[f] = w[i].fetches;
+            }
+        printf("# %s %s%s, frame %d: %.0f fragments\n", t->s.name, pins, count ? "" : " (not counting)", f, out[f]);
+    }
+    gk_renderer_destroy(r);
+}
+
+static double one_frame(gkt_scene *t, const char *pins)
+{
+    double n;
+    map_fragments(t, pins, true, 1, &n);
+    return n;
+}
+
+static void nothing_counted_unless_asked_nor_when_the_maps_are_kept(void **state)
+{
+    (void)state;
+    gkt_scene t;
+    spot_over_halves(&t);
+    double n[2];
+    map_fragments(&t, "shadow=hard,shadow_map=256", false, 1, n);
+    assert_true(n[0] == -1.0);
+    map_fragments(&t, "shadow=hard,shadow_map=256", true, 2, n);
+    assert_true(n[0] == 2.0 * 256 * 256);
+    assert_true(n[1] == -1.0); /* the static scene's second frame draws no map */
+    gkt_scene_free(&t);
+}
+
+static void spot_face_counts_every_surface_in_its_frustum(void **state)
+{
+    (void)state;
+    gkt_scene t;
+    spot_over_halves(&t);
+    static const char *const pins[] = {"shadow=hard,shadow_map=256", "shadow=pcss,shadow_map=512",
+                                       "shadow=vssm,shadow_map=512", "shadow=cssm,shadow_map=1024"};
+    static const double size[] = {256, 512, 512, 1024};
+    for (int i = 0; i < 4; i++)
+        assert_true(one_frame(&t, pins[i]) == 2.0 * size[i] * size[i]);
+    gkt_scene_free(&t);
+}
+
+static void cube_faces_inside_a_closed_box(void **state)
+{
+    (void)state;
+    gkt_scene t;
+    light_in_box(&t, GK_SHAPE_POINT);
+    assert_true(one_frame(&t, "shadow=hard,shadow_map=256") == 6.0 * 256 * 256);
+    assert_true(one_frame(&t, "shadow=vssm,shadow_map=512") == 6.0 * 512 * 512);
+    gkt_scene_free(&t);
+    light_in_box(&t, GK_SHAPE_RECT);
+    assert_true(one_frame(&t, "shadow=pcss,shadow_map=256") == 5.0 * 256 * 256); /* its back face skipped */
+    gkt_scene_free(&t);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(nothing_counted_unless_asked_nor_when_the_maps_are_kept),
+        cmocka_unit_test(spot_face_counts_every_surface_in_its_frustum),
+        cmocka_unit_test(cube_faces_inside_a_closed_box),
+    };
+    return cmocka_run_group_tests_name("shadow_map_work", tests, setup, teardown);
+}
