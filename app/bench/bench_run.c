@@ -45,8 +45,14 @@ static int pass_column(gk_bench_result *r, const char *name)
     for (int i = 0; i < r->n_passes; i++)
         if (strcmp(r->pass_names[i], name) == 0)
             return i;
-    if (r->n_passes >= GK_BENCH_MAX_PASSES)
+    if (r->n_passes >= GK_BENCH_MAX_PASSES) {
+        /* said once a name (it comes back every frame): a dropped column must not pass unnoticed */
+        static char said[GK_PASS_PATH_LEN];
+        if (strcmp(said, name) != 0)
+            gk_log("bench: more than %d pass columns, %s's times left out", GK_BENCH_MAX_PASSES, name);
+        snprintf(said, sizeof said, "%s", name);
         return -1;
+    }
     snprintf(r->pass_names[r->n_passes], sizeof r->pass_names[0], "%s", name);
     return r->n_passes++;
 }

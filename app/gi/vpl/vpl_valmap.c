@@ -254,7 +254,9 @@ int vpl_build_maps(vpl_state *s, const gk_gi_frame *f, const gk_val *em, int cou
         glBindTexture(GL_TEXTURE_2D_ARRAY, mipped[i]);
         glGenerateMipmap(GL_TEXTURE_2D_ARRAY);
     }
-    vpl_work_maps_mips(s, res, count, vsm ? 0 : 2, vsm ? 1 : 3); /* the maps in use */
+    /* the maps in use; the chains by format: CSSM's cos/sin bases RGBA8 (2), its depth and z bases
+       16-bit (3); VSM's moments alone (1, counted with the 16-bit ones) */
+    vpl_work_maps_mips(s, res, count, vsm ? 0 : 2, vsm ? 1 : 3);
     return 0;
 }
 
