@@ -12,6 +12,9 @@ precision highp int;
 #define CH_NRM 4   // 4..6 normal x, y, z   (x127, signed, two's complement sums)
 #define CH_POS 7   // 7..9 position inside the voxel (x255 per fragment)
 #define CH_EMI 10  // 10..12 emission / u_emission_scale (x255), only with EMISSIVE
+// Fixed-point mode: the count channel's top bit marks a voxel solid (vct_thick, voxelize.comp): opaque
+// without radiance, set by the surfaces in front of it; the fragment count is the other 31 bits.
+#define SOLID_BIT 0x80000000u
 
 uniform int u_res;
 

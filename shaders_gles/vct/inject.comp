@@ -176,7 +176,11 @@ void main()
     if (any(greaterThanEqual(g, u_region_size))) return;
     ivec3 c = u_region_lo + g;
     vec3 alb, nrm, frac, emi;
-    if (!vct_voxel_read(c, alb, nrm, frac, emi)) { imageStore(u_out, c, vec4(0.0)); return; }
+    if (!vct_voxel_read(c, alb, nrm, frac, emi)) {
+        // empty, or solid behind a surface (vct_thick): opaque, no radiance of its own
+        imageStore(u_out, c, vct_voxel_occupied(c) ? vec4(0.0, 0.0, 0.0, 1.0) : vec4(0.0));
+        return;
+    }
     // nrm is the MEAN of the fragments' unit normals, not renormalised: for fragments that all face
     // a light, the mean of their n.l is exactly mean(n).l, so a corner voxel (floor + wall) gets the
     // average of its faces' irradiance. Opposite faces in one voxel (a wall thinner than a voxel)

@@ -20,7 +20,7 @@ bool vct_voxel_read(ivec3 c, out vec3 alb, out vec3 nrm, out vec3 frac, out vec3
     emi = vct_unpack8(s[CH_EMI * N + i] & 0xFEFEFEFEu).rgb / 255.0;
 #endif
 #else
-    uint cnt = s[CH_COUNT * N + i];
+    uint cnt = s[CH_COUNT * N + i] & ~SOLID_BIT;   // fragments only: a solid mark adds none
     alb = vec3(0.0); nrm = vec3(0.0); frac = vec3(0.0);
     if (cnt == 0u) return false;
     float inv = 1.0 / (255.0 * float(cnt));
@@ -34,7 +34,7 @@ bool vct_voxel_read(ivec3 c, out vec3 alb, out vec3 nrm, out vec3 frac, out vec3
     return true;
 }
 
-// Whether voxel c holds any fragment (what vct_voxel_read tests first, without reading the means).
+// Whether voxel c is opaque: it holds a fragment, or is marked solid behind a surface (vct_thick).
 bool vct_voxel_occupied(ivec3 c)
 {
 #if AVERAGE_CAS

@@ -2,6 +2,7 @@
 // @variant CONSERVATIVE=1 AVERAGE_CAS=0 EMISSIVE=0
 // @variant CONSERVATIVE=0 AVERAGE_CAS=1 EMISSIVE=1
 // @variant CONSERVATIVE=1 AVERAGE_CAS=0 EMISSIVE=0 VOXELIZE_COUNT_ATOMICS=1
+// @variant CONSERVATIVE=1 AVERAGE_CAS=0 EMISSIVE=0 SOLID_PASS=1
 // world-space triangle SSBO. For every voxel column along the triangle's dominant axis
 // (argmax |n|, the axis the thesis's GS projects along) over the triangle's bounding box:
 //   CONSERVATIVE=1: every voxel the triangle touches (Schwarz & Seidel 2010 triangle/box overlap,
@@ -24,6 +25,11 @@
 // so the scratch is one SSBO rather than r32ui images.
 #include "vct/common.glsl"
 layout(local_size_x = 64) in;
+// SOLID_PASS=1: vct_thick's second dispatch, which visits the same voxels and only marks the voxels
+// behind them solid (thicken); the first writes the fragments as without vct_thick.
+#ifndef SOLID_PASS
+#define SOLID_PASS 0
+#endif
 
 // p0..p2: xyz world position, w the vertex's alpha (factor x COLOR_0); uv01, uv2_mask.xy: the
 // vertices' base-colour UVs (KHR_texture_transform applied); uv2_mask.z: the material's layer of
@@ -47,6 +53,9 @@ uniform ivec3 u_region_lo;    // voxels outside [lo, hi] are not written (dirty-
 uniform ivec3 u_region_hi;
 uniform float u_emission_scale;  // 1 / max emission of the scene
 uniform mediump sampler2DArray u_alpha_tex;  // masked materials' base-colour alpha (vct_alpha.c)
+#if SOLID_PASS
+uniform float u_thick;           // vct_thick: voxels marked solid behind each fragment (see thicken)
+#endif
 
 // true where the masked triangle T (vertices v0..v2, voxel units) has a hole at its point p
 bool alpha_cut(Tri T, vec3 v0, vec3 v1, vec3 v2, vec3 p)
@@ -123,6 +132,37 @@ void write_voxel(ivec3 c, vec3 alb, vec3 n, vec3 frac, vec3 emi)
 #endif
 }
 
+// vct_thick (not in the thesis; fixed-point averaging only: the C side runs no SOLID_PASS with the
+// thesis's CAS averages): solid ("thick") voxelization of thin walls. Each fragment also marks the
+// voxels behind it, along -n up to u_thick voxels from its point p on the plane (points every half
+// voxel), solid: opaque, with no radiance and no albedo (SOLID_BIT, vct/common.glsl). The mark is a
+// bit beside the count, not a fragment, so a voxel that holds fragments keeps its radiance averaged
+// over them alone (tests/gpu/test_vct_leak.c). Why: a wall thinner than a voxel on a voxel boundary
+// (light-leak) has its lit face, and the lit room's floor and ceiling beside it, in the column just
+// behind its dark face; a trilinear sample of a cone from the dark room between the two columns'
+// centres sees part of the lit column before its opacity reaches 1. The dark face's own column is
+// opaque already, so one voxel behind changes nothing (leak 0.132% -> 0.129% at 64^3); 1.5 voxels
+// behind the lit face fill the dark room's column in front of the wall, and the cone is opaque
+// before its samples reach the lit column. The price: the marks behind a thin shell's one face (a
+// ring, a balustrade) cover its other face from that side (tests/e2e/vct_leak.sh, README).
+#if SOLID_PASS
+void write_solid(ivec3 c)
+{
+    if (any(lessThan(c, max(u_region_lo, ivec3(0)))) || any(greaterThan(c, min(u_region_hi, ivec3(u_res - 1))))) return;
+    atomicOr(s[CH_COUNT * vox_count() + vox_index(c)], SOLID_BIT);
+}
+
+void thicken(ivec3 c, vec3 p, vec3 nn)
+{
+    ivec3 last = c;
+    for (int k = 1; float(k) * 0.5 <= u_thick + 1e-3; k++) {
+        ivec3 b = ivec3(floor(p - nn * (0.5 * float(k))));
+        if (b != last && b != c) write_solid(b);
+        last = b;
+    }
+}
+#endif
+
 // Component access by a runtime axis index (0, 1, 2), and the cyclic swizzle that makes `axis`
 // the third coordinate (the GS swizzle of summary S.1).
 vec3 to_axis(vec3 p, int axis) { return axis == 0 ? p.yzx : (axis == 1 ? p.zxy : p.xyz); }
@@ -146,8 +186,16 @@ void main()
     int axis = (an.x >= an.y && an.x >= an.z) ? 0 : (an.y >= an.z ? 1 : 2);
     vec3 emi = T.emission.rgb * u_emission_scale;
 
-    ivec3 lo = clamp(ivec3(floor(min(v0, min(v1, v2)))), max(u_region_lo, ivec3(0)), min(u_region_hi, ivec3(u_res - 1)));
-    ivec3 hi = clamp(ivec3(floor(max(v0, max(v1, v2)))), max(u_region_lo, ivec3(0)), min(u_region_hi, ivec3(u_res - 1)));
+    // the voxels visited: the region's, and with vct_thick those within its reach outside it, whose
+    // fragments may mark voxels inside it solid (write_voxel and write_solid keep to the region)
+#if SOLID_PASS
+    ivec3 reach = ivec3(int(ceil(u_thick)));
+#else
+    ivec3 reach = ivec3(0);
+#endif
+    ivec3 rlo = max(u_region_lo - reach, ivec3(0)), rhi = min(u_region_hi + reach, ivec3(u_res - 1));
+    ivec3 lo = clamp(ivec3(floor(min(v0, min(v1, v2)))), rlo, rhi);
+    ivec3 hi = clamp(ivec3(floor(max(v0, max(v1, v2)))), rlo, rhi);
     if (any(greaterThan(lo, hi))) return;
     vec3 lo3 = to_axis(vec3(lo), axis), hi3 = to_axis(vec3(hi), axis);
     vec3 w0 = to_axis(v0, axis), w1 = to_axis(v1, axis), w2 = to_axis(v2, axis);
@@ -189,7 +237,11 @@ void main()
                 vec3 pc = p + 0.5;
                 pc -= nn * dot(nn, pc - v0);                   // voxel centre projected on the plane
                 if (alpha_cut(T, v0, v1, v2, pc)) continue;
+#if SOLID_PASS
+                thicken(c, pc, nn);
+#else
                 write_voxel(c, T.albedo.rgb, nn, pc - p, emi);
+#endif
             }
         }
 #else
@@ -208,7 +260,11 @@ void main()
             ivec3 c = from_axis(ivec3(a, b, zi), axis);
             vec3 frac = from_axis_f(vec3(0.5, 0.5, z - float(zi)), axis);
             if (alpha_cut(T, v0, v1, v2, vec3(c) + frac)) continue;
+#if SOLID_PASS
+            thicken(c, vec3(c) + frac, nn);
+#else
             write_voxel(c, T.albedo.rgb, nn, frac, emi);
+#endif
         }
 #endif
 #ifdef VOXELIZE_COUNT_ATOMICS

@@ -285,6 +285,23 @@ static inline unsigned *vt_read_scratch(void *vct, long *n_out)
     return out;
 }
 
+/* Copies the level-0 radiance texture (RGBA16F, res^3) into a malloc'd array of RGBA floats, x fastest. */
+static inline float *vt_read_radiance(void *vct, int res)
+{
+    float *out = malloc(sizeof(float) * 4 * (size_t)res * res * res);
+    GLuint fbo;
+    glGenFramebuffers(1, &fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    for (int z = 0; out && z < res; z++) {
+        glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, gk_vct_radiance_texture(vct), 0, z);
+        glReadBuffer(GL_COLOR_ATTACHMENT0);
+        glReadPixels(0, 0, res, res, GL_RGBA, GL_FLOAT, out + (size_t)z * res * res * 4);
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glDeleteFramebuffers(1, &fbo);
+    return out;
+}
+
 static inline float vt_lum(const float *p) { return 0.2126f * p[0] + 0.7152f * p[1] + 0.0722f * p[2]; }
 
 #endif

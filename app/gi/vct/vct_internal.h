@@ -25,6 +25,7 @@ typedef struct vct_budget {
     int bounces;        /* vct_bounces: 1 (thesis) or 2 (vct/bounce.comp) */
     int shadow;         /* vct_shadow level: VCT_SHADOW_MAP, or a cone (vct_shadow.c) */
     bool skip;          /* vct_skip: Algorithm 1's empty-space skipping for narrow cones */
+    float thick;        /* vct_thick: voxels marked solid behind each fragment (vct/voxelize.comp), 0 off */
 } vct_budget;
 
 /* Levels of vct_shadow (vct.c): the renderer's shadow maps, the thesis's fixed apertures, the light's. */
@@ -50,7 +51,7 @@ typedef struct gk_vct {
     const gk_scene *scene;
     vct_budget cur;              /* budget the GPU resources were made for */
     gk_knob k_res, k_cones, k_step, k_scale, k_mips, k_variant; /* knob handles (vct.c) */
-    gk_knob k_bounces, k_shadow, k_skip, k_level0;
+    gk_knob k_bounces, k_shadow, k_skip, k_level0, k_thick;
     bool allocated;
     bool need_voxelize, need_inject;
     bool emissive, specular;
