@@ -331,6 +331,12 @@ int vct_update(gk_vct *v, const gk_gi_frame *f, vct_budget *bp, gk_err *e)
             gk_pass_begin(f->pass, "vct_voxelize");
             upload_tris(v, v->tris.n_static, v->tris.n - v->tris.n_static);
             to_voxels(v, dlo, dhi, lo, hi);
+            /* vct_thick: the moved surfaces' solid marks reach that far behind them, old and new */
+            int reach = (int)ceilf(v->cur.thick);
+            for (int k = 0; k < 3; k++) {
+                lo[k] = lo[k] - reach < 0 ? 0 : lo[k] - reach;
+                hi[k] = hi[k] + reach > v->res - 1 ? v->res - 1 : hi[k] + reach;
+            }
             int rc = vct_pass_voxelize(v, lo, hi, e);
             gk_pass_end(f->pass);
             if (rc != 0)
