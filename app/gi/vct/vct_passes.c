@@ -503,11 +503,15 @@ int vct_pass_bounce(gk_vct *v, const vct_budget *b, gk_err *e)
 
 int vct_pass_compose(gk_vct *v, const gk_gi_frame *f, gk_err *e)
 {
-    GLuint p = gk_program_get(v->ctx.programs, "vct/compose.vert", "vct/compose.frag",
-                              v->opt.faithful_weights ? "#define FAITHFUL_COMPOSE 1\n" : "#define FAITHFUL_COMPOSE 0\n", e);
+    char defs[160];
+    snprintf(defs, sizeof defs, "%s%s", v->opt.faithful_weights ? "#define FAITHFUL_COMPOSE 1\n" : "#define FAITHFUL_COMPOSE 0\n",
+             vct_work_compose_begin(v, f->count_work));
+    GLuint p = gk_program_get(v->ctx.programs, "vct/compose.vert", "vct/compose.frag", defs, e);
     const compose_uniforms *u = p ? gk_program_uniforms(v->ctx.programs, p, GK_FIELDS(compose_fields), sizeof *u, e) : NULL;
-    if (!u)
+    if (!u) {
+        vct_work_compose_end(v);
         return -1;
+    }
     /* save the state this pass changes */
     GLint fbo = 0, vp[4], prog = 0, vao = 0, src_rgb, dst_rgb, src_a, dst_a;
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);
@@ -541,6 +545,7 @@ int vct_pass_compose(gk_vct *v, const gk_gi_frame *f, gk_err *e)
     glUniform1f(u->u_spec_enabled, v->specular ? 1.0f : 0.0f);
     glBindVertexArray(v->vao);
     glDrawArrays(GL_TRIANGLES, 0, 3);
+    vct_work_compose_end(v);
 
     unbind_units(2 + GK_GBUFFER_UNITS);
     glBindVertexArray((GLuint)vao);
