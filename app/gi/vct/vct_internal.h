@@ -64,6 +64,8 @@ typedef struct gk_vct {
     gk_counters inject_fetches;  /* the bench's counts (vct_work.c): the injection's shadow fetches, */
     gk_counters voxelize_atomics; /* the voxelizer's scratch-buffer atomics */
     gk_counters compose_fetches; /* the compose's low-resolution texels and G-buffer depth reads */
+    gk_counters bounce_steps;    /* the second bounce's cone samples (fine, coarse) and gathering voxels */
+    bool bounce_ran;             /* this frame ran vct_bounce (its mips are rebuilt in it) */
     /* GL objects */
     GLuint tri_ssbo, scratch_ssbo, counter_ssbo;
     GLuint alpha_tex;            /* R8 2D array: masked materials' base-colour alpha (vct_alpha.c) */
@@ -157,6 +159,9 @@ const char *vct_work_inject_begin(gk_vct *v, bool count_work);
 /* The same around the compose (vct/compose.frag VCT_COMPOSE_COUNT_FETCHES: the define, "" when not
    counting). */
 const char *vct_work_compose_begin(gk_vct *v, bool count_work);
+/* The same around the second bounce's gather (vct/bounce.comp BOUNCE_COUNT_STEPS, v->count_work). */
+const char *vct_work_bounce_begin(gk_vct *v);
+void vct_work_bounce_end(gk_vct *v);
 void vct_work_compose_end(gk_vct *v);
 void vct_work_inject_end(gk_vct *v);
 /* The same around the voxelizer's dispatches (the define voxelize.comp adds). */
