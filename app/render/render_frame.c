@@ -77,7 +77,7 @@ static int pass_shadows(gk_renderer *r, const gk_frame_knobs *fk, const gk_pass_
     const gk_shadow_method *env_m = gk_render_env_shadow_method();
     gk_shadow_ctx ctx = {.progs = r->progs, .scene = r->scene, .gpu = &r->gpu, .caps = &r->caps,
                          .subdiv = fk->shadow_subdiv, .pass = pctx, .count_define = count_define,
-                         .prefilter_work = r->count_work ? &r->vssm_prefilter_work : NULL};
+                         .prefilter_work = r->count_work ? &r->prefilter_work : NULL};
     /* Static scene, same lights, same shadow knobs: the maps of the last frame are still right, so
        only the views are rebuilt (they are cheap and the lighting pass binds them). Most kiosk
        scenes are static, and the prefiltered maps (SAT, Fourier bases) cost more than the rest of

@@ -7,9 +7,9 @@
  *     (a depth-only fill writes no colour: it can read above the kind's limit). Only frames that
  *     render the maps count: a static scene's kiosk frames reuse them (render_frame.c), so the bench
  *     counts them where it re-renders them (a shadow sweep, --rebuild-gi).
- *   shadow.vssm_prefilter: VSSM's compute passes over those maps, from their parameters
- *     (app/render/shadow/shadow_prefilter_work.h), added in the same frames. CSSM's, inside the
- *     `shadow` pass itself, are not counted.
+ *   shadow.vssm_prefilter, shadow.cssm_prefilter: VSSM's and CSSM's compute passes over those
+ *     maps (and CSSM's mipmaps), from their parameters (app/render/shadow/shadow_prefilter_work.h),
+ *     added in the same frames.
  *   gbuffer (GBUFFER_COUNT_FRAGMENTS, gbuffer/gbuffer.frag): the draws' fragments, every fragment
  *     rasterized after face culling (occluded and alpha-masked ones included: with the atomic the
  *     depth test runs after the shader), at the roofline's fill rate. The pass is bound by the
@@ -57,7 +57,7 @@ void gk_render_work_end(gk_renderer *r) { gk_counters_end(&r->shadow_fetches); }
 
 const char *gk_render_work_shadow_begin(gk_renderer *r)
 {
-    r->vssm_prefilter_work = (gk_pf_work){0}; /* a frame that keeps its maps prefilters nothing */
+    r->prefilter_work = (gk_pf_frame_work){0}; /* a frame that keeps its maps prefilters nothing */
     return count_begin(&r->depth_fragments, r->count_work, 1, "#define DEPTH_COUNT_FRAGMENTS 1\n");
 }
 
@@ -108,14 +108,18 @@ static int add_counted(const gk_counters *c, const char *pass, const char *kind,
 int gk_renderer_pass_work(const gk_renderer *r, const char *method, gk_pass_work *out, int max)
 {
     int n = add_counted(&r->depth_fragments, "shadow.shadow_depth", "raster_r16f_depth_fill", out, 0, max);
-    /* VSSM's prefilters, from their parameters (shadow_prefilter_work.h): the depth map's reads, the
-       SAT rows' R32F reads, the pyramid's and the SAT columns' image loads */
-    const gk_pf_work *v = &r->vssm_prefilter_work;
-    const double vssm[3] = {v->depth_reads, v->r32f_reads, v->image_loads};
-    static const char *const vssm_kinds[3] = {"tex2d_depth32f_nearest", "tex2d_r32f_nearest", "image3d_rgba16f_load"};
-    for (int k = 0; k < 3; k++)
-        if (vssm[k] > 0.0 && n < max)
-            out[n++] = (gk_pass_work){.pass = "shadow.vssm_prefilter", .kind = vssm_kinds[k], .fetches = vssm[k]};
+    /* VSSM's and CSSM's prefilters, from their parameters (shadow_prefilter_work.h): the depth map's
+       reads, the R32F depth's, the image loads (pyramid, SAT columns, CSSM's range), CSSM's mips' */
+    static const char *const pf_kinds[4] = {"tex2d_depth32f_nearest", "tex2d_r32f_nearest", "image3d_rgba16f_load",
+                                            "tex2d_rgba16f_trilinear"};
+    const gk_pf_work *pf[2] = {&r->prefilter_work.vssm, &r->prefilter_work.cssm};
+    static const char *const pf_pass[2] = {"shadow.vssm_prefilter", "shadow.cssm_prefilter"};
+    for (int m = 0; m < 2; m++) {
+        const double f[4] = {pf[m]->depth_reads, pf[m]->r32f_reads, pf[m]->image_loads, pf[m]->mip_lookups};
+        for (int k = 0; k < 4; k++)
+            if (f[k] > 0.0 && n < max)
+                out[n++] = (gk_pass_work){.pass = pf_pass[m], .kind = pf_kinds[k], .fetches = f[k]};
+    }
     n = add_counted(&r->gbuffer_fragments, "gbuffer", "raster_r16f_depth_fill", out, n, max);
     /* by the format read, in the order of direct/light.frag's ShadowFetches: the 32-bit depth map,
        R32F min/max mips and CSSM's range, R32UI SATs, CSSM_SAT's RGBA32UI bases (16-byte texels

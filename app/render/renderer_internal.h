@@ -116,8 +116,9 @@ struct gk_renderer {
     gk_counters glass_fetches;  /* two: the glass draws' G-buffer depth reads and bilinear lookups of
                                    the image behind (glass/refract.frag) */
     long glass_copy_lookups;    /* the glass pass's copy of the shown image: one lookup a pixel */
-    gk_pf_work vssm_prefilter_work; /* VSSM's prefilters' modelled fetches (shadow_prefilter_work.h),
-                                   added by the counting frame's shadow maps, zeroed before them */
+    gk_pf_frame_work prefilter_work; /* VSSM's and CSSM's prefilters' modelled fetches
+                                   (shadow_prefilter_work.h), added by the counting frame's shadow
+                                   maps, zeroed before them */
 };
 
 /* render_work.c: around the direct pass's lights, when r->count_work: zero and bind the

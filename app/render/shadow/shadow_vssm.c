@@ -119,7 +119,7 @@ static int vssm_render(void *self, const gk_shadow_ctx *ctx, int slot, const gk_
     if (rc)
         return -1;
     if (ctx->prefilter_work) /* the bench's counting frame (#21) */
-        gk_pf_work_vssm(ctx->prefilter_work, s->size, s->layers);
+        gk_pf_work_vssm(&ctx->prefilter_work->vssm, s->size, s->layers);
     glUseProgram(0);
     return 0;
 }
