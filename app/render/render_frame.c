@@ -456,7 +456,8 @@ int gk_renderer_draw(gk_renderer *r, const gk_frame_params *fp, unsigned target_
     }
     if (rc == 0 && !abandoned && gk_render_blend_needed(r) && !(abandoned = stop_before(fp, "blend", &last))) {
         gk_pass_begin(&ctx, "blend");
-        rc = gk_render_blend(r, &gb, fk.env_lights, e);
+        rc = gk_render_blend(r, &gb, fk.env_lights, gk_render_work_blend_begin(r), e);
+        gk_render_work_blend_end(r);
         gk_pass_end(&ctx);
     }
     if (rc == 0 && !abandoned && !(abandoned = stop_before(fp, "compose", &last))) {

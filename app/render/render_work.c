@@ -26,6 +26,10 @@
  *     of the image before GI, a blit of one RGBA16F texel a pixel (unfiltered: the roofline's
  *     unfiltered kind, whose 16-byte texels are twice these), and during a transition the blend's
  *     three bilinear lookups a pixel (the image before GI, the new one and the held contribution).
+ *   gi.occlusion (render_gi_occlusion.c), from the render size: per pixel the G-buffer depth read of
+ *     its background test and the pre-GI image's texel; its ao reads are not counted.
+ *   blend (BLEND_COUNT_FRAGMENTS, blend/forward.frag): the alpha-blended meshes' fragments, every
+ *     draw (the ambient one and one per light), hidden ones included, at the roofline's fill rate.
  *   compose (HDR_COUNT_FETCHES, compose/compose.frag): one bilinear lookup of the RGBA16F HDR
  *     image per output pixel, the upsample when render_scale < 1 -- a constant of the output size,
  *     counted all the same so that a test holds the pass to it (tests/gpu/test_render_work.c).
@@ -58,6 +62,7 @@ void gk_render_work_end(gk_renderer *r) { gk_counters_end(&r->shadow_fetches); }
 const char *gk_render_work_shadow_begin(gk_renderer *r)
 {
     r->prefilter_work = (gk_pf_frame_work){0}; /* a frame that keeps its maps prefilters nothing */
+    r->occlusion_pixels = 0.0;                 /* the frame's first pass: nothing occluded yet */
     return count_begin(&r->depth_fragments, r->count_work, 1, "#define DEPTH_COUNT_FRAGMENTS 1\n");
 }
 
@@ -88,6 +93,13 @@ const char *gk_render_work_compose_begin(gk_renderer *r)
 
 void gk_render_work_compose_end(gk_renderer *r) { gk_counters_end(&r->compose_fetches); }
 
+const char *gk_render_work_blend_begin(gk_renderer *r)
+{
+    return count_begin(&r->blend_fragments, r->count_work, 1, "#define BLEND_COUNT_FRAGMENTS 1\n");
+}
+
+void gk_render_work_blend_end(gk_renderer *r) { gk_counters_end(&r->blend_fragments); }
+
 void gk_render_work_destroy(gk_renderer *r)
 {
     gk_counters_free(&r->depth_fragments);
@@ -95,6 +107,7 @@ void gk_render_work_destroy(gk_renderer *r)
     gk_counters_free(&r->shadow_fetches);
     gk_counters_free(&r->compose_fetches);
     gk_counters_free(&r->glass_fetches);
+    gk_counters_free(&r->blend_fragments);
 }
 
 /* Appends c's first counter as pass/kind when it counted some. */
@@ -142,6 +155,13 @@ int gk_renderer_pass_work(const gk_renderer *r, const char *method, gk_pass_work
         out[n++] = (gk_pass_work){.pass = "gi.blend_hold", .kind = "tex2d_rgba32f_nearest", .fetches = r->blend.work_hold};
     if (r->blend.work_blend > 0.0 && n < max)
         out[n++] = (gk_pass_work){.pass = "gi.blend", .kind = "tex2d_rgba16f_trilinear", .fetches = r->blend.work_blend};
+    /* the occlusion texture on GI: per pixel the pre-GI image's texel (RGBA16F, unfiltered) and the
+       G-buffer's depth; the ao reads where a surface is are not counted */
+    if (r->occlusion_pixels > 0.0 && n + 1 < max) {
+        out[n++] = (gk_pass_work){.pass = "gi.occlusion", .kind = "tex2d_rgba32f_nearest", .fetches = r->occlusion_pixels};
+        out[n++] = (gk_pass_work){.pass = "gi.occlusion", .kind = "tex2d_depth32f_nearest", .fetches = r->occlusion_pixels};
+    }
+    n = add_counted(&r->blend_fragments, "blend", "raster_r16f_depth_fill", out, n, max);
     n = add_counted(&r->compose_fetches, "compose", "tex2d_rgba16f_trilinear", out, n, max);
     return n + gk_render_gi_pass_work(r->gi, method, out + n, max - n);
 }
