@@ -249,10 +249,10 @@ static int cssm_render(void *self, const gk_shadow_ctx *ctx, int slot, const gk_
     if (slot_ensure(s, st->sat, v->map_size, v->n_faces, e) != 0)
         return -1;
     gk_pass_begin(ctx->pass, "cssm_prefilter"); /* linearize, depth range, bases (mipmaps or SATs) */
-    int rc = gk_pf_linearize(ctx->progs, st->maps.tex[slot], v, s->zlin, 0, e) != 0 ||
-                     depth_range(ctx->progs, s, st->full_range, e) != 0
-                 ? -1
-                 : st->sat ? basis_sats(ctx->progs, s, e) : basis_mipmaps(ctx->progs, s, e);
+    int rc = -1;
+    if (gk_pf_linearize(ctx->progs, st->maps.tex[slot], v, s->zlin, 0, e) == 0 &&
+        depth_range(ctx->progs, s, st->full_range, e) == 0)
+        rc = st->sat ? basis_sats(ctx->progs, s, e) : basis_mipmaps(ctx->progs, s, e);
     gk_pass_end(ctx->pass);
     if (rc == 0 && ctx->prefilter_work) /* the bench's counting frame (#21) */
         gk_pf_work_cssm(&ctx->prefilter_work->cssm, s->size, s->layers, st->full_range, st->sat);
