@@ -8,7 +8,10 @@
 
 #include "shader_source.h"
 
-#define MAX_PROGRAMS 96
+#define MAX_PROGRAMS 192 /* 96 ran out in one renderer's cache in a `bench --sweep each --rebuild-gi`
+                              over cornell, caustic-ring and glass-fog once the bench's counting
+                              variants (#21) were added: a program past the cap has no uniforms
+                              (gk_program_uniforms fails), so the cap must hold every variant */
 #define MAX_UNIFORM_BLOCKS 4 /* uniform structs per program (a program shared by two passes) */
 
 typedef struct uniform_block {

@@ -6,8 +6,9 @@
 #ifndef GK_PASS_WORK_H
 #define GK_PASS_WORK_H
 
-#define GK_MAX_PASS_WORK 32 /* a frame's lines: the renderer's passes (up to 10 with glass and the
-                                 direct pass's 5 kinds) and a method's (lgv: 14) */
+#define GK_MAX_PASS_WORK 40 /* a frame's lines: the renderer's passes (up to 17 with glass, the
+                                 direct pass's 5 kinds and the VSSM and CSSM prefilters' 3 and 4, where
+                                 the environment's lights use the other family) and a method's (lgv: 14) */
 
 typedef struct gk_pass_work {
     const char *pass;   /* dotted frame-report path: "gi.vct_trace" (a string literal) */

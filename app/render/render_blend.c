@@ -10,6 +10,7 @@
  * an opaque caster, the tracer lets 1 - alpha of the light through), no GI on it or through it
  * (the GI methods see the G-buffer only), and the order is per mesh, not per triangle: a mesh that
  * overlaps itself or another blended mesh is blended in draw order there. */
+#include <stdio.h>
 #include <stdlib.h>
 
 #include "render_env.h"
@@ -128,7 +129,7 @@ static int bind_target(gk_renderer *r, const gk_gbuffer_view *gb, gk_err *e)
     return 0;
 }
 
-int gk_render_blend(gk_renderer *r, const gk_gbuffer_view *gb, int env_lights, gk_err *e)
+int gk_render_blend(gk_renderer *r, const gk_gbuffer_view *gb, int env_lights, const char *count_define, gk_err *e)
 {
     const gk_scene *s = r->scene;
     int n;
@@ -140,7 +141,9 @@ int gk_render_blend(gk_renderer *r, const gk_gbuffer_view *gb, int env_lights, g
     int drawn_env = gk_render_env_lights_drawn(s, env_lights);
     const int flags = GK_DRAW_MATERIALS | GK_DRAW_CULL_SINGLE_SIDED;
     for (int i = 0; rc == 0 && i < n; i++) {
-        const forward_uniforms *u = use_program(r, "#define GK_FORWARD_AMBIENT 1\n", true, gb, e);
+        char ambient[160];
+        snprintf(ambient, sizeof ambient, "#define GK_FORWARD_AMBIENT 1\n%s", count_define);
+        const forward_uniforms *u = use_program(r, ambient, true, gb, e);
         if (!u) {
             rc = -1;
             break;
@@ -154,8 +157,8 @@ int gk_render_blend(gk_renderer *r, const gk_gbuffer_view *gb, int env_lights, g
             int li = s->nodes[ln].light;
             if (li < 0 || li >= s->n_lights || !gk_render_env_light_on(s, li, env_lights))
                 continue;
-            char defines[128];
-            gk_render_light_defines(&s->lights[li], NULL, defines, sizeof defines);
+            char defines[256];
+            gk_render_light_defines(&s->lights[li], count_define, defines, sizeof defines);
             if (!(u = use_program(r, defines, false, gb, e))) {
                 rc = -1;
                 break;

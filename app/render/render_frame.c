@@ -76,7 +76,8 @@ static int pass_shadows(gk_renderer *r, const gk_frame_knobs *fk, const gk_pass_
         return 0;
     const gk_shadow_method *env_m = gk_render_env_shadow_method();
     gk_shadow_ctx ctx = {.progs = r->progs, .scene = r->scene, .gpu = &r->gpu, .caps = &r->caps,
-                         .subdiv = fk->shadow_subdiv, .pass = pctx, .count_define = count_define};
+                         .subdiv = fk->shadow_subdiv, .pass = pctx, .count_define = count_define,
+                         .prefilter_work = r->count_work ? &r->prefilter_work : NULL};
     /* Static scene, same lights, same shadow knobs: the maps of the last frame are still right, so
        only the views are rebuilt (they are cheap and the lighting pass binds them). Most kiosk
        scenes are static, and the prefiltered maps (SAT, Fourier bases) cost more than the rest of
@@ -455,7 +456,8 @@ int gk_renderer_draw(gk_renderer *r, const gk_frame_params *fp, unsigned target_
     }
     if (rc == 0 && !abandoned && gk_render_blend_needed(r) && !(abandoned = stop_before(fp, "blend", &last))) {
         gk_pass_begin(&ctx, "blend");
-        rc = gk_render_blend(r, &gb, fk.env_lights, e);
+        rc = gk_render_blend(r, &gb, fk.env_lights, gk_render_work_blend_begin(r), e);
+        gk_render_work_blend_end(r);
         gk_pass_end(&ctx);
     }
     if (rc == 0 && !abandoned && !(abandoned = stop_before(fp, "compose", &last))) {

@@ -41,6 +41,8 @@ int gk_gi_occlusion_apply(gk_renderer *r, const gk_pass_ctx *ctx, gk_err *e)
         gk_render_fullscreen(r);
         glDisable(GL_BLEND);
         glActiveTexture(GL_TEXTURE0);
+        if (r->count_work) /* gi_occlusion.frag: the pixel's depth and its pre-GI texel, every pixel */
+            r->occlusion_pixels = (double)r->render_w * r->render_h;
     }
     gk_pass_end(ctx);
     return u ? 0 : -1;

@@ -11,6 +11,7 @@
 #include "renderer.h"
 #include "scene_gpu.h"
 #include "shadow/shadow.h"
+#include "shadow/shadow_prefilter_work.h"
 
 #define GK_MAX_SHADOW_METHODS 16 /* entries of gk_shadow_methods[]; a static assert in shadow_methods.c keeps them in step */
 
@@ -115,6 +116,11 @@ struct gk_renderer {
     gk_counters glass_fetches;  /* two: the glass draws' G-buffer depth reads and bilinear lookups of
                                    the image behind (glass/refract.frag) */
     long glass_copy_lookups;    /* the glass pass's copy of the shown image: one lookup a pixel */
+    gk_counters blend_fragments; /* one: the alpha-blended draws' fragments (blend/forward.frag) */
+    double occlusion_pixels;    /* the occlusion pass's pixels (one pre-GI texel and one depth read each) */
+    gk_pf_frame_work prefilter_work; /* VSSM's and CSSM's prefilters' modelled fetches
+                                   (shadow_prefilter_work.h), added by the counting frame's shadow
+                                   maps, zeroed before them */
 };
 
 /* render_work.c: around the direct pass's lights, when r->count_work: zero and bind the
@@ -130,6 +136,8 @@ const char *gk_render_work_glass_begin(gk_renderer *r);
 void gk_render_work_glass_end(gk_renderer *r, long copy_lookups);
 const char *gk_render_work_compose_begin(gk_renderer *r);
 void gk_render_work_compose_end(gk_renderer *r);
+const char *gk_render_work_blend_begin(gk_renderer *r);
+void gk_render_work_blend_end(gk_renderer *r);
 void gk_render_work_destroy(gk_renderer *r);
 
 /* renderer_knobs.c: handles set up at creation; the frame's values from budget b (NULL: defaults). */
@@ -178,7 +186,8 @@ void gk_render_set_light(gk_renderer *r, const gk_light_uniforms *u, int node);
 
 /* render_blend.c: the `blend` pass, alphaMode BLEND surfaces over the lit image (see there). */
 bool gk_render_blend_needed(const gk_renderer *r);
-int gk_render_blend(gk_renderer *r, const gk_gbuffer_view *gb, int env_lights, gk_err *e);
+/* count_define: forward.frag's counting variant (gk_render_work_blend_begin), "" without. */
+int gk_render_blend(gk_renderer *r, const gk_gbuffer_view *gb, int env_lights, const char *count_define, gk_err *e);
 
 /* Draws the full-screen triangle with the bound program. */
 void gk_render_fullscreen(gk_renderer *r);

@@ -12,6 +12,11 @@
 // @variant GK_LIGHT_KIND=3
 // @variant GK_LIGHT_KIND=4 GK_LIGHT_SPOT
 // @variant GK_LIGHT_KIND=5
+// @variant GK_FORWARD_AMBIENT=1 BLEND_COUNT_FRAGMENTS
+// @variant GK_LIGHT_KIND=2 BLEND_COUNT_FRAGMENTS
+// BLEND_COUNT_FRAGMENTS: the bench's counting variant (#21, app/render/render_work.c), one atomic add
+// per fragment rasterized (with the atomic the depth test runs after the shader: fragments behind the
+// opaque surfaces count too), in the bench's untimed frame only.
 precision highp float;
 precision highp int;
 #include "common/brdf.glsl"
@@ -27,9 +32,15 @@ precision highp int;
 #endif
 
 out vec4 o_color;
+#ifdef BLEND_COUNT_FRAGMENTS
+layout(std430, binding = 6) buffer BlendFragments { highp uint fragments; } blend_counted;
+#endif
 
 void main()
 {
+#ifdef BLEND_COUNT_FRAGMENTS
+    atomicAdd(blend_counted.fragments, 1u);
+#endif
     gk_frag_material f = gk_eval_material();
     highp float a = clamp(f.base.a, 0.0, 1.0);
     gk_surface s;

@@ -2,6 +2,7 @@
 // @variant ISO_MIPS=0 AXIS_WEIGHT_SQ=1 OPACITY_CORRECTION=0 CLIP_CONES=1 CONSERVATIVE=1 AVERAGE_CAS=0 EMISSIVE=0
 // @variant ISO_MIPS=1 AXIS_WEIGHT_SQ=0 OPACITY_CORRECTION=1 CLIP_CONES=0 CONSERVATIVE=0 AVERAGE_CAS=1 EMISSIVE=1
 // @variant ISO_MIPS=0 ANISO_LEVEL0=1 AXIS_WEIGHT_SQ=0 OPACITY_CORRECTION=0 CLIP_CONES=1 CONSERVATIVE=1 AVERAGE_CAS=0 EMISSIVE=0
+// @variant ISO_MIPS=0 AXIS_WEIGHT_SQ=1 OPACITY_CORRECTION=0 CLIP_CONES=1 CONSERVATIVE=1 AVERAGE_CAS=0 EMISSIVE=0 BOUNCE_COUNT_STEPS=1
 // renderers do): the indirect light of the first gather injected back into the voxels. Per occupied
 // voxel, the trace pass's diffuse cone set from the voxel's mean position along its mean normal,
 // through the map of direct light (level 0 + its mips as the trace pass reads them):
@@ -17,6 +18,12 @@ layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 layout(std430, binding = 1) readonly buffer Scratch { uint s[]; };
 #include "vct/voxel_read.glsl"
 layout(binding = 0, rgba16f) writeonly uniform highp image3D u_out;
+// BOUNCE_COUNT_STEPS: the bench's counting variant (#21, app/gi/vct/vct_work.c), in its untimed
+// frame only: the cone samples below lod 1 and from lod 1 on (as trace.comp's counters), and the
+// voxels that gathered.
+#if defined(BOUNCE_COUNT_STEPS)
+layout(std430, binding = 2) buffer BounceSteps { uint fine_steps; uint coarse_steps; uint voxels; } bounce_counted;
+#endif
 
 #define MAX_CONES 9
 uniform int u_n_cones;
@@ -41,11 +48,18 @@ void main()
     vec3 apex = pu + N * (u_apex_offset / u_res_f);
     vec4 plane = vec4(N, -dot(N, pu));
     vec3 D = vec3(0.0);
+    ivec2 total = ivec2(0);
     for (int k = 0; k < MAX_CONES; k++) {
         if (k >= u_n_cones) break;
         vec3 d = normalize(T * u_cone_dir[k].x + N * u_cone_dir[k].y + B * u_cone_dir[k].z);
         float ao; ivec2 steps;
         D += u_cone_weight[k] * trace_cone(apex, d, u_cone_aperture[k], u_max_dist, plane, ao, steps).rgb;
+        total += steps;
     }
+#if defined(BOUNCE_COUNT_STEPS)
+    atomicAdd(bounce_counted.fine_steps, uint(total.x));
+    atomicAdd(bounce_counted.coarse_steps, uint(total.y));
+    atomicAdd(bounce_counted.voxels, 1u);
+#endif
     imageStore(u_out, c, vec4(direct.rgb + alb * D, direct.a));
 }

@@ -1,6 +1,8 @@
 // Joint bilateral upsampling (thesis §3.4 after Kopf et al. 2007) of the sparse cone-traced light
 // @variant FAITHFUL_COMPOSE=0
 // @variant FAITHFUL_COMPOSE=1
+// @variant FAITHFUL_COMPOSE=0 VCT_COMPOSE_COUNT_FETCHES
+// @variant FAITHFUL_COMPOSE=1 VCT_COMPOSE_COUNT_FETCHES
 // and its composition into the renderer's HDR image, drawn with glBlendFunc(GL_ONE, GL_SRC_ALPHA):
 //     hdr' = hdr * a + rgb
 // Calibrated (default):  rgb = rho_d * D + F0 * L_spec,  a = 1, i.e.
@@ -14,8 +16,19 @@
 // Upsampling: 3x3 low-resolution taps around the pixel, weight = spatial Gaussian on the distance to
 // the tap's traced full-resolution pixel x normal similarity exp(-|dN|^2 / 0.14) (thesis code) x
 // plane distance similarity exp(-(dot(N, x_tap - x) / voxel)^2 / 0.14).
+// VCT_COMPOSE_COUNT_FETCHES: the bench's counting variant (#21, app/gi/vct/vct_work.c), in its
+// untimed frame only: [0] the low-resolution texels read (diffuse and specular, 2 a tap used),
+// [1] the G-buffer depth reads of the background tests (the pixel's, then each tap's).
 precision highp float;
 precision highp int;
+#ifdef VCT_COMPOSE_COUNT_FETCHES
+layout(std430, binding = 6) buffer VctComposeFetches { highp uint lo_texels; highp uint depth_reads; } compose_counted;
+#define COUNT_LO(n) atomicAdd(compose_counted.lo_texels, uint(n))
+#define COUNT_DEPTH() atomicAdd(compose_counted.depth_reads, 1u)
+#else
+#define COUNT_LO(n)
+#define COUNT_DEPTH()
+#endif
 #include "vct/sparse.glsl"
 uniform highp sampler2D u_diffuse_lo;
 uniform highp sampler2D u_spec_lo;
@@ -28,6 +41,7 @@ layout(location = 0) out vec4 o_color;
 void main()
 {
     ivec2 px = ivec2(gl_FragCoord.xy);
+    COUNT_DEPTH();
     if (gb_background(gb_depth(px))) { o_color = vec4(0.0, 0.0, 0.0, 1.0); return; }
     ivec2 full_size = ivec2(u_viewport);
     vec3 N = gb_normal(px);
@@ -36,6 +50,7 @@ void main()
     if (u_block <= 1) {
         dif = texelFetch(u_diffuse_lo, px, 0);
         spec = texelFetch(u_spec_lo, px, 0).rgb;
+        COUNT_LO(2);
     } else {
         ivec2 qc = px / u_block;
         vec4 sd = vec4(0.0); vec3 ss = vec3(0.0); float sw = 0.0;
@@ -45,6 +60,7 @@ void main()
             for (int dx = -1; dx <= 1; dx++) {
                 ivec2 q = clamp(qc + ivec2(dx, dy), ivec2(0), u_low_size - 1);
                 ivec2 tp = sparse_pixel(q, u_block, full_size);
+                COUNT_DEPTH();
                 if (gb_background(gb_depth(tp))) continue;
                 vec3 Nq = gb_normal(tp);
                 vec3 Xq = vct_world_position(tp);
@@ -57,6 +73,7 @@ void main()
                 float w = f * gn * gd;
                 vec4 d = texelFetch(u_diffuse_lo, q, 0);
                 vec3 s = texelFetch(u_spec_lo, q, 0).rgb;
+                COUNT_LO(2);
                 sd += w * d; ss += w * s; sw += w;
                 float dist = dot(dp, dp) + 1e4 * (1.0 - gn * gd);
                 if (dist < best) { best = dist; nd = d; ns = s; }

@@ -4,7 +4,16 @@
 // brdf.glsl's gk_brdf_diffuse_gathered at μ = n·l, brdf_spec.md; textures are not sampled here but
 // for alphaMode MASK's holes, common/alpha_mask.glsl).
 // ΔΩ_texel = (2 tanΘ / R)² / (1 + u² + v²)^{3/2} for a perspective face (photon-mapping §A.1.3).
+// RSM_COUNT_FRAGMENTS: the bench's counting variant (#21, app/gi/vpl/vpl_work.c), one atomic add
+// per fragment before any discard (with the atomic the depth test runs after the shader: hidden
+// fragments count too), in the bench's untimed frame only.
+// @variant -
+// @variant RSM_COUNT_FRAGMENTS
 precision highp float;
+precision highp int;
+#ifdef RSM_COUNT_FRAGMENTS
+layout(std430, binding = 6) buffer RsmFragments { highp uint fragments; } rsm_counted;
+#endif
 in vec3 v_world;
 in vec3 v_normal;
 uniform vec4 u_base_color;
@@ -32,6 +41,9 @@ const int MAT_LIGHT_PROXY = 4;
 
 void main()
 {
+#ifdef RSM_COUNT_FRAGMENTS
+    atomicAdd(rsm_counted.fragments, 1u);
+#endif
     // A light proxy stands where the light is: the path tracer does not see it, neither do we.
     if ((u_mat_flags & MAT_LIGHT_PROXY) != 0 || dot(u_emissive, vec3(1.0)) > 0.0)
         discard;

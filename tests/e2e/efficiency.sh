@@ -84,9 +84,9 @@ passes = {(e["vct_cones"], e["pass"]) for e in eff}
 # each row: the cone trace, the voxelizer's atomics, the injection's shadow fetches and the mips'
 # loads (rebuilt each frame), the direct pass's shadow lookups (cornell's light is shadowed), and the
 # renderer's G-buffer fragments and compose lookups, and the shadow maps' fragments (--rebuild-gi
-# renders them every frame too)
+# renders them every frame too), and vct's compose (its upsample's reads)
 assert passes == {(c, p) for c in ("4", "9")
-                  for p in ("gi.vct_trace", "gi.vct_voxelize", "gi.vct_inject", "gi.vct_mips", "direct",
+                  for p in ("gi.vct_trace", "gi.vct_voxelize", "gi.vct_inject", "gi.vct_mips", "gi.vct_compose", "direct",
                             "gbuffer", "compose", "shadow.shadow_depth", "gi.blend_hold")}, passes
 # the GI cross-fade's copy of the image before GI (render_work.c; tests/gpu/test_gi_blend.c): one
 # texel a pixel in every GI row (gi_blend=4 by default); the bench cuts between rows, so no row blends
@@ -96,6 +96,10 @@ assert all(float(e["fetches"]) == 80 * 60 for e in eff if e["pass"] == "gi.blend
 for p in ("gi.vct_voxelize", "gi.vct_inject", "gi.vct_mips", "shadow.shadow_depth"):
     f = {e["vct_cones"]: float(e["fetches"]) for e in eff if e["pass"] == p}
     assert f["4"] == f["9"] > 0, (p, f)
+# nor what the compose upsamples: the same texels and depth reads, of both kinds, at both counts
+for k in ("tex2d_rgba32f_nearest", "tex2d_depth32f_nearest"):
+    f = {e["vct_cones"]: float(e["fetches"]) for e in eff if e["pass"] == "gi.vct_compose" and e["kind"] == k}
+    assert f["4"] == f["9"] > 0, (k, f)
 # the default shadows (PCSS) read the depth map only, at the depth kind's limit
 assert {e["kind"] for e in eff if e["pass"] == "direct"} == {"tex2d_depth32f_nearest"}, eff
 # more cones, more samples: 9 cones fetch more than 4 at the same resolution

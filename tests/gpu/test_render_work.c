@@ -178,6 +178,56 @@ static void glass_reads_depth_per_fragment_and_the_image_behind_per_visible_one(
     gkt_scene_free(&t);
 }
 
+/* The blend pass (blend/forward.frag BLEND_COUNT_FRAGMENTS): the floor, an alpha-blended quad over
+   the half x < 0 at y = 1 (in front of it) and one under the half x > 0 at y = -0.5 (behind it),
+   both facing the camera: every blended draw rasterizes W/2 x H + W/2 x H = W x H fragments (the
+   hidden half too: with the atomic the depth test runs after the shader). Without a light a mesh
+   has its ambient draw only: W x H; with one point light an added draw each: 2 W x H. */
+static double blend_fragments(bool light)
+{
+    gkt_scene t;
+    gkt_scene_init(&t, "render-work-blend");
+    int grey = gkt_material_lambert(&t, v3(0.5f, 0.5f, 0.5f)), veil = gkt_material_lambert(&t, v3(0.8f, 0.2f, 0.2f));
+    t.mats[veil].alpha_blend = true;
+    gkt_quad(&t, v3(-10, 1, -10), v3(0, 1, -10), v3(0, 1, 10), v3(-10, 1, 10), v3(0, 1, 0), veil);
+    gkt_quad(&t, v3(0, -0.5f, -10), v3(10, -0.5f, -10), v3(10, -0.5f, 10), v3(0, -0.5f, 10), v3(0, 1, 0), veil);
+    gkt_quad(&t, v3(-10, 0, -10), v3(10, 0, -10), v3(10, 0, 10), v3(-10, 0, 10), v3(0, 1, 0), grey);
+    if (light)
+        gkt_light(&t, GK_LIGHT_POINT, GK_SHAPE_POINT, 10.0f, v3(0.3f, 1.8f, 0.2f), v3(0, -1, 0));
+    gkt_camera(&t, v3(0, 2, 0), v3(0, 0, 0), 60.0f * (float)M_PI / 180.0f);
+    gkt_scene_bounds(&t);
+    gk_err e = {0};
+    gk_render_opts o = {.width = W, .height = H, .gles_version = 31, .shader_dir = getenv("GK_SHADER_DIR")};
+    gk_renderer *r = gk_renderer_create(&o, &e);
+    assert_non_null(r);
+    assert_int_equal(gk_renderer_set_scene(r, &t.s, &e), 0);
+    assert_true(gk_renderer_count_work(r, true));
+    gk_frame_params fp = {.time_s = 0, .method = "none"};
+    gk_frame_report rep;
+    if (gk_renderer_draw(r, &fp, FB.fbo, &rep, &e) != 0)
+        fail_msg("blend: %s", e.msg);
+    assert_true(gk_frame_report_find(&rep, "blend") >= 0); /* the pass ran */
+    gk_pass_work w[GK_MAX_PASS_WORK];
+    int n = gk_renderer_pass_work(r, "none", w, GK_MAX_PASS_WORK);
+    double fragments = -1.0;
+    for (int i = 0; i < n; i++)
+        if (!strcmp(w[i].pass, "blend")) {
+            assert_string_equal(w[i].kind, "raster_r16f_depth_fill");
+            fragments = w[i].fetches;
+        }
+    printf("# blend%s: %.0f fragments\n", light ? " (one light)" : "", fragments);
+    gk_renderer_destroy(r);
+    gkt_scene_free(&t);
+    return fragments;
+}
+
+static void blend_fragments_by_hand(void **state)
+{
+    (void)state;
+    assert_true(blend_fragments(false) == (double)W * H);
+    assert_true(blend_fragments(true) == 2.0 * W * H);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -185,6 +235,7 @@ int main(void)
         cmocka_unit_test(gbuffer_fragments_and_compose_lookups_at_full_scale),
         cmocka_unit_test(half_scale_halves_the_gbuffer_not_the_compose),
         cmocka_unit_test(glass_reads_depth_per_fragment_and_the_image_behind_per_visible_one),
+        cmocka_unit_test(blend_fragments_by_hand),
     };
     return cmocka_run_group_tests_name("render_work", tests, setup, teardown);
 }

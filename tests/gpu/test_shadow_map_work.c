@@ -10,7 +10,9 @@
  *     meets exactly one wall, so 6 S²; a rect light there, one-sided, skips its back face: 5 S².
  * The count is the same under every shadow method (they share the depth maps), scales with the
  * map's size, is reported only by a counting frame, and only by a frame that renders the maps (a
- * static scene's next frame reuses them). */
+ * static scene's next frame reuses them). VSSM's prefilter (`shadow.vssm_prefilter`, modelled from
+ * the map's size and layers) and CSSM's (`shadow.cssm_prefilter`) against hand counts of their
+ * compute passes' reads, in the same frames. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -166,12 +168,113 @@ static void cube_faces_inside_a_closed_box(void **state)
     gkt_scene_free(&t);
 }
 
+/* A prefilter's work (`pass`: shadow.vssm_prefilter or shadow.cssm_prefilter,
+   app/render/shadow/shadow_prefilter_work.h) in each of `frames` counting frames at `pins`: its depth
+   reads, R32F reads, image loads and mip lookups (-1: no entry). */
+/* the renderer's shadow knob plus the diagnostic CSSM variants (added first, so the renderer keeps it,
+   as tests/gpu/test_shadow_work.c does) */
+static const gk_knob_def knob_shadow = {
+    .name = "shadow", .owner = "test", .n_values = 6,
+    .values = {"hard", "pcss", "vssm", "cssm", "cssm_sat", "cssm_thesis"}, .cost = {1, 1, 1, 1, 1, 1},
+};
+
+static void prefilter_fetches(gkt_scene *t, const char *pass, const char *pins, int frames, double out[][4])
+{
+    gk_err e = {0};
+    gk_render_opts o = {.width = W, .height = H, .gles_version = 31, .shader_dir = getenv("GK_SHADER_DIR")};
+    gk_renderer *r = gk_renderer_create(&o, &e);
+    assert_non_null(r);
+    assert_int_equal(gk_renderer_set_scene(r, &t->s, &e), 0);
+    gk_budget b;
+    gk_budget_init(&b);
+    gk_budget_add(&b, &knob_shadow);
+    gk_renderer_declare_knobs(r, &b);
+    assert_true(gk_budget_pin_list(&b, pins, &e) >= 0);
+    assert_true(gk_renderer_count_work(r, true));
+    static const char *const kinds[4] = {"tex2d_depth32f_nearest", "tex2d_r32f_nearest", "image3d_rgba16f_load",
+                                         "tex2d_rgba16f_trilinear"};
+    for (int f = 0; f < frames; f++) {
+        gk_frame_params fp = {.time_s = 0, .method = "none", .budget = &b};
+        gk_frame_report rep;
+        if (gk_renderer_draw(r, &fp, FB.fbo, &rep, &e) != 0)
+            fail_msg("%s: %s", pins, e.msg);
+        gk_pass_work w[GK_MAX_PASS_WORK];
+        int n = gk_renderer_pass_work(r, "none", w, GK_MAX_PASS_WORK);
+        for (int k = 0; k < 4; k++) {
+            out[f][k] = -1.0;
+            for (int i = 0; i < n; i++)
+                if (!strcmp(w[i].pass, pass) && !strcmp(w[i].kind, kinds[k]))
+                    out[f][k] = w[i].fetches;
+        }
+        printf("# %s %s, frame %d: %s %.0f depth, %.0f r32f, %.0f image loads, %.0f mip lookups\n", t->s.name, pins, f,
+               pass, out[f][0], out[f][1], out[f][2], out[f][3]);
+    }
+    gk_renderer_destroy(r);
+}
+
+/* Hand counts of VSSM's prefilter per layer of a map of side S: the linearize reads S² depth texels,
+   the SAT's rows S² R32F texels, and the image loads are the min-max pyramid's -- each of its two
+   chains reads levels S, S/2, .., 2 once: 4/3 (S² - 1) -- and the SAT columns' 2 S²:
+     S = 256: 2 x 87 380 + 131 072 = 305 832;  S = 512: 2 x 349 524 + 524 288 = 1 223 336.
+   The spot's one face is one layer, the point light's cube six. Other methods report none, and a
+   static scene's second frame, which keeps its maps, none. */
+static void vssm_prefilter_by_hand(void **state)
+{
+    (void)state;
+    gkt_scene t;
+    spot_over_halves(&t);
+    double f[2][4];
+    prefilter_fetches(&t, "shadow.vssm_prefilter", "shadow=vssm,shadow_map=256", 2, f);
+    assert_true(f[0][0] == 65536.0 && f[0][1] == 65536.0 && f[0][2] == 305832.0 && f[0][3] == -1.0);
+    assert_true(f[1][0] == -1.0 && f[1][1] == -1.0 && f[1][2] == -1.0);
+    prefilter_fetches(&t, "shadow.vssm_prefilter", "shadow=vssm,shadow_map=512", 1, f);
+    assert_true(f[0][0] == 262144.0 && f[0][1] == 262144.0 && f[0][2] == 1223336.0);
+    prefilter_fetches(&t, "shadow.vssm_prefilter", "shadow=pcss,shadow_map=512", 1, f);
+    assert_true(f[0][0] == -1.0 && f[0][1] == -1.0 && f[0][2] == -1.0);
+    gkt_scene_free(&t);
+    light_in_box(&t, GK_SHAPE_POINT);
+    prefilter_fetches(&t, "shadow.vssm_prefilter", "shadow=vssm,shadow_map=256", 1, f);
+    assert_true(f[0][0] == 6 * 65536.0 && f[0][1] == 6 * 65536.0 && f[0][2] == 6 * 305832.0);
+    gkt_scene_free(&t);
+}
+
+/* Hand counts of CSSM's prefilter per layer of side S = 256 (S² = 65 536): the linearize's S² depth
+   reads; the depth range's S² loads (the layer's reduction) and 3 S² (each texel's renormalisation
+   reads it and the layer's two range texels): 262 144; by mipmaps (cssm) the two basis passes' 2 S²
+   R32F reads and the 5 RGBA16F chains' mips, one lookup per texel of levels 128² .. 1: 5 x 21 845 =
+   109 225; by SATs (cssm_sat) 3 basis pairs' S² R32F reads and 2 S² loads each: 196 608 reads and
+   262 144 + 393 216 = 655 360 loads, no mips; cssm_thesis (the fixed range) no loads. VSSM reports
+   none, nor a frame that keeps its maps. */
+static void cssm_prefilter_by_hand(void **state)
+{
+    (void)state;
+    gkt_scene t;
+    spot_over_halves(&t);
+    double f[2][4];
+    prefilter_fetches(&t, "shadow.cssm_prefilter", "shadow=cssm,shadow_map=256", 2, f);
+    assert_true(f[0][0] == 65536.0 && f[0][1] == 131072.0 && f[0][2] == 262144.0 && f[0][3] == 109225.0);
+    assert_true(f[1][0] == -1.0 && f[1][1] == -1.0 && f[1][2] == -1.0 && f[1][3] == -1.0);
+    prefilter_fetches(&t, "shadow.cssm_prefilter", "shadow=cssm_sat,shadow_map=256", 1, f);
+    assert_true(f[0][0] == 65536.0 && f[0][1] == 196608.0 && f[0][2] == 655360.0 && f[0][3] == -1.0);
+    prefilter_fetches(&t, "shadow.cssm_prefilter", "shadow=cssm_thesis,shadow_map=256", 1, f); /* no range pass */
+    assert_true(f[0][0] == 65536.0 && f[0][1] == 131072.0 && f[0][2] == -1.0 && f[0][3] == 109225.0);
+    prefilter_fetches(&t, "shadow.cssm_prefilter", "shadow=vssm,shadow_map=256", 1, f);
+    assert_true(f[0][0] == -1.0 && f[0][1] == -1.0 && f[0][2] == -1.0 && f[0][3] == -1.0);
+    gkt_scene_free(&t);
+    light_in_box(&t, GK_SHAPE_POINT);
+    prefilter_fetches(&t, "shadow.cssm_prefilter", "shadow=cssm,shadow_map=256", 1, f);
+    assert_true(f[0][0] == 6 * 65536.0 && f[0][1] == 6 * 131072.0 && f[0][2] == 6 * 262144.0 && f[0][3] == 6 * 109225.0);
+    gkt_scene_free(&t);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(nothing_counted_unless_asked_nor_when_the_maps_are_kept),
         cmocka_unit_test(spot_face_counts_every_surface_in_its_frustum),
         cmocka_unit_test(cube_faces_inside_a_closed_box),
+        cmocka_unit_test(vssm_prefilter_by_hand),
+        cmocka_unit_test(cssm_prefilter_by_hand),
     };
     return cmocka_run_group_tests_name("shadow_map_work", tests, setup, teardown);
 }

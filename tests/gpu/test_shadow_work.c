@@ -76,9 +76,11 @@ static int direct_fetches(const char *pins, bool count, double fetches[N_KINDS])
         fetches[k] = 0.0;
     for (int i = 0; i < n; i++) {
         if (strcmp(w[i].pass, "direct")) { /* the G-buffer's and the compose's: test_render_work.c;
-                                              the maps' fragments: test_shadow_map_work.c */
+                                              the maps' fragments and the prefilters:
+                                              test_shadow_map_work.c */
             assert_true(!strcmp(w[i].pass, "gbuffer") || !strcmp(w[i].pass, "compose") ||
-                        !strcmp(w[i].pass, "shadow.shadow_depth"));
+                        !strcmp(w[i].pass, "shadow.shadow_depth") || !strcmp(w[i].pass, "shadow.vssm_prefilter") ||
+                        !strcmp(w[i].pass, "shadow.cssm_prefilter"));
             continue;
         }
         int k = 0;

@@ -544,6 +544,70 @@ static void iso_count_matches_model(void **state)
     check_count_against_model("vct_res=32,vct_cones=4,vct_step=1,vct_trace_scale=1,vct_mips=iso", 4, 32, false, false);
 }
 
+/* The second bounce's samples (gi.vct_bounce, vct_work.c: counted by bounce.comp's
+   BOUNCE_COUNT_STEPS) against the open-space model (gk_vct_trace_model at the bounce's half step,
+   vct_passes.c VCT_BOUNCE_STEP): on the lone floor every occupied voxel gathers with the trace's cone
+   set. The floor fills 60² voxels of the 64³ volume, which pads the scene by 2 voxels a side; with
+   cones of max_dist = 0.05 of the volume (3 voxels, all below lod 1) nothing stops a cone early, so
+   the count is the model's exactly: voxels x per voxel. At 0.15 (samples from lod 1 on too) the
+   cones from voxels near the floor's sides leave the volume, so the model is an upper bound, and the
+   count must exceed what the samples below lod 1 alone would fetch. The mips the pass rebuilds are
+   the vct_mips model's. Returns the measured fraction of voxels x the model. */
+static double bounce_fraction(float max_dist, bool exact)
+{
+    gk_vct_options o;
+    gk_vct_default_options(&o);
+    o.max_dist = max_dist;
+    vt_scene sc;
+    gk_gi_light L = unit_floor(&sc);
+    vt_frame f;
+    vt_frame_create(&f, 16, 16, v3(0.5f, 2, 0.5f), v3(0.5f, 0, 0.5f), v3(0, 0, -1), 0.2f);
+    vt_gbuffer(&g, &f, &sc);
+    void *vct = vt_create(&g);
+    gk_vct_set_options(vct, &o);
+    gk_budget b;
+    vt_budget(&b, "vct_res=64,vct_cones=9,vct_step=1,vct_trace_scale=1,vct_mips=aniso,vct_bounces=2");
+    f.count_work = true;
+    assert_int_equal(vt_render(vct, &f, &sc, &b, &L, 1, NULL, NULL), 0);
+    long n_scratch = 0;
+    unsigned *scratch = vt_read_scratch(vct, &n_scratch);
+    assert_non_null(scratch);
+    double voxels = 0.0; /* channel 0 (CH_COUNT): the voxels some triangle wrote */
+    for (long i = 0; i < 64L * 64 * 64; i++)
+        voxels += scratch[i] > 0;
+    free(scratch);
+    gk_pass_work w[GK_MAX_PASS_WORK];
+    int n = gk_gi_vct.pass_work(vct, w, GK_MAX_PASS_WORK);
+    double fetches = -1.0, mips = -1.0;
+    for (int i = 0; i < n; i++)
+        if (!strcmp(w[i].pass, "gi.vct_bounce"))
+            *(strcmp(w[i].kind, "tex3d_rgba16f_trilinear") ? &mips : &fetches) = w[i].fetches;
+    double fine, coarse;
+    gk_vct_trace_model(9, 64, 0.5f, true, &o, &fine, &coarse);
+    double per_voxel = gk_vct_trace_fetches(true, false, fine, coarse);
+    printf("# bounce at max_dist %.2f: %.0f voxels, %.0f fetches counted, model %.0f a voxel (%.0f + %.0f samples): "
+           "%.4f of it\n", max_dist, voxels, fetches, per_voxel, fine, coarse, fetches / (voxels * per_voxel));
+    assert_true(voxels == 60.0 * 60 && fine > 9.0); /* the floor's layer; every cone steps */
+    if (exact) {
+        assert_true(coarse == 0.0 && fetches == voxels * per_voxel);
+    } else {
+        assert_true(coarse > 0.0 && fetches <= voxels * per_voxel);
+        assert_true(fetches > voxels * gk_vct_trace_fetches(true, false, fine, 0.0)); /* coarse ones counted */
+    }
+    assert_true(mips == 48.0 * (32768 + 4096 + 512 + 64 + 8)); /* as aniso_count_matches_model's */
+    gk_gi_vct.destroy(vct);
+    vt_frame_destroy(&f);
+    vt_scene_free(&sc);
+    return fetches / (voxels * per_voxel);
+}
+
+static void bounce_count_matches_model(void **state)
+{
+    (void)state;
+    bounce_fraction(0.05f, true);
+    bounce_fraction(0.15f, false);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -557,6 +621,7 @@ int main(void)
         cmocka_unit_test(aniso_count_matches_model),
         cmocka_unit_test(aniso_level0_count_matches_model),
         cmocka_unit_test(iso_count_matches_model),
+        cmocka_unit_test(bounce_count_matches_model),
     };
     return cmocka_run_group_tests_name("vct", tests, group_setup, group_teardown);
 }

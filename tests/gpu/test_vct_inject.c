@@ -289,12 +289,62 @@ static void injection_shadows_behind_a_thin_wall_inside_and_outside_the_map(void
     vt_scene_free(&sc);
 }
 
+/* The compose's (gi.vct_compose) count of `kind`, or -1 */
+static double compose_work(void *vct, const char *kind)
+{
+    gk_pass_work w[GK_MAX_PASS_WORK];
+    int n = gk_gi_vct.pass_work(vct, w, GK_MAX_PASS_WORK);
+    for (int i = 0; i < n; i++)
+        if (!strcmp(w[i].pass, "gi.vct_compose") && !strcmp(w[i].kind, kind))
+            return w[i].fetches;
+    return -1.0;
+}
+
+/* The compose's reads (vct_work.c) against a hand count: the 16x16 view looks straight down at the
+   floor, which fills it (checked on the G-buffer's positions), so every pixel and every tap is a
+   surface. At trace_scale 1 a pixel reads its depth and its 2 traced texels: 2 W H texels, W H depth
+   reads; at 0.5 (2x2 blocks) its depth, then for each of its 3x3 taps the tap's depth and 2 texels:
+   18 W H texels, 10 W H depth reads. Nothing is reported outside a counting frame. */
+static void compose_reads_by_hand(void **state)
+{
+    (void)state;
+    vt_scene sc;
+    gk_gi_light L;
+    vt_frame f;
+    GLuint depth = floor_under_light(&sc, 0.6f, 3.0f, false, &L, &f);
+    L.shadow_depth_tex = depth;
+    float pos[16 * 16 * 4];
+    vt_read_positions(&f, pos);
+    for (int i = 0; i < 16 * 16; i++)
+        assert_true(pos[4 * i + 3] != 0.0f); /* a surface */
+    static const char *const pins[] = {"vct_res=32,vct_trace_scale=1", "vct_res=32,vct_trace_scale=0.5"};
+    static const double texels[] = {2.0 * 256, 18.0 * 256}, depths[] = {256.0, 10.0 * 256};
+    for (int k = 0; k < 2; k++) {
+        gk_budget b;
+        vt_budget(&b, pins[k]);
+        void *vct = vt_create(&g);
+        f.count_work = false;
+        assert_int_equal(vt_render(vct, &f, &sc, &b, &L, 1, NULL, NULL), 0);
+        assert_true(compose_work(vct, "tex2d_rgba32f_nearest") < 0.0 && compose_work(vct, "tex2d_depth32f_nearest") < 0.0);
+        f.count_work = true;
+        assert_int_equal(vt_render(vct, &f, &sc, &b, &L, 1, NULL, NULL), 0);
+        double t = compose_work(vct, "tex2d_rgba32f_nearest"), d = compose_work(vct, "tex2d_depth32f_nearest");
+        printf("# compose at %s: %.0f low-resolution texels, %.0f depth reads\n", pins[k], t, d);
+        assert_true(t == texels[k] && d == depths[k]);
+        gk_gi_vct.destroy(vct);
+    }
+    glDeleteTextures(1, &depth);
+    vt_frame_destroy(&f);
+    vt_scene_free(&sc);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(injection_matches_formula_and_uses_the_shadow_map),
         cmocka_unit_test(injection_fetches_nine_per_occupied_voxel),
         cmocka_unit_test(injection_shadows_behind_a_thin_wall_inside_and_outside_the_map),
+        cmocka_unit_test(compose_reads_by_hand),
     };
     return cmocka_run_group_tests_name("vct_inject", tests, group_setup, group_teardown);
 }

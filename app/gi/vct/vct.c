@@ -311,7 +311,7 @@ int vct_update(gk_vct *v, const gk_gi_frame *f, vct_budget *bp, gk_err *e)
     v->stats.n_dynamic_triangles = v->tris.n - v->tris.n_static;
 
     int lo[3] = {0, 0, 0}, hi[3] = {v->res - 1, v->res - 1, v->res - 1};
-    v->mips_ran = v->inject_ran = v->voxelize_ran = false;
+    v->mips_ran = v->inject_ran = v->voxelize_ran = v->bounce_ran = false;
     v->count_work = f->count_work;
     /* Each pass of the thesis is a pass of the renderer's clock (nested under `gi`); a pass that
        has nothing to do this frame (static voxels, unchanged light) is not begun, so its column

@@ -64,6 +64,9 @@ typedef struct gk_vct {
     bool count_work;             /* this frame is the bench's counting frame (gk_gi_frame.count_work) */
     gk_counters inject_fetches;  /* the bench's counts (vct_work.c): the injection's shadow fetches, */
     gk_counters voxelize_atomics; /* the voxelizer's scratch-buffer atomics */
+    gk_counters compose_fetches; /* the compose's low-resolution texels and G-buffer depth reads */
+    gk_counters bounce_steps;    /* the second bounce's cone samples (fine, coarse) and gathering voxels */
+    bool bounce_ran;             /* this frame ran vct_bounce (its mips are rebuilt in it) */
     /* GL objects */
     GLuint tri_ssbo, scratch_ssbo, counter_ssbo;
     GLuint alpha_tex;            /* R8 2D array: masked materials' base-colour alpha (vct_alpha.c) */
@@ -154,6 +157,13 @@ int vct_pass_work(void *self, gk_pass_work *out, int max);
 /* vct_work.c: around the injection of a counting frame (count_work), zero and bind its counter
    (returns the define inject.comp adds, "" when not counting), read it back; free it. */
 const char *vct_work_inject_begin(gk_vct *v, bool count_work);
+/* The same around the compose (vct/compose.frag VCT_COMPOSE_COUNT_FETCHES: the define, "" when not
+   counting). */
+const char *vct_work_compose_begin(gk_vct *v, bool count_work);
+/* The same around the second bounce's gather (vct/bounce.comp BOUNCE_COUNT_STEPS, v->count_work). */
+const char *vct_work_bounce_begin(gk_vct *v);
+void vct_work_bounce_end(gk_vct *v);
+void vct_work_compose_end(gk_vct *v);
 void vct_work_inject_end(gk_vct *v);
 /* The same around the voxelizer's dispatches (the define voxelize.comp adds). */
 const char *vct_work_voxelize_begin(gk_vct *v);

@@ -504,18 +504,21 @@ int vct_pass_trace(gk_vct *v, const gk_gi_frame *f, const vct_budget *b, gk_err 
 
 int vct_pass_bounce(gk_vct *v, const vct_budget *b, gk_err *e)
 {
-    char defs[384];
+    char defs[448];
     defines_common(v, defs, sizeof defs);
     size_t used = strlen(defs);
     vct_map_defines(v, defs + used, sizeof defs - used);
     used = strlen(defs);
     snprintf(defs + used, sizeof defs - used,
-             "#define AXIS_WEIGHT_SQ %d\n#define OPACITY_CORRECTION %d\n#define CLIP_CONES %d\n",
-             v->opt.axis_weight_sq ? 1 : 0, v->opt.opacity_correction ? 1 : 0, v->opt.clip_cones ? 1 : 0);
+             "#define AXIS_WEIGHT_SQ %d\n#define OPACITY_CORRECTION %d\n#define CLIP_CONES %d\n%s",
+             v->opt.axis_weight_sq ? 1 : 0, v->opt.opacity_correction ? 1 : 0, v->opt.clip_cones ? 1 : 0,
+             vct_work_bounce_begin(v));
     GLuint p = gk_program_get_compute(v->ctx.programs, "vct/bounce.comp", defs, e);
     const bounce_uniforms *u = p ? gk_program_uniforms(v->ctx.programs, p, GK_FIELDS(bounce_fields), sizeof *u, e) : NULL;
-    if (!u || vct_ensure_bounce_target(v, e) != 0)
+    if (!u || vct_ensure_bounce_target(v, e) != 0) {
+        vct_work_bounce_end(v);
         return -1;
+    }
     glUseProgram(p);
     vct_bind_map(v, u->u_vox0, u->u_voxp, u->u_voxp_l0, u->u_dir_levels);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, v->scratch_ssbo);
@@ -535,6 +538,7 @@ int vct_pass_bounce(gk_vct *v, const vct_budget *b, gk_err *e)
     glUniform1fv(u->u_cone_weight, n, w);
     glDispatchCompute((GLuint)groups(v->res, 4), (GLuint)groups(v->res, 4), (GLuint)groups(v->res, 4));
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+    vct_work_bounce_end(v);
     unbind_units(7);
     GLuint t = v->vox0;   /* the bounced level 0 becomes the map; the old one is next time's target */
     v->vox0 = v->vox_bounce;
@@ -545,11 +549,15 @@ int vct_pass_bounce(gk_vct *v, const vct_budget *b, gk_err *e)
 
 int vct_pass_compose(gk_vct *v, const gk_gi_frame *f, gk_err *e)
 {
-    GLuint p = gk_program_get(v->ctx.programs, "vct/compose.vert", "vct/compose.frag",
-                              v->opt.faithful_weights ? "#define FAITHFUL_COMPOSE 1\n" : "#define FAITHFUL_COMPOSE 0\n", e);
+    char defs[160];
+    snprintf(defs, sizeof defs, "%s%s", v->opt.faithful_weights ? "#define FAITHFUL_COMPOSE 1\n" : "#define FAITHFUL_COMPOSE 0\n",
+             vct_work_compose_begin(v, f->count_work));
+    GLuint p = gk_program_get(v->ctx.programs, "vct/compose.vert", "vct/compose.frag", defs, e);
     const compose_uniforms *u = p ? gk_program_uniforms(v->ctx.programs, p, GK_FIELDS(compose_fields), sizeof *u, e) : NULL;
-    if (!u)
+    if (!u) {
+        vct_work_compose_end(v);
         return -1;
+    }
     /* save the state this pass changes */
     GLint fbo = 0, vp[4], prog = 0, vao = 0, src_rgb, dst_rgb, src_a, dst_a;
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);
@@ -583,6 +591,7 @@ int vct_pass_compose(gk_vct *v, const gk_gi_frame *f, gk_err *e)
     glUniform1f(u->u_spec_enabled, v->specular ? 1.0f : 0.0f);
     glBindVertexArray(v->vao);
     glDrawArrays(GL_TRIANGLES, 0, 3);
+    vct_work_compose_end(v);
 
     unbind_units(2 + GK_GBUFFER_UNITS);
     glBindVertexArray((GLuint)vao);

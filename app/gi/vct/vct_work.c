@@ -17,7 +17,21 @@
  * albedo, normal and position, + emission: 10 or 13; the thesis's compare-and-swap averages 3 or
  * 4), at the roofline's atomic kind. Which voxels a triangle overlaps is geometry, so
  * voxelize.comp counts them (VOXELIZE_COUNT_ATOMICS) in the counting frame; the clear pass and the
- * triangles' reads are not counted (tests/gpu/test_vct_inject.c: 10 x the scratch's count channel). */
+ * triangles' reads are not counted (tests/gpu/test_vct_inject.c: 10 x the scratch's count channel).
+ * The compose (vct_compose) upsamples the traced light: per pixel a G-buffer depth read for its
+ * background test, then at trace_scale 1 its own diffuse and specular texels, below 1 for each of
+ * its 3x3 low-resolution taps a depth read of the tap's traced pixel and, where that is a surface,
+ * the tap's 2 texels. Which taps are surfaces is data, so compose.frag counts them
+ * (VCT_COMPOSE_COUNT_FETCHES) in the counting frame: the texels as the unfiltered kind (RGBA16F,
+ * half its texels' bytes), the depth reads as the depth kind; the normal and position
+ * reconstruction's reads and the material's are not counted (tests/gpu/test_vct_inject.c: a view
+ * filled by the floor, 2 + 1 a pixel at scale 1, 18 + 10 at 0.5).
+ * The second bounce (vct_bounce, vct_bounces=2, frames that re-light the voxels) gathers the trace's
+ * cone set from every voxel with a normal: its samples, counted by bounce.comp (BOUNCE_COUNT_STEPS)
+ * as the trace's are, become fetches by the trace's rule; the anisotropic mips it rebuilds after are
+ * the vct_mips model's loads (tests/gpu/test_vct.c: exactly voxels x gk_vct_trace_model on a lone
+ * floor where nothing stops a cone, bounded by it where the volume's border does). The voxels'
+ * level-0 and scratch reads are not counted. */
 #include <math.h>
 
 #include "vct_internal.h"
@@ -87,6 +101,23 @@ const char *vct_work_inject_begin(gk_vct *v, bool count_work)
 
 void vct_work_inject_end(gk_vct *v) { gk_counters_end(&v->inject_fetches); }
 
+const char *vct_work_compose_begin(gk_vct *v, bool count_work)
+{
+    const char *d = gk_counters_variant(&v->compose_fetches, count_work, 2, 6, "#define VCT_COMPOSE_COUNT_FETCHES 1\n");
+    return d ? d : "";
+}
+
+void vct_work_compose_end(gk_vct *v) { gk_counters_end(&v->compose_fetches); }
+
+const char *vct_work_bounce_begin(gk_vct *v)
+{
+    v->bounce_ran = true;
+    const char *d = gk_counters_variant(&v->bounce_steps, v->count_work, 3, 2, "#define BOUNCE_COUNT_STEPS 1\n");
+    return d ? d : "";
+}
+
+void vct_work_bounce_end(gk_vct *v) { gk_counters_end(&v->bounce_steps); }
+
 const char *vct_work_voxelize_begin(gk_vct *v)
 {
     v->voxelize_atomics.n = 1;
@@ -100,6 +131,8 @@ void vct_work_free(gk_vct *v)
 {
     gk_counters_free(&v->inject_fetches);
     gk_counters_free(&v->voxelize_atomics);
+    gk_counters_free(&v->compose_fetches);
+    gk_counters_free(&v->bounce_steps);
 }
 
 /* gk_gi_method.pass_work: the trace's counted samples as fetches of the RGBA16F voxel textures, and
@@ -125,5 +158,19 @@ int vct_pass_work(void *self, gk_pass_work *out, int max)
     if (v->mips_ran && v->cur.aniso && n < max)
         out[n++] = (gk_pass_work){.pass = "gi.vct_mips", .kind = "image3d_rgba16f_load",
                                   .fetches = gk_vct_mip_fetches(v->res, v->levels, v->cur.aniso_level0)};
+    /* the second bounce: its cones' samples as the trace's fetches, then the mips it rebuilds */
+    const gk_counters *bs = &v->bounce_steps;
+    if (v->bounce_ran && bs->counted && bs->value[2] > 0.0 && n < max)
+        out[n++] = (gk_pass_work){.pass = "gi.vct_bounce", .kind = "tex3d_rgba16f_trilinear",
+                                  .fetches = gk_vct_trace_fetches(v->cur.aniso, v->cur.aniso_level0, bs->value[0], bs->value[1])};
+    if (v->bounce_ran && bs->counted && v->cur.aniso && n < max)
+        out[n++] = (gk_pass_work){.pass = "gi.vct_bounce", .kind = "image3d_rgba16f_load",
+                                  .fetches = gk_vct_mip_fetches(v->res, v->levels, v->cur.aniso_level0)};
+    /* the compose's low-resolution texels (RGBA16F, unfiltered) and its background tests' depth reads */
+    const gk_counters *c = &v->compose_fetches;
+    if (c->counted && c->value[0] > 0.0 && n < max)
+        out[n++] = (gk_pass_work){.pass = "gi.vct_compose", .kind = "tex2d_rgba32f_nearest", .fetches = c->value[0]};
+    if (c->counted && c->value[1] > 0.0 && n < max)
+        out[n++] = (gk_pass_work){.pass = "gi.vct_compose", .kind = "tex2d_depth32f_nearest", .fetches = c->value[1]};
     return n;
 }

@@ -71,6 +71,8 @@ typedef struct vpl_state {
     gk_counters map_fragments;  /* fragments vpl/val_depth.frag shaded */
     gk_counters blur_fetches;   /* texels the geometry-aware blur's two passes read (vpl/blur.frag) */
     gk_counters compose_fetches; /* texels the compose's upsample reads (vpl/compose.frag) */
+    gk_counters rsm_fragments;  /* fragments the RSMs' draws shaded (vpl/rsm.frag) */
+    double rsm_gen_reads;       /* the VPL generation's RSM texels: 3 a VPL (from the parameters) */
     long map_basis_fragments;   /* the basis pass's, res² per map (not counted: a full-screen pass) */
     double map_mip_lookups[2];  /* the maps' mip chains' bilinear lookups: RGBA8, 16-bit (from the parameters) */
 } vpl_state;
@@ -107,6 +109,11 @@ const char *vpl_work_blur_begin(vpl_state *s, const gk_gi_frame *f);
 void vpl_work_blur_end(vpl_state *s);
 const char *vpl_work_compose_begin(vpl_state *s, const gk_gi_frame *f);
 void vpl_work_compose_end(vpl_state *s);
+/* The same around the RSMs' draws and the VPL generation (vpl_rsm.c): the define rsm.frag adds,
+   NULL when not counting; _gen adds one light's generation pass of `count` VPLs. */
+const char *vpl_work_rsm_begin(vpl_state *s, const gk_gi_frame *f);
+void vpl_work_rsm_gen(vpl_state *s, int count);
+void vpl_work_rsm_end(vpl_state *s);
 int vpl_pass_work(void *self, gk_pass_work *out, int max);
 void vpl_work_free(vpl_state *s);
 /* Largest value an indirect target stores (fp16 saturates at 65504; fp32: no cap). */

@@ -176,8 +176,9 @@ static const gk_uniform_field gen_fields[] = {
     GK_UNIFORM(gen_uniforms, u_rotation),
 };
 
+/* count_define: rsm.frag's counting variant (vpl_work_rsm_begin), NULL without. */
 static int render_light_rsm(vpl_state *s, const gk_gi_frame *f, const gk_gi_light *L, const gk_light *sl,
-                            int first, int count, rsm_code *code, gk_err *e)
+                            int first, int count, rsm_code *code, const char *count_define, gk_err *e)
 {
     face faces[6];
     float tan_half;
@@ -188,7 +189,7 @@ static int render_light_rsm(vpl_state *s, const gk_gi_frame *f, const gk_gi_ligh
     int R = VPL_RSM_RES;
     if (ensure_rsm(s, nf * R, R, e))
         return -1;
-    GLuint prog = gk_program_get(s->ctx.programs, "vpl/rsm.vert", "vpl/rsm.frag", NULL, e);
+    GLuint prog = gk_program_get(s->ctx.programs, "vpl/rsm.vert", "vpl/rsm.frag", count_define, e);
     const rsm_uniforms *u = prog ? gk_program_uniforms(s->ctx.programs, prog, GK_FIELDS(rsm_fields), sizeof *u, e) : NULL;
     if (!u)
         return -1;
@@ -262,6 +263,7 @@ static int render_light_rsm(vpl_state *s, const gk_gi_frame *f, const gk_gi_ligh
     glUniform2f(g->u_rotation, rot[0], rot[1]);
     glBindVertexArray(s->empty_vao);
     glDrawArrays(GL_TRIANGLES, 0, 3);
+    vpl_work_rsm_gen(s, count);
     return 0;
 }
 
@@ -282,13 +284,17 @@ int vpl_generate(vpl_state *s, const gk_gi_frame *f, gk_err *e)
         (void)f->scene->lights[f->lights[i].scene_light]; /* every light type has an RSM */
         lit[n_lit++] = i;
     }
+    const char *count_define = vpl_work_rsm_begin(s, f);
     for (int j = 0; j < n_lit; j++) {
         int first = n * j / n_lit, count = n * (j + 1) / n_lit - first;
         const gk_gi_light *L = &f->lights[lit[j]];
         code[j] = (rsm_code){1, 1, 1};
-        if (render_light_rsm(s, f, L, &f->scene->lights[L->scene_light], first, count, &code[j], e))
+        if (render_light_rsm(s, f, L, &f->scene->lights[L->scene_light], first, count, &code[j], count_define, e)) {
+            vpl_work_rsm_end(s);
             return -1;
+        }
     }
+    vpl_work_rsm_end(s);
     float *buf = malloc((size_t)n * 4 * sizeof(float) * 3);
     if (!buf)
         return gk_fail(e, GK_ERUNTIME, "vpl: out of memory reading VPLs");

@@ -29,7 +29,12 @@
  * depends on the data, so blur.frag and compose.frag count them (BLUR_COUNT_FETCHES,
  * VPL_COMPOSE_COUNT_FETCHES) in the same untimed frame; the compose's G-buffer reads are not
  * counted. tests/gpu/test_vpl_work.c replays the blur's taps over the targets read back and
- * hand-counts the compose's 12 a pixel inside the box. */
+ * hand-counts the compose's 12 a pixel inside the box.
+ * The RSMs (vpl_rsm) are rasterized: rsm.frag counts its fragments (RSM_COUNT_FRAGMENTS, every face
+ * of every light, hidden and discarded ones included), at the roofline's fill rate; the VPL
+ * generation then reads 3 RSM texels a VPL (vpl_gen.frag, from the parameters), unfiltered. The
+ * VPLs' read-back to the CPU in the same pass is not counted. tests/gpu/test_vpl_work.c hand-counts
+ * both on the harness's box (one face filled by its walls: 128² fragments, 3 n texels). */
 #include "vpl_internal.h"
 
 const char *vpl_work_begin(vpl_state *s, const gk_gi_frame *f)
@@ -79,6 +84,21 @@ const char *vpl_work_compose_begin(vpl_state *s, const gk_gi_frame *f)
 
 void vpl_work_compose_end(vpl_state *s) { gk_counters_end(&s->compose_fetches); }
 
+/* One counter at binding 6 (rsm.frag's block); the generation's reads from the parameters. */
+const char *vpl_work_rsm_begin(vpl_state *s, const gk_gi_frame *f)
+{
+    s->rsm_gen_reads = 0.0;
+    return gk_counters_variant(&s->rsm_fragments, f->count_work, 1, 6, "#define RSM_COUNT_FRAGMENTS 1\n");
+}
+
+void vpl_work_rsm_gen(vpl_state *s, int count)
+{
+    if (s->rsm_fragments.counting) /* vpl_gen.frag: position, normal, flux, one texel each a VPL */
+        s->rsm_gen_reads += 3.0 * count;
+}
+
+void vpl_work_rsm_end(vpl_state *s) { gk_counters_end(&s->rsm_fragments); }
+
 int vpl_pass_work(void *self, gk_pass_work *out, int max)
 {
     const vpl_state *s = self;
@@ -88,6 +108,12 @@ int vpl_pass_work(void *self, gk_pass_work *out, int max)
     static const char *const kinds[4] = {"tex2d_rgba32f_nearest", "tex2d_rgba8_trilinear", "tex2d_rgba16f_trilinear",
                                          "tex2d_r16f_nearest"};
     int n = 0;
+    /* the RSMs' fragments (every light's faces' draws, hidden and discarded ones included), then the
+       generation's RSM texels (RGBA16F or RGBA32F targets, unfiltered) */
+    if (s->rsm_fragments.counted && s->rsm_fragments.value[0] > 0.0 && n < max)
+        out[n++] = (gk_pass_work){.pass = "gi.vpl_rsm", .kind = "raster_r16f_depth_fill", .fetches = s->rsm_fragments.value[0]};
+    if (s->rsm_fragments.counted && s->rsm_gen_reads > 0.0 && n < max)
+        out[n++] = (gk_pass_work){.pass = "gi.vpl_rsm", .kind = "tex2d_rgba32f_nearest", .fetches = s->rsm_gen_reads};
     for (int k = 0; k < 4 && s->gather_fetches.counted; k++)
         if (s->gather_fetches.value[k] > 0.0 && n < max)
             out[n++] = (gk_pass_work){.pass = "gi.vpl_gather", .kind = kinds[k], .fetches = s->gather_fetches.value[k]};
@@ -112,4 +138,5 @@ void vpl_work_free(vpl_state *s)
     gk_counters_free(&s->map_fragments);
     gk_counters_free(&s->blur_fetches);
     gk_counters_free(&s->compose_fetches);
+    gk_counters_free(&s->rsm_fragments);
 }

@@ -59,6 +59,8 @@ typedef struct gk_shadow_ctx {
                                      prefilters) nest under `shadow` on its clock; NULL in tests */
     const char *count_define;     /* the depth draws' counting variant (the bench's counting frame,
                                      app/render/render_work.c), NULL or "" in every other frame */
+    struct gk_pf_frame_work *prefilter_work; /* where a prefilter adds its modelled fetches in that counting
+                                     frame (shadow_prefilter_work.h), NULL in every other frame */
 } gk_shadow_ctx;
 
 typedef struct gk_shadow_method {

@@ -33,6 +33,7 @@
 #include <stdlib.h>
 
 #include "shadow_prefilter.h"
+#include "shadow_prefilter_work.h"
 
 #include "gl/gl_target.h"
 
@@ -247,10 +248,14 @@ static int cssm_render(void *self, const gk_shadow_ctx *ctx, int slot, const gk_
     cssm_slot *s = &st->slot[slot];
     if (slot_ensure(s, st->sat, v->map_size, v->n_faces, e) != 0)
         return -1;
-    if (gk_pf_linearize(ctx->progs, st->maps.tex[slot], v, s->zlin, 0, e) != 0 ||
-        depth_range(ctx->progs, s, st->full_range, e) != 0)
-        return -1;
-    int rc = st->sat ? basis_sats(ctx->progs, s, e) : basis_mipmaps(ctx->progs, s, e);
+    gk_pass_begin(ctx->pass, "cssm_prefilter"); /* linearize, depth range, bases (mipmaps or SATs) */
+    int rc = -1;
+    if (gk_pf_linearize(ctx->progs, st->maps.tex[slot], v, s->zlin, 0, e) == 0 &&
+        depth_range(ctx->progs, s, st->full_range, e) == 0)
+        rc = st->sat ? basis_sats(ctx->progs, s, e) : basis_mipmaps(ctx->progs, s, e);
+    gk_pass_end(ctx->pass);
+    if (rc == 0 && ctx->prefilter_work) /* the bench's counting frame (#21) */
+        gk_pf_work_cssm(&ctx->prefilter_work->cssm, s->size, s->layers, st->full_range, st->sat);
     glUseProgram(0);
     return rc;
 }

@@ -27,6 +27,7 @@
 #include <stdlib.h>
 
 #include "shadow_prefilter.h"
+#include "shadow_prefilter_work.h"
 
 /* (m, H) per shadow_subdiv level; the shader's loop bounds VSSM_M_MAX = 8, VSSM_H_MAX = 4 cover the last. */
 static const int subdiv_m[] = {1, 2, 3, 5, 8}, subdiv_h[] = {0, 1, 2, 3, 4};
@@ -117,6 +118,8 @@ static int vssm_render(void *self, const gk_shadow_ctx *ctx, int slot, const gk_
     gk_pass_end(ctx->pass);
     if (rc)
         return -1;
+    if (ctx->prefilter_work) /* the bench's counting frame (#21) */
+        gk_pf_work_vssm(&ctx->prefilter_work->vssm, s->size, s->layers);
     glUseProgram(0);
     return 0;
 }
