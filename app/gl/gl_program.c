@@ -8,10 +8,12 @@
 
 #include "shader_source.h"
 
-#define MAX_PROGRAMS 192 /* 96 ran out in one renderer's cache in a `bench --sweep each --rebuild-gi`
-                              over cornell, caustic-ring and glass-fog once the bench's counting
-                              variants (#21) were added: a program past the cap has no uniforms
-                              (gk_program_uniforms fails), so the cap must hold every variant */
+/* The cache grows as it must: a fixed cap of 96 ran out in one renderer's cache in a `bench --sweep
+   each --rebuild-gi` over cornell, caustic-ring and glass-fog once the bench's counting variants (#21)
+   were added, and a program past a cap has no uniforms (gk_program_uniforms fails), so a kiosk that
+   meets more variants than a cap (scenes x methods x knob levels over a long run) would lose a pass.
+   The variants are finite (shader files x their defines), so the cache is bounded by them. */
+#define FIRST_CAPACITY 64
 #define MAX_UNIFORM_BLOCKS 4 /* uniform structs per program (a program shared by two passes) */
 
 typedef struct uniform_block {
@@ -29,8 +31,8 @@ typedef struct cached_program {
 struct gk_program_cache {
     char *shader_dir;
     int gles;
-    int n;
-    cached_program p[MAX_PROGRAMS];
+    int n, capacity;
+    cached_program *p; /* n of capacity in use; grown by doubling (remember) */
 };
 
 gk_program_cache *gk_program_cache_create(const char *shader_dir, int gles)
@@ -54,6 +56,7 @@ void gk_program_cache_destroy(gk_program_cache *c)
         for (int b = 0; b < MAX_UNIFORM_BLOCKS; b++)
             free(c->p[i].block[b].values);
     }
+    free(c->p);
     free(c->shader_dir);
     free(c);
 }
@@ -129,7 +132,15 @@ static GLuint lookup(gk_program_cache *c, const char *key)
 
 static GLuint remember(gk_program_cache *c, const char *key, GLuint prog, char *source)
 {
-    if (prog && c->n < MAX_PROGRAMS) {
+    if (prog && c->n == c->capacity) {
+        int grown = c->capacity ? 2 * c->capacity : FIRST_CAPACITY;
+        cached_program *p = realloc(c->p, (size_t)grown * sizeof *p);
+        if (p) {
+            c->p = p;
+            c->capacity = grown;
+        }
+    }
+    if (prog && c->n < c->capacity) {
         memset(&c->p[c->n], 0, sizeof c->p[c->n]);
         c->p[c->n].key = strdup(key);
         c->p[c->n].prog = prog;
@@ -138,8 +149,8 @@ static GLuint remember(gk_program_cache *c, const char *key, GLuint prog, char *
     } else {
         free(source);
     }
-    /* Past MAX_PROGRAMS the program still works; it is just compiled again next time (and
-       leaked until the context goes): a hint that variants are exploding, not a failure. */
+    /* Only when memory runs out is a program not remembered: it still draws, but is compiled again
+       next time and its uniforms fail with a message naming it (gk_program_uniforms). */
     return prog;
 }
 

@@ -208,6 +208,39 @@ static void uniform_block_is_cached(void **state)
     gk_program_cache_destroy(c);
 }
 
+/* The cache has no fixed cap: 200 variants (more than the 96, then 192, programs a fixed array once
+   held; a program past such a cap had no uniforms) are each compiled once, keep their uniforms, and
+   are found again, the first ones included after the array has grown. */
+static void cache_grows_past_any_fixed_cap(void **state)
+{
+    (void)state;
+    enum { VARIANTS = 200 };
+    gk_program_cache *c = gk_program_cache_create(dir, 31);
+    (void)tint_program(c); /* writes the shader files */
+    GLuint progs[VARIANTS];
+    const tint_uniforms *blocks[VARIANTS];
+    for (int i = 0; i < VARIANTS; i++) {
+        char defines[48];
+        snprintf(defines, sizeof defines, "#define VARIANT %d\n", i);
+        gk_err e = {0};
+        progs[i] = gk_program_get(c, "tint.vert", "tint.frag", defines, &e);
+        if (!progs[i])
+            fail_msg("variant %d: %s", i, e.msg);
+        blocks[i] = gk_program_uniforms(c, progs[i], GK_FIELDS(tint_fields), sizeof *blocks[i], &e);
+        if (!blocks[i])
+            fail_msg("variant %d: %s", i, e.msg);
+        assert_true(blocks[i]->u_tint >= 0);
+    }
+    for (int i = 0; i < VARIANTS; i++) {
+        char defines[48];
+        snprintf(defines, sizeof defines, "#define VARIANT %d\n", i);
+        gk_err e = {0};
+        assert_int_equal(gk_program_get(c, "tint.vert", "tint.frag", defines, &e), progs[i]); /* not recompiled */
+        assert_ptr_equal(gk_program_uniforms(c, progs[i], GK_FIELDS(tint_fields), sizeof *blocks[i], &e), blocks[i]);
+    }
+    gk_program_cache_destroy(c);
+}
+
 /* The G-buffer contract (common/gbuffer.glsl) resolves in every program that includes it: the
    emission pass uses only u_gb_emission, the rest is -1, nothing is misspelt. */
 typedef struct gb_only_uniforms {
@@ -245,6 +278,7 @@ int main(void)
         cmocka_unit_test(misspelt_uniform_fails_naming_it),
         cmocka_unit_test(optimised_away_uniform_is_minus_one),
         cmocka_unit_test(uniform_block_is_cached),
+        cmocka_unit_test(cache_grows_past_any_fixed_cap),
         cmocka_unit_test(gbuffer_contract_resolves),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
