@@ -400,10 +400,10 @@ highp float vssm_d;
 
 // The lookup up to the HSM's early-outs: 1 (no texel in front of the receiver over the blocker
 // search kernel: lit), 0 (every texel in front: umbra), or -1 (not settled: shadow_visibility_rest
-// goes on from here). The lighting pass may draw the pixels this settles and the others apart
-// (SHADOW_SPLIT, direct/light.frag): llvmpipe runs the whole lookup for a SIMD block unless a
-// discard kills every lane of it, so the second draw skips it in blocks the HSM settles (#21).
-#define SHADOW_HAS_SETTLE 1
+// goes on from here). The lighting pass's first draw (SHADOW_SPLIT 1, direct/light.frag) adds and
+// stencil-marks the pixels this settles; llvmpipe runs the whole lookup for a SIMD block unless
+// the early stencil test rejects every lane of it (a discard or a return skips nothing), so the
+// second draw runs it only in blocks with a pixel left (#21, app/render/render_split.c).
 highp float shadow_settle(highp vec3 world_pos)
 {
     // No receiver offset: Chebyshev's test is t <= mu (a surface's own samples at t count as
