@@ -232,32 +232,52 @@ static int pass_direct(gk_renderer *r, const gk_frame_knobs *fk, const frame_lig
     for (int i = 0; i < n; i++) {
         const gk_scene *s = r->scene;
         const gk_light *l = &s->lights[s->nodes[fl[i].node].light];
-        char extra[256], defines[320];
-        snprintf(extra, sizeof extra, "%s%s",
-                 fl[i].mask ? "#define SHADOW_MASK 1\n" : fl[i].shadowed ? fl[i].method->glsl_define : "",
-                 fl[i].shadowed && !fl[i].mask ? count_define : "");
-        gk_render_light_defines(l, extra, defines, sizeof defines);
-        prog = gk_program_get(r->progs, "common/fullscreen.vert", "direct/light.frag", defines, e);
-        const light_uniforms *lu = prog ? gk_program_uniforms(r->progs, prog, GK_FIELDS(light_fields), sizeof *lu, e) : NULL;
-        if (!lu) {
+        bool method_shadow = fl[i].shadowed && !fl[i].mask;
+        /* a splitting method's light in two draws (SHADOW_SPLIT, shadow.h): the pixels its lookup
+           settles early, then the others; each pixel is added once, in the same order of lights */
+        int draws = method_shadow && fl[i].method->split && gk_render_split_enabled() ? 2 : 1;
+        if (draws == 2 && gk_render_split_first(r, e) != 0) {
             glDisable(GL_BLEND);
             return -1;
         }
-        glUseProgram(prog);
-        gk_gbuffer_bind(gbuf, &lu->gb, UNIT_ALBEDO, 0);
-        gk_gbuffer_bind_geom_normal(gbuf, lu->u_gb_geom_normal, UNIT_GEOM_NORMAL, 0);
-        gk_render_set_light(r, &lu->light, fl[i].node);
-        if (fl[i].mask) {
-            glActiveTexture(GL_TEXTURE0 + UNIT_SHADOW);
-            glBindTexture(GL_TEXTURE_2D, fl[i].mask);
-            glBindSampler(UNIT_SHADOW, 0);
-            glUniform1i(lu->u_shadow_mask, UNIT_SHADOW);
-        } else if (fl[i].shadowed && fl[i].method->bind(r->shadow_state[method_index(fl[i].method)], r->progs, fl[i].slot,
-                                                 &fl[i].view, prog, UNIT_SHADOW, e) != 0) {
-            glDisable(GL_BLEND);
-            return -1;
+        for (int k = 0; k < draws; k++) {
+            if (k == 1)
+                gk_render_split_second();
+            char extra[320], defines[384];
+            snprintf(extra, sizeof extra, "%s%s%s",
+                     fl[i].mask ? "#define SHADOW_MASK 1\n" : fl[i].shadowed ? fl[i].method->glsl_define : "",
+                     draws == 1 ? "" : k == 0 ? "#define SHADOW_SPLIT 1\n" : "#define SHADOW_SPLIT 2\n",
+                     method_shadow ? count_define : "");
+            gk_render_light_defines(l, extra, defines, sizeof defines);
+            prog = gk_program_get(r->progs, "common/fullscreen.vert", "direct/light.frag", defines, e);
+            const light_uniforms *lu =
+                prog ? gk_program_uniforms(r->progs, prog, GK_FIELDS(light_fields), sizeof *lu, e) : NULL;
+            if (!lu) {
+                if (draws == 2)
+                    gk_render_split_end(r);
+                glDisable(GL_BLEND);
+                return -1;
+            }
+            glUseProgram(prog);
+            gk_gbuffer_bind(gbuf, &lu->gb, UNIT_ALBEDO, 0);
+            gk_gbuffer_bind_geom_normal(gbuf, lu->u_gb_geom_normal, UNIT_GEOM_NORMAL, 0);
+            gk_render_set_light(r, &lu->light, fl[i].node);
+            if (fl[i].mask) {
+                glActiveTexture(GL_TEXTURE0 + UNIT_SHADOW);
+                glBindTexture(GL_TEXTURE_2D, fl[i].mask);
+                glBindSampler(UNIT_SHADOW, 0);
+                glUniform1i(lu->u_shadow_mask, UNIT_SHADOW);
+            } else if (fl[i].shadowed && fl[i].method->bind(r->shadow_state[method_index(fl[i].method)], r->progs,
+                                                            fl[i].slot, &fl[i].view, prog, UNIT_SHADOW, e) != 0) {
+                if (draws == 2)
+                    gk_render_split_end(r);
+                glDisable(GL_BLEND);
+                return -1;
+            }
+            gk_render_fullscreen(r);
         }
-        gk_render_fullscreen(r);
+        if (draws == 2)
+            gk_render_split_end(r);
     }
     gk_render_work_end(r);
     int rc = gk_render_env_pass(r, gbuf, fk->env_lights, e);

@@ -93,6 +93,7 @@ void gk_renderer_destroy(gk_renderer *r)
     gk_target_destroy(&r->gbuf);
     gk_target_destroy(&r->hdr);
     gk_target_destroy(&r->glass);
+    gk_render_split_destroy(r);
     gk_gi_blend_destroy(r);
     gk_render_work_destroy(r);
     for (int i = 0; i < GK_MAX_SHADOW_METHODS && gk_shadow_methods[i]; i++)

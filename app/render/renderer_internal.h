@@ -67,6 +67,13 @@ typedef struct gk_shadow_cache_key { /* compared with memcmp: no padding (fields
 } gk_shadow_cache_key;
 _Static_assert(sizeof(gk_shadow_cache_key) == 4 * sizeof(int) + sizeof(void *), "gk_shadow_cache_key has padding");
 
+/* The lighting pass's two-draw split (render_split.c): an FBO of the HDR colour and a stencil. */
+typedef struct gk_light_split {
+    GLuint fbo, stencil;
+    GLuint color;               /* the HDR texture it was made for (the target is re-made on resize) */
+    int w, h;
+} gk_light_split;
+
 struct gk_renderer {
     gk_render_opts opts;
     char *shader_dir;
@@ -87,6 +94,7 @@ struct gk_renderer {
                                    driver has 5 draw buffers (gk_render_geom_normal_target), depth 32F */
     gk_target hdr;              /* RGBA16F scene radiance at render scale */
     gk_target glass;            /* RGBA16F: hdr (or the GI blend) with the glass drawn over it (render_glass.c) */
+    gk_light_split split;       /* the HDR colour + a stencil for the lighting pass's two draws (render_split.c) */
     int render_w, render_h;     /* render size (output * render_scale) */
 
     struct gk_render_gi *gi;    /* GI methods (render_gi.c) */
@@ -139,6 +147,15 @@ void gk_render_work_compose_end(gk_renderer *r);
 const char *gk_render_work_blend_begin(gk_renderer *r);
 void gk_render_work_blend_end(gk_renderer *r);
 void gk_render_work_destroy(gk_renderer *r);
+
+/* render_split.c: a splitting shadow method's light in two draws (gk_shadow_method.split). first
+   binds the split FBO, clears its stencil and sets draw 1's stencil state; second sets draw 2's;
+   end restores the state and binds the HDR target. enabled: GK_SHADOW_ONE_DRAW is unset or 0. */
+bool gk_render_split_enabled(void);
+int gk_render_split_first(gk_renderer *r, gk_err *e);
+void gk_render_split_second(void);
+void gk_render_split_end(gk_renderer *r);
+void gk_render_split_destroy(gk_renderer *r);
 
 /* renderer_knobs.c: handles set up at creation; the frame's values from budget b (NULL: defaults). */
 void gk_render_knobs_init(gk_render_knobs *k);

@@ -392,12 +392,25 @@ highp float vssm_contact(highp vec2 tc, highp vec2 w, int layer, highp float d)
     return sum / 9.0;
 }
 
-highp float shadow_visibility(highp vec3 world_pos, highp vec3 world_normal)
+// The lookup's state between its early-outs (shadow_settle) and the rest (shadow_visibility_rest).
+gk_shadow_coord vssm_c;
+int vssm_layer;
+highp vec2 vssm_tc, vssm_wi, vssm_mm;
+highp float vssm_d;
+
+// The lookup up to the HSM's early-outs: 1 (no texel in front of the receiver over the blocker
+// search kernel: lit), 0 (every texel in front: umbra), or -1 (not settled: shadow_visibility_rest
+// goes on from here). The lighting pass's first draw (SHADOW_SPLIT 1, direct/light.frag) adds and
+// stencil-marks the pixels this settles; llvmpipe runs the whole lookup for a SIMD block unless
+// the early stencil test rejects every lane of it (a discard or a return skips nothing), so the
+// second draw runs it only in blocks with a pixel left (#21, app/render/render_split.c).
+highp float shadow_settle(highp vec3 world_pos)
 {
     // No receiver offset: Chebyshev's test is t <= mu (a surface's own samples at t count as
     // lit), and any offset puts the receiver's own samples behind t and biases p_max upward
     // (measured +0.065 in the T1 penumbra with the 1.5 + 0.5 texel offset of the other methods).
     gk_shadow_coord c = gk_shadow_project(world_pos);
+    vssm_c = c;
     if (!c.inside)
         return 1.0;
     int layer = int(c.layer);
@@ -428,6 +441,22 @@ highp float shadow_visibility(highp vec3 world_pos, highp vec3 world_normal)
     if (d > mm.y)
         return 0.0;
 #endif
+    vssm_layer = layer;
+    vssm_tc = tc;
+    vssm_wi = wi;
+    vssm_mm = mm;
+    vssm_d = d;
+    return -1.0;
+}
+
+// The rest of the lookup for a pixel shadow_settle left unsettled (-1), from its state.
+highp float shadow_visibility_rest(highp vec3 world_pos, highp vec3 world_normal)
+{
+    gk_shadow_coord c = vssm_c;
+    int layer = vssm_layer;
+    highp vec2 tc = vssm_tc, wi = vssm_wi, mm = vssm_mm;
+    highp float d = vssm_d;
+    ivec2 lo, hi;
     // the receiver plane only after the HSM's early-outs, which do not use it (two unprojections)
     vssm_receiver_plane(c, world_pos, world_normal);
     // 2. Average blocker depth.
@@ -466,4 +495,10 @@ highp float shadow_visibility(highp vec3 world_pos, highp vec3 world_normal)
 #else
     return 1.0;
 #endif
+}
+
+highp float shadow_visibility(highp vec3 world_pos, highp vec3 world_normal)
+{
+    highp float v = shadow_settle(world_pos);
+    return v >= 0.0 ? v : shadow_visibility_rest(world_pos, world_normal);
 }

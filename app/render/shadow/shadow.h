@@ -66,6 +66,11 @@ typedef struct gk_shadow_ctx {
 typedef struct gk_shadow_method {
     const char *name;             /* knob value: "hard", "pcss" */
     const char *glsl_define;      /* prelude line(s) for the lighting pass: "#define SHADOW_PCSS 1\n" */
+    /* The lighting pass draws each of the method's lights twice (render_split.c): "#define
+       SHADOW_SPLIT 1" adds and stencil-marks the pixels with no light and those its GLSL's
+       highp float shadow_settle(highp vec3 world_pos) settles (>= 0), then "2" draws the rest with
+       shadow_visibility (direct/light.frag). false: one draw with shadow_visibility. */
+    bool split;
     void *(*create)(void);
     void (*destroy)(void *self);
     int (*render)(void *self, const gk_shadow_ctx *ctx, int slot, const gk_shadow_view *v, gk_err *e);

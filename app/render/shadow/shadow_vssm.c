@@ -160,6 +160,7 @@ static int vssm_bind(void *self, gk_program_cache *progs, int slot, const gk_sha
     const gk_shadow_method ident = {                                                                                   \
         .name = name_,                                                                                                 \
         .glsl_define = "#define SHADOW_VSSM 1\n" defines,                                                              \
+        .split = true,                                                                                                 \
         .create = vssm_create,                                                                                         \
         .destroy = vssm_destroy,                                                                                       \
         .render = vssm_render,                                                                                         \
