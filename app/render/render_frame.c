@@ -236,10 +236,8 @@ static int pass_direct(gk_renderer *r, const gk_frame_knobs *fk, const frame_lig
         /* a splitting method's light in two draws (SHADOW_SPLIT, shadow.h): the pixels its lookup
            settles early, then the others; each pixel is added once, in the same order of lights */
         int draws = method_shadow && fl[i].method->split && gk_render_split_enabled() ? 2 : 1;
-        if (draws == 2 && gk_render_split_first(r, e) != 0) {
-            glDisable(GL_BLEND);
-            return -1;
-        }
+        if (draws == 2 && !gk_render_split_first(r))
+            draws = 1;
         for (int k = 0; k < draws; k++) {
             if (k == 1)
                 gk_render_split_second();

@@ -13,6 +13,8 @@
  * environment turns the split off (the before/after of the README's numbers). */
 #include <stdlib.h>
 
+#include "base/log.h"
+
 #include "renderer_internal.h"
 
 bool gk_render_split_enabled(void)
@@ -45,10 +47,20 @@ static int ensure(gk_renderer *r, gk_err *e)
     return 0;
 }
 
-int gk_render_split_first(gk_renderer *r, gk_err *e)
+/* Binds the split's framebuffer for draw 1; false (the light is then drawn in one draw, the same
+   image) where the driver refuses a colour + stencil-only framebuffer: STENCIL_INDEX8 renderbuffers are
+   core GLES 3.0, but a driver may still report the combination incomplete. Said once, not per frame. */
+bool gk_render_split_first(gk_renderer *r)
 {
-    if (ensure(r, e) != 0)
-        return -1;
+    if (r->split.unavailable)
+        return false;
+    gk_err e = {0};
+    if (ensure(r, &e) != 0) {
+        gk_log("lighting pass: %s; the shadow lookup's two draws are off, one draw from now on", e.msg);
+        r->split.unavailable = true;
+        glBindFramebuffer(GL_FRAMEBUFFER, r->hdr.fbo);
+        return false;
+    }
     glBindFramebuffer(GL_FRAMEBUFFER, r->split.fbo);
     glEnable(GL_STENCIL_TEST);
     glStencilMask(0xff);
@@ -56,7 +68,7 @@ int gk_render_split_first(gk_renderer *r, gk_err *e)
     glClearBufferiv(GL_STENCIL, 0, &zero);
     glStencilFunc(GL_ALWAYS, 1, 0xff);
     glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE); /* depth test off: a surviving fragment writes 1 */
-    return 0;
+    return true;
 }
 
 void gk_render_split_second(void)

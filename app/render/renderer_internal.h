@@ -72,6 +72,7 @@ typedef struct gk_light_split {
     GLuint fbo, stencil;
     GLuint color;               /* the HDR texture it was made for (the target is re-made on resize) */
     int w, h;
+    bool unavailable;           /* the colour + stencil framebuffer was refused: one draw from then on */
 } gk_light_split;
 
 struct gk_renderer {
@@ -152,7 +153,7 @@ void gk_render_work_destroy(gk_renderer *r);
    binds the split FBO, clears its stencil and sets draw 1's stencil state; second sets draw 2's;
    end restores the state and binds the HDR target. enabled: GK_SHADOW_ONE_DRAW is unset or 0. */
 bool gk_render_split_enabled(void);
-int gk_render_split_first(gk_renderer *r, gk_err *e);
+bool gk_render_split_first(gk_renderer *r);
 void gk_render_split_second(void);
 void gk_render_split_end(gk_renderer *r);
 void gk_render_split_destroy(gk_renderer *r);
