@@ -296,6 +296,20 @@ assert f.get(("plane", u), 0.0) % 4 == 0, f
 print("# vpl_gather fetches (off / on / plane): R16F %g / %g / %g, RGBA32F %g / %g / %g" % (
     f.get(("off", u), 0.0), f[("on", u)], f.get(("plane", u), 0.0), f[("off", p)], f[("on", p)], f[("plane", p)]))
 PY
+# the chain of maxima's reduction in gi.vpl_valsm (vpl_work.c vpl_zmax_reads, from the map's size;
+# tests/gpu/test_vpl_work.c checks it against val_zmax.frag's counting variant): 13 652 R16F reads a
+# 64² map (the default vpl_val_map) under `on` and `plane` alike, none without the test
+check "vpl_valsm: the deep-umbra chain's reads, 13652 a map under on and plane, none off" python3 - "$TMP/u/efficiency.csv" <<'PY'
+import csv, sys
+f = {}
+for e in csv.DictReader(open(sys.argv[1])):
+    if e["pass"] == "gi.vpl_valsm":
+        f[(e["vpl_umbra"], e["kind"])] = float(e["fetches"])
+u = "tex2d_r16f_nearest"
+assert ("off", u) not in f and ("off", "raster_r16f_depth_fill") in f, f
+assert f[("on", u)] == f[("plane", u)] > 0 and f[("on", u)] % 13652 == 0, f
+print("# vpl_valsm chain reads (on / plane): %g / %g" % (f[("on", u)], f[("plane", u)]))
+PY
 # lgv's passes (app/gi/lgv/lgv_work.c), the maps rendered each frame (--rebuild-gi), without and with
 # the gathering iterations: the maps' fragments and the lookup's volume reads do not depend on them,
 # the gathering's loads grow by 2 x (4 per neighbour pair + 3 per cell), whose pairs and cells must be
