@@ -195,8 +195,22 @@ assert caustic <= set(f), f
 # the RSM's fragments (tests/gpu/test_ispm_work.c replays them): the light's view of the ring, the
 # same at both photon counts (checked with vpl's passes below), at most a few times its 256^2 texels
 assert 0 < f[("gi.ispm_photons", "raster_r16f_depth_fill")]["1024"] <= 4 * 256 * 256, f
+# the mask pyramid and the emission in the same pass (ispm_work.c ispm_photons_model, from the photon
+# header; tests/gpu/test_ispm_work.c checks it against the shaders' counting variant): the pyramid's
+# 256² mask texels and 4 (128² + ... + 1²) = 87 380 count loads at both counts, plus the emission's
+# (256 >> l)² count loads at its level l, and a depth read per photon, at most the budget
+emission = {("gi.ispm_photons", k) for k in ("tex2d_r32f_nearest", "tex2d_depth32f_nearest", "ssbo_rgba32f_load",
+                                            "ssbo_r32ui_atomic")}
+assert emission <= set(f), f
+for n in ("1024", "4096"):
+    blocks = f[("gi.ispm_photons", "ssbo_rgba32f_load")][n] - 87380
+    side = round(blocks ** 0.5)
+    assert side * side == blocks and side & (side - 1) == 0 and side <= 256, (n, blocks)
+    photons = f[("gi.ispm_photons", "tex2d_depth32f_nearest")][n]
+    assert 0 < photons <= int(n) and f[("gi.ispm_photons", "tex2d_r32f_nearest")][n] >= 256 * 256 + 4 * photons, (n, f)
+assert f[("gi.ispm_photons", "tex2d_depth32f_nearest")]["4096"] > f[("gi.ispm_photons", "tex2d_depth32f_nearest")]["1024"]
 for k, v in f.items():
-    if k not in caustic or k[0] == "gi.ispm_lists":
+    if k not in caustic | emission or k[0] == "gi.ispm_lists":
         assert v["1024"] == v["4096"] > 0, (k, v)
 lists = f[("gi.ispm_lists", "ssbo_r32ui_atomic")]["1024"]
 assert lists % 5 == 0, lists
