@@ -251,13 +251,21 @@ assert 0 < pts[0] <= 2500 and pts[0] < pts[1] <= 10000, pts
 cull = [f[("gi.lightmap_caustic_cull", "raster_r16f_depth_fill", k)] for k in ("2500", "10000")]
 assert cull[0] == cull[1] >= 80 * 60, cull
 # the final gather's reduction (counted, tests/gpu/test_lightmap_gather.c): lightmap_gather² tile
-# texels per texel gathered, at most lightmap_iim texels a frame
+# texels per texel gathered, at most lightmap_iim texels a frame; and its draws (counted by
+# gather.frag's variant, tests/gpu/test_lightmap_gather_work.c): the tiles' fragments, and an AIM
+# lookup for each that is a charted surface's (which texels are gathered, and so what their tiles
+# see, follows the worker's priorities: not the same in both rows)
 for e in csv.DictReader(open(sys.argv[1])):
-    if e["pass"] == "gi.lightmap_gather":
+    if e["pass"] == "gi.lightmap_gather" and e["kind"] == "tex2d_rgba32f_nearest":
         res2, texels = int(e["lightmap_gather"]) ** 2, float(e["fetches"])
-        assert e["kind"] == "tex2d_rgba32f_nearest" and texels % res2 == 0, e
+        assert texels % res2 == 0, e
         assert 0 < texels / res2 <= int(e["lightmap_iim"]), e
-assert ("gi.lightmap_gather", "tex2d_rgba32f_nearest", "2500") in f, f
+for k in ("2500", "10000"):
+    assert ("gi.lightmap_gather", "tex2d_rgba32f_nearest", k) in f, f
+    frags, lookups = f[("gi.lightmap_gather", "raster_r16f_depth_fill", k)], f[("gi.lightmap_gather", "tex2d_rgba16f_trilinear", k)]
+    assert 0 < lookups <= frags, (k, frags, lookups)
+assert {e[1] for e in f if e[0] == "gi.lightmap_gather"} == {"tex2d_rgba32f_nearest", "raster_r16f_depth_fill",
+                                                             "tex2d_rgba16f_trilinear"}, f
 PY
 # radiosity's bounces (app/gi/radiosity/rad_work.c): one radiance load per link per bounce, so with
 # the same links (lockstep: the worker's first link set in both rows) 4 bounces load twice what 2 do
