@@ -94,7 +94,7 @@ typedef struct ispm_state {
     gk_counters upsample_fetches;   /* the upsample's splat texels */
     gk_counters rsm_fragments;      /* the RSM's fragments (ispm/rsm.frag) */
     /* the mask pyramid's and the emission's reads and atomics, modelled from the photon header
-       (ispm_work_photons; ISPM_PHOTON_KINDS: RSM texels, RSM depths, storage loads, atomics), and
+       (ispm_work_photons; by kind: RSM texels, RSM depths, storage loads, atomics), and
        the same as mask.comp's and emit.comp's counting variants count them (a check) */
     double photons_work[4];
     bool photons_modelled;
