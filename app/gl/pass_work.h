@@ -6,9 +6,12 @@
 #ifndef GK_PASS_WORK_H
 #define GK_PASS_WORK_H
 
-#define GK_MAX_PASS_WORK 40 /* a frame's lines: the renderer's passes (up to 17 with glass, the
-                                 direct pass's 5 kinds and the VSSM and CSSM prefilters' 3 and 4, where
-                                 the environment's lights use the other family) and a method's (lgv: 14) */
+#define GK_MAX_PASS_WORK 48 /* a frame's lines: the renderer's passes (up to 23: the shadow maps 1,
+                                 the VSSM and CSSM prefilters' 3 and 4 where the environment's lights
+                                 use the other family, the G-buffer 1, the direct pass's 5 kinds,
+                                 glass 2, the cross-fade's copy, hold and blend 3, the occlusion 2,
+                                 blend 1, compose 1) and a method's (ispm: 21, vpl's 12 and its
+                                 caustic passes' 9; lgv: 14) */
 
 typedef struct gk_pass_work {
     const char *pass;   /* dotted frame-report path: "gi.vct_trace" (a string literal) */

@@ -407,10 +407,15 @@ int gk_renderer_draw(gk_renderer *r, const gk_frame_params *fp, unsigned target_
     int w = (int)lroundf((float)r->opts.width * fk.render_scale), h = (int)lroundf((float)r->opts.height * fk.render_scale);
     if (w < 1) w = 1;
     if (h < 1) h = 1;
-    /* before the targets may be resized: the last frame's GI is still there to hold */
+    /* before the targets may be resized: the last frame's GI is still there to hold (timed: the
+       frame's clock starts first) */
+    gk_timer_frame_begin(r->timer);
     gk_gi_blend_begin_frame(r, fp ? fp->method : NULL, b, fk.gi_blend);
-    if (ensure_targets(r, w, h, e) != 0)
+    if (ensure_targets(r, w, h, e) != 0) {
+        gk_frame_report dropped;
+        gk_timer_frame_end(r->timer, &dropped); /* closes the hold's passes, if any */
         return -1;
+    }
     r->shown = r->hdr.color[0];
 
     gk_scene *s = r->scene;
@@ -441,7 +446,6 @@ int gk_renderer_draw(gk_renderer *r, const gk_frame_params *fp, unsigned target_
 
     while (glGetError() != GL_NO_ERROR) {
     }
-    gk_timer_frame_begin(r->timer);
     /* Each top-level pass asks fp->stop first (stop_before): a stop request abandons the frame
        there. In CPU timing mode every pass ends on a fence, so the pass in flight is all the work
        a stop waits for; with GPU timing the queued GL work of that pass still drains on exit. */

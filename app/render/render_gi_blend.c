@@ -10,7 +10,10 @@
  * direct light (shadows included) is never mixed with an older frame; the held contribution is from
  * a few frames ago, which on a moving camera shows as a short ghost of the indirect light only.
  * Cost: one HDR blit per frame with GI, plus one full-screen pass during a transition -- both timed
- * inside the `gi` pass (gi.blend_hold, gi.blend), so the frame report and the scheduler see them. */
+ * inside the `gi` pass (gi.blend_hold, gi.blend), so the frame report and the scheduler see them.
+ * The hold itself (a full-screen pass at a transition's first frame) runs before the targets may be
+ * resized, at the frame's start: it is timed there as gi.blend_hold too (a pass begun twice under
+ * the same parent accumulates, app/gl/gl_timing.h), so the frame's passes still sum to the frame. */
 #include <stdio.h>
 #include <string.h>
 
@@ -63,6 +66,8 @@ static int hold_last_contribution(gk_renderer *r, gk_err *e)
     const hold_uniforms *u = prog ? gk_program_uniforms(r->progs, prog, GK_FIELDS(hold_fields), sizeof *u, e) : NULL;
     if (!u || ensure_rgba16f(&g->held, "gi blend (held)", g->pre.width, g->pre.height, e) != 0)
         return -1;
+    if (r->count_work) /* gi_hold.frag: shown and pre, one bilinear lookup each a texel of the last frame's size */
+        g->work_capture = 2.0 * g->held.width * g->held.height;
     glBindFramebuffer(GL_FRAMEBUFFER, g->held.fbo);
     glViewport(0, 0, g->held.width, g->held.height);
     glDisable(GL_DEPTH_TEST);
@@ -77,7 +82,7 @@ static int hold_last_contribution(gk_renderer *r, gk_err *e)
 void gk_gi_blend_begin_frame(gk_renderer *r, const char *method, const gk_budget *b, int blend_frames)
 {
     gk_gi_blend *g = &r->blend;
-    g->work_hold = g->work_blend = 0.0;
+    g->work_hold = g->work_blend = g->work_capture = 0.0;
     const char *m = method ? method : "none";
     int n = b ? b->n : 0;
     bool changed = g->have_last &&
@@ -89,7 +94,14 @@ void gk_gi_blend_begin_frame(gk_renderer *r, const char *method, const gk_budget
         /* nothing to fade when neither side has GI, or when fading is off */
         if (blend_frames > 1 && r->have_frame && (g->pre_valid || gi_now)) {
             gk_err he = {0}; /* a fade that cannot start is no frame error: logged, the switch shows at once */
-            if (hold_last_contribution(r, &he) == 0) {
+            /* timed as the gi pass's blend_hold (the renderer's frame has begun on its timer) */
+            const gk_pass_ctx hold_ctx = {.timer = r->timer};
+            gk_pass_begin(&hold_ctx, "gi");
+            gk_pass_begin(&hold_ctx, "blend_hold");
+            int held = hold_last_contribution(r, &he);
+            gk_pass_end(&hold_ctx);
+            gk_pass_end(&hold_ctx);
+            if (held == 0) {
                 g->frames = blend_frames;
                 g->frames_left = blend_frames - 1;
             } else {

@@ -25,7 +25,10 @@
  *   gi.blend_hold, gi.blend (the GI cross-fade, render_gi_blend.c), from the render size: the copy
  *     of the image before GI, a blit of one RGBA16F texel a pixel (unfiltered: the roofline's
  *     unfiltered kind, whose 16-byte texels are twice these), and during a transition the blend's
- *     three bilinear lookups a pixel (the image before GI, the new one and the held contribution).
+ *     three bilinear lookups a pixel (the image before GI, the new one and the held contribution);
+ *     at a transition's first frame the hold of the last frame's GI contribution, two bilinear
+ *     lookups (the image shown and the one before GI) a pixel of the last frame's render size, in
+ *     gi.blend_hold beside the copy's texels.
  *   gi.occlusion (render_gi_occlusion.c), from the render size: per pixel the G-buffer depth read of
  *     its background test and the pre-GI image's texel; its ao reads are not counted.
  *   blend (BLEND_COUNT_FRAGMENTS, blend/forward.frag): the alpha-blended meshes' fragments, every
@@ -153,6 +156,8 @@ int gk_renderer_pass_work(const gk_renderer *r, const char *method, gk_pass_work
                                   .fetches = g->value[1] + (double)r->glass_copy_lookups};
     if (r->blend.work_hold > 0.0 && n < max)
         out[n++] = (gk_pass_work){.pass = "gi.blend_hold", .kind = "tex2d_rgba32f_nearest", .fetches = r->blend.work_hold};
+    if (r->blend.work_capture > 0.0 && n < max)
+        out[n++] = (gk_pass_work){.pass = "gi.blend_hold", .kind = "tex2d_rgba16f_trilinear", .fetches = r->blend.work_capture};
     if (r->blend.work_blend > 0.0 && n < max)
         out[n++] = (gk_pass_work){.pass = "gi.blend", .kind = "tex2d_rgba16f_trilinear", .fetches = r->blend.work_blend};
     /* the occlusion texture on GI: per pixel the pre-GI image's texel (RGBA16F, unfiltered) and the

@@ -54,8 +54,9 @@ typedef struct gk_gi_blend {
     int n_levels;
     int levels[GK_MAX_KNOBS];
     bool have_last;
-    /* the bench's counting frame (render_work.c): this frame's texels the copy and the blend read */
-    double work_hold, work_blend;
+    /* the bench's counting frame (render_work.c): this frame's texels the copy and the blend read,
+       and at a transition's first frame the hold's lookups (2 a texel of the last frame's size) */
+    double work_hold, work_blend, work_capture;
 } gk_gi_blend;
 
 /* The shadow maps of a static scene are kept while this stays the same (compared by value). */

@@ -13,10 +13,23 @@
 // θ = arccos(ξ^{1/(α+1)}) (errata A.7 item 1), frame of Algorithm 3.3; below-surface samples are
 // absorbed. A photon's slot comes from an atomic counter (compaction); its random numbers are keyed
 // by its RSM block (A.7 item 14), or by its slot in the faithful "list index" mode (L13).
+// PHOTONS_COUNT_FETCHES: the bench's counting variant (#21, app/gi/ispm/ispm_work.c), as mask.comp's:
+// per block its count's load, the RSM normal texels its loop reads, its photon's 3 RSM texels and
+// depth texel, and its atomics (the slot, an overflow, a reflection), added to binding 6. The level
+// choice's reads of the header, the same in every invocation, are not counted. Never in the kiosk's
+// frames.
+// @variant -
+// @variant PHOTONS_COUNT_FETCHES
 precision highp float;
 precision highp int;
 layout(local_size_x = 64) in;
 #include "ispm/common.glsl"
+#ifdef PHOTONS_COUNT_FETCHES
+layout(std430, binding = 6) buffer PhotonsFetches { highp uint texels, depths, loads, atomics; } photons_counted;
+#define PHOTONS_COUNT(field, n) atomicAdd(photons_counted.field, uint(n))
+#else
+#define PHOTONS_COUNT(field, n)
+#endif
 layout(std430, binding = 0) readonly buffer Counts { uint counts[]; };
 layout(std430, binding = 2) buffer Photons { ISPM_PHOTON_HEADER Photon ph[]; };
 uniform highp sampler2D u_rsm_depth;
@@ -91,6 +104,7 @@ void main()
         return;
     uint b = (i * u_shuffle_mul + u_shuffle_add) & (blocks - 1u);   // a bijection: blocks is 4^k
     uint c = counts[level_offset(l) + int(b)];
+    PHOTONS_COUNT(loads, 1);
     uint full = 1u << (2 * l);
     if (c == 0u || (u_faithful == 1 && c != full))
         return;
@@ -111,11 +125,16 @@ void main()
             if (d2 < best)
                 best = d2, rep = t;
         }
+    PHOTONS_COUNT(texels, side * side);
     uint slot = atomicAdd(ph_count, 1u);
+    PHOTONS_COUNT(atomics, 1);
     if (slot >= uint(u_capacity)) {
         atomicAdd(ph_overflow, 1u);
+        PHOTONS_COUNT(atomics, 1);
         return;
     }
+    PHOTONS_COUNT(texels, 3);   // the representative's normal, specular and diffuse texels
+    PHOTONS_COUNT(depths, 1);
     float depth = texelFetch(u_rsm_depth, rep, 0).r;
     vec4 wp = u_light_inv_vp * vec4((vec2(rep) + 0.5) / float(u_res) * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
     vec3 x = wp.xyz / wp.w;
@@ -140,6 +159,7 @@ void main()
     if (dot(r, n) <= 0.0)
         return;   // below the surface: absorbed
     atomicAdd(ph_reflected, 1u);
+    PHOTONS_COUNT(atomics, 1);
     ph[slot].org.w = 1.0;
     ph[slot].dir = vec4(r, float(key));   // the key (< 2^24, exact): further bounces draw from it (L13)
     ph[slot].pow_d1 = vec4(flux * s / ps, length(x - u_light_pos));

@@ -195,8 +195,22 @@ assert caustic <= set(f), f
 # the RSM's fragments (tests/gpu/test_ispm_work.c replays them): the light's view of the ring, the
 # same at both photon counts (checked with vpl's passes below), at most a few times its 256^2 texels
 assert 0 < f[("gi.ispm_photons", "raster_r16f_depth_fill")]["1024"] <= 4 * 256 * 256, f
+# the mask pyramid and the emission in the same pass (ispm_work.c ispm_photons_model, from the photon
+# header; tests/gpu/test_ispm_work.c checks it against the shaders' counting variant): the pyramid's
+# 256² mask texels and 4 (128² + ... + 1²) = 87 380 count loads at both counts, plus the emission's
+# (256 >> l)² count loads at its level l, and a depth read per photon, at most the budget
+emission = {("gi.ispm_photons", k) for k in ("tex2d_r32f_nearest", "tex2d_depth32f_nearest", "ssbo_rgba32f_load",
+                                            "ssbo_r32ui_atomic")}
+assert emission <= set(f), f
+for n in ("1024", "4096"):
+    blocks = f[("gi.ispm_photons", "ssbo_rgba32f_load")][n] - 87380
+    side = round(blocks ** 0.5)
+    assert side * side == blocks and side & (side - 1) == 0 and side <= 256, (n, blocks)
+    photons = f[("gi.ispm_photons", "tex2d_depth32f_nearest")][n]
+    assert 0 < photons <= int(n) and f[("gi.ispm_photons", "tex2d_r32f_nearest")][n] >= 256 * 256 + 4 * photons, (n, f)
+assert f[("gi.ispm_photons", "tex2d_depth32f_nearest")]["4096"] > f[("gi.ispm_photons", "tex2d_depth32f_nearest")]["1024"]
 for k, v in f.items():
-    if k not in caustic or k[0] == "gi.ispm_lists":
+    if k not in caustic | emission or k[0] == "gi.ispm_lists":
         assert v["1024"] == v["4096"] > 0, (k, v)
 lists = f[("gi.ispm_lists", "ssbo_r32ui_atomic")]["1024"]
 assert lists % 5 == 0, lists
@@ -237,13 +251,21 @@ assert 0 < pts[0] <= 2500 and pts[0] < pts[1] <= 10000, pts
 cull = [f[("gi.lightmap_caustic_cull", "raster_r16f_depth_fill", k)] for k in ("2500", "10000")]
 assert cull[0] == cull[1] >= 80 * 60, cull
 # the final gather's reduction (counted, tests/gpu/test_lightmap_gather.c): lightmap_gather² tile
-# texels per texel gathered, at most lightmap_iim texels a frame
+# texels per texel gathered, at most lightmap_iim texels a frame; and its draws (counted by
+# gather.frag's variant, tests/gpu/test_lightmap_gather_work.c): the tiles' fragments, and an AIM
+# lookup for each that is a charted surface's (which texels are gathered, and so what their tiles
+# see, follows the worker's priorities: not the same in both rows)
 for e in csv.DictReader(open(sys.argv[1])):
-    if e["pass"] == "gi.lightmap_gather":
+    if e["pass"] == "gi.lightmap_gather" and e["kind"] == "tex2d_rgba32f_nearest":
         res2, texels = int(e["lightmap_gather"]) ** 2, float(e["fetches"])
-        assert e["kind"] == "tex2d_rgba32f_nearest" and texels % res2 == 0, e
+        assert texels % res2 == 0, e
         assert 0 < texels / res2 <= int(e["lightmap_iim"]), e
-assert ("gi.lightmap_gather", "tex2d_rgba32f_nearest", "2500") in f, f
+for k in ("2500", "10000"):
+    assert ("gi.lightmap_gather", "tex2d_rgba32f_nearest", k) in f, f
+    frags, lookups = f[("gi.lightmap_gather", "raster_r16f_depth_fill", k)], f[("gi.lightmap_gather", "tex2d_rgba16f_trilinear", k)]
+    assert 0 < lookups <= frags, (k, frags, lookups)
+assert {e[1] for e in f if e[0] == "gi.lightmap_gather"} == {"tex2d_rgba32f_nearest", "raster_r16f_depth_fill",
+                                                             "tex2d_rgba16f_trilinear"}, f
 PY
 # radiosity's bounces (app/gi/radiosity/rad_work.c): one radiance load per link per bounce, so with
 # the same links (lockstep: the worker's first link set in both rows) 4 bounces load twice what 2 do
@@ -295,6 +317,20 @@ for mode, kind in (("on", u), ("plane", p)):
 assert f.get(("plane", u), 0.0) % 4 == 0, f
 print("# vpl_gather fetches (off / on / plane): R16F %g / %g / %g, RGBA32F %g / %g / %g" % (
     f.get(("off", u), 0.0), f[("on", u)], f.get(("plane", u), 0.0), f[("off", p)], f[("on", p)], f[("plane", p)]))
+PY
+# the chain of maxima's reduction in gi.vpl_valsm (vpl_work.c vpl_zmax_reads, from the map's size;
+# tests/gpu/test_vpl_work.c checks it against val_zmax.frag's counting variant): 13 652 R16F reads a
+# 64² map (the default vpl_val_map) under `on` and `plane` alike, none without the test
+check "vpl_valsm: the deep-umbra chain's reads, 13652 a map under on and plane, none off" python3 - "$TMP/u/efficiency.csv" <<'PY'
+import csv, sys
+f = {}
+for e in csv.DictReader(open(sys.argv[1])):
+    if e["pass"] == "gi.vpl_valsm":
+        f[(e["vpl_umbra"], e["kind"])] = float(e["fetches"])
+u = "tex2d_r16f_nearest"
+assert ("off", u) not in f and ("off", "raster_r16f_depth_fill") in f, f
+assert f[("on", u)] == f[("plane", u)] > 0 and f[("on", u)] % 13652 == 0, f
+print("# vpl_valsm chain reads (on / plane): %g / %g" % (f[("on", u)], f[("plane", u)]))
 PY
 # lgv's passes (app/gi/lgv/lgv_work.c), the maps rendered each frame (--rebuild-gi), without and with
 # the gathering iterations: the maps' fragments and the lookup's volume reads do not depend on them,

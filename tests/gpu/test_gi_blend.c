@@ -205,13 +205,17 @@ static void render_scale_step_is_faded(void **state)
    and gi_blend > 1 the copy of the image before GI reads one texel a pixel (gi.blend_hold: W x H);
    in a frame of a transition the blend reads three a pixel (gi.blend: 3 W x H); at render_scale 0.5
    both count the render size's pixels; nothing is reported unless the frame counts. Cornell has no
-   occlusion texture (gi.occlusion does not run). */
-static double cross_fade_work(gk_renderer *r, const char *pass)
+   occlusion texture (gi.occlusion does not run). At the switch's frame the hold of the last frame's
+   contribution adds 2 bilinear lookups a pixel of the LAST frame's render size to gi.blend_hold
+   (tex2d_rgba16f_trilinear, beside the copy's unfiltered texels): 2 W x H and 2 (W/2)(H/2) on a
+   switch at one scale, 2 W x H on a switch from render_scale 1 to 0.5, whose copy and blend read the
+   new size. */
+static double cross_fade_work(gk_renderer *r, const char *pass, const char *kind)
 {
     gk_pass_work w[GK_MAX_PASS_WORK];
     int n = gk_renderer_pass_work(r, "vct", w, GK_MAX_PASS_WORK);
     for (int i = 0; i < n; i++)
-        if (!strcmp(w[i].pass, pass))
+        if (!strcmp(w[i].pass, pass) && !strcmp(w[i].kind, kind))
             return w[i].fetches;
     return -1.0;
 }
@@ -219,25 +223,33 @@ static double cross_fade_work(gk_renderer *r, const char *pass)
 static void cross_fade_work_by_hand(void **state)
 {
     (void)state;
-    static const char *const scales[2] = {"1", "0.5"};
-    for (int k = 0; k < 2; k++) {
+    /* the pins of both sides: at one scale the switch is vct_mips', the last one render_scale's */
+    static const char *const commons[3] = {"gi_blend=4,render_scale=1", "gi_blend=4,render_scale=0.5", "gi_blend=4"};
+    static const char *const pins[3][2] = {{"vct_mips=aniso", "vct_mips=iso"}, {"vct_mips=aniso", "vct_mips=iso"},
+                                           {"render_scale=1", "render_scale=0.5"}};
+    const double full = (double)W * H, half = (double)(W / 2) * (H / 2);
+    const double px[3] = {full, half, half}, last_px[3] = {full, half, full};
+    for (int k = 0; k < 3; k++) {
         gk_err e = {0};
-        char common[64];
-        snprintf(common, sizeof common, "gi_blend=4,render_scale=%s", scales[k]);
         gk_budget a, b;
-        gk_renderer *r = open_switch(common, "vct_mips=aniso", "vct_mips=iso", &a, &b);
-        double px = k == 0 ? (double)W * H : (double)(W / 2) * (H / 2);
+        gk_renderer *r = open_switch(commons[k], pins[k][0], pins[k][1], &a, &b);
         for (int f = 0; f < 3; f++) {
             assert_true(gk_renderer_count_work(r, f > 0));
             gk_frame_params fp = {.time_s = 0, .method = "vct", .budget = f < 2 ? &a : &b};
             gk_frame_report rep;
             if (gk_renderer_draw(r, &fp, T.fb.fbo, &rep, &e) != 0)
                 fail_msg("frame %d: %s", f, e.msg);
-            double hold = cross_fade_work(r, "gi.blend_hold"), blend = cross_fade_work(r, "gi.blend");
-            printf("# render_scale=%s, frame %d%s: blend_hold %.0f, blend %.0f texels\n", scales[k], f,
-                   f == 2 ? " (the switch)" : "", hold, blend);
-            assert_true(hold == (f == 0 ? -1.0 : px));          /* frame 0 does not count */
-            assert_true(blend == (f == 2 ? 3.0 * px : -1.0));   /* only the switch's frame blends */
+            double copy = cross_fade_work(r, "gi.blend_hold", "tex2d_rgba32f_nearest");
+            double hold = cross_fade_work(r, "gi.blend_hold", "tex2d_rgba16f_trilinear");
+            double blend = cross_fade_work(r, "gi.blend", "tex2d_rgba16f_trilinear");
+            printf("# %s, %s -> %s, frame %d%s: blend_hold %.0f texels + %.0f hold lookups, blend %.0f\n", commons[k],
+                   pins[k][0], pins[k][1], f, f == 2 ? " (the switch)" : "", copy, hold, blend);
+            assert_true(copy == (f == 0 ? -1.0 : f == 2 ? px[k] : last_px[k])); /* frame 0 does not count */
+            assert_true(hold == (f == 2 ? 2.0 * last_px[k] : -1.0)); /* only the switch's frame holds */
+            assert_true(blend == (f == 2 ? 3.0 * px[k] : -1.0));     /* ... and blends */
+            /* the hold is timed inside gi.blend_hold, whose parent is gi */
+            int i = gk_frame_report_find(&rep, "gi.blend_hold");
+            assert_true(i >= 0 && rep.pass[i].ms > 0.0 && rep.pass[rep.pass[i].parent].ms >= rep.pass[i].ms);
         }
         gk_renderer_destroy(r);
     }

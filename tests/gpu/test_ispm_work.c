@@ -352,11 +352,53 @@ static void rsm_fragments_match_a_replay(void **state)
     assert_true(counted == (double)replay);
 }
 
+/* The mask pyramid's and the emission's work (gi.ispm_photons beside the RSM's fragments, modelled
+   from the photon header: ispm_photons_model) against mask.comp's and emit.comp's counting variant,
+   kind by kind, exact; and its parts by hand on the mirror: the mirror is the only surface in the
+   RSM, all specular, so the mask's level-0 count M (ph_top) is the RSM's fragments, level 0's
+   the pyramid's loads 4 (128² + ... + 1²) = 87 380; and each photon's emission reads 4^l mask
+   texels. With a budget above M (65 536) every specular texel is a photon at level 0; below it
+   (1024) the level rises. */
+static void photon_emission_matches_the_shaders_count(void **state)
+{
+    (void)state;
+    static const char *const budgets[2] = {"ispm_trace=64,ispm_photons=65536", "ispm_trace=64,ispm_photons=1024"};
+    for (int b = 0; b < 2; b++) {
+        counting_frame(budgets[b]);
+        const ispm_state *s = H.self;
+        static const char *const kinds[4] = {"tex2d_r32f_nearest", "tex2d_depth32f_nearest", "ssbo_rgba32f_load",
+                                             "ssbo_r32ui_atomic"};
+        double model[4];
+        for (int k = 0; k < 4; k++)
+            model[k] = work_of("gi.ispm_photons", kinds[k]);
+        const gk_counters *c = &s->photons_fetches;
+        assert_true(c->counted);
+        double rsm = work_of("gi.ispm_photons", "raster_r16f_depth_fill");
+        print_message("# %s: level %u, %u photons (capacity %d), %u reflected, M %u, RSM fragments %.0f: modelled %.0f "
+                      "texels, %.0f depths, %.0f loads, %.0f atomics; counted %.0f, %.0f, %.0f, %.0f\n", budgets[b],
+                      s->st.level, s->st.photons, s->capacity, s->st.reflected, s->st.specular_texels, rsm, model[0],
+                      model[1], model[2], model[3], c->value[0], c->value[1], c->value[2], c->value[3]);
+        for (int k = 0; k < 4; k++)
+            assert_true(model[k] > 0.0 && model[k] == c->value[k]);
+        /* by hand: the mirror's texels are the mask's, and each block read 4^l of them */
+        double m = s->st.specular_texels, side = ISPM_RSM_RES >> s->st.level;
+        assert_true(m > 0.0 && m == rsm);
+        double kept = s->st.photons < (unsigned)s->capacity ? s->st.photons : (double)s->capacity;
+        assert_true(model[0] == (double)ISPM_RSM_RES * ISPM_RSM_RES + s->st.photons * (double)(1u << (2 * s->st.level)) + 3.0 * kept);
+        assert_true(model[1] == kept && model[2] == 87380.0 + side * side);
+        if (b == 0)
+            assert_true(s->st.level == 0 && s->st.photons == m); /* every specular texel a photon */
+        else
+            assert_true(s->st.level > 0 && s->st.photons < m);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(list_atomics_by_hand),
         cmocka_unit_test(rsm_fragments_match_a_replay),
+        cmocka_unit_test(photon_emission_matches_the_shaders_count),
         cmocka_unit_test(lists_trace_and_splat_match_replays),
     };
     return cmocka_run_group_tests_name("ispm_work", tests, setup, teardown);

@@ -128,6 +128,40 @@ static void val_map_fragments_match_a_replay(void **state)
     }
 }
 
+/* The deep-umbra chain's reads (vpl_zmax_reads, from the map's size) against val_zmax.frag's
+   counting variant, and its coarser levels against a hand count: 4 reads a texel of levels 2..,
+   4 (16² + 8² + 4² + 2² + 1²) = 1364 a 64² map, 4 (32² + ... + 1²) = 5460 at 128². Level 1's reads
+   are at most 16 a texel (32² x 16 = 16 384 at 64²) and fewer by the rim's texels. Without the
+   chain (vpl_umbra=off) none. */
+static void umbra_chain_reads_match_the_shaders_count(void **state)
+{
+    (void)state;
+    static const char *const budgets[] = {"vpl_n=256,vpl_m=4,vpl_val_map=64,vpl_vis=cssm,vpl_umbra=on",
+                                          "vpl_n=256,vpl_m=8,vpl_val_map=128,vpl_vis=vsm,vpl_umbra=plane",
+                                          "vpl_n=256,vpl_m=4,vpl_val_map=64,vpl_vis=cssm,vpl_umbra=off"};
+    static const double coarse[] = {1364.0, 5460.0, 0.0};
+    for (int b = 0; b < 3; b++) {
+        assert_int_equal(h_budget(&H, budgets[b]), 0);
+        H.count_work = true;
+        assert_int_equal(h_frame(&H, 0), 0);
+        H.count_work = false;
+        const vpl_state *s = H.self;
+        double model = tpw_fetches(H.m, H.self, "gi.vpl_valsm", "tex2d_r16f_nearest");
+        double per_map = vpl_zmax_reads(s->val_res), half = s->val_res / 2;
+        print_message("# %s: %d maps of %d²: modelled %.0f chain reads (%.0f a map), counted %.0f\n", budgets[b],
+                      s->st.m, s->val_res, model, per_map, s->zmax_fetches.counted ? s->zmax_fetches.value[0] : -1.0);
+        assert_true(s->st.m > 0);
+        if (b == 2) {
+            assert_true(model < 0.0 && !s->zmax_fetches.counted);
+            continue;
+        }
+        assert_true(s->zmax_fetches.counted);
+        assert_true(model == per_map * s->st.m && s->zmax_fetches.value[0] == model);
+        double level1 = per_map - coarse[b];
+        assert_true(level1 > 0.5 * 16.0 * half * half && level1 < 16.0 * half * half);
+    }
+}
+
 static double gather_fetches(const char *kind) { return tpw_fetches(H.m, H.self, "gi.vpl_gather", kind); }
 
 /* The multi-resolution gather (vpl_gather=multires) runs the interleaved gather's VPL loop over all
@@ -254,6 +288,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(val_map_fragments_match_a_replay),
+        cmocka_unit_test(umbra_chain_reads_match_the_shaders_count),
         cmocka_unit_test(multires_gather_counts_regions),
         cmocka_unit_test(blur_and_compose_reads_match_a_replay),
     };

@@ -93,6 +93,12 @@ typedef struct ispm_state {
     gk_counters splat_fragments;
     gk_counters upsample_fetches;   /* the upsample's splat texels */
     gk_counters rsm_fragments;      /* the RSM's fragments (ispm/rsm.frag) */
+    /* the mask pyramid's and the emission's reads and atomics, modelled from the photon header
+       (ispm_work_photons; by kind: RSM texels, RSM depths, storage loads, atomics), and
+       the same as mask.comp's and emit.comp's counting variants count them (a check) */
+    double photons_work[4];
+    bool photons_modelled;
+    gk_counters photons_fetches;
 } ispm_state;
 
 /* ispm_photons.c: frames the light onto the specular geometry, renders the RSM, builds the mask
@@ -125,6 +131,14 @@ void ispm_work_upsample_end(ispm_state *s);
 const char *ispm_work_rsm_begin(ispm_state *s);
 void ispm_work_rsm_end(ispm_state *s);
 void ispm_work_counters(ispm_state *s, unsigned trace_loads, unsigned list_fragments, unsigned list_dropped);
+/* Around the mask pyramid and the emission (ispm_photons.c): the define both compute shaders add
+   (NULL when not counting); and, from the photon header read back in a counting frame (ph: its
+   ISPM_PH_HEADER_UINTS uints), the model of their work: per kind RSM texels, depth texels, storage
+   loads, atomics (ispm_photons_model, also the test's). */
+const char *ispm_work_photons_begin(ispm_state *s);
+void ispm_work_photons_end(ispm_state *s);
+void ispm_photons_model(const unsigned *ph, int capacity, double out[4]);
+void ispm_work_photons(ispm_state *s, const unsigned *ph);
 /* ll_build.frag's storage-buffer atomics for `fragments` frustum fragments of which `dropped` found
    the pool full */
 double ispm_list_atomics(unsigned fragments, unsigned dropped);

@@ -190,6 +190,7 @@ static void read_counters(ispm_state *s)
         st->fragments = s->tier == GK_ISPM_TIER_LISTS ? ll[ISPM_LL_COUNT] : 0;
         st->list_overflow = s->tier == GK_ISPM_TIER_LISTS ? ll[ISPM_LL_OVERFLOW] : 0;
         ispm_work_counters(s, st->trace_work, st->fragments, st->list_overflow);
+        ispm_work_photons(s, p);
         glUnmapBuffer(GL_COPY_READ_BUFFER);
     }
     glBindBuffer(GL_COPY_READ_BUFFER, 0);

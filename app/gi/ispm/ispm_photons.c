@@ -159,9 +159,9 @@ static int render_rsm(ispm_state *s, const gk_gi_frame *f, gk_err *e)
     return rc;
 }
 
-static int build_mask(ispm_state *s, gk_err *e)
+static int build_mask(ispm_state *s, const char *count_define, gk_err *e)
 {
-    GLuint prog = gk_program_get_compute(s->ctx.programs, "ispm/mask.comp", NULL, e);
+    GLuint prog = gk_program_get_compute(s->ctx.programs, "ispm/mask.comp", count_define, e);
     const mask_uniforms *u = prog ? gk_program_uniforms(s->ctx.programs, prog, GK_FIELDS(mask_fields), sizeof *u, e) : NULL;
     if (!u)
         return -1;
@@ -187,9 +187,9 @@ static int build_mask(ispm_state *s, gk_err *e)
     return 0;
 }
 
-static int emit(ispm_state *s, gk_err *e)
+static int emit(ispm_state *s, const char *count_define, gk_err *e)
 {
-    GLuint prog = gk_program_get_compute(s->ctx.programs, "ispm/emit.comp", NULL, e);
+    GLuint prog = gk_program_get_compute(s->ctx.programs, "ispm/emit.comp", count_define, e);
     const emit_uniforms *u = prog ? gk_program_uniforms(s->ctx.programs, prog, GK_FIELDS(emit_fields), sizeof *u, e) : NULL;
     if (!u)
         return -1;
@@ -248,7 +248,10 @@ int ispm_emit_photons(ispm_state *s, const gk_gi_frame *f, bool *any, gk_err *e)
     static const unsigned zero[ISPM_PH_HEADER_UINTS];
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, s->photon_ssbo);
     glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof zero, zero);
-    if (render_rsm(s, f, e) || build_mask(s, e) || emit(s, e))
+    if (render_rsm(s, f, e))
         return -1;
-    return 0;
+    const char *count_define = ispm_work_photons_begin(s); /* the mask's and the emission's work */
+    int rc = build_mask(s, count_define, e) || emit(s, count_define, e) ? -1 : 0;
+    ispm_work_photons_end(s);
+    return rc;
 }

@@ -25,7 +25,19 @@
  * ispm_photons: the RSM is rasterized, its fragments (the scene in the light's frustum framed on the
  * specular geometry, discarded ones included) counted by rsm.frag's variant (RSM_COUNT_FRAGMENTS),
  * at the fill rate; the mask pyramid and the emission's compute passes that follow it in the same
- * pass are not counted (tests/gpu/test_ispm_work.c replays the RSM's rasterization of the mirror). */
+ * pass are modelled below (tests/gpu/test_ispm_work.c replays the RSM's rasterization of the mirror).
+ * The mask pyramid (mask.comp) reads the RSM's mask bit, one RGB10_A2 texel per texel of level 0,
+ * then 4 counts (uint storage-buffer loads) per texel of levels 1..8, and adds one atomic per
+ * block holding a specular texel at every level (the header's ph_nonzero). The emission (emit.comp)
+ * runs one invocation per block of the level it picks (ph_level = l): each loads its count; each
+ * block that emits (ph_count of them: any specular texel, or a full block when faithful) reads its
+ * 4^l mask texels, takes a slot (an atomic; one more where the buffer is full, ph_overflow), and a
+ * photon that gets a slot reads its representative texel's normal, specular and diffuse texels and
+ * its depth, and one more atomic where it is reflected (ph_reflected). So the work is the header's
+ * numbers and the RSM's size (ispm_photons_model); RGB10_A2 and RGBA8 texels as the roofline's
+ * unfiltered 32-bit kind, the 4-byte counts against its 16-byte storage loads. The level choice's
+ * header reads (every invocation repeats them) are not counted. tests/gpu/test_ispm_work.c checks
+ * the model against the shaders' counting variant (PHOTONS_COUNT_FETCHES). */
 #include "ispm_internal.h"
 
 /* ll_build.frag's atomics per fragment kept in the lists and per fragment the full pool dropped */
@@ -38,6 +50,7 @@ void ispm_work_frame(ispm_state *s, const gk_gi_frame *f)
     s->splat_fragments.counted = false; /* a frame without splats reports none */
     s->upsample_fetches.counted = false;
     s->rsm_fragments.counted = false;
+    s->photons_modelled = false; /* a frame without photons (no specular geometry) models none */
 }
 
 const char *ispm_work_splat_begin(ispm_state *s)
@@ -65,6 +78,37 @@ const char *ispm_work_rsm_begin(ispm_state *s)
 
 void ispm_work_rsm_end(ispm_state *s) { gk_counters_end(&s->rsm_fragments); }
 
+const char *ispm_work_photons_begin(ispm_state *s)
+{
+    /* mask.comp's and emit.comp's PhotonsFetches: RSM texels, depths, loads, atomics */
+    return gk_counters_variant(&s->photons_fetches, s->counting, 4, 6, "#define PHOTONS_COUNT_FETCHES 1\n");
+}
+
+void ispm_work_photons_end(ispm_state *s) { gk_counters_end(&s->photons_fetches); }
+
+void ispm_photons_model(const unsigned *ph, int capacity, double out[4])
+{
+    double texels = (double)ISPM_RSM_RES * ISPM_RSM_RES, loads = 0.0, atomics = 0.0;
+    for (int l = 1; l < ISPM_RSM_LEVELS; l++)
+        loads += 4.0 * (double)(ISPM_RSM_RES >> l) * (ISPM_RSM_RES >> l);
+    for (int l = 0; l < ISPM_RSM_LEVELS; l++)
+        atomics += ph[ISPM_PH_NONZERO + l];
+    unsigned level = ph[ISPM_PH_LEVEL], emitted = ph[ISPM_PH_COUNT];
+    double side = (double)(ISPM_RSM_RES >> level), kept = emitted < (unsigned)capacity ? emitted : (unsigned)capacity;
+    loads += side * side;
+    texels += (double)emitted * (double)(1u << (2 * level)) + 3.0 * kept;
+    atomics += (double)emitted + ph[ISPM_PH_OVERFLOW] + ph[ISPM_PH_REFLECTED];
+    out[0] = texels, out[1] = kept, out[2] = loads, out[3] = atomics;
+}
+
+void ispm_work_photons(ispm_state *s, const unsigned *ph)
+{
+    if (!s->counting)
+        return;
+    ispm_photons_model(ph, s->capacity, s->photons_work);
+    s->photons_modelled = true;
+}
+
 void ispm_work_counters(ispm_state *s, unsigned trace_loads, unsigned list_fragments, unsigned list_dropped)
 {
     if (!s->counting)
@@ -87,6 +131,11 @@ int ispm_caustic_work(const ispm_state *s, gk_pass_work *out, int max)
     if (s->rsm_fragments.counted && s->rsm_fragments.value[0] > 0.0 && n < max)
         out[n++] = (gk_pass_work){.pass = "gi.ispm_photons", .kind = "raster_r16f_depth_fill",
                                   .fetches = s->rsm_fragments.value[0]};
+    static const char *const photon_kinds[4] = {"tex2d_r32f_nearest", "tex2d_depth32f_nearest", "ssbo_rgba32f_load",
+                                                "ssbo_r32ui_atomic"};
+    for (int k = 0; k < 4 && s->photons_modelled; k++)
+        if (s->photons_work[k] > 0.0 && n < max)
+            out[n++] = (gk_pass_work){.pass = "gi.ispm_photons", .kind = photon_kinds[k], .fetches = s->photons_work[k]};
     if (!s->work_counted)
         return n;
     double atomics = ispm_list_atomics(s->work_list_fragments, s->work_list_dropped);
@@ -109,4 +158,5 @@ void ispm_work_free(ispm_state *s)
     gk_counters_free(&s->splat_fragments);
     gk_counters_free(&s->upsample_fetches);
     gk_counters_free(&s->rsm_fragments);
+    gk_counters_free(&s->photons_fetches);
 }

@@ -253,11 +253,13 @@ int lm_display_gather(lm_state *s, const gk_gi_frame *f, int texels, int res, gk
     s->st.gathered_total += (uint64_t)n;
     s->st.queued = queued - n;
     if (n > 0) {
-        GLuint gp = gk_program_get(s->ctx.programs, "lightmap/uv.vert", "lightmap/gather.frag", NULL, e);
+        GLuint gp = gk_program_get(s->ctx.programs, "lightmap/uv.vert", "lightmap/gather.frag", lm_work_gather_begin(s), e);
         const gather_uniforms *gu =
             gp ? gk_program_uniforms(s->ctx.programs, gp, GK_FIELDS(gather_fields), sizeof *gu, e) : NULL;
-        if (!gu)
+        if (!gu) {
+            lm_work_gather_end(s);
             return -1;
+        }
         gather_draw_ctx dc = {s, f, gp, gu};
         vec3 ext = v3_sub(f->scene->bmax, f->scene->bmin);
         float diam = v3_len(ext) > 0.0f ? v3_len(ext) : 1.0f;
@@ -266,6 +268,7 @@ int lm_display_gather(lm_state *s, const gk_gi_frame *f, int texels, int res, gk
         int rc = lm_gather_run(&s->gather, s->ctx.programs, s->jobs, n, 0.005f * a->texel_size, 4.0f * diam,
                                gather_draw, &dc, s->iim_gathered, e);
         gk_pass_end(f->pass);
+        lm_work_gather_end(s);
         if (rc)
             return -1;
     }

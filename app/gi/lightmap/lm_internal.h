@@ -60,6 +60,7 @@ typedef struct lm_state {
     gk_counters compose_lookups;
     gk_counters uv_fragments;    /* the UV pass's */
     gk_counters blend_fetches;   /* the IIM blend's texel reads */
+    gk_counters gather_draws;    /* the final gather's draws: fragments, AIM lookups (gather.frag) */
     double caustic_reads;        /* the caustic filter's count texels in it, -1 when it did not run */
     double caustic_points_drawn; /* the count pass's point fragments in it (-1: not counted) */
     double caustic_cull_fragments; /* the cull's fragments in it (0: no cull) */
@@ -87,6 +88,10 @@ const char *lm_work_uv_begin(lm_state *s);
 void lm_work_uv_end(lm_state *s);
 const char *lm_work_blend_begin(lm_state *s);
 void lm_work_blend_end(lm_state *s);
+/* ... and around the final gather's draws (lm_display_gather): gather.frag's define, on binding 5
+   (the reduction's counter takes 6 across the draws). */
+const char *lm_work_gather_begin(lm_state *s);
+void lm_work_gather_end(lm_state *s);
 void lm_work_caustics(lm_state *s);
 int lm_pass_work(void *self, gk_pass_work *out, int max);
 void lm_work_free(lm_state *s);

@@ -30,8 +30,12 @@
  * tests/gpu/test_lightmap_caustics.c checks both against hand counts.
  *   lightmap_gather: the reduction's reads, res² RGBA32UI texels (16 bytes: the roofline's RGBA32F
  *     kind) per gathered texel's tile, counted by a variant of gather_reduce.comp
- *     (REDUCE_COUNT_FETCHES); tests/gpu/test_lightmap_gather.c checks res² per job. Not modelled:
- *     the same pass's draws, the scene rendered into every tile, which are most of its time. */
+ *     (REDUCE_COUNT_FETCHES); tests/gpu/test_lightmap_gather.c checks res² per job. And the same
+ *     pass's draws, the charted scene rendered into every tile (most of its time): their fragments,
+ *     hidden ones included, at the fill rate, and each charted fragment's bilinear AIM lookup
+ *     (RGBA16F), counted by a variant of gather.frag (GATHER_COUNT_FRAGMENTS); which surfaces a tile
+ *     sees depends on the scene. tests/gpu/test_lightmap_gather_work.c checks both against res² per
+ *     job inside a closed box (every tile pixel sees exactly one wall). */
 #include "lm_internal.h"
 
 void lm_work_frame(lm_state *s, const gk_gi_frame *f)
@@ -45,6 +49,7 @@ void lm_work_frame(lm_state *s, const gk_gi_frame *f)
     s->caustic_cull_fragments = 0.0;
     s->caustic.count_work = s->counting;
     s->gather.reduce_fetches.counted = false; /* a frame without a gather reports none */
+    s->gather_draws.counted = false;
 }
 
 const char *lm_work_compose_begin(lm_state *s)
@@ -72,6 +77,14 @@ const char *lm_work_blend_begin(lm_state *s)
 
 void lm_work_blend_end(lm_state *s) { gk_counters_end(&s->blend_fetches); }
 
+const char *lm_work_gather_begin(lm_state *s)
+{
+    /* lightmap/gather.frag GatherFragments: fragments, AIM lookups */
+    return gk_counters_variant(&s->gather_draws, s->counting, 2, 5, "#define GATHER_COUNT_FRAGMENTS 1\n");
+}
+
+void lm_work_gather_end(lm_state *s) { gk_counters_end(&s->gather_draws); }
+
 void lm_work_caustics(lm_state *s)
 {
     if (s->counting)
@@ -98,6 +111,12 @@ int lm_pass_work(void *self, gk_pass_work *out, int max)
     if (s->gather.reduce_fetches.counted && s->gather.reduce_fetches.value[0] > 0.0 && n < max)
         out[n++] = (gk_pass_work){.pass = "gi.lightmap_gather", .kind = "tex2d_rgba32f_nearest",
                                   .fetches = s->gather.reduce_fetches.value[0]};
+    if (s->gather_draws.counted && s->gather_draws.value[0] > 0.0 && n < max)
+        out[n++] = (gk_pass_work){.pass = "gi.lightmap_gather", .kind = "raster_r16f_depth_fill",
+                                  .fetches = s->gather_draws.value[0]};
+    if (s->gather_draws.counted && s->gather_draws.value[1] > 0.0 && n < max)
+        out[n++] = (gk_pass_work){.pass = "gi.lightmap_gather", .kind = "tex2d_rgba16f_trilinear",
+                                  .fetches = s->gather_draws.value[1]};
     if (s->caustic_points_drawn > 0.0 && n < max)
         out[n++] = (gk_pass_work){.pass = "gi.lightmap_caustic_count", .kind = "raster_r16f_depth_fill",
                                   .fetches = s->caustic_points_drawn};
@@ -115,4 +134,5 @@ void lm_work_free(lm_state *s)
     gk_counters_free(&s->compose_lookups);
     gk_counters_free(&s->uv_fragments);
     gk_counters_free(&s->blend_fetches);
+    gk_counters_free(&s->gather_draws);
 }

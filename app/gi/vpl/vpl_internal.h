@@ -75,6 +75,8 @@ typedef struct vpl_state {
     double rsm_gen_reads;       /* the VPL generation's RSM texels: 3 a VPL (from the parameters) */
     long map_basis_fragments;   /* the basis pass's, res² per map (not counted: a full-screen pass) */
     double map_mip_lookups[2];  /* the maps' mip chains' bilinear lookups: RGBA8, 16-bit (from the parameters) */
+    double map_zmax_reads;      /* the deep-umbra chain's reduction reads (vpl_umbra on, plane; from the parameters) */
+    gk_counters zmax_fetches;   /* the same as vpl/val_zmax.frag's counting variant read them (a check) */
 } vpl_state;
 
 /* vpl_rsm.c: RSM of every light + VPL generation + readback into st.vpl; returns VPL count. */
@@ -103,6 +105,14 @@ void vpl_work_maps_end(vpl_state *s, long basis_fragments);
 /* After the maps' glGenerateMipmap: `rgba8` and `f16` chains (RG32F moments counted with the 16-bit
    ones) of res² for `layers` maps. */
 void vpl_work_maps_mips(vpl_state *s, int res, int layers, int rgba8, int f16);
+/* The deep-umbra chain's reads for one res² map (vpl/val_zmax.frag): at level 1 the 4x4 level-0
+   texels around each texel's children that lie inside the paraboloid's disc, at each coarser level
+   4 a texel. */
+double vpl_zmax_reads(int res);
+/* Around the chain's reduction draws (vpl_valmap.c build_zmax): the define val_zmax.frag adds when
+   counting (NULL when not); _end adds the model's reads of `layers` res² maps. */
+const char *vpl_work_zmax_begin(vpl_state *s, bool counting);
+void vpl_work_zmax_end(vpl_state *s, int res, int layers);
 /* The same around the blur's two passes and the compose (vpl_gather.c): the define blur.frag or
    compose.frag adds, NULL when not counting. */
 const char *vpl_work_blur_begin(vpl_state *s, const gk_gi_frame *f);

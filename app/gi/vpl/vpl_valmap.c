@@ -89,12 +89,15 @@ static const gk_uniform_field val_zmax_fields[] = {GK_UNIFORM(val_zmax_uniforms,
    level is reduced from the one below, which is made the texture's only level meanwhile (reading
    one level of a texture while rendering into another is a feedback loop in GLES unless the
    written level lies outside [base, max]). */
-static int build_zmax(vpl_state *s, int count, gk_err *e)
+static int build_zmax(vpl_state *s, int count, bool count_work, gk_err *e)
 {
-    GLuint prog = gk_program_get(s->ctx.programs, "common/fullscreen.vert", "vpl/val_zmax.frag", NULL, e);
+    const char *count_define = vpl_work_zmax_begin(s, count_work);
+    GLuint prog = gk_program_get(s->ctx.programs, "common/fullscreen.vert", "vpl/val_zmax.frag", count_define, e);
     const val_zmax_uniforms *u = prog ? gk_program_uniforms(s->ctx.programs, prog, GK_FIELDS(val_zmax_fields), sizeof *u, e) : NULL;
-    if (!u)
+    if (!u) {
+        gk_counters_end(&s->zmax_fetches);
         return -1;
+    }
     glBindFramebuffer(GL_FRAMEBUFFER, s->basis_fbo);
     const GLenum b1[1] = {GL_COLOR_ATTACHMENT0};
     glDrawBuffers(1, b1);
@@ -111,8 +114,10 @@ static int build_zmax(vpl_state *s, int count, gk_err *e)
         glUniform1i(u->u_level, level);
         for (int k = 0; k < count; k++) {
             glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, s->zmax, level, k);
-            if (level == 1 && k == 0 && glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+            if (level == 1 && k == 0 && glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+                gk_counters_end(&s->zmax_fetches);
                 return gk_fail(e, GK_ERUNTIME, "vpl: chain of maxima framebuffer (RG16F) incomplete");
+            }
             glUniform1i(u->u_layer, k);
             glDrawArrays(GL_TRIANGLES, 0, 3);
         }
@@ -121,6 +126,7 @@ static int build_zmax(vpl_state *s, int count, gk_err *e)
     glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAX_LEVEL, 1000);
     glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, 0, 0, 0);
     glViewport(0, 0, s->map_res, s->map_res); /* the basis pass draws at the map's size */
+    vpl_work_zmax_end(s, s->map_res, count);
     return 0;
 }
 
@@ -216,7 +222,7 @@ int vpl_build_maps(vpl_state *s, const gk_gi_frame *f, const gk_val *em, int cou
     glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, 0, 0, 0);
     if (exact)
         return 0;
-    if (umbra && build_zmax(s, count, e))
+    if (umbra && build_zmax(s, count, f->count_work, e))
         return -1;
     bool vsm = s->vis == GK_VPL_VIS_VSM;
     GLuint bp = gk_program_get(s->ctx.programs, "common/fullscreen.vert", "vpl/val_basis.frag",

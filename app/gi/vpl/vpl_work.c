@@ -20,6 +20,14 @@
  * depth, and VSM's moments, RG32F ones included). The driver mips every allocated layer
  * (GK_VPL_MAX_M), so the efficiency shows that waste. tests/gpu/test_vpl_work.c replays the depth
  * draws' rasterization on the CPU and hand-counts the mips.
+ * With vpl_umbra on or plane the same pass reduces the chain of maxima the deep-umbra test reads
+ * (val_zmax.frag; its level 0 and the plane target are written by the depth draws' fragments,
+ * counted above): each texel of level 1 reads the 4x4 level-0 texels around its children, but those
+ * on the paraboloid disc's rim, which it takes as left out without a fetch; each texel of a coarser
+ * level its 4 children. RG16F texelFetches, the roofline's 16-bit unfiltered kind (as the gather's
+ * reads of the same chain). Which texels the rim leaves out depends on the map's size alone, so the
+ * reads are modelled from it (vpl_zmax_reads); tests/gpu/test_vpl_work.c checks them against the
+ * shader's counting variant (ZMAX_COUNT_FETCHES).
  * The geometry-aware blur (vpl_blur) and the compose (vpl_compose) read the indirect-resolution
  * targets (RGBA32F, or RGBA16F without float render targets), unfiltered: the blur per pixel its
  * position (and normal where it is a surface), per tap inside the image its position, then its
@@ -35,6 +43,8 @@
  * generation then reads 3 RSM texels a VPL (vpl_gen.frag, from the parameters), unfiltered. The
  * VPLs' read-back to the CPU in the same pass is not counted. tests/gpu/test_vpl_work.c hand-counts
  * both on the harness's box (one face filled by its walls: 128² fragments, 3 n texels). */
+#include <math.h>
+
 #include "vpl_internal.h"
 
 const char *vpl_work_begin(vpl_state *s, const gk_gi_frame *f)
@@ -49,6 +59,8 @@ void vpl_work_end(vpl_state *s) { gk_counters_end(&s->gather_fetches); }
 const char *vpl_work_maps_begin(vpl_state *s, const gk_gi_frame *f)
 {
     s->map_mip_lookups[0] = s->map_mip_lookups[1] = 0.0;
+    s->map_zmax_reads = 0.0;
+    s->zmax_fetches.counted = false; /* a frame without the chain counts none */
     s->map_fragments.n = 1;
     s->map_fragments.binding = 6; /* vpl/val_depth.frag ValFragments (the gather's comes later) */
     return gk_counters_begin(&s->map_fragments, f->count_work) ? "#define VAL_COUNT_FRAGMENTS 1\n" : "";
@@ -67,6 +79,43 @@ void vpl_work_maps_mips(vpl_state *s, int res, int layers, int rgba8, int f16)
         texels += (double)r * r;
     s->map_mip_lookups[0] = texels * layers * rgba8;
     s->map_mip_lookups[1] = texels * layers * f16;
+}
+
+/* val_zmax.frag's on_rim, in float as the shader computes it: texel p of a size² level 0 (clamped
+   to the map, as its at()) holds no direction the map can be trusted in */
+static bool zmax_on_rim(int px, int py, int size)
+{
+    px = px < 0 ? 0 : px >= size ? size - 1 : px;
+    py = py < 0 ? 0 : py >= size ? size - 1 : py;
+    float sx = ((float)px + 0.5f) / (float)size * 2.0f - 1.0f;
+    float sy = ((float)py + 0.5f) / (float)size * 2.0f - 1.0f;
+    return sqrtf(sx * sx + sy * sy) + sqrtf(2.0f) / (float)size > 1.0f;
+}
+
+double vpl_zmax_reads(int res)
+{
+    double reads = 0.0;
+    for (int y = 0; y < res / 2; y++)
+        for (int x = 0; x < res / 2; x++)
+            for (int j = -1; j < 3; j++)
+                for (int i = -1; i < 3; i++)
+                    reads += zmax_on_rim(2 * x + i, 2 * y + j, res) ? 0.0 : 1.0;
+    for (int r = res / 4; r >= 1; r /= 2)
+        reads += 4.0 * r * r;
+    return reads;
+}
+
+/* One counter at binding 6 (val_zmax.frag's ZmaxFetches) */
+const char *vpl_work_zmax_begin(vpl_state *s, bool counting)
+{
+    return gk_counters_variant(&s->zmax_fetches, counting, 1, 6, "#define ZMAX_COUNT_FETCHES 1\n");
+}
+
+void vpl_work_zmax_end(vpl_state *s, int res, int layers)
+{
+    gk_counters_end(&s->zmax_fetches);
+    if (s->map_fragments.counting)
+        s->map_zmax_reads = vpl_zmax_reads(res) * layers;
 }
 
 /* One counter at binding 6 (blur.frag's and compose.frag's block) each. */
@@ -124,6 +173,8 @@ int vpl_pass_work(void *self, gk_pass_work *out, int max)
     for (int k = 0; k < 2 && s->map_fragments.counted; k++)
         if (s->map_mip_lookups[k] > 0.0 && n < max)
             out[n++] = (gk_pass_work){.pass = "gi.vpl_valsm", .kind = mip_kinds[k], .fetches = s->map_mip_lookups[k]};
+    if (s->map_fragments.counted && s->map_zmax_reads > 0.0 && n < max)
+        out[n++] = (gk_pass_work){.pass = "gi.vpl_valsm", .kind = "tex2d_r16f_nearest", .fetches = s->map_zmax_reads};
     if (s->blur_fetches.counted && s->blur_fetches.value[0] > 0.0 && n < max)
         out[n++] = (gk_pass_work){.pass = "gi.vpl_blur", .kind = "tex2d_rgba32f_nearest", .fetches = s->blur_fetches.value[0]};
     if (s->compose_fetches.counted && s->compose_fetches.value[0] > 0.0 && n < max)
@@ -139,4 +190,5 @@ void vpl_work_free(vpl_state *s)
     gk_counters_free(&s->blur_fetches);
     gk_counters_free(&s->compose_fetches);
     gk_counters_free(&s->rsm_fragments);
+    gk_counters_free(&s->zmax_fetches);
 }
