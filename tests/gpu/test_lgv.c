@@ -898,14 +898,14 @@ static void lgv_size_tradeoff(void **state)
     /* Fig. 9's trend, the error falling as the grid grows, on the error without the photon noise
        (noise_free_error: the 4 frames' two halves; the noise grows with the size as the photons per
        cell fall, and at 1M photons it outweighs what 48 cells gain over 32: the plain error rises).
-       Measured (GK_LGV_FIG9=1, fig9_photon_study: 16 groups of 1M photons per size): 0.2713 / 0.2277 /
-       0.2223, sd 0.0024 / 0.0020 / 0.0021 (the same from 16M photons: 0.2714 / 0.2278 / 0.2226, so the
+       Measured (GK_LGV_FIG9=1, fig9_photon_study: 16 groups of 1M photons per size): 0.2713 / 0.2278 /
+       0.2228, sd 0.0024 / 0.0020 / 0.0021 (the same from 16M photons: 0.2713 / 0.2279 / 0.2230, so the
        estimate is unbiased; this test's 4 frames, the study's first group, 0.2759 / 0.2305 / 0.2256:
-       0.0046 / 0.0028 / 0.0033 above the mean at every size, the sizes' noise moves together). With
+       0.0046 / 0.0027 / 0.0028 above the mean at every size, the sizes' noise moves together). With
        the photons snapped onto the texels' distances (plane_hits off) the
        16M errors were 0.275 / 0.241 / 0.243, without the noise (the 1M noise / 4) 32 / 48 0.240 / 0.242: the rise this
        asserts against. Bounds: 16 above 32 by 0.03 (measured 0.044; the difference's sd, were the
-       sizes' noise independent, 0.0031: 0.03 is 4 sd below); 48 below 32 (measured 0.0054, 1.9 of
+       sizes' noise independent, 0.0031: 0.03 is 4 sd below); 48 below 32 (measured 0.0050, 1.7 of
        that sd; the sizes' noise is not independent: every size traces the same photons, the frames'
        hash keys do not depend on the grid, so the sd of the difference is smaller). */
     assert_true(bias[0] - bias[1] > 0.03);
