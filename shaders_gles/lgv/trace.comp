@@ -58,6 +58,7 @@ uniform int u_caustic_cap;
 uniform int u_sphere_normals; // 1 (tests): glass normals from the refractor map's centre, exact on a sphere centred there
 uniform int u_refractor_surface; // 1: glass hits placed on its refractor map (enter_glass), normals interpolated there
 uniform int u_snap;           // 1: diffuse hits moved onto the map's surface (lgv_internal.h LGV_SNAP_HITS)
+uniform int u_plane_hits;     // 1: the LGV's photons injected where the ray meets the map texel's plane (texel_plane_hit)
 uniform int u_exit_maps;      // 1: a photon leaving glass is traced on its exit map (tracer.glsl lgv_trace_from)
 uniform int u_refractor_entry; // 1: a photon on a specular chain meets glass where its refractor map says (glass_entry)
 
@@ -134,6 +135,30 @@ void emit(out highp vec3 x, out highp vec3 d, out highp vec3 power)
     d = normalize(s * cos(phi) * t + s * sin(phi) * b + z * axis);
     if (u_light_kind == 1) // the spot's smooth edge, as lights.glsl
         power *= clamp((z - u_cone.x) / max(u_cone.y - u_cone.x, 1e-4), 0.0, 1.0);
+}
+
+// Where ray x + t r meets the plane of map m's texel tx (the surface point the texel holds, at its
+// stored distance ds along the direction through the texel's centre, and the texel's normal n): the
+// LGV photon's place on a flat surface. The snap (u_snap) puts a photon at its own texel's distance
+// along the direction to the secant's point, a shell round the map's centre that crosses an oblique
+// wall, so the photons on the wall gather in bands of the texels' pattern (64^2: ~1.5 cm on glass's
+// walls, a 48-cell cell is 1.25 cm); the secant's own point lies up to a centimetre beyond the floor
+// (README lgv). `fallback` when the ray grazes the plane, or the plane's point lies farther than two
+// texel footprints from the secant's point `hit` or outside the scene's bounds (the texel holds
+// another surface, at an edge: inside a box the other wall's plane is met beyond the box; 162 of
+// glass's 295,181 photons at 48 cells were dropped more than a cell outside the grid without that).
+highp vec3 texel_plane_hit(int m, ivec3 tx, highp float ds, highp vec3 n, highp vec3 x, highp vec3 r, highp vec3 hit,
+                           highp vec3 fallback)
+{
+    int f = tx.z - 6 * m;
+    highp vec2 uv = (vec2(tx.xy) + 0.5) / float(u_res) * 2.0 - 1.0;
+    highp vec3 p = centre[m].xyz + ds * normalize(lgv_face_w(f) + uv.x * lgv_face_u(f) + uv.y * lgv_face_v(f));
+    highp float den = dot(r, n);
+    if (abs(den) < 0.05)
+        return fallback;
+    highp vec3 q = x + (dot(p - x, n) / den) * r;
+    bool inside = all(greaterThanEqual(q, u_bmin)) && all(lessThanEqual(q, u_bmax));
+    return inside && distance(q, hit) < 4.0 * ds / float(u_res) ? q : fallback;
 }
 
 // The exit of a photon inside glass at x going r: on the refractor map of the glass it is in (`glass`,
@@ -337,11 +362,18 @@ void trace_invocation()
         // farther than h (a few mm) from the visible surface (glass at 0.26M photons: 34% of the
         // caustic photons were refused, 6% with the snap). u_snap = 0: the secant's point.
         highp float footprint = 0.0; // how far from the surface the map places the photon (m)
-        if (u_snap == 1) {
+        highp vec3 lgv_hit = hit;    // where an LGV photon is injected
+        if (u_snap == 1 || u_plane_hits == 1) {
             highp vec3 dc = hit - centre[map].xyz;
             highp float ds = lgv_dist(map, dc, 0);
-            if (ds < 0.5 * LGV_FAR)
-                hit = centre[map].xyz + normalize(dc) * ds, footprint = 2.0 * ds / float(u_res);
+            if (ds < 0.5 * LGV_FAR) {
+                highp vec3 snapped = centre[map].xyz + normalize(dc) * ds;
+                lgv_hit = u_snap == 1 ? snapped : hit;
+                if (u_plane_hits == 1)
+                    lgv_hit = texel_plane_hit(map, tx, ds, n, x, r, hit, lgv_hit);
+                if (u_snap == 1)
+                    hit = snapped, footprint = 2.0 * ds / float(u_res);
+            }
         }
         highp vec3 fr = alb.rgb * 0.31830989;
         if (events > 0 && specular_only) {
@@ -352,7 +384,7 @@ void trace_invocation()
                 atomicAdd(overflow, 1u);
             atomicAdd(st[2], 1u);
         } else if (events > 0) {
-            inject(hit, -r, ns, flux * fr);
+            inject(lgv_hit, -r, ns, flux * fr);
         }
         // Russian roulette on the albedo, then a cosine-distributed bounce
         highp float p = min(max(alb.r, max(alb.g, alb.b)), 0.95);

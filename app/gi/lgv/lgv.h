@@ -20,6 +20,9 @@ typedef struct gk_lgv_debug {
     unsigned seed;     /* added to the frame index in the photons' hash keys */
     float c0;          /* the SSLGV's bandwidth factor C0 of h = C0 sqrt(A / N) (default LGV_C0) */
     bool snap_hits;    /* diffuse hits moved onto the surface the map's texel holds (default; false: the secant's point) */
+    bool plane_hits;   /* the LGV's photons injected where the ray meets the plane of the map's texel (its surface point
+                          and normal; default), not at the snapped point (snap_hits: still the caustic photons' and the
+                          bounce's; false: the LGV's too, the texels' pattern on the walls, README lgv) */
     bool occlusion;    /* eq. (6)'s fuzzy occlusion G from the geometry volume (default; false: G = 1, leaks) */
     bool bounds_hits;  /* a ray reaching the bounds where the map sees a surface met it there (default; false: left the scene) */
     bool refractor_surface; /* glass hits placed on its refractor map, normals interpolated there (default; false: the hit map's texel) */

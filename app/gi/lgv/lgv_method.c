@@ -58,6 +58,7 @@ void gk_lgv_default_debug(gk_lgv_debug *d)
     d->parts = GK_LGV_PART_ALL;
     d->itp_mode = GK_LGV_ITP_ANGLE;
     d->snap_hits = true;
+    d->plane_hits = true;
     d->bounds_hits = true;
     d->refractor_surface = true;
     d->exit_maps = true;

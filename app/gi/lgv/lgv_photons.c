@@ -57,7 +57,7 @@ static const gk_uniform_field tracer_fields[] = {
 typedef struct trace_uniforms {
     GLint u_probe, u_photons, u_first, u_frame, u_light_kind, u_light_pos, u_light_dir, u_light_u, u_light_v, u_cone,
         u_power, u_bounces, u_grid_min, u_cell, u_dims, u_inject_scale, u_inject_lobe, u_fixed, u_caustic_cap, u_snap,
-        u_sphere_normals, u_refractor_surface, u_exit_maps, u_refractor_entry;
+        u_plane_hits, u_sphere_normals, u_refractor_surface, u_exit_maps, u_refractor_entry;
 } trace_uniforms;
 static const gk_uniform_field trace_fields[] = {
     GK_UNIFORM(trace_uniforms, u_probe),       GK_UNIFORM(trace_uniforms, u_photons),
@@ -71,6 +71,7 @@ static const gk_uniform_field trace_fields[] = {
     GK_UNIFORM(trace_uniforms, u_inject_lobe),
     GK_UNIFORM(trace_uniforms, u_fixed),       GK_UNIFORM(trace_uniforms, u_caustic_cap),
     GK_UNIFORM(trace_uniforms, u_snap),        GK_UNIFORM(trace_uniforms, u_sphere_normals),
+    GK_UNIFORM(trace_uniforms, u_plane_hits),
     GK_UNIFORM(trace_uniforms, u_refractor_surface),
     GK_UNIFORM(trace_uniforms, u_exit_maps),   GK_UNIFORM(trace_uniforms, u_refractor_entry),
 };
@@ -213,6 +214,7 @@ int lgv_trace_photons(lgv_state *s, const gk_gi_frame *f, gk_err *e)
     glUniform1f(u->u_fixed, s->fixed_scale);
     glUniform1i(u->u_caustic_cap, cap);
     glUniform1i(u->u_snap, s->dbg.snap_hits ? 1 : 0);
+    glUniform1i(u->u_plane_hits, s->dbg.plane_hits ? 1 : 0);
     glUniform1i(u->u_sphere_normals, s->dbg.sphere_normals ? 1 : 0);
     glUniform1i(u->u_refractor_surface, s->dbg.refractor_surface ? 1 : 0);
     glUniform1i(u->u_exit_maps, s->dbg.exit_maps ? 1 : 0);
