@@ -39,17 +39,32 @@ only=${METHODS:+--methods $METHODS}
 # warm-up is what the kiosk converges to, not how far the worker threads got), after ERROR_WARMUP frames
 # (default 40: lightmap's photons and final gather settle by then; static methods are the same at 2);
 # radiosity in lockstep too (its links and direct light come from a worker thread).
-"$BIN" bench --scenes "$scenes" $only --sweep "$SWEEP" --size "$size" --budget lightmap_sync=lockstep,radiosity_sync=lockstep \
-    --frames 1 --warmup "${ERROR_WARMUP:-40}" --references "$REFS" --out "$OUT" 2>"$OUT.log" || { cat "$OUT.log" >&2; exit 1; }
+# KEEP_ERRORS=1: re-time only. The error run is skipped and each row keeps the error of the same
+# scene x method x knob x value in the existing table (a configuration it lacks stops the run): for a
+# change that makes passes faster and leaves every image as it was (e.g. the lighting pass's two draws
+# of issue 21, bit-identical), so the times are fresh without the error run's half of the hour.
+KEEP_ERRORS=${KEEP_ERRORS:-0}
+mkdir -p "$OUT"
+if [ "$KEEP_ERRORS" != 1 ]; then
+    "$BIN" bench --scenes "$scenes" $only --sweep "$SWEEP" --size "$size" --budget lightmap_sync=lockstep,radiosity_sync=lockstep \
+        --frames 1 --warmup "${ERROR_WARMUP:-40}" --references "$REFS" --out "$OUT" 2>"$OUT.log" || { cat "$OUT.log" >&2; exit 1; }
+fi
 "$BIN" bench --scenes "$scenes" $only --sweep "$SWEEP" --size "$TIME_SIZE" \
     --frames "$FRAMES" --warmup 2 --references "$REFS" --out "$OUT/time" 2>"$OUT.time.log" ||
     { cat "$OUT.time.log" >&2; exit 1; }
-renderer=$(sed -n 's/^gikiosk: OpenGL ES .* on \(.*\)$/\1/p' "$OUT.log" | head -1)
+renderer=$(sed -n 's/^gikiosk: OpenGL ES .* on \(.*\)$/\1/p' "$OUT.time.log" | head -1)
 class=$(echo "$renderer" | awk '{ print tolower($1) }' | tr -cd 'a-z0-9_-')
 [ -n "$class" ] || class=unknown
 CSV=$OUT/bench.csv
-# The two runs measured the same configurations in the same order: row i of one is row i of the other.
-[ "$(wc -l <"$CSV")" -eq "$(wc -l <"$OUT/time/bench.csv")" ] || { echo "calibrate: the two runs differ" >&2; exit 1; }
+if [ "$KEEP_ERRORS" = 1 ]; then
+    [ -f "$DEST/$class.csv" ] || { echo "calibrate: KEEP_ERRORS=1 needs an existing $DEST/$class.csv" >&2; exit 1; }
+    # scene,method,knob,value -> error,metric,ruler of the existing table
+    awk -F, 'NR > 1 && !/^#/ && $1 != "scene" { print $1 "," $2 "," $9 "," $10 "|" $6 "," $7 "," $8 }' \
+        "$DEST/$class.csv" >"$OUT/kept-errors"
+else
+    # The two runs measured the same configurations in the same order: row i of one is row i of the other.
+    [ "$(wc -l <"$CSV")" -eq "$(wc -l <"$OUT/time/bench.csv")" ] || { echo "calibrate: the two runs differ" >&2; exit 1; }
+fi
 # Per row of the time run: scene, method, the knob changed from the method's default row (its first)
 # and its value ("-" for the default row), the median frame time, the passes that ran (PATH=MS).
 awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) { h[i] = $i; if ($i == "render_scale") k0 = i
@@ -70,6 +85,7 @@ tmp=$(mktemp "$DEST/.calibration.XXXXXX")
     echo "# per scene x method: the default budgets (knob and value empty), then each knob the scheduler may move, alone,"
     echo "# at each automatic level; frame time and pass times at ${TIME_SIZE} (median of $FRAMES frames after 2 warm-up); error at"
     echo "# ${size} against the scene's ruler (SCENE-1bounce.exr where it exists, else SCENE.exr): rel_rmse, or rmse where the ruler is black"
+    [ "$KEEP_ERRORS" = 1 ] && echo "# frame and pass times re-measured with KEEP_ERRORS=1: the errors are the previous table's, images unchanged"
     echo "scene,method,width,height,frame_ms,error,metric,ruler,knob,value,passes"
     if { [ -n "$METHODS" ] || [ -n "${SCENES:-}" ]; } && [ -f "$DEST/$class.csv" ]; then
         # the rows of the scene x method pairs not measured now, as they were (an earlier run)
@@ -82,6 +98,12 @@ tmp=$(mktemp "$DEST/.calibration.XXXXXX")
         ruler=$scene-1bounce
         [ -f "$REFS/$ruler.exr" ] || ruler=$scene
         [ -f "$REFS/$ruler.exr" ] || continue   # no reference: nothing to choose by
+        if [ "$KEEP_ERRORS" = 1 ]; then
+            kept=$(awk -v k="$scene,$method,$knob,$value" -F'|' '$1 == k { print $2; exit }' "$OUT/kept-errors")
+            [ -n "$kept" ] || { echo "calibrate: KEEP_ERRORS=1: $scene $method ${knob:-default} ${value} has no row in $DEST/$class.csv" >&2; exit 1; }
+            printf '%s,%s,%s,%s,%s,%s,%s,%s\n' "$scene" "$method" "${TIME_SIZE%x*}" "${TIME_SIZE#*x}" "$ms" "$kept" "$knob" "$value,$passes"
+            continue
+        fi
         exr=$(printf '%s/captures/%s-%s-%03d.exr' "$OUT" "$scene" "$method" "$row")
         json=$("$BIN" compare "$REFS/$ruler.exr" "$exr" --json)
         echo "$json" | awk -v sc="$scene" -v me="$method" -v ms="$ms" -v ru="$ruler" -v sz="$TIME_SIZE" \

@@ -56,4 +56,29 @@ printf 'scene,method,width,height,frame_ms,error,metric,ruler\ncornell-spot,vct,
 expect_exit 2 "a malformed calibration stops the start (exit 2)" "$GIKIOSK" run --platform mock --size 64x48 \
     --scenes-dir "$TMP/c/scenes" --scene cornell-spot --frames 2 --target-ms 1000
 stderr_has "calibration/llvmpipe.csv:2: frame_ms must be a positive number" "the error names file:line"
+# KEEP_ERRORS=1 (tools/calibrate.sh): re-time only. On one scene x method at a small size, every row
+# keeps the table's error, metric and ruler for its scene x method x knob x value, the times are
+# this run's (at its size), the other rows are kept as they were, and the header says so; a table
+# that lacks a configuration stops the run naming it.
+mkdir -p "$TMP/kd"
+cp "$CAL" "$TMP/kd/llvmpipe.csv"
+KEEP_ERRORS=1 SCENES=shadow-planes METHODS=none DEST="$TMP/kd" OUT="$TMP/kout" TIME_SIZE=80x60 FRAMES=1 \
+    sh tools/calibrate.sh "$GIKIOSK" >"$TMP/kd.log" 2>&1
+check "KEEP_ERRORS=1 re-times shadow-planes/none" grep -q "^calibrate: " "$TMP/kd.log"
+errs() { awk -F, -v p="$2" 'index($0, p) == 1 { print $1, $2, $6, $7, $8, $9, $10 }' "$1" | sort; }
+kept_old=$(errs "$CAL" shadow-planes,none,)
+kept_new=$(errs "$TMP/kd/llvmpipe.csv" shadow-planes,none,)
+check "KEEP_ERRORS=1: the rows' errors, metrics, rulers and knobs are the table's ($(echo "$kept_new" | wc -l) rows)" \
+    test -n "$kept_old" -a "$kept_old" = "$kept_new"
+check "KEEP_ERRORS=1: the times are this run's, at 80x60" \
+    sh -c "! grep '^shadow-planes,none,' '$TMP/kd/llvmpipe.csv' | grep -qv '^shadow-planes,none,80,60,'"
+check "KEEP_ERRORS=1: the other rows are as they were" \
+    sh -c "[ \"\$(grep -v '^shadow-planes,none,' '$CAL' | grep -v '^#')\" = \"\$(grep -v '^shadow-planes,none,' '$TMP/kd/llvmpipe.csv' | grep -v '^#')\" ]"
+check "KEEP_ERRORS=1: the header says the errors were kept" grep -q "^# frame and pass times re-measured with KEEP_ERRORS=1" "$TMP/kd/llvmpipe.csv"
+grep -v '^shadow-planes,none,640,360,[^,]*,[^,]*,[^,]*,[^,]*,shadow_map,2048,' "$CAL" >"$TMP/kd/llvmpipe.csv"
+if KEEP_ERRORS=1 SCENES=shadow-planes METHODS=none DEST="$TMP/kd" OUT="$TMP/kout" TIME_SIZE=80x60 FRAMES=1 \
+    sh tools/calibrate.sh "$GIKIOSK" >"$TMP/kd.log" 2>&1; then kd_rc=0; else kd_rc=$?; fi
+check "KEEP_ERRORS=1: a configuration the table lacks stops the run (rc $kd_rc)" test "$kd_rc" -ne 0
+check "KEEP_ERRORS=1: ... naming it" grep -q "shadow-planes none shadow_map 2048 has no row" "$TMP/kd.log"
+
 finish
