@@ -47,8 +47,7 @@ fi
 # and vpl at their defaults beside ispm's photons x trace resolution.
 if "$BIN" scenes | grep -q 'ispm'; then
     run ispm --scenes caustic-ring --methods none,vct,vpl,ispm --sweep 'ispm_photons=1024,4096,16384,65536;ispm_trace=64,128,256'
-    # the seed's behaviour against the improvements behind its switches (specular chains, splat radius
-X
+    # the seed's behaviour against the improvements behind its switches (specular chains, splat radius)
     run ispm-switches --scenes caustic-ring --methods ispm --sweep 'ispm_bounces=1,2,3;ispm_radius=seed,density,footprint'
 fi
 # Hierarchical radiosity with implicit visibility: bin resolution (the seed's Table 4.1: 6x16²
