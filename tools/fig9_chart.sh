@@ -37,8 +37,8 @@ photons=$(awk -F, -v c="$c_ph" 'NR == 2 { print $c }' "$CSV")
 frames=$(awk -F, -v c="$c_fr" 'NR == 2 { print $c }' "$CSV")
 {
     say "# Seed Fig. 9, the LGV size trade-off: regenerate with \`gnuplot $GP\`."
-    say "set title \"glass: the LGV size trade-off (seed Fig. 9), indirect light vs glass-indirect.exr\\n$photons photons in $frames frames per size; llvmpipe CPU times (the renderer's clock): compare as ratios\""
-    say "set xlabel \"the grid's cost: lgv_gather pass (ms, log scale), median of the frames after the first; labels: the grid, the method's passes per frame\""
+    say "set title \"glass: the LGV size trade-off (seed Fig. 9), indirect light vs glass-indirect.exr\\n$photons photons in $frames frames per size; labels: the grid, the method's passes per frame;\\nllvmpipe CPU times (the renderer's clock): compare as ratios\""
+    say "set xlabel \"the grid's cost: lgv_gather pass (ms, log scale), median of the frames after the first\""
     say "set ylabel \"indirect rel. RMSE vs glass-indirect.exr\""
     say "set logscale x"
     say "set grid"
