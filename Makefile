@@ -176,8 +176,8 @@ tsan: deps
 		build-tsan/gikiosk build-tsan/tests/unit/test_truth
 	sh tools/tsan.sh build-tsan
 
-bench: deps $(BIN)
-	sh tools/bench.sh $(BIN)
+bench: deps $(BIN) $(BUILD)/tests/gpu/test_lgv
+	sh tools/bench.sh $(BIN) $(BUILD)/tests/gpu/test_lgv
 
 # The frame time with the live ground truth's workers on against off, runs interleaved (ratios).
 bench-truth: deps $(BIN)

@@ -5,6 +5,7 @@
 # BENCH_ARGS adds options to every sweep (e.g. BENCH_ARGS="--frames 9").
 set -eu
 BIN=${1:-build/gikiosk}
+LGV_TEST=${2:-build/tests/gpu/test_lgv} # the harness behind lgv's Fig. 9 chart (tools/fig9_chart.sh)
 OUT=${OUT:-out/bench}
 ARGS=${BENCH_ARGS:-}
 mkdir -p "$OUT"
@@ -47,8 +48,7 @@ fi
 # and vpl at their defaults beside ispm's photons x trace resolution.
 if "$BIN" scenes | grep -q 'ispm'; then
     run ispm --scenes caustic-ring --methods none,vct,vpl,ispm --sweep 'ispm_photons=1024,4096,16384,65536;ispm_trace=64,128,256'
-    # the seed's behaviour against the improvements behind its switches (specular chains, splat radius
-X
+    # the seed's behaviour against the improvements behind its switches (specular chains, splat radius)
     run ispm-switches --scenes caustic-ring --methods ispm --sweep 'ispm_bounces=1,2,3;ispm_radius=seed,density,footprint'
 fi
 # Hierarchical radiosity with implicit visibility: bin resolution (the seed's Table 4.1: 6x16²
@@ -82,14 +82,18 @@ if "$BIN" scenes | grep -q 'volcaustics'; then
     echo "bench: volcaustics-multiple"
     sh tools/volcaustics_multiple.sh "$BIN" "$OUT/volcaustics-multiple"
 fi
-# Photon tracing against distance cube-maps with SH grids (seed 002): the LGV-size trade-off of its
-# Fig. 9 (16³/32³/48³) on glass against glass.exr (lgv's indirect error alone is in
-# tests/gpu/test_lgv.c: the bench measures the whole image); the lgv_gather pass's time is the grid's.
-# At the default photons and at 16x them: whether the error falls with the size depends on the photon
-# noise per cell (README lgv, the photon study). lgv beside the other methods is on the `methods`
-# run's charts below.
+# Photon tracing against distance cube-maps with SH grids (seed 002): the LGV sizes of its Fig. 9
+# (16³/32³/48³) on glass, the whole image against glass.exr (speed-accuracy-glass.png), at the default
+# photons and at 16x them; the lgv_gather pass's time is the grid's. Over the whole image the LGV's
+# part is small and noisy; Fig. 9's trend is in its indirect light alone, charted by fig9_chart.sh
+# (fig9-glass.png: the GPU test's harness, which draws the LGV's light alone). lgv beside the other
+# methods is on the `methods` run's charts below.
 if "$BIN" scenes | grep -q 'lgv'; then
     run lgv --scenes glass --methods lgv --sweep 'lgv_size=16,32,48;lgv_photons=65536,1048576'
+    # Fig. 9 itself: the indirect light alone against glass-indirect.exr per size, as measured and
+    # without the photon noise, against the lgv_gather pass (fig9-glass.png; ~20 s).
+    echo "bench: lgv fig9"
+    sh tools/fig9_chart.sh "$LGV_TEST" "$OUT/lgv"
 fi
 # Choosing a method: per scene ONE chart with every method's default sweep against one ruler
 # (SCENE-1bounce.exr where it exists, else SCENE.exr), the Pareto front over all of them, each

@@ -20,6 +20,8 @@
  *   sweep     (GK_LGV_SWEEP=1, alone) iterations x LGV sizes against the indirect references (README);
  *   Fig. 9's cause (GK_LGV_FIG9=1, alone) the error per LGV size at 1M, 4M and 16M photons, and by
  *             region at 1M and 16M;
+ *   Fig. 9's chart (GK_LGV_FIG9_OUT=DIR, alone; `make bench`, tools/fig9_chart.sh) per LGV size the
+ *             indirect light's error, its noise-free error and the passes' times, as a CSV and EXRs;
  * GK_LGV_ONLY=NAME runs one test; GK_LGV_EVENTS, GK_LGV_OFFSET, GK_LGV_OWN, GK_LGV_SEEING,
  * GK_LGV_BOUNDS, GK_LGV_SPHERE, GK_LGV_EXIT, GK_LGV_LOBE, GK_LGV_SNAP, GK_LGV_PLANE set the debug switches
  * max_events, lookup_offset, lookup_own_cell, seeing_maps, bounds_hits, sphere_normals, exit_maps,
@@ -43,6 +45,7 @@
 #include "gi/lgv/lgv.h"
 #include "gl/gl_program.h"
 #include "gl/gl_target.h"
+#include "gl/gl_timing.h"
 #include "ref/bvh.h"
 #include "render/scene_gpu.h"
 
@@ -77,6 +80,8 @@ static bool OWN_CELL = true;  /* the lookup reads the surface's own cell (gk_lgv
 static bool EXIT_MAPS = true; /* photons leaving glass traced on its exit map (gk_lgv_debug.exit_maps) */
 static bool ENTRY = true;     /* photons on a specular chain meet glass on its refractor map (gk_lgv_debug.refractor_entry) */
 static int SSLGV_ITERS = 0;   /* the SSLGV's gathering iterations (gk_lgv_debug.sslgv_iters; 0: the default) */
+static const gk_pass_ctx *PASS; /* the next frames' clock (fig9_chart; NULL: untimed) */
+static gk_frame_report REPORT;  /* with PASS: the last frame's passes, the method's under "gi" as in the bench */
 
 static int draw_scene(void *ctx, unsigned prog, gk_err *e)
 {
@@ -195,11 +200,16 @@ static void frame(const char *list, int parts, unsigned seed)
     f.n_lights = H.n_lights, f.lights = H.lights, f.budget = &H.budget;
     f.draw_scene = draw_scene, f.draw_ctx = &H;
     f.count_work = COUNT;
+    f.pass = PASS;
     glBindFramebuffer(GL_FRAMEBUFFER, H.hdr.fbo);
     glClearColor(0, 0, 0, 0);
     glClear(GL_COLOR_BUFFER_BIT);
+    if (PASS) /* the renderer's clock around the method, as the renderer nests it under `gi` */
+        gk_timer_frame_begin(PASS->timer), gk_timer_pass_begin(PASS->timer, "gi");
     if (gk_gi_lgv.render(H.self, &f, &e))
         fail_msg("render: %s", e.msg);
+    if (PASS)
+        gk_timer_pass_end(PASS->timer), gk_timer_frame_end(PASS->timer, &REPORT);
     gkt_read_rgba(&H.hdr, 0, GL_FLOAT, H.img);
 }
 
@@ -1506,6 +1516,117 @@ static void fig9_flux_in_boundary_cells(void **state)
     }
 }
 
+/* ---- Fig. 9's chart (GK_LGV_FIG9_OUT=DIR): the data tools/fig9_chart.sh plots for `make bench` ----
+   Per LGV size, glass's indirect light (the LGV alone, as lgv_size_tradeoff: no gathering, the
+   defaults' injection and lookup) averaged over GK_LGV_FIG9_FRAMES frames (default 4) of
+   GK_LGV_FIG9_PHOTONS photons (default 262144: 1M in all, lgv_size_tradeoff's) against
+   glass-indirect.exr: the rel. RMSE, the photon noise and the error without it (noise_free_error,
+   the frames' first and second halves), and the passes' times by the renderer's clock in its CPU
+   mode (llvmpipe's: wall clock around a fence at each pass), the median over the frames after the
+   first (which renders the cube maps and builds the geometry volume, once for a static scene). Writes
+   DIR/fig9-glass.csv and, per size, the average and its two halves as EXRs (top row first, as the
+   references), so each error can be recomputed by `gikiosk compare` (tests/e2e/fig9_chart.sh).
+   GK_LGV_FIG9_SIZES (default 16,32,48) picks the sizes. */
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static double median_of(double *v, int n)
+{
+    qsort(v, (size_t)n, sizeof *v, cmp_double);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+/* img (H.img's layout: bottom row first, RGBA) written to DIR/fig9-glass-SIZE{,-a,-b}.exr and returned in out. */
+static void write_average(const char *dir, const char *size, const char *suffix, const float *img, gk_image *out)
+{
+    char path[512];
+    gk_err e = {0};
+    memcpy(H.img, img, sizeof H.img);
+    as_image(out);
+    snprintf(path, sizeof path, "%s/fig9-glass-%s%s.exr", dir, size, suffix);
+    if (gk_image_write_float(path, out, NULL, &e))
+        fail_msg("%s: %s", path, e.msg);
+}
+
+static void fig9_chart(void **state)
+{
+    (void)state;
+    const char *dir = getenv("GK_LGV_FIG9_OUT");
+    const char *photons = getenv("GK_LGV_FIG9_PHOTONS") ? getenv("GK_LGV_FIG9_PHOTONS") : "262144";
+    const char *sizes = getenv("GK_LGV_FIG9_SIZES") ? getenv("GK_LGV_FIG9_SIZES") : "16,32,48";
+    int frames = getenv("GK_LGV_FIG9_FRAMES") ? atoi(getenv("GK_LGV_FIG9_FRAMES")) : 4;
+    if (frames < 2 || frames % 2 || frames > 64)
+        fail_msg("GK_LGV_FIG9_FRAMES=%d: an even count from 2 to 64 (two halves for the noise)", frames);
+    char path[512];
+    snprintf(path, sizeof path, "%s/fig9-glass.csv", dir);
+    FILE *csv = fopen(path, "w");
+    if (!csv)
+        fail_msg("cannot write %s", path);
+    fputs("scene,lgv_size,dims,photons,frames,rel_rmse,noise,noise_free_error,mean_ratio,gi.lgv_gather_ms,gi.lgv_trace_ms,gi_ms\n",
+          csv);
+    gk_image ref = {0};
+    gk_err e = {0};
+    assert_int_equal(gk_image_read("tests/references/glass-indirect.exr", &ref, &e), 0);
+    gk_timer *timer = gk_timer_create(false); /* CPU mode: what the renderer uses on llvmpipe */
+    assert_non_null(timer);
+    const gk_pass_ctx clock = {.timer = timer, .programs = H.programs};
+    static float sum[W * HH * 4], half[2][W * HH * 4];
+    char list[128];
+    snprintf(list, sizeof list, "%s", sizes);
+    for (char *size = strtok(list, ","); size; size = strtok(NULL, ",")) {
+        char budget[128];
+        snprintf(budget, sizeof budget, "lgv_photons=%s,lgv_size=%s,lgv_iters=0", photons, size);
+        assert_int_equal(open_scene(&H, load("glass")), 0);
+        memset(sum, 0, sizeof sum);
+        memset(half, 0, sizeof half);
+        double gather[64], trace[64], gi[64];
+        PASS = &clock;
+        for (int f = 0; f < frames; f++) {
+            frame(budget, GK_LGV_PART_LGV, 0);
+            gather[f] = gk_frame_report_ms(&REPORT, "gi.lgv_gather");
+            trace[f] = gk_frame_report_ms(&REPORT, "gi.lgv_trace");
+            gi[f] = gk_frame_report_ms(&REPORT, "gi");
+            if (getenv("GK_LGV_FIG9_VERBOSE"))
+                printf("# frame %d: lgv_maps %.2f, lgv_trace %.2f, lgv_gather %.2f, lgv_sslgv %.2f, lgv_lookup %.2f, gi %.2f ms\n", f,
+                       gk_frame_report_ms(&REPORT, "gi.lgv_maps"), trace[f], gather[f],
+                       gk_frame_report_ms(&REPORT, "gi.lgv_sslgv"), gk_frame_report_ms(&REPORT, "gi.lgv_lookup"), gi[f]);
+            for (int k = 0; k < W * HH * 4; k++)
+                sum[k] += H.img[k] / (float)frames, half[2 * f / frames][k] += 2.0f * H.img[k] / (float)frames;
+        }
+        PASS = NULL;
+        const gk_lgv_stats *st = gk_lgv_get_stats(H.self);
+        int dims[3] = {st->dims[0], st->dims[1], st->dims[2]};
+        close_scene(&H);
+        gk_image avg = {0}, ha = {0}, hb = {0};
+        write_average(dir, size, "-a", half[0], &ha);
+        write_average(dir, size, "-b", half[1], &hb);
+        double err, noise, bias = noise_free_error(&ref, ha.pixels, hb.pixels, &err, &noise);
+        write_average(dir, size, "", sum, &avg);
+        /* the times of the frames after the first, which renders the maps and builds the geometry
+           volume once (a static scene's steady state, as the bench's warm-up frames leave it) */
+        double gather_ms = median_of(gather + 1, frames - 1), trace_ms = median_of(trace + 1, frames - 1),
+               gi_ms = median_of(gi + 1, frames - 1);
+        gk_metrics m;
+        assert_int_equal(gk_metrics_compute(&ref, &avg, gk_metrics_auto_exposure(&ref), &m, &e), 0);
+        /* the halves' average is the average: noise_free_error's error is gk_metrics' */
+        assert_true(fabs(err - m.rel_rmse) < 1e-4 * m.rel_rmse);
+        fprintf(csv, "glass,%s,%dx%dx%d,%lld,%d,%.6f,%.6f,%.6f,%.6f,%.4f,%.4f,%.4f\n", size, dims[0], dims[1], dims[2],
+                (long long)atoll(photons) * frames, frames, m.rel_rmse, noise, bias, m.mean_ratio, gather_ms, trace_ms, gi_ms);
+        printf("# fig9 chart: glass lgv_size %s (%dx%dx%d), %d x %s photons: rel. RMSE %.4f, noise %.4f, noise-free "
+               "error %.4f; lgv_gather %.2f ms, the method %.1f ms (medians)\n", size, dims[0], dims[1], dims[2], frames,
+               photons, m.rel_rmse, noise, bias, gather_ms, gi_ms);
+        fflush(stdout);
+        gk_image_free(&avg), gk_image_free(&ha), gk_image_free(&hb);
+    }
+    gk_timer_destroy(timer);
+    gk_image_free(&ref);
+    assert_int_equal(fclose(csv), 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1522,6 +1643,9 @@ int main(void)
     };
     const struct CMUnitTest sweep[] = {cmocka_unit_test(gathering_sweep)};
     const struct CMUnitTest fig9[] = {cmocka_unit_test(fig9_photon_study)};
+    const struct CMUnitTest chart[] = {cmocka_unit_test(fig9_chart)};
+    if (getenv("GK_LGV_FIG9_OUT"))
+        return cmocka_run_group_tests(chart, setup, teardown);
     if (getenv("GK_LGV_SWEEP"))
         return cmocka_run_group_tests(sweep, setup, teardown);
     if (getenv("GK_LGV_FIG9"))
