@@ -89,20 +89,32 @@ static void light_in_box(gkt_scene *t, enum gk_light_shape shape)
     gkt_scene_bounds(t);
 }
 
-/* The shadow maps' counted fragments in each of `frames` frames of method none at `pins` (-1: no
-   shadow.shadow_depth entry), counting or not. */
-static void map_fragments(gkt_scene *t, const char *pins, bool count, int frames, double *out)
+/* A renderer on t's scene with the knobs pinned (extra: a knob the test declares before the
+   renderer's, or NULL), counting work or not: the set-up the two counting loops below share. */
+static gk_renderer *pinned_renderer(gkt_scene *t, const char *pins, const gk_knob_def *extra, bool count, gk_budget *b)
 {
     gk_err e = {0};
     gk_render_opts o = {.width = W, .height = H, .gles_version = 31, .shader_dir = getenv("GK_SHADER_DIR")};
     gk_renderer *r = gk_renderer_create(&o, &e);
     assert_non_null(r);
     assert_int_equal(gk_renderer_set_scene(r, &t->s, &e), 0);
-    gk_budget b;
-    gk_budget_init(&b);
-    gk_renderer_declare_knobs(r, &b);
-    assert_true(gk_budget_pin_list(&b, pins, &e) >= 0);
+    gk_budget_init(b);
+    if (extra)
+        gk_budget_add(b, extra);
+    gk_renderer_declare_knobs(r, b);
+    if (gk_budget_pin_list(b, pins, &e) < 0)
+        fail_msg("%s: %s", pins, e.msg);
     assert_true(gk_renderer_count_work(r, count));
+    return r;
+}
+
+/* The shadow maps' counted fragments in each of `frames` frames of method none at `pins` (-1: no
+   shadow.shadow_depth entry), counting or not. */
+static void map_fragments(gkt_scene *t, const char *pins, bool count, int frames, double *out)
+{
+    gk_err e = {0};
+    gk_budget b;
+    gk_renderer *r = pinned_renderer(t, pins, NULL, count, &b);
     for (int f = 0; f < frames; f++) {
         gk_frame_params fp = {.time_s = 0, .method = "none", .budget = &b};
         gk_frame_report rep;
@@ -181,16 +193,8 @@ static const gk_knob_def knob_shadow = {
 static void prefilter_fetches(gkt_scene *t, const char *pass, const char *pins, int frames, double out[][4])
 {
     gk_err e = {0};
-    gk_render_opts o = {.width = W, .height = H, .gles_version = 31, .shader_dir = getenv("GK_SHADER_DIR")};
-    gk_renderer *r = gk_renderer_create(&o, &e);
-    assert_non_null(r);
-    assert_int_equal(gk_renderer_set_scene(r, &t->s, &e), 0);
     gk_budget b;
-    gk_budget_init(&b);
-    gk_budget_add(&b, &knob_shadow);
-    gk_renderer_declare_knobs(r, &b);
-    assert_true(gk_budget_pin_list(&b, pins, &e) >= 0);
-    assert_true(gk_renderer_count_work(r, true));
+    gk_renderer *r = pinned_renderer(t, pins, &knob_shadow, true, &b);
     static const char *const kinds[4] = {"tex2d_depth32f_nearest", "tex2d_r32f_nearest", "image3d_rgba16f_load",
                                          "tex2d_rgba16f_trilinear"};
     for (int f = 0; f < frames; f++) {
