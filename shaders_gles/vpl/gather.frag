@@ -141,14 +141,16 @@ vec2 chain_max(int k, vec2 uv, int level, float res)
 // holds a point in front of A's plane (the two surfaces meet in a concave corner, as the lit floor
 // meets the wall's foot: of such a pair the ray meets A first). A texel holding a point behind A's
 // plane (a convex edge: a box's top against its side or the floor beyond it), no plane or a grazing
-// one leaves the receiver lit: the ray may pass beside A, except (vpl_umbra=horizon) a texel the
-// paraboloid disc's rim crosses, or one outside the disc, that holds no plane or a grazing one:
-// outside the disc it is no direction at all, and on the rim the triangles are rasterised with
-// straight edges across the paraboloid's bend, so their parts on the VAL's side of its plane (left
-// out) cover texels there (val_zmax.frag reads rim texels as left out for the same reason). Those
-// vetoes let 62% of light-leak's last leak through with `plane` (measured: receivers within 2.2°
-// above a VAL's horizon, on the dark room's surfaces next to the planes of the lit room's floor,
-// ceiling and side walls; 59 of the 4800 gather pixels). Tolerance: fp16 planes on RGBA16F
+// one leaves the receiver lit: the ray may pass beside A, except (vpl_umbra=horizon) where the
+// texel is one the paraboloid disc's rim crosses, or one outside the disc: outside it is no
+// direction at all, and on the rim the triangles are rasterised with straight edges across the
+// paraboloid's bend, so their parts on the VAL's side of its plane (left out, no plane) and planes
+// of triangles the texel's own direction misses cover texels there (val_zmax.frag reads rim texels
+// as left out for the same reason). Vetoes by texels without a plane there let 62% of light-leak's
+// last leak through with `plane` (measured: receivers within 2.2° above a VAL's horizon, on the
+// dark room's surfaces next to the planes of the lit room's floor, ceiling and side walls; 59 of
+// the 4800 gather pixels), false convex edges there all that stayed with `horizon` at vpl_val_map
+// 128 and 256 and vpl_m=32 until rim texels stopped vetoing at all. Tolerance: fp16 planes on RGBA16F
 // targets round n and the centre's distance w to 2^-11 relative, (r + w·far)·2^-10 bounds the sum;
 // fp32 ones round far less. Returns the distance from the centre to A along v (the nearest such A),
 // the exact blocker depth the penumbra kernel needs, or 0 where the receiver is not hidden.
@@ -177,11 +179,11 @@ float behind_planes(int k, vec2 uv, float r, vec3 v, float res, float far, mat3 
             continue;
         // The point of texel q: its centre's ray (the paraboloid inverted) meets its plane.
         vec2 s = (vec2(min(t0 + ivec2(q & 1, q >> 1), ivec2(ires - 1))) + 0.5) / res * 2.0 - 1.0;
+        if (u_umbra == 3 && length(s) + sqrt(2.0) / res > 1.0)
+            continue;   // on the rim or outside the disc: no way around A (above)
         float lz = (1.0 - dot(s, s)) / (1.0 + dot(s, s));
         vec3 dir = frame * vec3(s * (1.0 + lz), lz);
         float facing = -dot(dir, pl[q].xyz);
-        if (facing < 1e-3 && u_umbra == 3 && length(s) + sqrt(2.0) / res > 1.0)
-            continue;   // on the rim or outside the disc: no way around A (above)
         if (facing < 1e-3)
             return 0.0;   // no plane (nothing drawn, or left out) or seen edge-on
         float t = pl[q].w * far / facing;

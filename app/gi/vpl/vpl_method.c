@@ -40,9 +40,9 @@ static const gk_knob_def knobs[K_COUNT] = {
        is hidden, which the filtered visibility cannot near a thin wall (tests/e2e/vpl_leak.sh);
        `on` tells the receiver's own surface from a blocker by a depth margin scaled by its slope,
        `plane` by the plane of the surface the map holds; `horizon` (the default) is `plane` where
-       the paraboloid's rim texels without a plane are no way around a blocker and receivers in the
-       band between the VAL's surface and its map's lifted plane are looked up at the map's horizon
-       instead of taken as lit (gather.frag). */
+       the paraboloid's rim texels are no way around a blocker and receivers in the band between
+       the VAL's surface and its map's lifted plane are looked up at the map's horizon instead of
+       taken as lit (gather.frag). */
     {"vpl_umbra", "vpl", 4, {"off", "on", "plane", "horizon"}, {1.0f, 1.0f, 1.0f, 1.0f}, 3, 0, .fixed = true},
 };
 
