@@ -86,6 +86,7 @@ static const gk_uniform_field gather_fields[] = {
     GK_UNIFORM(vpl_gather_uniforms, u_bzmax),
     GK_UNIFORM(vpl_gather_uniforms, u_bplane),
     GK_UNIFORM(vpl_gather_uniforms, u_umbra),
+    GK_UNIFORM(vpl_gather_uniforms, u_lift),
     GK_UNIFORM_AS(vpl_gather_uniforms, u_mr_t[0], "u_mr_t0"),
     GK_UNIFORM_AS(vpl_gather_uniforms, u_mr_t[1], "u_mr_t1"),
     GK_UNIFORM_AS(vpl_gather_uniforms, u_mr_t[2], "u_mr_t2"),
@@ -203,6 +204,7 @@ void vpl_bind_visibility(vpl_state *s, const vpl_gather_uniforms *u)
     vpl_bind_tex(14, GL_TEXTURE_2D_ARRAY, s->zmax, u->u_bzmax);
     vpl_bind_tex(15, GL_TEXTURE_2D_ARRAY, s->zplane, u->u_bplane);
     glUniform1i(u->u_umbra, s->zmax != 0 && s->vis != GK_VPL_VIS_EXACT ? s->map_umbra : VPL_UMBRA_OFF);
+    glUniform1f(u->u_lift, vpl_lift(s));
 }
 
 /* The gather (interleaved, or multires) at the indirect resolution into ind_tex, pos_tex, nrm_tex. */

@@ -13,7 +13,7 @@
 #define VPL_MR_MAX_LEVELS 6  /* 000: coarsest regions 32×32 pixels (16×16 of them at 512²) */
 
 #define VPL_KNOBS 10              /* knobs declared by vpl_method.c */
-enum { VPL_UMBRA_OFF, VPL_UMBRA_ON, VPL_UMBRA_PLANE };   /* vpl_umbra's levels */
+enum { VPL_UMBRA_OFF, VPL_UMBRA_ON, VPL_UMBRA_PLANE, VPL_UMBRA_HORIZON };   /* vpl_umbra's levels */
 
 typedef struct vpl_state {
     gk_gi_context ctx;
@@ -26,7 +26,8 @@ typedef struct vpl_state {
     float res_scale;
     bool clamp;
     int umbra;    /* vpl_umbra: the deep-umbra test on each map's chain of maxima (gather.frag):
-                     VPL_UMBRA_OFF, _ON (a depth margin) or _PLANE (the blocker's plane) */
+                     VPL_UMBRA_OFF, _ON (a depth margin), _PLANE (the blocker's plane) or _HORIZON
+                     (the planes, and the map's horizon read for the band below its plane) */
     /* scene */
     float diam;
     float origin[3];   /* bounds centre: positions in render targets are stored relative to it */
@@ -51,8 +52,8 @@ typedef struct vpl_state {
     /* VAL maps (texture arrays) */
     GLuint map_fbo, basis_fbo, map_depth;
     GLuint z_arr, bcos, bsin, bzcos, bzsin, bmom;
-    GLuint zmax;   /* chain of maxima, RG16F: depth, slope (level 0) or gap (vpl_umbra on, plane) */
-    GLuint zplane; /* the surface's plane per texel, target format, one level (vpl_umbra=plane) */
+    GLuint zmax;   /* chain of maxima, RG16F: depth, slope (level 0) or gap (vpl_umbra on, plane, horizon) */
+    GLuint zplane; /* the surface's plane per texel, target format, one level (vpl_umbra plane, horizon) */
     int map_res, map_layers, map_vis;
     int map_umbra;
     /* indirect buffers */
@@ -135,7 +136,7 @@ float vpl_target_max(const vpl_state *s);
 typedef struct vpl_gather_uniforms {
     gk_gbuffer_uniforms gb;
     GLint u_ind_size, u_vpl, u_val, u_n, u_block, u_dmin2, u_origin, u_out_max;
-    GLint u_bcos, u_bsin, u_bzcos, u_bzsin, u_bz, u_bmom, u_bzmax, u_bplane, u_umbra;
+    GLint u_bcos, u_bsin, u_bzcos, u_bzsin, u_bz, u_bmom, u_bzmax, u_bplane, u_umbra, u_lift;
     GLint u_mr_t[4], u_mr_p[3], u_mr_level, u_mr_top, u_tau_z, u_tau_n;
 } vpl_gather_uniforms;
 const vpl_gather_uniforms *vpl_gather_uniforms_of(vpl_state *s, GLuint prog, gk_err *e);
@@ -147,5 +148,8 @@ const char *vpl_vis_define(int vis);
 /* Emitter geometry shared by the map pass and the gather (centre offset, near radius, far). */
 void vpl_emitter_params(const vpl_state *s, const gk_val *v, bool exact, float out_c[3], float *rnear,
                         float *far);
+/* How far each map's centre is lifted off its VAL along the normal (m): the band below the map's
+   plane where the VAL's own VPLs still light receivers (gather.frag, vpl_umbra=horizon). */
+float vpl_lift(const vpl_state *s);
 
 #endif

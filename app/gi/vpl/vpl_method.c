@@ -39,8 +39,11 @@ static const gk_knob_def knobs[K_COUNT] = {
     /* The deep-umbra test (gather.frag; not in the thesis): exact depths decide where the whole VAL
        is hidden, which the filtered visibility cannot near a thin wall (tests/e2e/vpl_leak.sh);
        `on` tells the receiver's own surface from a blocker by a depth margin scaled by its slope,
-       `plane` (the default) by the plane of the surface the map holds. */
-    {"vpl_umbra", "vpl", 3, {"off", "on", "plane"}, {1.0f, 1.0f, 1.0f}, 2, 0, .fixed = true},
+       `plane` by the plane of the surface the map holds; `horizon` (the default) is `plane` where
+       the paraboloid's rim texels are no way around a blocker and receivers in the band between
+       the VAL's surface and its map's lifted plane are looked up at the map's horizon instead of
+       taken as lit (gather.frag). */
+    {"vpl_umbra", "vpl", 4, {"off", "on", "plane", "horizon"}, {1.0f, 1.0f, 1.0f, 1.0f}, 3, 0, .fixed = true},
 };
 
 static void declare_knobs(gk_budget *b)
@@ -162,7 +165,7 @@ static void read_budget(vpl_state *s, const gk_budget *b)
     if (s->dbg.vis_override >= 0)
         s->vis = s->dbg.vis_override;
     s->clamp = gk_knob_level(b, &s->knob[K_CLAMP], 1) == 1;
-    s->umbra = gk_knob_level(b, &s->knob[K_UMBRA], VPL_UMBRA_PLANE);
+    s->umbra = gk_knob_level(b, &s->knob[K_UMBRA], VPL_UMBRA_HORIZON);
     s->multires = gk_knob_level(b, &s->knob[K_GATHER], GATHER_INTERLEAVED) == GATHER_MULTIRES;
 }
 
@@ -263,7 +266,7 @@ static long memory_bytes(const void *self)
     b += texels * per * (s->map_vis == GK_VPL_VIS_EXACT ? 3 : 4) / 3; /* mips add ⅓ */
     if (s->map_umbra)
         b += texels * 4 * 4 / 3; /* the chain of maxima, RG16F with mips */
-    if (s->map_umbra == VPL_UMBRA_PLANE)
+    if (s->map_umbra >= VPL_UMBRA_PLANE)
         b += texels * px; /* the planes, one level in the target format */
     b += (long)s->map_res * s->map_res * 4;
     b += (long)s->iw * s->ih * (px * 6);

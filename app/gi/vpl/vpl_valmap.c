@@ -1,9 +1,10 @@
 /* One paraboloid shadow map per VAL (thesis §6.3.2, §6.5 steps 7–8): linear radial depth into a
  * texture array layer (GLES 3.1 has no geometry shader, so one draw per layer), then the CSSM basis
  * (4 Fourier terms: cos/sin in RGBA8, z·cos/z·sin in RGBA16F, plus z itself) or the two moments,
- * and mipmaps for the prefiltered lookups; with vpl_umbra on or plane also the chain of maxima
- * (depth, gap) the deep-umbra test reads, and with plane the surface's plane per texel. The
- * exact-visibility reference uses the same pass with one hard map per VPL. Also the tables the gather reads (VPLs with labels, emitters). */
+ * and mipmaps for the prefiltered lookups; with vpl_umbra on, plane or horizon also the chain of
+ * maxima (depth, gap) the deep-umbra test reads, and with plane or horizon the surface's plane per
+ * texel. The exact-visibility reference uses the same pass with one hard map per VPL. Also the
+ * tables the gather reads (VPLs with labels, emitters). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -53,7 +54,7 @@ static void ensure_maps(vpl_state *s, int res, int layers, int vis, int umbra)
     }
     /* Unit normal and distance: fp32 where float targets render, else fp16 (gather.frag's
        tolerance covers its rounding). Read by texelFetch only. */
-    if (umbra == VPL_UMBRA_PLANE)
+    if (umbra >= VPL_UMBRA_PLANE)
         s->zplane = array_tex(s->tgt_fmt, res, layers, false);
     s->z_arr = array_tex(GL_R16F, res, layers, vis == GK_VPL_VIS_CSSM);
     if (vis == GK_VPL_VIS_CSSM) {
@@ -130,12 +131,14 @@ static int build_zmax(vpl_state *s, int count, bool count_work, gk_err *e)
     return 0;
 }
 
+float vpl_lift(const vpl_state *s) { return 0.005f * s->diam; }
+
 void vpl_emitter_params(const vpl_state *s, const gk_val *v, bool exact, float out_c[3], float *rnear, float *far)
 {
     /* The centre is lifted off its surface by 0.5% of the scene diameter so the surface the VPLs
        lie on falls in the negative half-space (no self-shadowing); geometry within r_near of the
        centre is ignored as the thesis says, with r_near = ¼ of the VAL size (thesis: unstated). */
-    float lift = 0.005f * s->diam;
+    float lift = vpl_lift(s);
     vec3 base = exact || s->dbg.centroid_origin ? v->centre : v->origin;
     vec3 c = v3_add(base, v3_scale(v->normal, lift));
     out_c[0] = c.x, out_c[1] = c.y, out_c[2] = c.z;
@@ -179,7 +182,7 @@ int vpl_build_maps(vpl_state *s, const gk_gi_frame *f, const gk_val *em, int cou
     glBindFramebuffer(GL_FRAMEBUFFER, s->map_fbo);
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, s->map_depth);
     const GLenum b3[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
-    glDrawBuffers(umbra == VPL_UMBRA_PLANE ? 3 : umbra ? 2 : 1, b3);
+    glDrawBuffers(umbra >= VPL_UMBRA_PLANE ? 3 : umbra ? 2 : 1, b3);
     glViewport(0, 0, res, res);
     glDisable(GL_BLEND);
     glDisable(GL_CULL_FACE);
@@ -203,7 +206,7 @@ int vpl_build_maps(vpl_state *s, const gk_gi_frame *f, const gk_val *em, int cou
         if (umbra)
             glClearBufferfv(GL_COLOR, 1, empty);
         const GLfloat no_plane[4] = {0, 0, 0, 0};
-        if (umbra == VPL_UMBRA_PLANE)
+        if (umbra >= VPL_UMBRA_PLANE)
             glClearBufferfv(GL_COLOR, 2, no_plane);
         glClear(GL_DEPTH_BUFFER_BIT);
         float c[3], rnear, far;
