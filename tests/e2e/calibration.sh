@@ -34,8 +34,8 @@ worse_of() { awk -F, -v s="$1" '$1 == s && $9 == "" { err[$2] = $6 } END { for (
 named_of() { grep "scene $1: automatic choice" "$TMP/stderr" | grep -o "[a-z]* [0-9.]* worse than none" | cut -d' ' -f1 | sort; }
 check "cornell-spot: the methods worse than none in the table ($(worse_of cornell-spot | tr '\n' ' ')) are the ones named" \
     test "$(worse_of cornell-spot)" = "$(named_of cornell-spot)"
-# light-leak: every GI method leaks through its wall, the table has them worse than none, and the
-# kiosk names each and keeps none
+# light-leak: vct leaks through its wall (vpl, lightmap and radiosity render its dark room black),
+# the table has it worse than none, and the kiosk names it and keeps none
 check "light-leak: the table has GI methods worse than none" test -n "$(worse_of light-leak)"
 expect_exit 0 "light-leak in attract mode" "$GIKIOSK" run --platform mock --size 64x48 --scene light-leak \
     --frames 2 --target-ms 1000
