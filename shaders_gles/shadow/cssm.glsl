@@ -251,6 +251,14 @@ highp vec2 cssm_filtered(highp vec2 uv, highp vec2 w, int layer, bool with_z, hi
 #endif
 }
 
+// The lighting pass's first draw for a splitting method (SHADOW_SPLIT 1, direct/light.frag;
+// cssm_plane, shadow_cssm.c): CSSM settles no pixel short of its whole lookup, so that draw only
+// adds and stencil-marks the pixels with no light; the second runs shadow_visibility for the rest.
+highp float shadow_settle(highp vec3 world_pos)
+{
+    return -1.0;
+}
+
 highp float shadow_visibility(highp vec3 world_pos, highp vec3 world_normal)
 {
     highp vec3 pos = gk_shadow_offset(world_pos, world_normal);
