@@ -233,7 +233,7 @@ highp vec2 cssm_filtered(highp vec2 uv, highp vec2 w, int layer, bool with_z, hi
     highp vec2 r = vec2(0.0);
     // The sub-kernels row by row in one loop of n * n steps, (i, j) stepped without a division. Two
     // nested loops, each left by a break at n, gave the same sums in the same order but cost
-    // llvmpipe far more (#21: with the stage-1 change in shadow_visibility, 4.79G -> 3.46G
+    // llvmpipe far more (#21: with the stage-1 change in shadow_visibility, 4.79G -> 3.47G
     // instructions for two env-studio direct passes at 320x180, callgrind; the image bit-identical).
     int i = 0, j = 0;
     for (int k = 0; k < n * n; k++) {
