@@ -170,16 +170,53 @@ cssm_basis cssm_fetch(highp vec2 uv, highp vec2 w, int layer, bool with_z)
 }
 #endif
 
+// CSSM_TRIG_ROTATE 1 (default; #21): cos(c_k d) and sin(c_k d), k = 1..4, from one cos and one sin
+// of pi d, the odd multiples by rotating by 2 pi d (angle addition: a few ulps apart from the direct
+// calls, the series' value the same to float precision); 0: eight cos/sin calls. llvmpipe's cos and
+// sin are long polynomials: cssm_plane's direct pass on env-studio, 320x180, 3.47G -> 3.28G
+// instructions (callgrind), the 160x120 image bit-identical.
+#ifndef CSSM_TRIG_ROTATE
+#define CSSM_TRIG_ROTATE 1
+#endif
+void cssm_trig(highp float d, out highp vec4 cs, out highp vec4 sn)
+{
+#if CSSM_TRIG_ROTATE
+    highp float x = 3.14159265358979 * d;
+    highp float c1 = cos(x), s1 = sin(x);
+    highp float c2 = (c1 - s1) * (c1 + s1), s2 = 2.0 * s1 * c1;
+    highp float c3 = c1 * c2 - s1 * s2, s3 = s1 * c2 + c1 * s2;
+    highp float c5 = c3 * c2 - s3 * s2, s5 = s3 * c2 + c3 * s2;
+    highp float c7 = c5 * c2 - s5 * s2, s7 = s5 * c2 + c5 * s2;
+    cs = vec4(c1, c3, c5, c7);
+    sn = vec4(s1, s3, s5, s7);
+#else
+    cs = cos(CSSM_CK * d);
+    sn = sin(CSSM_CK * d);
+#endif
+}
+
 // Filtered lit test s_f (Eq. 5.3 with the Fourier basis) at shifted receiver depth d.
 highp float cssm_lit(cssm_basis b, highp float d)
 {
-    return 0.5 + 2.0 * dot(cos(CSSM_CK * d) * b.s - sin(CSSM_CK * d) * b.c, 1.0 / CSSM_CK);
+    highp vec4 cs, sn;
+    cssm_trig(d, cs, sn);
+    return 0.5 + 2.0 * dot(cs * b.s - sn * b.c, 1.0 / CSSM_CK);
 }
 
 // Numerator of CSM-Z (Eq. 5.11): <fbar z>, the same expansion as cssm_lit.
 highp float cssm_znum(cssm_basis b, highp float d)
 {
-    return 0.5 * b.z + 2.0 * dot(sin(CSSM_CK * d) * b.zc - cos(CSSM_CK * d) * b.zs, 1.0 / CSSM_CK);
+    highp vec4 cs, sn;
+    cssm_trig(d, cs, sn);
+    return 0.5 * b.z + 2.0 * dot(sn * b.zc - cs * b.zs, 1.0 / CSSM_CK);
+}
+
+// The filtered lit test and CSM-Z's numerator over the kernel of width w (texels) at uv, for the
+// shifted receiver depth d: one lookup.
+highp vec2 cssm_lookup(highp vec2 uv, highp vec2 w, int layer, bool with_z, highp float d)
+{
+    cssm_basis b = cssm_fetch(uv, w, layer, with_z);
+    return vec2(cssm_lit(b, d), with_z ? cssm_znum(b, d) : 0.0);
 }
 
 // Mean of the filtered lit test and of CSM-Z's numerator over the kernel of width w (texels) at uv,
@@ -194,25 +231,32 @@ highp vec2 cssm_filtered(highp vec2 uv, highp vec2 w, int layer, bool with_z, hi
     highp vec2 ws = w / float(n);
     highp float half_span = dot(slope, ws);
     highp vec2 r = vec2(0.0);
-    for (int j = 0; j < CSSM_PLANE_N; j++) {
-        if (j >= n)
-            break;
-        for (int i = 0; i < CSSM_PLANE_N; i++) {
-            if (i >= n)
-                break;
-            highp vec2 off = ((vec2(float(i), float(j)) + 0.5) / float(n) - 0.5) * w; // texels
-            // kept above u_cssm.x - 1: d - z stays within the series' period (lit, not wrapped)
-            highp float di = max(d + min(dot(grad, off) + half_span, 0.0), u_cssm.x - 0.95);
-            cssm_basis b = cssm_fetch(uv + off / u_shadow_light.w, ws, layer, with_z);
-            r += vec2(cssm_lit(b, di), with_z ? cssm_znum(b, di) : 0.0);
-        }
+    // The sub-kernels row by row in one loop of n * n steps, (i, j) stepped without a division. Two
+    // nested loops, each left by a break at n, gave the same sums in the same order but cost
+    // llvmpipe far more (#21: with the stage-1 change in shadow_visibility, 4.79G -> 3.47G
+    // instructions for two env-studio direct passes at 320x180, callgrind; the image bit-identical).
+    int i = 0, j = 0;
+    for (int k = 0; k < n * n; k++) {
+        highp vec2 off = ((vec2(float(i), float(j)) + 0.5) / float(n) - 0.5) * w; // texels
+        // kept above u_cssm.x - 1: d - z stays within the series' period (lit, not wrapped)
+        highp float di = max(d + min(dot(grad, off) + half_span, 0.0), u_cssm.x - 0.95);
+        r += cssm_lookup(uv + off / u_shadow_light.w, ws, layer, with_z, di);
+        bool row_done = i + 1 >= n;
+        i = row_done ? 0 : i + 1;
+        j = row_done ? j + 1 : j;
     }
     return r / float(n * n);
 #else
-    highp float di = d - min(dot(slope, w), shift_max);
-    cssm_basis b = cssm_fetch(uv, w, layer, with_z);
-    return vec2(cssm_lit(b, di), with_z ? cssm_znum(b, di) : 0.0);
+    return cssm_lookup(uv, w, layer, with_z, d - min(dot(slope, w), shift_max));
 #endif
+}
+
+// The lighting pass's first draw for a splitting method (SHADOW_SPLIT 1, direct/light.frag;
+// cssm_plane, shadow_cssm.c): CSSM settles no pixel short of its whole lookup, so that draw only
+// adds and stencil-marks the pixels with no light; the second runs shadow_visibility for the rest.
+highp float shadow_settle(highp vec3 world_pos)
+{
+    return -1.0;
 }
 
 highp float shadow_visibility(highp vec3 world_pos, highp vec3 world_normal)
@@ -242,8 +286,10 @@ highp float shadow_visibility(highp vec3 world_pos, highp vec3 world_normal)
     highp vec2 wi = gk_soft_kernel(c.d, u_shadow_proj.x);
 #if CSSM_PLANE
     // the thesis's search, one lookup at d: the receiver's own nearer texels only pull z_avg toward
-    // it (a narrower f_w), and the plane in stage 3 keeps them lit
-    highp vec2 f1 = cssm_filtered(c.uv, wi, layer, true, d, vec2(0.0), vec2(0.0), shift_max);
+    // it (a narrower f_w), and the plane in stage 3 keeps them lit. Called straight, not through
+    // cssm_filtered with no slope (n = 1, the same value): the loop there, whose count the compiler
+    // cannot know, cost llvmpipe 4.79G -> 3.96G instructions by itself (#21, as above).
+    highp vec2 f1 = cssm_lookup(c.uv, wi, layer, true, max(d, u_cssm.x - 0.95));
 #else
     highp vec2 f1 = cssm_filtered(c.uv, wi, layer, true, d, grad, slope, shift_max);
 #endif

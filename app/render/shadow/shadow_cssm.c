@@ -325,6 +325,10 @@ const gk_shadow_method gk_shadow_cssm_env = {
 const gk_shadow_method gk_shadow_cssm_plane = {
     .name = "cssm_plane",
     .glsl_define = "#define SHADOW_CSSM 1\n#define CSSM_PLANE 1\n",
+    /* two draws (render_split.c): the first only adds and marks the pixels with no light (CSSM's
+       shadow_settle settles none), so the second's early stencil test skips the SIMD blocks of sky
+       and of surfaces facing away from the light, where llvmpipe ran the whole lookup masked */
+    .split = true,
     .create = cssm_create_mm,
     .destroy = cssm_destroy,
     .render = cssm_render,
