@@ -370,12 +370,100 @@ static void thick_marks_solid_voxels_behind_without_diluting(void **state)
     vt_scene_free(&sc);
 }
 
+/* ---- vct_axis_clamp: the distances to the first occupied voxel along each axis ------------------ */
+/* The scene of the test above with vct_thick=1.5 (fragments and solid marks: both count as occupied)
+   and vct_axis_clamp=first / second at 32^3: axis_dist.comp's words must equal the distances to the
+   first / second occupied voxel (the voxel itself counted) found on the CPU from the scratch buffer's
+   count channel, for every voxel and all six directions (0xFFFF where the row holds fewer that way).
+   The march then reads them (cone_lib.glsl). */
+static void axis_clamp_distances(int nth)
+{
+    vt_scene sc;
+    vt_scene_init(&sc);
+    vt_add_quad(&sc, v3(0, 0, 0), v3(0, 0, 1), v3(1, 0, 0), v3(0.7f, 0.7f, 0.7f));
+    vt_add_quad(&sc, v3(0.5f, 0, 0), v3(0, 0, 1), v3(0, 0.6f, 0), v3(0.5f, 0.5f, 0.5f));
+    vt_scene_finish(&sc);
+    gk_gi_light L = vt_light(&sc, GK_LIGHT_POINT, v3(0.8f, 0.7f, 0.5f), v3(0, -1, 0), v3(3, 3, 3), 1);
+    vt_frame f;
+    vt_frame_create(&f, 16, 16, v3(0.5f, 1.5f, 0.51f), v3(0.5f, 0, 0.5f), v3(0, 0, -1), 0.5f);
+    vt_gbuffer(&g, &f, &sc);
+    gk_budget b;
+    vt_budget(&b, nth == 1 ? "vct_res=32,vct_thick=1.5,vct_axis_clamp=first" : "vct_res=32,vct_thick=1.5,vct_axis_clamp=second");
+    void *vct = vt_create(&g);
+    assert_int_equal(vt_render(vct, &f, &sc, &b, &L, 1, NULL, NULL), 0);
+    gk_vct_stats st;
+    gk_vct_get_stats(vct, &st);
+    const int res = st.res;
+    const long N = (long)res * res * res;
+    long n;
+    unsigned *scratch = vt_read_scratch(vct, &n);
+    assert_non_null(scratch);
+    unsigned axis_buf = gk_vct_axis_buffer(vct);
+    assert_true(axis_buf != 0);
+    unsigned *dist = malloc((size_t)(3 * N) * sizeof *dist);
+    assert_non_null(dist);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, axis_buf);
+    /* the memory the method reports: the formula's, plus three words per voxel, as allocated */
+    GLint64 size = 0;
+    glGetBufferParameteri64v(GL_SHADER_STORAGE_BUFFER, GL_BUFFER_SIZE, &size);
+    assert_int_equal(size, gk_vct_axis_clamp_memory(res));
+    assert_int_equal(size, 3 * 4 * N);
+    assert_int_equal(gk_gi_vct.memory_bytes(vct),
+                     gk_vct_memory_formula(res, st.aniso, st.aniso_level0, gk_vct_channels(false), st.trace_w, st.trace_h, 4) +
+                         gk_vct_axis_clamp_memory(res));
+    const void *p = glMapBufferRange(GL_SHADER_STORAGE_BUFFER, 0, (GLsizeiptr)(3 * N * 4), GL_MAP_READ_BIT);
+    assert_non_null(p);
+    memcpy(dist, p, (size_t)(3 * N * 4));
+    glUnmapBuffer(GL_SHADER_STORAGE_BUFFER);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+    long wrong = 0, occupied = 0, finite = 0;
+    for (long i = 0; i < N; i++) {
+        int c[3] = {(int)(i % res), (int)(i / res % res), (int)(i / res / res)};
+        occupied += scratch[i] != 0;
+        for (int a = 0; a < 3; a++) {
+            unsigned want[2] = {0xFFFFu, 0xFFFFu};   /* along -a, +a */
+            for (int s = 0; s < 2; s++)
+                for (int d = 0, seen = 0; d < res; d++) {
+                    int q[3] = {c[0], c[1], c[2]};
+                    q[a] += s ? d : -d;
+                    if (q[a] < 0 || q[a] >= res)
+                        break;
+                    if (scratch[((long)q[2] * res + q[1]) * res + q[0]] != 0 && ++seen == nth) {
+                        want[s] = (unsigned)d;
+                        break;
+                    }
+                }
+            finite += want[0] != 0xFFFFu;
+            wrong += dist[a * N + i] != (want[0] | want[1] << 16);
+        }
+    }
+    printf("# vct_axis_clamp=%s at %d^3: %ld occupied voxels, %ld of %ld distances along -x, -y, -z finite, %ld "
+           "wrong\n", nth == 1 ? "first" : "second", res, occupied, finite, 3 * N, wrong);
+    assert_true(occupied > 28 * 28);
+    /* the floor's voxels and the solid ones under it lie in the -y rows of most voxels above it */
+    assert_true(finite > N / 4);
+    assert_int_equal(wrong, 0);
+    free(dist);
+    free(scratch);
+    gk_gi_vct.destroy(vct);
+    vt_frame_destroy(&f);
+    vt_scene_free(&sc);
+}
+
+static void axis_clamp_distances_match_the_voxels(void **state)
+{
+    (void)state;
+    axis_clamp_distances(1);
+    axis_clamp_distances(2);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(thin_wall_rays_conservative_beats_thin),
         cmocka_unit_test(partition_leak_is_small),
         cmocka_unit_test(thick_marks_solid_voxels_behind_without_diluting),
+        cmocka_unit_test(axis_clamp_distances_match_the_voxels),
     };
     return cmocka_run_group_tests_name("vct_leak", tests, group_setup, group_teardown);
 }

@@ -69,6 +69,12 @@ static const gk_uniform_field inject_fields[] = {
 };
 _Static_assert(VCT_MAX_LIGHTS == 4, "inject_fields lists u_shadow0..3 (shaders_gles/vct/inject.comp)");
 
+/* vct/axis_dist.comp */
+typedef struct axis_dist_uniforms {
+    GLint u_res;
+} axis_dist_uniforms;
+static const gk_uniform_field axis_dist_fields[] = {GK_UNIFORM(axis_dist_uniforms, u_res)};
+
 /* vct/mip_aniso.comp */
 typedef struct mip_uniforms {
     GLint u_half;
@@ -215,6 +221,37 @@ int vct_pass_voxelize(gk_vct *v, const int lo[3], const int hi[3], gk_err *e)
     v->voxelize_ran = true;
     v->stats.voxelize_runs++;
     v->stats.last_voxelized_region = (long)size[0] * size[1] * size[2];
+    return 0;
+}
+
+int vct_pass_axis_dist(gk_vct *v, int nth, gk_err *e)
+{
+    char defs[256];
+    defines_common(v, defs, sizeof defs);
+    size_t used = strlen(defs);
+    snprintf(defs + used, sizeof defs - used, "#define NTH %d\n", nth);
+    GLuint p = gk_program_get_compute(v->ctx.programs, "vct/axis_dist.comp", defs, e);
+    const axis_dist_uniforms *u = p ? gk_program_uniforms(v->ctx.programs, p, GK_FIELDS(axis_dist_fields), sizeof *u, e) : NULL;
+    if (!u)
+        return -1;
+    if (!v->axis_ssbo) {
+        glGenBuffers(1, &v->axis_ssbo);
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, v->axis_ssbo);
+        glBufferData(GL_SHADER_STORAGE_BUFFER, (GLsizeiptr)gk_vct_axis_clamp_memory(v->res), NULL, GL_DYNAMIC_COPY);
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+        GLenum err = glGetError();
+        if (err != GL_NO_ERROR)
+            return gk_fail(e, GK_ERUNTIME, "vct: allocating the axis clamp's %d^3 distances failed (GL error 0x%x)",
+                           v->res, err);
+    }
+    glUseProgram(p);
+    glUniform1i(u->u_res, v->res);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, v->scratch_ssbo);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, v->axis_ssbo);
+    glDispatchCompute((GLuint)groups(v->res, 8), (GLuint)groups(v->res, 8), 3);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    v->axis_valid = true;
+    v->axis_nth = nth;
     return 0;
 }
 
@@ -452,9 +489,9 @@ int vct_pass_trace(gk_vct *v, const gk_gi_frame *f, const vct_budget *b, gk_err 
     size_t used = strlen(defs);
     snprintf(defs + used, sizeof defs - used,
              "#define AXIS_WEIGHT_SQ %d\n#define OPACITY_CORRECTION %d\n#define SPECULAR %d\n"
-             "#define CLIP_CONES %d\n#define EMPTY_SKIP %d\n",
+             "#define CLIP_CONES %d\n#define EMPTY_SKIP %d\n#define AXIS_CLAMP %d\n",
              v->opt.axis_weight_sq ? 1 : 0, v->opt.opacity_correction ? 1 : 0,
-             v->specular ? 1 : 0, v->opt.clip_cones ? 1 : 0, b->skip && v->specular ? 1 : 0);
+             v->specular ? 1 : 0, v->opt.clip_cones ? 1 : 0, b->skip && v->specular ? 1 : 0, b->axis_clamp);
     GLuint p = gk_program_get_compute(v->ctx.programs, "vct/trace.comp", defs, e);
     const trace_uniforms *u = p ? gk_program_uniforms(v->ctx.programs, p, GK_FIELDS(trace_fields), sizeof *u, e) : NULL;
     if (!u)
@@ -488,6 +525,8 @@ int vct_pass_trace(gk_vct *v, const gk_gi_frame *f, const vct_budget *b, gk_err 
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, v->counter_ssbo);
     glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof zero, zero);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, v->counter_ssbo);
+    if (b->axis_clamp)
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, v->axis_ssbo);
     glBindImageTexture(0, v->trace_diffuse, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glBindImageTexture(1, v->trace_spec, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glDispatchCompute((GLuint)groups(v->trace_w, 8), (GLuint)groups(v->trace_h, 8), 1);
