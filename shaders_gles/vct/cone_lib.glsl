@@ -139,8 +139,10 @@ layout(std430, binding = 3) readonly buffer AxisDist { uint axis_dist[]; };
 // Narrows a sample at p (voxel space) of diameter ds to the coarsest map level it may read; where
 // that is level 0 and even its trilinear pair crosses the limit (a sample within half a voxel of a
 // wall's voxel, or inside it), moves p along that axis to the centre of the nearest voxel it may
-// read, so that level 0 is read from this side alone.
-void axis_clamp(inout vec3 p, inout float ds)
+// read, so that level 0 is read from this side alone. step_max: the longest step along d (voxel
+// space) that does not carry the next sample past the limit's edge on any axis, so that some sample
+// lands in the wall's first voxel (a wide sample's long step jumped over the wall before).
+void axis_clamp(inout vec3 p, inout float ds, vec3 d, out float step_max)
 {
     vec3 pv = p * u_res_f;
     ivec3 c = clamp(ivec3(floor(pv)), ivec3(0), ivec3(u_res - 1));
@@ -163,6 +165,9 @@ void axis_clamp(inout vec3 p, inout float ds)
         level = float(k);
     }
     ds = min(ds, exp2(level) / u_res_f);
+    vec3 room = mix(pv - lo, hi - pv, step(0.0, d));          // voxels to the limit ahead, per axis
+    vec3 ad = max(abs(d), vec3(1e-6));
+    step_max = max(min(room.x / ad.x, min(room.y / ad.y, room.z / ad.z)), 0.0) / u_res_f;
     if (ds * u_res_f <= 1.0) {   // level 0 alone: keep its pair of voxels within [lo, hi] where there is room
         vec3 q = clamp(pv, lo + 0.5, hi - 0.5);
         p = mix(p, q / u_res_f, vec3(lessThanEqual(lo + 0.5, hi - 0.5)));
@@ -176,7 +181,7 @@ void axis_clamp(inout vec3 p, inout float ds)
 #define CONE_OPAQUE 0.99
 
 // One cone sample's place: position, and the sample diameter (footprint clamp) -> lod.
-struct cone_pos { vec3 p; float ds; float lod; bool ended; };
+struct cone_pos { vec3 p; float ds; float lod; bool ended; float step_max; };
 
 cone_pos cone_at(vec3 apex, vec3 d, float dst, float diam, float aperture, float max_dist, vec4 plane, float acc_a)
 {
@@ -186,9 +191,10 @@ cone_pos cone_at(vec3 apex, vec3 d, float dst, float diam, float aperture, float
     c.ended = acc_a >= CONE_OPAQUE || dst > max_dist ||
               ((CLIP_CONES != 0 || aperture < 0.3) && (any(lessThan(c.p, vec3(0.0))) || any(greaterThan(c.p, vec3(1.0)))));
     c.ds = diam;
+    c.step_max = 1e30;
     if (u_footprint_clamp > 0.0) c.ds = min(c.ds, u_footprint_clamp * max(dot(plane.xyz, c.p) + plane.w, 0.0));
 #if AXIS_CLAMP
-    if (!c.ended) axis_clamp(c.p, c.ds);
+    if (!c.ended) axis_clamp(c.p, c.ds, d, c.step_max);
 #endif
     c.lod = max(log2(c.ds * u_res_f), 0.0);
     return c;
@@ -223,7 +229,7 @@ vec4 trace_cone(vec3 apex, vec3 d, float aperture, float max_dist, vec4 plane, o
 #else
         vec4 s = textureLod(u_vox0, c.p, c.lod);
 #endif
-        float step_len = max(c.ds * u_step_mul, vs);
+        float step_len = max(min(c.ds * u_step_mul, c.step_max), vs);
 #if OPACITY_CORRECTION
         float a_c = 1.0 - pow(max(1.0 - s.a, 0.0), step_len / (exp2(c.lod) * vs));
         s = s.a > 1e-6 ? s * (a_c / s.a) : vec4(0.0);
@@ -249,7 +255,7 @@ vec4 trace_cone(vec3 apex, vec3 d, float aperture, float max_dist, vec4 plane, o
 #else
         vec4 s = dir_sample(c.p, ax, c.lod - DIR_FIRST_LOD);
 #endif
-        float step_len = max(c.ds * u_step_mul, vs);
+        float step_len = max(min(c.ds * u_step_mul, c.step_max), vs);
 #if OPACITY_CORRECTION
         float a_c = 1.0 - pow(max(1.0 - s.a, 0.0), step_len / (exp2(c.lod) * vs));
         s = s.a > 1e-6 ? s * (a_c / s.a) : vec4(0.0);

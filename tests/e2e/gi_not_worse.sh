@@ -23,7 +23,15 @@ REFS=tests/references
 #   it. Solid voxels behind every surface (vct_thick, level 0 only) make the dark room's column in
 #   front of the wall opaque: rmse 0.0087 / 0.0050 at 1.5 / 3 voxels, 0.0028 with vct_level0=aniso
 #   too, not 0 (what stays comes through the coarse levels), and not the default: caustic-ring
-#   0.634 -> 0.660 / 0.696, atrium 0.358 -> 0.370 / 0.464 (README "Solid voxels behind surfaces");
+#   0.634 -> 0.660 / 0.696, atrium 0.358 -> 0.370 / 0.464 (README "Solid voxels behind surfaces").
+#   The coarse levels' share is their trilinear filtering: no mip voxel straddles the wall (x = 0 is
+#   a texel boundary at every level), but a fetch reads the texel pair bracketing the sample, so a
+#   sample within half a texel of the wall reads the lit texel beside it (91% of what stays with
+#   vct_thick=3 and vct_level0=aniso, by sample class; the other 9% samples past the wall).
+#   vct_axis_clamp=first / second (no sample reads past a wall along an axis, none steps past it)
+#   leaves 0.0021 / 0.0038, and with vct_thick=1.5 renders the dark room black, rmse 0 as none; not
+#   the default: its narrow samples near every wall cost cornell 0.074 -> 0.094 .. 0.114 and
+#   cornell-spot 0.356 -> 0.595 .. 0.682 (README "Where the rest leaks, and the axis clamp");
 #   light-leak/vpl: rmse 0.000591 with the deep-umbra test by planes (vpl_umbra=plane, the default;
 #   0.0196 with its depth margin, vpl_umbra=on, 0.0632 without); what stays lies where a texel
 #   around the receiver lies on a VAL's own side of its plane (no plane there), or the receiver in
