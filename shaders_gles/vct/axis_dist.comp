@@ -2,6 +2,8 @@
 // @variant CONSERVATIVE=1 AVERAGE_CAS=0 EMISSIVE=0 NTH=1
 // @variant CONSERVATIVE=1 AVERAGE_CAS=0 EMISSIVE=0 NTH=2
 // @variant CONSERVATIVE=0 AVERAGE_CAS=1 EMISSIVE=0 NTH=2
+// @variant CONSERVATIVE=1 AVERAGE_CAS=0 EMISSIVE=0 NTH=1 THIN_ONLY=1
+// @variant CONSERVATIVE=0 AVERAGE_CAS=1 EMISSIVE=0 NTH=1 THIN_ONLY=1
 // how far the NTH occupied voxel (a fragment's, or vct_thick's solid mark) lies along -x, +x, -y,
 // +y, -z, +z, counting the voxel itself: 0 for NTH=1 in an occupied voxel, NONE when the row holds
 // fewer that way. A cone sample whose trilinear footprint would read a texel past that voxel
@@ -21,10 +23,20 @@ layout(std430, binding = 3) buffer AxisDist { uint axis_dist[]; };
 #ifndef NTH
 #define NTH 1
 #endif
+#ifndef THIN_ONLY
+#define THIN_ONLY 0
+#endif
+#if THIN_ONLY
+// vct_axis_clamp=thin: only thin walls' voxels (THIN_BIT, thin_flag.comp) and the voxels behind them
+// (THIN_MARK, voxelize.comp THIN_MARKS) stop a sample; a single-sided wall does not.
+layout(std430, binding = 4) readonly buffer ThinFlags { uint thin_flags[]; };
+#endif
 
 bool occupied(ivec3 c)
 {
-#if AVERAGE_CAS
+#if THIN_ONLY
+    return (thin_flags[vox_index(c)] & (THIN_BIT | THIN_MARK)) != 0u;
+#elif AVERAGE_CAS
     return (s[CH_ALB * vox_count() + vox_index(c)] >> 24) != 0u;
 #else
     return s[CH_COUNT * vox_count() + vox_index(c)] != 0u;   // fragments or the solid mark

@@ -44,9 +44,12 @@ static const gk_knob_def knob_thick = {.name = "vct_thick", .owner = "vct", .n_v
    sample is read at a level no coarser than the largest whose trilinear footprint stays on its side
    of the first occupied voxel along each axis (first), or short of the second (second), so no
    coarse sample near a wall blends in the texels beyond it. A switch for measuring, never a
-   scheduler pick: the calibration has no rows for it. Off by default (README "The axis clamp"). */
-static const gk_knob_def knob_axis_clamp = {.name = "vct_axis_clamp", .owner = "vct", .n_values = 3,
-                                            .values = {"off", "first", "second"}, .cost = {1, 1, 1},
+   scheduler pick: the calibration has no rows for it. thin: `first`, stopped only at thin walls'
+   voxels (a surface with another facing away from it within two voxels behind, vct/thin_flag.comp)
+   and at the voxels up to VCT_THIN_DEPTH behind those (limits only, not opaque), so a scene without
+   thin walls is traced as without it (README "The axis clamp at thin walls"). */
+static const gk_knob_def knob_axis_clamp = {.name = "vct_axis_clamp", .owner = "vct", .n_values = 4,
+                                            .values = {"off", "first", "second", "thin"}, .cost = {1, 1, 1, 1},
                                             .default_level = 0, .fixed = true};
 /* default: gk_vct_default_options (conservative voxelization, fixed-point averaging, footprint
    clamp, ...); thesis: gk_vct_thesis_options, the thesis as published. A switch for measuring one
@@ -310,9 +313,10 @@ int vct_update(gk_vct *v, const gk_gi_frame *f, vct_budget *bp, gk_err *e)
             return -1;
         upload_tris(v, 0, v->tris.n);
     }
-    if (b.thick != v->cur.thick)
-        v->need_voxelize = true;
+    if (b.thick != v->cur.thick || (b.axis_clamp == VCT_AXIS_THIN) != (v->cur.axis_clamp == VCT_AXIS_THIN))
+        v->need_voxelize = true;   /* thin: its marks only behind thin walls, its flags made with the voxels */
     v->cur.thick = b.thick;
+    v->cur.axis_clamp = b.axis_clamp;
     v->cur.cones = b.cones;
     v->cur.step = b.step;
     v->cur.trace_scale = b.trace_scale;
@@ -359,7 +363,7 @@ int vct_update(gk_vct *v, const gk_gi_frame *f, vct_budget *bp, gk_err *e)
     }
 
     v->cur.axis_clamp = b.axis_clamp;
-    if (b.axis_clamp && (!v->axis_valid || v->axis_nth != b.axis_clamp)) {   /* part of the voxels: timed with them */
+    if (vct_axis_clamp_in_use(v, b.axis_clamp) && (!v->axis_valid || v->axis_nth != b.axis_clamp)) {   /* part of the voxels: timed with them */
         gk_pass_begin(f->pass, "vct_voxelize");
         int rc = vct_pass_axis_dist(v, b.axis_clamp, e);
         gk_pass_end(f->pass);
@@ -445,7 +449,8 @@ static long vct_memory_bytes(const void *self)
     return gk_vct_memory_formula(v->cur.res, v->cur.aniso, v->cur.aniso_level0, gk_vct_channels(v->emissive),
                                  v->trace_w, v->trace_h, v->tris.n) +
            (v->vox_bounce ? gk_vct_bounce_memory(v->cur.res, v->cur.aniso) : 0) +
-           (v->axis_ssbo ? gk_vct_axis_clamp_memory(v->cur.res) : 0);
+           (v->axis_ssbo ? gk_vct_axis_clamp_memory(v->cur.res) : 0) +
+           (v->thin_ssbo ? gk_vct_thin_flag_memory(v->cur.res) : 0);
 }
 
 static void vct_destroy(void *self)
@@ -496,6 +501,7 @@ void gk_vct_get_stats(const void *self, gk_vct_stats *out)
 unsigned gk_vct_scratch_buffer(const void *self) { return ((const gk_vct *)self)->scratch_ssbo; }
 unsigned gk_vct_radiance_texture(const void *self) { return ((const gk_vct *)self)->vox0; }
 unsigned gk_vct_axis_buffer(const void *self) { return ((const gk_vct *)self)->axis_ssbo; }
+unsigned gk_vct_thin_buffer(const void *self) { return ((const gk_vct *)self)->thin_ssbo; }
 
 const gk_gi_method gk_gi_vct = {
     .name = "vct",

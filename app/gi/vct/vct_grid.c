@@ -106,6 +106,13 @@ void vct_free_gpu(gk_vct *v)
     if (v->axis_ssbo)
         glDeleteBuffers(1, &v->axis_ssbo);
     v->axis_ssbo = 0;
+    if (v->thin_ssbo)
+        glDeleteBuffers(1, &v->thin_ssbo);
+    v->thin_ssbo = 0;
+    if (v->thin_count_ssbo)
+        glDeleteBuffers(1, &v->thin_count_ssbo);
+    v->thin_count_ssbo = 0;
+    v->thin_voxels = 0;
     v->axis_valid = false;
     for (int i = 0; i < 3; i++)
         if (v->voxp[i])
@@ -150,6 +157,7 @@ long gk_vct_bounce_memory(int res, bool aniso)
 }
 
 long gk_vct_axis_clamp_memory(int res) { return 3L * 4 * res * res * res; }
+long gk_vct_thin_flag_memory(int res) { return 4L * res * res * res; }
 
 int vct_ensure_bounce_target(gk_vct *v, gk_err *e)
 {
