@@ -43,14 +43,15 @@ static const gk_knob_def knob_thick = {.name = "vct_thick", .owner = "vct", .n_v
 /* The axis clamp (vct/cone_lib.glsl axis_clamp, vct/axis_dist.comp; not in the thesis): a cone
    sample is read at a level no coarser than the largest whose trilinear footprint stays on its side
    of the first occupied voxel along each axis (first), or short of the second (second), so no
-   coarse sample near a wall blends in the texels beyond it. A switch for measuring, never a
-   scheduler pick: the calibration has no rows for it. thin: `first`, stopped only at thin walls'
-   voxels (a surface with another facing away from it within two voxels behind, vct/thin_flag.comp)
-   and at the voxels up to VCT_THIN_DEPTH behind those (limits only, not opaque), so a scene without
-   thin walls is traced as without it (README "The axis clamp at thin walls"). */
+   coarse sample near a wall blends in the texels beyond it. A switch, never a scheduler pick.
+   thin (the default since issue 11): `first`, stopped only at thin walls' voxels (a surface with
+   another facing away from it within two voxels behind, vct/thin_flag.comp) and at the voxels up to
+   VCT_THIN_DEPTH behind those (limits only, not opaque), so a scene without thin walls is traced as
+   with off, bit for bit; light-leak renders black (README "The axis clamp at thin walls"). Not with
+   vct_variant=thesis (the thesis as published has no clamp): there thin is off. */
 static const gk_knob_def knob_axis_clamp = {.name = "vct_axis_clamp", .owner = "vct", .n_values = 4,
                                             .values = {"off", "first", "second", "thin"}, .cost = {1, 1, 1, 1},
-                                            .default_level = 0, .fixed = true};
+                                            .default_level = 3, .fixed = true};
 /* default: gk_vct_default_options (conservative voxelization, fixed-point averaging, footprint
    clamp, ...); thesis: gk_vct_thesis_options, the thesis as published. A switch for measuring one
    against the other, never a scheduler pick. */
@@ -236,6 +237,8 @@ void vct_read_budget(gk_vct *v, const gk_budget *b, vct_budget *out)
     if (!(out->thick >= 0.0f))
         out->thick = 0.0f;
     out->axis_clamp = gk_knob_level(b, &v->k_axis_clamp, 0);
+    if (out->thesis && out->axis_clamp == VCT_AXIS_THIN)
+        out->axis_clamp = 0;
     if (out->res < 8)
         out->res = 64;
     if (out->cones != 4 && out->cones != 9)

@@ -201,7 +201,8 @@ static int voxelize_solid_pass(gk_vct *v, const char *defs, const int lo[3], con
    vct/thin_flag.comp's THIN_BIT per voxel, then THIN_MARK on the voxels up to VCT_THIN_DEPTH behind
    the fragments of flagged voxels (voxelize.comp THIN_MARKS: where the axis clamp stops too; unlike
    vct_thick's marks not opaque, so a thin shell's other face stays visible). The voxel data (scratch,
-   radiance) are not touched: a scene without thin walls is traced as without the clamp. */
+   radiance) are not touched: a scene without thin walls is traced as without the clamp, and keeps
+   no flag volume (it lives during the voxelization alone, 4 bytes per voxel). */
 static int thin_flag_pass(gk_vct *v, const char *defs, gk_err *e)
 {
     char face_defs[320], mark_defs[320];
@@ -253,6 +254,11 @@ static int thin_flag_pass(gk_vct *v, const char *defs, gk_err *e)
     if (count)
         glUnmapBuffer(GL_SHADER_STORAGE_BUFFER);
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+    if (v->thin_voxels == 0) {   /* nothing to clamp at: the volume is not kept (made anew each time) */
+        glDeleteBuffers(1, &v->thin_ssbo);
+        v->thin_ssbo = 0;
+        return 0;
+    }
     glUseProgram(mark);
     voxelize_set_uniforms(v, um, all_lo, all_hi);
     glUniform1f(um->u_thick, VCT_THIN_DEPTH);
