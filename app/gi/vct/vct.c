@@ -317,7 +317,7 @@ int vct_update(gk_vct *v, const gk_gi_frame *f, vct_budget *bp, gk_err *e)
         upload_tris(v, 0, v->tris.n);
     }
     if (b.thick != v->cur.thick || (b.axis_clamp == VCT_AXIS_THIN) != (v->cur.axis_clamp == VCT_AXIS_THIN))
-        v->need_voxelize = true;   /* thin: its marks only behind thin walls, its flags made with the voxels */
+        v->need_voxelize = true;   /* thin: its flags and limits are made with the voxels (vct_pass_voxelize) */
     v->cur.thick = b.thick;
     v->cur.axis_clamp = b.axis_clamp;
     v->cur.cones = b.cones;
