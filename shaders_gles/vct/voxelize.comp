@@ -3,6 +3,10 @@
 // @variant CONSERVATIVE=0 AVERAGE_CAS=1 EMISSIVE=1
 // @variant CONSERVATIVE=1 AVERAGE_CAS=0 EMISSIVE=0 VOXELIZE_COUNT_ATOMICS=1
 // @variant CONSERVATIVE=1 AVERAGE_CAS=0 EMISSIVE=0 SOLID_PASS=1
+// @variant CONSERVATIVE=1 AVERAGE_CAS=0 EMISSIVE=0 SOLID_PASS=1 THIN_MARKS=1
+// @variant CONSERVATIVE=0 AVERAGE_CAS=1 EMISSIVE=0 SOLID_PASS=1 THIN_MARKS=1
+// @variant CONSERVATIVE=1 AVERAGE_CAS=0 EMISSIVE=0 FACE_PASS=1
+// @variant CONSERVATIVE=0 AVERAGE_CAS=1 EMISSIVE=0 FACE_PASS=1
 // world-space triangle SSBO. For every voxel column along the triangle's dominant axis
 // (argmax |n|, the axis the thesis's GS projects along) over the triangle's bounding box:
 //   CONSERVATIVE=1: every voxel the triangle touches (Schwarz & Seidel 2010 triangle/box overlap,
@@ -29,6 +33,19 @@ layout(local_size_x = 64) in;
 // behind them solid (thicken); the first writes the fragments as without vct_thick.
 #ifndef SOLID_PASS
 #define SOLID_PASS 0
+#endif
+// vct_axis_clamp=thin (vct/thin_flag.comp): FACE_PASS=1, a dispatch of its own after the fragments',
+// records per voxel which ways the fragments in it face (FACE_* bits, vct/common.glsl); THIN_MARKS=1
+// (with SOLID_PASS) marks THIN_MARK, in the flag volume, on the voxels up to u_thick behind the
+// fragments of the voxels thin_flag.comp flagged THIN_BIT only: where the axis clamp stops too.
+#ifndef FACE_PASS
+#define FACE_PASS 0
+#endif
+#ifndef THIN_MARKS
+#define THIN_MARKS 0
+#endif
+#if FACE_PASS || THIN_MARKS
+layout(std430, binding = 4) coherent buffer ThinFlags { uint thin_flags[]; };
 #endif
 
 // p0..p2: xyz world position, w the vertex's alpha (factor x COLOR_0); uv01, uv2_mask.xy: the
@@ -149,17 +166,34 @@ void write_voxel(ivec3 c, vec3 alb, vec3 n, vec3 frac, vec3 emi)
 void write_solid(ivec3 c)
 {
     if (any(lessThan(c, max(u_region_lo, ivec3(0)))) || any(greaterThan(c, min(u_region_hi, ivec3(u_res - 1))))) return;
+#if THIN_MARKS
+    atomicOr(thin_flags[vox_index(c)], THIN_MARK);
+#else
     atomicOr(s[CH_COUNT * vox_count() + vox_index(c)], SOLID_BIT);
+#endif
 }
 
 void thicken(ivec3 c, vec3 p, vec3 nn)
 {
+#if THIN_MARKS
+    if ((thin_flags[vox_index(c)] & THIN_BIT) == 0u) return;   // not a thin wall's: no marks behind it
+#endif
     ivec3 last = c;
     for (int k = 1; float(k) * 0.5 <= u_thick + 1e-3; k++) {
         ivec3 b = ivec3(floor(p - nn * (0.5 * float(k))));
         if (b != last && b != c) write_solid(b);
         last = b;
     }
+}
+#endif
+
+#if FACE_PASS
+// The ways the fragment's normal faces (face_bits, vct/common.glsl), into its voxel's flag word.
+void write_faces(ivec3 c, vec3 nn)
+{
+    if (any(lessThan(c, u_region_lo)) || any(greaterThan(c, u_region_hi))) return;
+    uint f = face_bits(nn);
+    if (f != 0u) atomicOr(thin_flags[vox_index(c)], f);
 }
 #endif
 
@@ -239,6 +273,8 @@ void main()
                 if (alpha_cut(T, v0, v1, v2, pc)) continue;
 #if SOLID_PASS
                 thicken(c, pc, nn);
+#elif FACE_PASS
+                write_faces(c, nn);
 #else
                 write_voxel(c, T.albedo.rgb, nn, pc - p, emi);
 #endif
@@ -262,6 +298,8 @@ void main()
             if (alpha_cut(T, v0, v1, v2, vec3(c) + frac)) continue;
 #if SOLID_PASS
             thicken(c, vec3(c) + frac, nn);
+#elif FACE_PASS
+            write_faces(c, nn);
 #else
             write_voxel(c, T.albedo.rgb, nn, frac, emi);
 #endif

@@ -9,17 +9,23 @@
 # 2.94 nits: the brightest light there is to leak.
 # Each vct_res with both variants: default (conservative voxelization, fixed-point averages,
 # footprint clamp, cones clipped at the border) and thesis (the thesis as published), and the default
-# with vct_level0=aniso (six directional views from level 0 on).
+# with vct_level0=aniso (six directional views from level 0 on). The default's axis clamp at thin
+# walls (vct_axis_clamp=thin since issue 11) renders the dark room black; the measurements of the
+# other switches below were made without it and keep it off (leak pins vct_axis_clamp=off unless
+# told otherwise), so that they still say what each switch does; the default's own are at the end.
 . tests/e2e/lib.sh
 export EGL_PLATFORM=surfaceless
 L_WALL_NITS=2.94
 
-# leak RES VARIANT: leak ratio of light-leak with vct into $leak
+# leak RES VARIANT [,KNOB=VALUE...]: leak ratio of light-leak with vct into $leak (vct_axis_clamp=off
+# unless the knobs name it)
 leak() {
     leak=
     rm -rf "$TMP/cap"
+    clamp=,vct_axis_clamp=off
+    case "$3" in *vct_axis_clamp=*) clamp= ;; esac
     "$GIKIOSK" run --platform mock --scene light-leak --method vct --size 160x120 --frames 2 --hdr \
-        --capture "$TMP/cap" --budget "shadow=pcss,vct_res=$1,vct_variant=$2$3" >"$TMP/run.log" 2>&1 || return 1
+        --capture "$TMP/cap" --budget "shadow=pcss,vct_res=$1,vct_variant=$2$clamp$3" >"$TMP/run.log" 2>&1 || return 1
     grep -q "vct_variant=$2" "$TMP/run.log" || return 1
     for kv in $(echo "${3#,}" | tr ',' ' '); do grep -q "$kv" "$TMP/run.log" || return 1; done
     leak=$(oiiotool "$TMP/cap/000001-light-leak-vct.exr" --printstats 2>/dev/null |
@@ -107,11 +113,56 @@ check "vct_thick=3 vct_level0=aniso leaks under 0.00064 ($leak)" lt "$leak" 0.00
 check "vct_thick=3 vct_level0=aniso leaks less than vct_thick=3 alone ($leak < $leak_thick3_64)" lt "$leak" "$leak_thick3_64"
 rm -rf "$TMP/ldr"
 max8=$("$GIKIOSK" run --platform mock --scene light-leak --method vct --size 160x120 --frames 2 --capture "$TMP/ldr" \
-    --budget "shadow=pcss,vct_res=64,vct_thick=3,vct_level0=aniso" >/dev/null 2>&1 &&
+    --budget "shadow=pcss,vct_res=64,vct_thick=3,vct_level0=aniso,vct_axis_clamp=off" >/dev/null 2>&1 &&
     "$GIKIOSK" compare tests/references/light-leak.exr "$TMP/ldr/000001-light-leak-vct.png" --json 2>/dev/null |
     sed -n 's/.*"max_error": \([^,]*\),.*/\1/p')
 echo "# light-leak vct_res=64 vct_thick=3 vct_level0=aniso: 8-bit max error $max8"
 check "vct_thick=3 vct_level0=aniso: 8-bit max error under 8/255 ($max8)" lt "$max8" "$(awk 'BEGIN { print 8 / 255 }')"
+
+# vct_axis_clamp (not in the thesis; vct/cone_lib.glsl axis_clamp, README "The axis clamp"): what the
+# switches above leave is the coarse levels' trilinear filtering. The wall (x = 0) is a texel boundary
+# at every level, so no mip voxel straddles it; but a fetch at level k reads the two texels whose
+# centres bracket the sample, so a dark-room sample within half a level-k texel of the wall reads the
+# lit side's texel beside it, a lateral blend that no directional opacity in front of it stops. Split
+# by sample (a diagnosis run: each class's radiance alone, the sums match to fp16), of the 0.043% of
+# vct_thick=3 with vct_level0=aniso at 64^3: 57.7% samples whose finer level's pair holds a lit texel
+# (lod 0 13.5%, 1 17.9%, 2 21.6%, 3 4.6%), 33.1% those whose coarser level's alone does (lods 1-3),
+# 9.1% samples already past the wall (lods 1-2), and exactly 0 from samples whose pairs hold no lit
+# texel. With the clamp no sample reads a texel past the first occupied voxel along an axis (first),
+# or holding the second (second), level 0 is read from the sample's side, and no step carries a
+# sample past the wall's first voxel; with the solid voxels of vct_thick=1.5 for it to stop at, the
+# dark room is black: 0 exactly at every vct_res, in the HDR image and in 8 bits (measured; the
+# bound is the measurement itself, since a correct image is 0). The clamp alone leaves level-0
+# samples past the wall (all of what stays, from scattered receivers on the ceiling and the side
+# wall): 0.058% at 64^3 with second, 8-bit max 2/255 (bounds 1.5x: 0.00087, 3/255). It is not the
+# default: it narrows the cones' samples near walls, and the six cones then resolve the voxels
+# instead of averaging them (cornell 0.074 -> 0.094 with second, 0.113 with vct_thick=1.5; README).
+zero() { awk -v a="$1" 'BEGIN { n = "^[-+]?[0-9.]+([eE][-+]?[0-9]+)?$"; exit !(a ~ n && a + 0 == 0) }'; }
+for res in 32 64 128; do
+    check "light-leak vct_res=$res vct_axis_clamp=second vct_thick=1.5 renders" leak "$res" default ,vct_axis_clamp=second,vct_thick=1.5
+    echo "# light-leak vct_res=$res vct_axis_clamp=second vct_thick=1.5: leak ratio $leak"
+    check "vct_res=$res: vct_axis_clamp=second with vct_thick=1.5 leaks nothing ($leak)" zero "$leak"
+done
+check "light-leak vct_res=64 vct_axis_clamp=first vct_thick=1.5 renders" leak 64 default ,vct_axis_clamp=first,vct_thick=1.5
+echo "# light-leak vct_res=64 vct_axis_clamp=first vct_thick=1.5: leak ratio $leak"
+check "vct_axis_clamp=first with vct_thick=1.5 leaks nothing ($leak)" zero "$leak"
+check "light-leak vct_res=64 vct_axis_clamp=second renders" leak 64 default ,vct_axis_clamp=second
+echo "# light-leak vct_res=64 vct_axis_clamp=second: leak ratio $leak"
+check "vct_axis_clamp=second alone leaks under 0.00087 ($leak)" lt "$leak" 0.00087
+check "vct_axis_clamp=second alone leaks, the solid voxels stop what passes through ($leak > 0)" lt 0 "$leak"
+for extra in "" ",vct_thick=1.5"; do
+    rm -rf "$TMP/ldr"
+    max8=$("$GIKIOSK" run --platform mock --scene light-leak --method vct --size 160x120 --frames 2 --capture "$TMP/ldr" \
+        --budget "shadow=pcss,vct_res=64,vct_axis_clamp=second$extra" >/dev/null 2>&1 &&
+        "$GIKIOSK" compare tests/references/light-leak.exr "$TMP/ldr/000001-light-leak-vct.png" --json 2>/dev/null |
+        sed -n 's/.*"max_error": \([^,]*\),.*/\1/p')
+    echo "# light-leak vct_res=64 vct_axis_clamp=second$extra: 8-bit max error $max8"
+    if [ -z "$extra" ]; then
+        check "vct_axis_clamp=second: 8-bit max error under 3/255 ($max8)" lt "$max8" "$(awk 'BEGIN { print 3 / 255 }')"
+    else
+        check "vct_axis_clamp=second$extra: 8-bit max error 0 ($max8)" zero "$max8"
+    fi
+done
 
 # The second bounce (vct_bounces=2) gathers what leaked into the dark room's voxels and re-emits it
 # there; the wall's own voxels (both faces in one voxel, mean normal < 0.25) gather nothing.
@@ -120,4 +171,34 @@ check "vct_thick=3 vct_level0=aniso: 8-bit max error under 8/255 ($max8)" lt "$m
 check "light-leak vct_res=64 vct_bounces=2 renders" leak 64 default ,vct_bounces=2
 echo "# light-leak vct_res=64 vct_bounces=2: leak ratio $leak"
 check "vct_res=64 vct_bounces=2: leaks under 1.9% of the lit wall ($leak)" lt "$leak" 0.019
+leak_bounce2_off=$leak
+
+# The default: vct_axis_clamp=thin (not in the thesis; vct/thin_flag.comp, README "The axis clamp at
+# thin walls"). The clamp above, but stopped only at thin walls' voxels (a fragment with one facing
+# away from it in its voxel or the next two behind it: both faces of light-leak's wall) and at the
+# voxels up to 16 behind their fragments (limits, not opaque), so scenes without thin walls render
+# as before, bit for bit (gi_not_worse.sh's header). Measured: 0 exactly at 32^3 and 64^3 (the
+# scene's default), in HDR and so in 8 bits; the bound is the measurement, since a correct image is
+# 0. At 128^3 0.0054% stays (RMSE 0.0010, off: 0.096%; bound 1.5x); the second bounce's gather
+# (vct/bounce.comp) has no clamp: 0.131% with two bounces (off: 1.28%; bound 1.5x), so the dark
+# room's voxels still receive what its cones gather there.
+for res in 32 64; do
+    check "light-leak vct_res=$res default (vct_axis_clamp=thin) renders" leak "$res" default ,vct_axis_clamp=thin
+    echo "# light-leak vct_res=$res vct_axis_clamp=thin: leak ratio $leak"
+    check "vct_res=$res: the default leaks nothing ($leak)" zero "$leak"
+done
+rm -rf "$TMP/ldr"
+max8=$("$GIKIOSK" run --platform mock --scene light-leak --method vct --size 160x120 --frames 2 --capture "$TMP/ldr" \
+    --budget "shadow=pcss" >"$TMP/run.log" 2>&1 && grep -q "vct_axis_clamp=thin" "$TMP/run.log" &&
+    "$GIKIOSK" compare tests/references/light-leak.exr "$TMP/ldr/000001-light-leak-vct.png" --json 2>/dev/null |
+    sed -n 's/.*"max_error": \([^,]*\),.*/\1/p')
+echo "# light-leak default budget: 8-bit max error $max8"
+check "the default budget is vct_axis_clamp=thin and its 8-bit image is black ($max8)" zero "$max8"
+check "light-leak vct_res=128 vct_axis_clamp=thin renders" leak 128 default ,vct_axis_clamp=thin
+echo "# light-leak vct_res=128 vct_axis_clamp=thin: leak ratio $leak"
+check "vct_res=128: vct_axis_clamp=thin leaks under 0.000081 ($leak)" lt "$leak" 0.000081
+check "light-leak vct_res=64 vct_axis_clamp=thin vct_bounces=2 renders" leak 64 default ,vct_axis_clamp=thin,vct_bounces=2
+echo "# light-leak vct_res=64 vct_axis_clamp=thin vct_bounces=2: leak ratio $leak"
+check "vct_axis_clamp=thin vct_bounces=2 leaks under 0.00196 ($leak)" lt "$leak" 0.00196
+check "vct_axis_clamp=thin vct_bounces=2 leaks less than off ($leak < $leak_bounce2_off)" lt "$leak" "$leak_bounce2_off"
 finish

@@ -370,12 +370,222 @@ static void thick_marks_solid_voxels_behind_without_diluting(void **state)
     vt_scene_free(&sc);
 }
 
+/* ---- vct_axis_clamp: the distances to the first occupied voxel along each axis ------------------ */
+/* The scene of the test above with vct_thick=1.5 (fragments and solid marks: both count as occupied)
+   and vct_axis_clamp=first / second at 32^3: axis_dist.comp's words must equal the distances to the
+   first / second occupied voxel (the voxel itself counted) found on the CPU from the scratch buffer's
+   count channel, for every voxel and all six directions (0xFFFF where the row holds fewer that way).
+   The march then reads them (cone_lib.glsl). */
+static void axis_clamp_distances(int nth)
+{
+    vt_scene sc;
+    vt_scene_init(&sc);
+    vt_add_quad(&sc, v3(0, 0, 0), v3(0, 0, 1), v3(1, 0, 0), v3(0.7f, 0.7f, 0.7f));
+    vt_add_quad(&sc, v3(0.5f, 0, 0), v3(0, 0, 1), v3(0, 0.6f, 0), v3(0.5f, 0.5f, 0.5f));
+    vt_scene_finish(&sc);
+    gk_gi_light L = vt_light(&sc, GK_LIGHT_POINT, v3(0.8f, 0.7f, 0.5f), v3(0, -1, 0), v3(3, 3, 3), 1);
+    vt_frame f;
+    vt_frame_create(&f, 16, 16, v3(0.5f, 1.5f, 0.51f), v3(0.5f, 0, 0.5f), v3(0, 0, -1), 0.5f);
+    vt_gbuffer(&g, &f, &sc);
+    gk_budget b;
+    vt_budget(&b, nth == 1 ? "vct_res=32,vct_thick=1.5,vct_axis_clamp=first" : "vct_res=32,vct_thick=1.5,vct_axis_clamp=second");
+    void *vct = vt_create(&g);
+    assert_int_equal(vt_render(vct, &f, &sc, &b, &L, 1, NULL, NULL), 0);
+    gk_vct_stats st;
+    gk_vct_get_stats(vct, &st);
+    const int res = st.res;
+    const long N = (long)res * res * res;
+    long n;
+    unsigned *scratch = vt_read_scratch(vct, &n);
+    assert_non_null(scratch);
+    unsigned axis_buf = gk_vct_axis_buffer(vct);
+    assert_true(axis_buf != 0);
+    unsigned *dist = malloc((size_t)(3 * N) * sizeof *dist);
+    assert_non_null(dist);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, axis_buf);
+    /* the memory the method reports: the formula's, plus three words per voxel, as allocated */
+    GLint64 size = 0;
+    glGetBufferParameteri64v(GL_SHADER_STORAGE_BUFFER, GL_BUFFER_SIZE, &size);
+    assert_int_equal(size, gk_vct_axis_clamp_memory(res));
+    assert_int_equal(size, 3 * 4 * N);
+    assert_int_equal(gk_gi_vct.memory_bytes(vct),
+                     gk_vct_memory_formula(res, st.aniso, st.aniso_level0, gk_vct_channels(false), st.trace_w, st.trace_h, 4) +
+                         gk_vct_axis_clamp_memory(res));
+    const void *p = glMapBufferRange(GL_SHADER_STORAGE_BUFFER, 0, (GLsizeiptr)(3 * N * 4), GL_MAP_READ_BIT);
+    assert_non_null(p);
+    memcpy(dist, p, (size_t)(3 * N * 4));
+    glUnmapBuffer(GL_SHADER_STORAGE_BUFFER);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+    long wrong = 0, occupied = 0, finite = 0;
+    for (long i = 0; i < N; i++) {
+        int c[3] = {(int)(i % res), (int)(i / res % res), (int)(i / res / res)};
+        occupied += scratch[i] != 0;
+        for (int a = 0; a < 3; a++) {
+            unsigned want[2] = {0xFFFFu, 0xFFFFu};   /* along -a, +a */
+            for (int s = 0; s < 2; s++)
+                for (int d = 0, seen = 0; d < res; d++) {
+                    int q[3] = {c[0], c[1], c[2]};
+                    q[a] += s ? d : -d;
+                    if (q[a] < 0 || q[a] >= res)
+                        break;
+                    if (scratch[((long)q[2] * res + q[1]) * res + q[0]] != 0 && ++seen == nth) {
+                        want[s] = (unsigned)d;
+                        break;
+                    }
+                }
+            finite += want[0] != 0xFFFFu;
+            wrong += dist[a * N + i] != (want[0] | want[1] << 16);
+        }
+    }
+    printf("# vct_axis_clamp=%s at %d^3: %ld occupied voxels, %ld of %ld distances along -x, -y, -z finite, %ld "
+           "wrong\n", nth == 1 ? "first" : "second", res, occupied, finite, 3 * N, wrong);
+    assert_true(occupied > 28 * 28);
+    /* the floor's voxels and the solid ones under it lie in the -y rows of most voxels above it */
+    assert_true(finite > N / 4);
+    assert_int_equal(wrong, 0);
+    free(dist);
+    free(scratch);
+    gk_gi_vct.destroy(vct);
+    vt_frame_destroy(&f);
+    vt_scene_free(&sc);
+}
+
+static void axis_clamp_distances_match_the_voxels(void **state)
+{
+    (void)state;
+    axis_clamp_distances(1);
+    axis_clamp_distances(2);
+}
+
+/* ---- vct_axis_clamp=thin: the thin-wall flags ------------------------------------------------ */
+/* A floor (+y), a thin wall (two quads 6 mm apart, facing -x and +x, at x = 0.5: both faces in one
+   voxel or two adjacent ones at 32^3, voxel ~3.6 cm) and a single-sided wall (facing -x, x = 0.8),
+   vct_axis_clamp=thin at 32^3. The flag volume must hold (1) face bits exactly in the voxels that
+   hold fragments (the scratch buffer's count, the solid mark aside), (2) THIN_BIT exactly where the
+   rule says, recomputed here from the face bits read back (a fragment facing +a with one facing -a in
+   its voxel or the next two behind it along -a, and the other way round), (3) on the thin wall: every
+   voxel column of its face flagged, none farther than 1.5 voxels from x = 0.5, so neither the
+   single-sided wall nor the floor away from the thin wall; (4) THIN_MARK (where the clamp stops too,
+   VCT_THIN_DEPTH = 16 voxels behind a flagged voxel's fragments) only on voxels with a flagged voxel
+   within 16 along an axis, and no solid mark in the scratch buffer (thin's marks are not opaque);
+   and the memory the method reports includes the volume. */
+static void thin_flags_mark_thin_walls_only(void **state)
+{
+    (void)state;
+    vt_scene sc;
+    vt_scene_init(&sc);
+    vt_add_quad(&sc, v3(0, 0, 0), v3(0, 0, 1), v3(1, 0, 0), v3(0.7f, 0.7f, 0.7f));          /* floor, +y */
+    vt_add_quad(&sc, v3(0.497f, 0, 0), v3(0, 0, 1), v3(0, 0.6f, 0), v3(0.5f, 0.5f, 0.5f)); /* -x face */
+    vt_add_quad(&sc, v3(0.503f, 0, 0), v3(0, 0.6f, 0), v3(0, 0, 1), v3(0.5f, 0.5f, 0.5f)); /* +x face */
+    vt_add_quad(&sc, v3(0.8f, 0, 0), v3(0, 0, 1), v3(0, 0.6f, 0), v3(0.5f, 0.5f, 0.5f));   /* single, -x */
+    vt_scene_finish(&sc);
+    gk_gi_light L = vt_light(&sc, GK_LIGHT_POINT, v3(0.3f, 0.7f, 0.5f), v3(0, -1, 0), v3(3, 3, 3), 1);
+    vt_frame f;
+    vt_frame_create(&f, 16, 16, v3(0.5f, 1.5f, 0.51f), v3(0.5f, 0, 0.5f), v3(0, 0, -1), 0.5f);
+    vt_gbuffer(&g, &f, &sc);
+    gk_budget b;
+    vt_budget(&b, "vct_res=32,vct_axis_clamp=thin");
+    void *vct = vt_create(&g);
+    assert_int_equal(vt_render(vct, &f, &sc, &b, &L, 1, NULL, NULL), 0);
+    gk_vct_stats st;
+    gk_vct_get_stats(vct, &st);
+    const int res = st.res;
+    const long N = (long)res * res * res;
+    long n;
+    unsigned *scratch = vt_read_scratch(vct, &n);
+    assert_non_null(scratch);
+    unsigned buf = gk_vct_thin_buffer(vct);
+    assert_true(buf != 0);
+    unsigned *fl = malloc((size_t)N * sizeof *fl);
+    assert_non_null(fl);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, buf);
+    GLint64 size = 0;
+    glGetBufferParameteri64v(GL_SHADER_STORAGE_BUFFER, GL_BUFFER_SIZE, &size);
+    assert_int_equal(size, gk_vct_thin_flag_memory(res));
+    assert_int_equal(size, 4 * N);
+    assert_int_equal(gk_gi_vct.memory_bytes(vct),
+                     gk_vct_memory_formula(res, st.aniso, st.aniso_level0, gk_vct_channels(false), st.trace_w, st.trace_h, 8) +
+                         gk_vct_axis_clamp_memory(res) + gk_vct_thin_flag_memory(res));
+    const void *p = glMapBufferRange(GL_SHADER_STORAGE_BUFFER, 0, (GLsizeiptr)(N * 4), GL_MAP_READ_BIT);
+    assert_non_null(p);
+    memcpy(fl, p, (size_t)(N * 4));
+    glUnmapBuffer(GL_SHADER_STORAGE_BUFFER);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+    const unsigned solid_bit = 0x80000000u, thin_bit = 0x100u, thin_mark = 0x200u, face_mask = 0x3Fu; /* vct/common.glsl */
+    const int depth = 16;   /* VCT_THIN_DEPTH */
+    long faces_wrong = 0, thin_wrong = 0, thin = 0, thin_far = 0, marks = 0, marks_misplaced = 0;
+    bool column[64][64] = {{false}};   /* (y, z) columns of the thin wall with a flagged voxel */
+    float wall_x = (0.5f - st.grid_origin[0]) / st.voxel_size;   /* in voxels */
+    for (long i = 0; i < N; i++) {
+        int c[3] = {(int)(i % res), (int)(i / res % res), (int)(i / res / res)};
+        unsigned f0 = fl[i] & face_mask;
+        faces_wrong += (f0 != 0) != ((scratch[i] & ~solid_bit) != 0);
+        bool want = false;
+        for (int a = 0; a < 3; a++)
+            for (int d = 0; d <= 2; d++)
+                for (int s = 0; s < 2; s++) {   /* s = 1: facing +a, the other face along -a */
+                    if (!(f0 & (1u << (2 * a + s))))
+                        continue;
+                    int q[3] = {c[0], c[1], c[2]};
+                    q[a] += s ? -d : d;
+                    if (q[a] < 0 || q[a] >= res)
+                        continue;
+                    unsigned fq = fl[((long)q[2] * res + q[1]) * res + q[0]];
+                    want = want || (fq & (1u << (2 * a + (1 - s))));
+                }
+        bool got = (fl[i] & thin_bit) != 0;
+        thin_wrong += want != got;
+        if (got) {
+            thin++;
+            thin_far += fabsf(c[0] + 0.5f - wall_x) > 1.5f;
+            if (c[1] < 64 && c[2] < 64)
+                column[c[1]][c[2]] = true;
+        }
+        assert_true((scratch[i] & solid_bit) == 0);
+        if (fl[i] & thin_mark) {   /* behind a flagged voxel's fragment: one within `depth` along an axis */
+            marks++;
+            bool near = false;
+            for (int a = 0; a < 3 && !near; a++)
+                for (int d = -depth - 1; d <= depth + 1 && !near; d++) {
+                    int q[3] = {c[0], c[1], c[2]};
+                    q[a] += d;
+                    near = q[a] >= 0 && q[a] < res && (fl[((long)q[2] * res + q[1]) * res + q[0]] & thin_bit);
+                }
+            marks_misplaced += !near;
+        }
+    }
+    /* the wall's face, 0.6 m x 1 m, in voxel columns (y, z) its voxels span */
+    int y1 = (int)floorf((0.6f - st.grid_origin[1]) / st.voxel_size), z0 = (int)ceilf((0.0f - st.grid_origin[2]) / st.voxel_size),
+        z1 = (int)floorf((1.0f - st.grid_origin[2]) / st.voxel_size), y0 = (int)ceilf((0.0f - st.grid_origin[1]) / st.voxel_size);
+    long columns = 0, covered = 0;
+    for (int y = y0; y < y1 && y < 64; y++)
+        for (int z = z0; z < z1 && z < 64; z++)
+            columns++, covered += column[y][z];
+    printf("# vct_axis_clamp=thin at %d^3: %ld thin voxels (%ld farther than 1.5 voxels from the thin wall), %ld of %ld "
+           "columns of the wall covered; %ld wrong face words, %ld wrong flags; %ld marks (%ld misplaced)\n",
+           res, thin, thin_far, covered, columns, faces_wrong, thin_wrong, marks, marks_misplaced);
+    assert_int_equal(faces_wrong, 0);
+    assert_int_equal(thin_wrong, 0);
+    assert_true(columns > 200);
+    assert_int_equal(covered, columns);
+    assert_int_equal(thin_far, 0);
+    assert_true(marks > 0);
+    assert_int_equal(marks_misplaced, 0);
+    free(fl);
+    free(scratch);
+    gk_gi_vct.destroy(vct);
+    vt_frame_destroy(&f);
+    vt_scene_free(&sc);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(thin_wall_rays_conservative_beats_thin),
         cmocka_unit_test(partition_leak_is_small),
         cmocka_unit_test(thick_marks_solid_voxels_behind_without_diluting),
+        cmocka_unit_test(axis_clamp_distances_match_the_voxels),
+        cmocka_unit_test(thin_flags_mark_thin_walls_only),
     };
     return cmocka_run_group_tests_name("vct_leak", tests, group_setup, group_teardown);
 }

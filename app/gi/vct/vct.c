@@ -40,6 +40,18 @@ static const gk_knob_def knob_level0 = {.name = "vct_level0", .owner = "vct", .n
 static const gk_knob_def knob_thick = {.name = "vct_thick", .owner = "vct", .n_values = 3,
                                        .values = {"0", "1.5", "3"}, .cost = {1, 1, 1},
                                        .default_level = 0, .fixed = true};
+/* The axis clamp (vct/cone_lib.glsl axis_clamp, vct/axis_dist.comp; not in the thesis): a cone
+   sample is read at a level no coarser than the largest whose trilinear footprint stays on its side
+   of the first occupied voxel along each axis (first), or short of the second (second), so no
+   coarse sample near a wall blends in the texels beyond it. A switch, never a scheduler pick.
+   thin (the default since issue 11): `first`, stopped only at thin walls' voxels (a surface with
+   another facing away from it within two voxels behind, vct/thin_flag.comp) and at the voxels up to
+   VCT_THIN_DEPTH behind those (limits only, not opaque), so a scene without thin walls is traced as
+   with off, bit for bit; light-leak renders black (README "The axis clamp at thin walls"). Not with
+   vct_variant=thesis (the thesis as published has no clamp): there thin is off. */
+static const gk_knob_def knob_axis_clamp = {.name = "vct_axis_clamp", .owner = "vct", .n_values = 4,
+                                            .values = {"off", "first", "second", "thin"}, .cost = {1, 1, 1, 1},
+                                            .default_level = 3, .fixed = true};
 /* default: gk_vct_default_options (conservative voxelization, fixed-point averaging, footprint
    clamp, ...); thesis: gk_vct_thesis_options, the thesis as published. A switch for measuring one
    against the other, never a scheduler pick. */
@@ -126,6 +138,7 @@ static void vct_declare_knobs(gk_budget *b)
     gk_budget_add(b, &knob_skip);
     gk_budget_add(b, &knob_level0);
     gk_budget_add(b, &knob_thick);
+    gk_budget_add(b, &knob_axis_clamp);
 }
 
 static void *vct_create(const gk_gi_context *ctx, gk_err *e)
@@ -146,6 +159,7 @@ static void *vct_create(const gk_gi_context *ctx, gk_err *e)
     v->k_skip = (gk_knob){&knob_skip, -1};
     v->k_level0 = (gk_knob){&knob_level0, -1};
     v->k_thick = (gk_knob){&knob_thick, -1};
+    v->k_axis_clamp = (gk_knob){&knob_axis_clamp, -1};
     v->ctx = *ctx;
     gk_vct_default_options(&v->opt);
     v->user_opt = v->opt;
@@ -222,6 +236,9 @@ void vct_read_budget(gk_vct *v, const gk_budget *b, vct_budget *out)
     out->thick = gk_knob_number(b, &v->k_thick, 0.0f);
     if (!(out->thick >= 0.0f))
         out->thick = 0.0f;
+    out->axis_clamp = gk_knob_level(b, &v->k_axis_clamp, 0);
+    if (out->thesis && out->axis_clamp == VCT_AXIS_THIN)
+        out->axis_clamp = 0;
     if (out->res < 8)
         out->res = 64;
     if (out->cones != 4 && out->cones != 9)
@@ -299,9 +316,10 @@ int vct_update(gk_vct *v, const gk_gi_frame *f, vct_budget *bp, gk_err *e)
             return -1;
         upload_tris(v, 0, v->tris.n);
     }
-    if (b.thick != v->cur.thick)
-        v->need_voxelize = true;
+    if (b.thick != v->cur.thick || (b.axis_clamp == VCT_AXIS_THIN) != (v->cur.axis_clamp == VCT_AXIS_THIN))
+        v->need_voxelize = true;   /* thin: its flags and limits are made with the voxels (vct_pass_voxelize) */
     v->cur.thick = b.thick;
+    v->cur.axis_clamp = b.axis_clamp;
     v->cur.cones = b.cones;
     v->cur.step = b.step;
     v->cur.trace_scale = b.trace_scale;
@@ -324,6 +342,7 @@ int vct_update(gk_vct *v, const gk_gi_frame *f, vct_budget *bp, gk_err *e)
             return -1;
         v->need_voxelize = false;
         v->need_inject = true;
+        v->axis_valid = false;
         vct_tris_update(&v->tris, s, &(vec3){0}, &(vec3){0}); /* sync the remembered node matrices */
     } else if (v->tris.n > v->tris.n_static) {
         vec3 dlo, dhi;
@@ -342,7 +361,17 @@ int vct_update(gk_vct *v, const gk_gi_frame *f, vct_budget *bp, gk_err *e)
             if (rc != 0)
                 return -1;
             v->need_inject = true;   /* the moved object's shadows change everywhere */
+            v->axis_valid = false;
         }
+    }
+
+    v->cur.axis_clamp = b.axis_clamp;
+    if (vct_axis_clamp_in_use(v, b.axis_clamp) && (!v->axis_valid || v->axis_nth != b.axis_clamp)) {   /* part of the voxels: timed with them */
+        gk_pass_begin(f->pass, "vct_voxelize");
+        int rc = vct_pass_axis_dist(v, b.axis_clamp, e);
+        gk_pass_end(f->pass);
+        if (rc != 0)
+            return -1;
     }
 
     unsigned long lh = light_hash(f);
@@ -422,7 +451,9 @@ static long vct_memory_bytes(const void *self)
         return 0;
     return gk_vct_memory_formula(v->cur.res, v->cur.aniso, v->cur.aniso_level0, gk_vct_channels(v->emissive),
                                  v->trace_w, v->trace_h, v->tris.n) +
-           (v->vox_bounce ? gk_vct_bounce_memory(v->cur.res, v->cur.aniso) : 0);
+           (v->vox_bounce ? gk_vct_bounce_memory(v->cur.res, v->cur.aniso) : 0) +
+           (v->axis_ssbo ? gk_vct_axis_clamp_memory(v->cur.res) : 0) +
+           (v->thin_ssbo ? gk_vct_thin_flag_memory(v->cur.res) : 0);
 }
 
 static void vct_destroy(void *self)
@@ -472,6 +503,8 @@ void gk_vct_get_stats(const void *self, gk_vct_stats *out)
 
 unsigned gk_vct_scratch_buffer(const void *self) { return ((const gk_vct *)self)->scratch_ssbo; }
 unsigned gk_vct_radiance_texture(const void *self) { return ((const gk_vct *)self)->vox0; }
+unsigned gk_vct_axis_buffer(const void *self) { return ((const gk_vct *)self)->axis_ssbo; }
+unsigned gk_vct_thin_buffer(const void *self) { return ((const gk_vct *)self)->thin_ssbo; }
 
 const gk_gi_method gk_gi_vct = {
     .name = "vct",

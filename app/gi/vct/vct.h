@@ -117,8 +117,17 @@ long gk_vct_memory_formula(int res, bool aniso, bool aniso_level0, int channels,
  * iso mode), the one the bounce pass writes while it reads the first. */
 long gk_vct_bounce_memory(int res, bool aniso);
 
+/* GPU bytes the axis clamp adds (vct_axis_clamp): three uints per level-0 voxel, the distances to the
+ * first occupied voxel along each axis's two directions (vct/axis_dist.comp). */
+long gk_vct_axis_clamp_memory(int res);
+/* GPU bytes vct_axis_clamp=thin adds to those: one uint per level-0 voxel, the ways its fragments face
+ * and whether it is a thin wall's (vct/thin_flag.comp). */
+long gk_vct_thin_flag_memory(int res);
+
 /* GL names for tests that read the voxel data back. */
 unsigned gk_vct_scratch_buffer(const void *self);
 unsigned gk_vct_radiance_texture(const void *self);  /* level-0 radiance (RGBA16F 3D) */
+unsigned gk_vct_axis_buffer(const void *self);       /* vct_axis_clamp's distances (0 until first used) */
+unsigned gk_vct_thin_buffer(const void *self);       /* vct_axis_clamp=thin's flags (0 until first used) */
 
 #endif

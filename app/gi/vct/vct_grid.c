@@ -103,6 +103,17 @@ void vct_free_gpu(gk_vct *v)
         glDeleteTextures(1, &v->vox0);
     if (v->vox_bounce)
         glDeleteTextures(1, &v->vox_bounce);
+    if (v->axis_ssbo)
+        glDeleteBuffers(1, &v->axis_ssbo);
+    v->axis_ssbo = 0;
+    if (v->thin_ssbo)
+        glDeleteBuffers(1, &v->thin_ssbo);
+    v->thin_ssbo = 0;
+    if (v->thin_count_ssbo)
+        glDeleteBuffers(1, &v->thin_count_ssbo);
+    v->thin_count_ssbo = 0;
+    v->thin_voxels = 0;
+    v->axis_valid = false;
     for (int i = 0; i < 3; i++)
         if (v->voxp[i])
             glDeleteTextures(1, &v->voxp[i]);
@@ -144,6 +155,9 @@ long gk_vct_bounce_memory(int res, bool aniso)
     long r3 = (long)res * res * res;
     return 8 * (aniso ? r3 : chain_texels(res, 0));
 }
+
+long gk_vct_axis_clamp_memory(int res) { return 3L * 4 * res * res * res; }
+long gk_vct_thin_flag_memory(int res) { return 4L * res * res * res; }
 
 int vct_ensure_bounce_target(gk_vct *v, gk_err *e)
 {

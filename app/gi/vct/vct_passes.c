@@ -1,6 +1,7 @@
 /* The GL side of each vct pass: program variants, bindings, dispatches and barriers. */
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "vct_internal.h"
@@ -68,6 +69,18 @@ static const gk_uniform_field inject_fields[] = {
     GK_UNIFORM(inject_uniforms, u_shadow_range),
 };
 _Static_assert(VCT_MAX_LIGHTS == 4, "inject_fields lists u_shadow0..3 (shaders_gles/vct/inject.comp)");
+
+/* vct/axis_dist.comp */
+typedef struct axis_dist_uniforms {
+    GLint u_res;
+} axis_dist_uniforms;
+static const gk_uniform_field axis_dist_fields[] = {GK_UNIFORM(axis_dist_uniforms, u_res)};
+
+/* vct/thin_flag.comp */
+typedef struct thin_flag_uniforms {
+    GLint u_res;
+} thin_flag_uniforms;
+static const gk_uniform_field thin_flag_fields[] = {GK_UNIFORM(thin_flag_uniforms, u_res)};
 
 /* vct/mip_aniso.comp */
 typedef struct mip_uniforms {
@@ -182,6 +195,78 @@ static int voxelize_solid_pass(gk_vct *v, const char *defs, const int lo[3], con
     return 0;
 }
 
+/* vct_axis_clamp=thin: the flag volume made anew over the whole grid (a dirty region's surfaces may make
+   or unmake a thin wall with the static ones beside it): cleared, each fragment's facing ORed in by
+   voxelize.comp FACE_PASS (a dispatch of its own, as the solid marks', see below), then
+   vct/thin_flag.comp's THIN_BIT per voxel, then THIN_MARK on the voxels up to VCT_THIN_DEPTH behind
+   the fragments of flagged voxels (voxelize.comp THIN_MARKS: where the axis clamp stops too; unlike
+   vct_thick's marks not opaque, so a thin shell's other face stays visible). The voxel data (scratch,
+   radiance) are not touched: a scene without thin walls is traced as without the clamp, and keeps
+   no flag volume (it lives during the voxelization alone, 4 bytes per voxel). */
+static int thin_flag_pass(gk_vct *v, const char *defs, gk_err *e)
+{
+    char face_defs[320], mark_defs[320];
+    snprintf(face_defs, sizeof face_defs, "%s#define FACE_PASS 1\n", defs);
+    snprintf(mark_defs, sizeof mark_defs, "%s#define SOLID_PASS 1\n#define THIN_MARKS 1\n", defs);
+    GLuint face = gk_program_get_compute(v->ctx.programs, "vct/voxelize.comp", face_defs, e);
+    GLuint flag = face ? gk_program_get_compute(v->ctx.programs, "vct/thin_flag.comp", defs, e) : 0;
+    GLuint mark = flag ? gk_program_get_compute(v->ctx.programs, "vct/voxelize.comp", mark_defs, e) : 0;
+    const voxelize_uniforms *uv = mark ? gk_program_uniforms(v->ctx.programs, face, GK_FIELDS(voxelize_fields), sizeof *uv, e) : NULL;
+    const thin_flag_uniforms *uf = uv ? gk_program_uniforms(v->ctx.programs, flag, GK_FIELDS(thin_flag_fields), sizeof *uf, e) : NULL;
+    const voxelize_uniforms *um = uf ? gk_program_uniforms(v->ctx.programs, mark, GK_FIELDS(voxelize_fields), sizeof *um, e) : NULL;
+    if (!um)
+        return -1;
+    size_t bytes = (size_t)gk_vct_thin_flag_memory(v->res);
+    void *zero = calloc(1, bytes);
+    if (!zero)
+        return gk_fail(e, GK_ERUNTIME, "vct: no memory to clear the thin-wall flags");
+    if (!v->thin_ssbo)
+        glGenBuffers(1, &v->thin_ssbo);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, v->thin_ssbo);
+    glBufferData(GL_SHADER_STORAGE_BUFFER, (GLsizeiptr)bytes, zero, GL_DYNAMIC_COPY);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+    free(zero);
+    GLenum err = glGetError();
+    if (err != GL_NO_ERROR)
+        return gk_fail(e, GK_ERUNTIME, "vct: allocating the %d^3 thin-wall flags failed (GL error 0x%x)", v->res, err);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, v->thin_ssbo);
+    int all_lo[3] = {0, 0, 0}, all_hi[3] = {v->res - 1, v->res - 1, v->res - 1};
+    glUseProgram(face);
+    voxelize_set_uniforms(v, uv, all_lo, all_hi);
+    voxelize_dispatch(v, uv);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    GLuint zero_count = 0;
+    if (!v->thin_count_ssbo)
+        glGenBuffers(1, &v->thin_count_ssbo);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, v->thin_count_ssbo);
+    glBufferData(GL_SHADER_STORAGE_BUFFER, sizeof zero_count, &zero_count, GL_DYNAMIC_READ);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, v->thin_count_ssbo);
+    glUseProgram(flag);
+    glUniform1i(uf->u_res, v->res);
+    glDispatchCompute((GLuint)groups(v->res, 4), (GLuint)groups(v->res, 4), (GLuint)groups(v->res, 4));
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    /* a read back once per voxelization (a static scene's: once), so that a scene without thin walls
+       traces without the clamp's per-sample work */
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, v->thin_count_ssbo);
+    const GLuint *count = glMapBufferRange(GL_SHADER_STORAGE_BUFFER, 0, sizeof *count, GL_MAP_READ_BIT);
+    v->thin_voxels = count ? (long)*count : 1;
+    if (count)
+        glUnmapBuffer(GL_SHADER_STORAGE_BUFFER);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+    if (v->thin_voxels == 0) {   /* nothing to clamp at: the volume is not kept (made anew each time) */
+        glDeleteBuffers(1, &v->thin_ssbo);
+        v->thin_ssbo = 0;
+        return 0;
+    }
+    glUseProgram(mark);
+    voxelize_set_uniforms(v, um, all_lo, all_hi);
+    glUniform1f(um->u_thick, VCT_THIN_DEPTH);
+    voxelize_dispatch(v, um);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    return 0;
+}
+
 int vct_pass_voxelize(gk_vct *v, const int lo[3], const int hi[3], gk_err *e)
 {
     char defs[256], vox_defs[320];
@@ -210,11 +295,54 @@ int vct_pass_voxelize(gk_vct *v, const int lo[3], const int hi[3], gk_err *e)
     voxelize_dispatch(v, uv);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     vct_work_voxelize_end(v);
+    if (v->cur.axis_clamp == VCT_AXIS_THIN && thin_flag_pass(v, defs, e) != 0)
+        return -1;
     if (voxelize_solid_pass(v, defs, lo, hi, e) != 0)
         return -1;
     v->voxelize_ran = true;
     v->stats.voxelize_runs++;
     v->stats.last_voxelized_region = (long)size[0] * size[1] * size[2];
+    return 0;
+}
+
+int vct_axis_clamp_in_use(const gk_vct *v, int level)
+{
+    if (level == VCT_AXIS_THIN)
+        return v->thin_voxels > 0 ? 1 : 0;
+    return level;
+}
+
+int vct_pass_axis_dist(gk_vct *v, int nth, gk_err *e)
+{
+    char defs[256];
+    defines_common(v, defs, sizeof defs);
+    size_t used = strlen(defs);
+    bool thin = nth == VCT_AXIS_THIN;   /* first, counting only thin walls' voxels */
+    snprintf(defs + used, sizeof defs - used, "#define NTH %d\n#define THIN_ONLY %d\n", thin ? 1 : nth, thin ? 1 : 0);
+    GLuint p = gk_program_get_compute(v->ctx.programs, "vct/axis_dist.comp", defs, e);
+    const axis_dist_uniforms *u = p ? gk_program_uniforms(v->ctx.programs, p, GK_FIELDS(axis_dist_fields), sizeof *u, e) : NULL;
+    if (!u)
+        return -1;
+    if (!v->axis_ssbo) {
+        glGenBuffers(1, &v->axis_ssbo);
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, v->axis_ssbo);
+        glBufferData(GL_SHADER_STORAGE_BUFFER, (GLsizeiptr)gk_vct_axis_clamp_memory(v->res), NULL, GL_DYNAMIC_COPY);
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+        GLenum err = glGetError();
+        if (err != GL_NO_ERROR)
+            return gk_fail(e, GK_ERUNTIME, "vct: allocating the axis clamp's %d^3 distances failed (GL error 0x%x)",
+                           v->res, err);
+    }
+    glUseProgram(p);
+    glUniform1i(u->u_res, v->res);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, v->scratch_ssbo);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, v->axis_ssbo);
+    if (thin)
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, v->thin_ssbo);
+    glDispatchCompute((GLuint)groups(v->res, 8), (GLuint)groups(v->res, 8), 3);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    v->axis_valid = true;
+    v->axis_nth = nth;
     return 0;
 }
 
@@ -452,9 +580,10 @@ int vct_pass_trace(gk_vct *v, const gk_gi_frame *f, const vct_budget *b, gk_err 
     size_t used = strlen(defs);
     snprintf(defs + used, sizeof defs - used,
              "#define AXIS_WEIGHT_SQ %d\n#define OPACITY_CORRECTION %d\n#define SPECULAR %d\n"
-             "#define CLIP_CONES %d\n#define EMPTY_SKIP %d\n",
+             "#define CLIP_CONES %d\n#define EMPTY_SKIP %d\n#define AXIS_CLAMP %d\n",
              v->opt.axis_weight_sq ? 1 : 0, v->opt.opacity_correction ? 1 : 0,
-             v->specular ? 1 : 0, v->opt.clip_cones ? 1 : 0, b->skip && v->specular ? 1 : 0);
+             v->specular ? 1 : 0, v->opt.clip_cones ? 1 : 0, b->skip && v->specular ? 1 : 0,
+             vct_axis_clamp_in_use(v, b->axis_clamp));
     GLuint p = gk_program_get_compute(v->ctx.programs, "vct/trace.comp", defs, e);
     const trace_uniforms *u = p ? gk_program_uniforms(v->ctx.programs, p, GK_FIELDS(trace_fields), sizeof *u, e) : NULL;
     if (!u)
@@ -488,6 +617,8 @@ int vct_pass_trace(gk_vct *v, const gk_gi_frame *f, const vct_budget *b, gk_err 
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, v->counter_ssbo);
     glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof zero, zero);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, v->counter_ssbo);
+    if (vct_axis_clamp_in_use(v, b->axis_clamp))
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, v->axis_ssbo);
     glBindImageTexture(0, v->trace_diffuse, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glBindImageTexture(1, v->trace_spec, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glDispatchCompute((GLuint)groups(v->trace_w, 8), (GLuint)groups(v->trace_h, 8), 1);
