@@ -14,16 +14,31 @@
 // that has just left glass (refracted out of it or reflected off it) is traced on that glass's exit
 // map (u_exit_maps, tracer.glsl lgv_trace_from). A photon on a specular chain (from the light, or off mirrors and glass)
 // meets glass where that glass's refractor map says (glass_entry), not where the lattice maps do.
-// u_probe = 1 (tests): no emission; each invocation traces one ray of the Probe buffer once and
-// writes where it hit (w = 1) or that it left the scene (w = 0).
+// LGV_PROBE (tests, gk_lgv_probe): no emission; each invocation traces one ray of the Probe buffer
+// once and writes where it hit (w = 1) or that it left the scene (w = 0).
 // TRACE_COUNT_FETCHES: the bench's counting variant (app/gi/lgv/lgv_work.c): the distance-map texels
 // each invocation read (tracer.glsl) and the LGV atomics its injections made, added to TraceWork once.
 // Never in the kiosk's frames.
+// LGV_GLASS (lgv_photons.c lgv_trace_defines): the refractor maps, 0, 1 or 2 for several (the
+// default). Without any the maps code no texel as glass (cubemap.frag), so the glass code is left
+// out; with one an exit map's segment cannot meet other glass. Variants, not uniform switches: a
+// group of SIMD lanes runs both sides of every branch on llvmpipe, a uniform one too, so code no
+// photon needs still cost its time on every bounce (the other-glass test's second trace, the probe's).
+// LGV_SEEING_MAPS: gk_lgv_debug.seeing_maps (tracer.glsl lgv_seeing_map).
 // @variant -
 // @variant TRACE_COUNT_FETCHES
+// @variant LGV_GLASS=0
+// @variant LGV_GLASS=1
+// @variant LGV_GLASS=1 TRACE_COUNT_FETCHES
+// @variant LGV_GLASS=0 LGV_SEEING_MAPS
+// @variant LGV_PROBE
+// @variant LGV_PROBE TRACE_COUNT_FETCHES
 precision highp float;
 precision highp int;
 layout(local_size_x = 64) in;
+#ifndef LGV_GLASS
+#define LGV_GLASS 2
+#endif
 #include "lgv/common.glsl"
 #include "lgv/tracer.glsl"
 struct Caustic { highp vec4 pos; highp vec4 dir; highp vec4 power; };
@@ -32,11 +47,13 @@ layout(std430, binding = 2) buffer Caustics { highp uint n_caustic; highp uint o
                                               highp uint pad1; Caustic caustic[]; };
 layout(std430, binding = 3) buffer Stats { highp uint st[]; };           // lgv_internal.h LGV_ST_*
 layout(std430, binding = 4) buffer Probe { highp vec4 probe[]; };        // (origin, dir) in, (hit, w) out
+// Each refractor map's reach (reach.comp, lgv_maps.c), float bits: no surface it holds lies farther
+// from its centre.
+layout(std430, binding = 6) readonly buffer Reach { highp uint reach_bits[]; };
 #ifdef TRACE_COUNT_FETCHES
 layout(std430, binding = 5) buffer TraceWork { highp uint dist_fetches; highp uint lgv_atomics; } trace_counted;
 highp uint g_lgv_atomics = 0u;
 #endif
-uniform int u_probe;
 uniform int u_photons;        // this light's photons
 uniform uint u_first;         // index of its first photon among all lights' (the hash key)
 uniform uint u_frame;
@@ -169,14 +186,18 @@ highp float trace_inside(int glass, highp vec3 x, highp vec3 r, out int map)
     map = glass;
     highp vec3 x0 = x - centre[map].xyz;
     highp float reach = 2.0 * centre[map].w, step = reach / 16.0; // the object's diameter in 16 steps
-    highp float dl = 1e-4, el = lgv_err(map, x0, r, dl);
-    for (int k = 1; k <= 16; k++) {
-        highp float dp = step * float(k), ep = lgv_err(map, x0, r, dp);
-        if (ep >= 0.0)
-            return lgv_refine(map, x0, r, dl, el, dp, ep);
-        dl = dp, el = ep;
+    highp float dl = 1e-4, el = lgv_err(map, x0, r, dl), dp = dl, ep = el;
+    // The march finds the bracket [dl, dp]; the secant runs after the loop, once: inside it, as the
+    // loop's return, llvmpipe (which runs a branch for all SIMD lanes when any lane takes it, and a
+    // loop's body while any lane goes on) ran a masked secant step with its lookup on every step.
+    bool found = false;
+    for (int k = 1; k <= 16 && !found; k++) {
+        dp = step * float(k), ep = lgv_err(map, x0, r, dp);
+        found = ep >= 0.0;
+        if (!found)
+            dl = dp, el = ep;
     }
-    return -1.0;
+    return found ? lgv_refine(map, x0, r, dl, el, dp, ep) : -1.0;
 }
 
 // The chord [t0, t1] of ray x + t r through refractor map m's bounding sphere (centre, radius w);
@@ -201,6 +222,21 @@ bool other_glass_before(int own, highp vec3 x, highp vec3 r, highp float d)
     return false;
 }
 
+// Where ray oc + t r (oc relative to refractor map m's centre) lies within the map's reach: (s0, s1);
+// false when it never does. Outside it the ray is in front of every surface the map holds, so the
+// marches below skip their steps there: the same steps, the same errors, the same answers, without
+// the steps that cannot find the glass (the bounding sphere of a glass sphere, the box's half
+// diagonal, is sqrt(3) times its radius: two thirds of the rays through it miss the glass and took
+// every step). The reach is widened by 1% and 0.1 mm, far beyond the float rounding of a point's
+// distance, so a step the chord leaves out is outside it.
+bool within_reach(int m, highp vec3 oc, highp vec3 r, out highp float s0, out highp float s1)
+{
+    highp float reach = uintBitsToFloat(reach_bits[m - u_n_maps]) * 1.01 + 1e-4;
+    highp float b = dot(oc, r), disc = b * b - (dot(oc, oc) - reach * reach);
+    s0 = -b - sqrt(max(disc, 0.0)), s1 = -b + sqrt(max(disc, 0.0));
+    return disc > 0.0;
+}
+
 // Where ray x + d r enters the glass of refractor map m near a lattice map's hit on it at distance d:
 // the first outside-to-inside change of the refractor map's error in [d - 2w, d + w] (w: two of the
 // lattice map's texel footprints there), refined by the secant. -1 when the ray does not enter the
@@ -214,13 +250,23 @@ highp float enter_glass(int m, highp vec3 x, highp vec3 r, highp float d, highp 
     if (el < 0.0)
         return dl; // already inside at the window's start: the entry is no later
     highp float step = (d + w - dl) / 24.0;
-    for (int k = 0; k < 24; k++) {
-        highp float dp = dl + step, ep = lgv_err(m, x0, r, dp);
-        if (ep < 0.0)
-            return lgv_refine(m, x0, r, dl, el, dp, ep);
-        dl = dp, el = ep;
+    highp float s0, s1;
+    if (!within_reach(m, x0, r, s0, s1) || s1 <= dl)
+        return -1.0; // every step in front of the glass
+    // the steps before the reach, then the error where the march resumes
+    int k = 0;
+    for (; k < 24 && dl + step <= s0; k++)
+        dl += step;
+    el = k > 0 ? lgv_err(m, x0, r, dl) : el;
+    highp float dp = dl, ep = el;
+    bool found = false; // the bracket, then the secant after the loop (trace_inside)
+    for (; k < 24 && dl <= s1 && !found; k++) {
+        dp = dl + step, ep = lgv_err(m, x0, r, dp);
+        found = ep < 0.0;
+        if (!found)
+            dl = dp, el = ep;
     }
-    return -1.0;
+    return found ? lgv_refine(m, x0, r, dl, el, dp, ep) : -1.0;
 }
 
 // Where ray x + r t (t < d; d < 0: no hit) first enters the glass of a refractor other than `skip`,
@@ -244,15 +290,22 @@ highp float glass_entry(int skip, highp vec3 x, highp vec3 r, highp float d, out
             t1 = min(t1, d);
         if (t1 <= t0 || (best >= 0.0 && t0 >= best))
             continue;
-        highp float step = (t1 - t0) / 32.0, dl = t0, el = lgv_err(m, oc, r, dl);
-        for (int k = 1; k <= 32 && el >= 0.0; k++) {
-            highp float dp = t0 + step * float(k), ep = lgv_err(m, oc, r, dp);
-            if (ep < 0.0) {
-                best = lgv_refine(m, oc, r, dl, el, dp, ep), glass = m;
-                break;
-            }
-            dl = dp, el = ep;
+        highp float step = (t1 - t0) / 32.0, s0, s1;
+        if (!within_reach(m, oc, r, s0, s1) || s1 <= t0 || s0 >= t1)
+            continue; // every step in front of the glass
+        // from the last step before the reach to the first past it
+        int k0 = clamp(int(floor((s0 - t0) / step)), 0, 32), k1 = clamp(int(ceil((s1 - t0) / step)), 0, 32);
+        highp float dl = k0 == 0 ? t0 : t0 + step * float(k0), el = lgv_err(m, oc, r, dl);
+        highp float dp = dl, ep = el;
+        bool found = false; // the bracket, then the secant after the loop (trace_inside)
+        for (int k = k0 + 1; k <= k1 && el >= 0.0 && !found; k++) {
+            dp = t0 + step * float(k), ep = lgv_err(m, oc, r, dp);
+            found = ep < 0.0;
+            if (!found)
+                dl = dp, el = ep;
         }
+        if (found)
+            best = lgv_refine(m, oc, r, dl, el, dp, ep), glass = m;
     }
     return best;
 }
@@ -260,17 +313,14 @@ highp float glass_entry(int skip, highp vec3 x, highp vec3 r, highp float d, out
 void trace_invocation()
 {
     uint id = gl_GlobalInvocationID.x;
-    if (u_probe == 1) {
-        if (int(id) >= u_photons)
-            return;
-        int map;
-        highp vec3 o = probe[2u * id].xyz, r = normalize(probe[2u * id + 1u].xyz);
-        highp float d = lgv_trace(o, r, map);
-        probe[2u * id] = d >= 0.0 ? vec4(o + d * r, 1.0) : vec4(0.0);
-        return;
-    }
     if (int(id) >= u_photons)
         return;
+#ifdef LGV_PROBE
+    int map;
+    highp vec3 o = probe[2u * id].xyz, r = normalize(probe[2u * id + 1u].xyz);
+    highp float d = lgv_trace(o, r, map);
+    probe[2u * id] = d >= 0.0 ? vec4(o + d * r, 1.0) : vec4(0.0);
+#else
     g_rng = lgv_pcg((u_first + id) * 9781u + u_frame * 6271u + 1u);
     highp vec3 x, r, flux;
     emit(x, r, flux);
@@ -285,10 +335,13 @@ void trace_invocation()
         // the sphere focuses the light of the room above; those photons landed on what the lattice
         // maps saw beside the sphere. Exact for convex glass, which the photon cannot meet again;
         // when another glass object lies on the way the segment is traced on the lattice maps.
+#if LGV_GLASS > 0
         int exit_map = left_glass >= 0 ? left_glass + u_n_refractors : -1;
         highp float d = inside ? trace_inside(in_glass, x, r, map) : lgv_trace_from(exit_map, x, r, map);
+#if LGV_GLASS > 1
         if (exit_map >= 0 && map == exit_map && d >= 0.0 && other_glass_before(left_glass, x, r, d))
             d = lgv_trace(x, r, map);
+#endif
         bool on_refractor = false; // the hit was found on its refractor map (glass_entry)
         if (u_refractor_entry == 1 && specular_only && !inside) {
             int glass;
@@ -296,6 +349,9 @@ void trace_invocation()
             if (dg >= 0.0)
                 d = dg, map = glass, on_refractor = true;
         }
+#else
+        highp float d = lgv_trace(x, r, map);
+#endif
         left_glass = -1;
         atomicAdd(st[0], 1u);
         if (d < 0.0) {
@@ -307,6 +363,7 @@ void trace_invocation()
         highp vec3 n = normalize(texelFetch(u_nrm, tx, 0).xyz * 2.0 - 1.0);
         highp vec4 alb = texelFetch(u_alb, tx, 0);
         int code = int(alb.a * 255.0 + 0.5);
+#if LGV_GLASS > 0
         int refractor = u_n_maps + (code - 128) / 32; // code 128 + 32 r + q: refractor map r, ior 1 + 0.05 q
         if (code >= 128 && refractor < u_n_maps + u_n_refractors) {
             // Glass is seen from afar by the lattice maps (a sphere of glass: a few texels each),
@@ -348,6 +405,9 @@ void trace_invocation()
             events++;
             continue;
         }
+#else
+        highp vec3 ns = dot(n, r) < 0.0 ? n : -n; // facing the incoming photon
+#endif
         if (code == 1) {
             r = reflect(r, ns);
             flux *= alb.rgb;
@@ -396,6 +456,7 @@ void trace_invocation()
         specular_only = false;
         events++;
     }
+#endif
 }
 
 void main()
