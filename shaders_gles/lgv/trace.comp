@@ -47,9 +47,6 @@ layout(std430, binding = 2) buffer Caustics { highp uint n_caustic; highp uint o
                                               highp uint pad1; Caustic caustic[]; };
 layout(std430, binding = 3) buffer Stats { highp uint st[]; };           // lgv_internal.h LGV_ST_*
 layout(std430, binding = 4) buffer Probe { highp vec4 probe[]; };        // (origin, dir) in, (hit, w) out
-// Each refractor map's reach (reach.comp, lgv_maps.c), float bits: no surface it holds lies farther
-// from its centre.
-layout(std430, binding = 6) readonly buffer Reach { highp uint reach_bits[]; };
 #ifdef TRACE_COUNT_FETCHES
 layout(std430, binding = 5) buffer TraceWork { highp uint dist_fetches; highp uint lgv_atomics; } trace_counted;
 highp uint g_lgv_atomics = 0u;
@@ -186,18 +183,14 @@ highp float trace_inside(int glass, highp vec3 x, highp vec3 r, out int map)
     map = glass;
     highp vec3 x0 = x - centre[map].xyz;
     highp float reach = 2.0 * centre[map].w, step = reach / 16.0; // the object's diameter in 16 steps
-    highp float dl = 1e-4, el = lgv_err(map, x0, r, dl), dp = dl, ep = el;
-    // The march finds the bracket [dl, dp]; the secant runs after the loop, once: inside it, as the
-    // loop's return, llvmpipe (which runs a branch for all SIMD lanes when any lane takes it, and a
-    // loop's body while any lane goes on) ran a masked secant step with its lookup on every step.
-    bool found = false;
-    for (int k = 1; k <= 16 && !found; k++) {
-        dp = step * float(k), ep = lgv_err(map, x0, r, dp);
-        found = ep >= 0.0;
-        if (!found)
-            dl = dp, el = ep;
+    highp float dl = 1e-4, el = lgv_err(map, x0, r, dl);
+    for (int k = 1; k <= 16; k++) {
+        highp float dp = step * float(k), ep = lgv_err(map, x0, r, dp);
+        if (ep >= 0.0)
+            return lgv_refine(map, x0, r, dl, el, dp, ep);
+        dl = dp, el = ep;
     }
-    return found ? lgv_refine(map, x0, r, dl, el, dp, ep) : -1.0;
+    return -1.0;
 }
 
 // The chord [t0, t1] of ray x + t r through refractor map m's bounding sphere (centre, radius w);
@@ -222,21 +215,6 @@ bool other_glass_before(int own, highp vec3 x, highp vec3 r, highp float d)
     return false;
 }
 
-// Where ray oc + t r (oc relative to refractor map m's centre) lies within the map's reach: (s0, s1);
-// false when it never does. Outside it the ray is in front of every surface the map holds, so the
-// marches below skip their steps there: the same steps, the same errors, the same answers, without
-// the steps that cannot find the glass (the bounding sphere of a glass sphere, the box's half
-// diagonal, is sqrt(3) times its radius: two thirds of the rays through it miss the glass and took
-// every step). The reach is widened by 1% and 0.1 mm, far beyond the float rounding of a point's
-// distance, so a step the chord leaves out is outside it.
-bool within_reach(int m, highp vec3 oc, highp vec3 r, out highp float s0, out highp float s1)
-{
-    highp float reach = uintBitsToFloat(reach_bits[m - u_n_maps]) * 1.01 + 1e-4;
-    highp float b = dot(oc, r), disc = b * b - (dot(oc, oc) - reach * reach);
-    s0 = -b - sqrt(max(disc, 0.0)), s1 = -b + sqrt(max(disc, 0.0));
-    return disc > 0.0;
-}
-
 // Where ray x + d r enters the glass of refractor map m near a lattice map's hit on it at distance d:
 // the first outside-to-inside change of the refractor map's error in [d - 2w, d + w] (w: two of the
 // lattice map's texel footprints there), refined by the secant. -1 when the ray does not enter the
@@ -250,23 +228,13 @@ highp float enter_glass(int m, highp vec3 x, highp vec3 r, highp float d, highp 
     if (el < 0.0)
         return dl; // already inside at the window's start: the entry is no later
     highp float step = (d + w - dl) / 24.0;
-    highp float s0, s1;
-    if (!within_reach(m, x0, r, s0, s1) || s1 <= dl)
-        return -1.0; // every step in front of the glass
-    // the steps before the reach, then the error where the march resumes
-    int k = 0;
-    for (; k < 24 && dl + step <= s0; k++)
-        dl += step;
-    el = k > 0 ? lgv_err(m, x0, r, dl) : el;
-    highp float dp = dl, ep = el;
-    bool found = false; // the bracket, then the secant after the loop (trace_inside)
-    for (; k < 24 && dl <= s1 && !found; k++) {
-        dp = dl + step, ep = lgv_err(m, x0, r, dp);
-        found = ep < 0.0;
-        if (!found)
-            dl = dp, el = ep;
+    for (int k = 0; k < 24; k++) {
+        highp float dp = dl + step, ep = lgv_err(m, x0, r, dp);
+        if (ep < 0.0)
+            return lgv_refine(m, x0, r, dl, el, dp, ep);
+        dl = dp, el = ep;
     }
-    return found ? lgv_refine(m, x0, r, dl, el, dp, ep) : -1.0;
+    return -1.0;
 }
 
 // Where ray x + r t (t < d; d < 0: no hit) first enters the glass of a refractor other than `skip`,
@@ -290,22 +258,15 @@ highp float glass_entry(int skip, highp vec3 x, highp vec3 r, highp float d, out
             t1 = min(t1, d);
         if (t1 <= t0 || (best >= 0.0 && t0 >= best))
             continue;
-        highp float step = (t1 - t0) / 32.0, s0, s1;
-        if (!within_reach(m, oc, r, s0, s1) || s1 <= t0 || s0 >= t1)
-            continue; // every step in front of the glass
-        // from the last step before the reach to the first past it
-        int k0 = clamp(int(floor((s0 - t0) / step)), 0, 32), k1 = clamp(int(ceil((s1 - t0) / step)), 0, 32);
-        highp float dl = k0 == 0 ? t0 : t0 + step * float(k0), el = lgv_err(m, oc, r, dl);
-        highp float dp = dl, ep = el;
-        bool found = false; // the bracket, then the secant after the loop (trace_inside)
-        for (int k = k0 + 1; k <= k1 && el >= 0.0 && !found; k++) {
-            dp = t0 + step * float(k), ep = lgv_err(m, oc, r, dp);
-            found = ep < 0.0;
-            if (!found)
-                dl = dp, el = ep;
+        highp float step = (t1 - t0) / 32.0, dl = t0, el = lgv_err(m, oc, r, dl);
+        for (int k = 1; k <= 32 && el >= 0.0; k++) {
+            highp float dp = t0 + step * float(k), ep = lgv_err(m, oc, r, dp);
+            if (ep < 0.0) {
+                best = lgv_refine(m, oc, r, dl, el, dp, ep), glass = m;
+                break;
+            }
+            dl = dp, el = ep;
         }
-        if (found)
-            best = lgv_refine(m, oc, r, dl, el, dp, ep), glass = m;
     }
     return best;
 }

@@ -232,21 +232,17 @@ highp float lgv_secant(int m, highp vec3 x, highp vec3 r, highp float d0, highp 
     highp float dl = d_start, el = lgv_err(m, x0, r, dl);
     highp float dp = clamp(d0, 2.0 * d_start, max(d_max, 2.0 * d_start)), ep = lgv_err(m, x0, r, dp);
     if (ep < 0.0) {
-        // undershoot: step on (x1.5) until behind a surface, or at the bounds (tested after the
-        // loop: llvmpipe runs a loop's body for all lanes, its lookups included, while any lane steps)
-        bool hit = false, bounds = false;
-        for (int k = 0; k < 16 && !hit && !bounds; k++) {
+        // undershoot: step on (x1.5) until behind a surface
+        bool hit = false;
+        for (int k = 0; k < 16 && !hit; k++) {
             dl = dp;
             el = ep;
-            bounds = dp >= d_max;
-            if (!bounds) {
-                dp = min(dp * 1.5 + d_start, d_max);
-                ep = lgv_err(m, x0, r, dp);
-                hit = ep >= 0.0;
-            }
+            if (dp >= d_max)
+                return lgv_bounds_hit(m, x0 + d_max * r) ? d_max : -1.0;
+            dp = min(dp * 1.5 + d_start, d_max);
+            ep = lgv_err(m, x0, r, dp);
+            hit = ep >= 0.0;
         }
-        if (bounds)
-            return lgv_bounds_hit(m, x0 + d_max * r) ? d_max : -1.0;
         if (!hit)
             return -1.0;
     } else if (el >= 0.0) {

@@ -72,7 +72,6 @@ typedef struct lgv_state {
     bool maps_valid;
     int maps_res, maps_count;    /* what the map textures were made for */
     GLuint dist_tex, nrm_tex, alb_tex, map_depth, map_fbo, centres_ssbo;
-    GLuint reach_ssbo;           /* each refractor map's reach (reach.comp; trace.comp within_reach) */
     int levels;
     /* photons and grids */
     GLuint lgv_ssbo, caustic_ssbo, stats_ssbo, probe_ssbo;

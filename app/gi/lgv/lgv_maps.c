@@ -218,31 +218,6 @@ typedef struct mip_uniforms {
 } mip_uniforms;
 static const gk_uniform_field mip_fields[] = {GK_UNIFORM(mip_uniforms, u_dst_res)};
 
-/* lgv/reach.comp */
-typedef struct reach_uniforms {
-    GLint u_res, u_first_layer;
-} reach_uniforms;
-static const gk_uniform_field reach_fields[] = {GK_UNIFORM(reach_uniforms, u_res), GK_UNIFORM(reach_uniforms, u_first_layer)};
-
-/* Each refractor map's reach, the largest distance of its level 0 (reach.comp), into reach_ssbo:
-   trace.comp's marches on the refractor maps skip the steps beyond it (within_reach). */
-static int refractor_reach(lgv_state *s, gk_err *e)
-{
-    GLuint prog = gk_program_get_compute(s->ctx.programs, "lgv/reach.comp", NULL, e);
-    const reach_uniforms *u = prog ? gk_program_uniforms(s->ctx.programs, prog, GK_FIELDS(reach_fields), sizeof *u, e) : NULL;
-    if (!u)
-        return -1;
-    s->reach_ssbo = lgv_buffer(s->reach_ssbo, (long)sizeof(GLuint) * LGV_MAX_REFRACTORS, true);
-    glUseProgram(prog);
-    glBindImageTexture(0, s->dist_tex, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, s->reach_ssbo);
-    glUniform1i(u->u_res, s->map_res);
-    glUniform1i(u->u_first_layer, 6 * s->n_maps);
-    glDispatchCompute((GLuint)(s->map_res + 7) / 8, (GLuint)(s->map_res + 7) / 8, (GLuint)(6 * s->n_refractors));
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    return 0;
-}
-
 static GLuint array_texture(GLenum fmt, int res, int layers, int levels)
 {
     GLuint t;
@@ -352,8 +327,6 @@ int lgv_render_maps(lgv_state *s, const gk_gi_frame *f, gk_err *e)
         glDispatchCompute((GLuint)(dst + 7) / 8, (GLuint)(dst + 7) / 8, (GLuint)layers);
     }
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-    if (s->n_refractors > 0 && refractor_reach(s, e) != 0)
-        return -1;
     s->maps_valid = true;
     s->maps_stamp++; /* the geometry volume follows the maps (lgv_geometry.c) */
     return 0;

@@ -212,9 +212,9 @@ void lgv_free_gpu(lgv_state *s)
     glDeleteTextures(3, s->ss_img);
     glDeleteRenderbuffers(1, &s->map_depth);
     glDeleteFramebuffers(1, &s->map_fbo);
-    GLuint bufs[13] = {s->centres_ssbo, s->lgv_ssbo, s->caustic_ssbo, s->stats_ssbo, s->probe_ssbo, s->src_ssbo,
-                       s->acc_ssbo, s->dst_ssbo, s->ss_grid, s->ss_a, s->ss_b, s->geo_ssbo, s->reach_ssbo};
-    glDeleteBuffers(13, bufs);
+    GLuint bufs[12] = {s->centres_ssbo, s->lgv_ssbo, s->caustic_ssbo, s->stats_ssbo, s->probe_ssbo, s->src_ssbo,
+                       s->acc_ssbo, s->dst_ssbo, s->ss_grid, s->ss_a, s->ss_b, s->geo_ssbo};
+    glDeleteBuffers(12, bufs);
     glDeleteVertexArrays(1, &s->empty_vao);
 }
 

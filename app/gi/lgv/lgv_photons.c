@@ -211,8 +211,6 @@ int lgv_trace_photons(lgv_state *s, const gk_gi_frame *f, gk_err *e)
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, s->caustic_ssbo);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, s->stats_ssbo);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, s->probe_ssbo ? s->probe_ssbo : s->stats_ssbo);
-    if (s->n_refractors > 0)
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, s->reach_ssbo); /* LGV_GLASS > 0: within_reach */
     glUniform1ui(u->u_frame, s->frame_index + s->dbg.seed);
     glUniform1i(u->u_bounces, s->dbg.max_events > 0 ? s->dbg.max_events : LGV_BOUNCES);
     glUniform3f(u->u_grid_min, s->grid_min.x, s->grid_min.y, s->grid_min.z);
