@@ -13,8 +13,13 @@
 // SPLAT_COUNT_FRAGMENTS: the bench's counting variant (#21, app/gi/ispm/ispm_work.c), one atomic
 // add per fragment shaded, discarded or not (fragment-stage storage buffers capability-checked by
 // the caller). Never in the kiosk's frames.
+// SPLAT_ONE_SAMPLE (ispm_splat.c, where u_samples is 1: ispm_radius seed or density): the kernel at
+// the pixel centre's point alone, without the loop, whose second unprojection and plane hit llvmpipe
+// ran for every fragment although their results were not used (it runs both sides of a `?:`).
 // @variant -
 // @variant SPLAT_COUNT_FRAGMENTS
+// @variant SPLAT_ONE_SAMPLE
+// @variant SPLAT_ONE_SAMPLE SPLAT_COUNT_FRAGMENTS
 precision highp float;
 #include "common/gbuffer.glsl"
 #ifdef SPLAT_COUNT_FRAGMENTS
@@ -50,6 +55,12 @@ void main()
     // the kernel averaged over the splat pixel: u_samples² view rays through it, each met with the
     // splat's plane (1: the pixel centre's point alone)
     float k = 0.0;
+#ifdef SPLAT_ONE_SAMPLE
+    vec3 vy = x - v_c;
+    float r = length(vec2(dot(vy, v_e1.xyz), dot(vy, v_e2.xyz)));
+    if (r < 1.0)
+        k += u_cone == 1 ? 1.0 - r : exp(-r * r / (2.0 * u_delta));
+#else
     float ns = float(u_samples);
     for (int sy = 0; sy < u_samples; sy++)
         for (int sx = 0; sx < u_samples; sx++) {
@@ -64,6 +75,7 @@ void main()
                 k += u_cone == 1 ? 1.0 - r : exp(-r * r / (2.0 * u_delta));
         }
     k /= ns * ns;
+#endif
     if (k <= 0.0)
         discard;
     o_e = vec4(v_pow * (k * u_kernel_norm / (v_e1.w * v_e2.w)), 1.0);

@@ -14,16 +14,31 @@
 // that has just left glass (refracted out of it or reflected off it) is traced on that glass's exit
 // map (u_exit_maps, tracer.glsl lgv_trace_from). A photon on a specular chain (from the light, or off mirrors and glass)
 // meets glass where that glass's refractor map says (glass_entry), not where the lattice maps do.
-// u_probe = 1 (tests): no emission; each invocation traces one ray of the Probe buffer once and
-// writes where it hit (w = 1) or that it left the scene (w = 0).
+// LGV_PROBE (tests, gk_lgv_probe): no emission; each invocation traces one ray of the Probe buffer
+// once and writes where it hit (w = 1) or that it left the scene (w = 0).
 // TRACE_COUNT_FETCHES: the bench's counting variant (app/gi/lgv/lgv_work.c): the distance-map texels
 // each invocation read (tracer.glsl) and the LGV atomics its injections made, added to TraceWork once.
 // Never in the kiosk's frames.
+// LGV_GLASS (lgv_photons.c lgv_trace_defines): the refractor maps, 0, 1 or 2 for several (the
+// default). Without any the maps code no texel as glass (cubemap.frag), so the glass code is left
+// out; with one an exit map's segment cannot meet other glass. Variants, not uniform switches: a
+// group of SIMD lanes runs both sides of every branch on llvmpipe, a uniform one too, so code no
+// photon needs still cost its time on every bounce (the other-glass test's second trace, the probe's).
+// LGV_SEEING_MAPS: gk_lgv_debug.seeing_maps (tracer.glsl lgv_seeing_map).
 // @variant -
 // @variant TRACE_COUNT_FETCHES
+// @variant LGV_GLASS=0
+// @variant LGV_GLASS=1
+// @variant LGV_GLASS=1 TRACE_COUNT_FETCHES
+// @variant LGV_GLASS=0 LGV_SEEING_MAPS
+// @variant LGV_PROBE
+// @variant LGV_PROBE TRACE_COUNT_FETCHES
 precision highp float;
 precision highp int;
 layout(local_size_x = 64) in;
+#ifndef LGV_GLASS
+#define LGV_GLASS 2
+#endif
 #include "lgv/common.glsl"
 #include "lgv/tracer.glsl"
 struct Caustic { highp vec4 pos; highp vec4 dir; highp vec4 power; };
@@ -36,7 +51,6 @@ layout(std430, binding = 4) buffer Probe { highp vec4 probe[]; };        // (ori
 layout(std430, binding = 5) buffer TraceWork { highp uint dist_fetches; highp uint lgv_atomics; } trace_counted;
 highp uint g_lgv_atomics = 0u;
 #endif
-uniform int u_probe;
 uniform int u_photons;        // this light's photons
 uniform uint u_first;         // index of its first photon among all lights' (the hash key)
 uniform uint u_frame;
@@ -260,17 +274,14 @@ highp float glass_entry(int skip, highp vec3 x, highp vec3 r, highp float d, out
 void trace_invocation()
 {
     uint id = gl_GlobalInvocationID.x;
-    if (u_probe == 1) {
-        if (int(id) >= u_photons)
-            return;
-        int map;
-        highp vec3 o = probe[2u * id].xyz, r = normalize(probe[2u * id + 1u].xyz);
-        highp float d = lgv_trace(o, r, map);
-        probe[2u * id] = d >= 0.0 ? vec4(o + d * r, 1.0) : vec4(0.0);
-        return;
-    }
     if (int(id) >= u_photons)
         return;
+#ifdef LGV_PROBE
+    int map;
+    highp vec3 o = probe[2u * id].xyz, r = normalize(probe[2u * id + 1u].xyz);
+    highp float d = lgv_trace(o, r, map);
+    probe[2u * id] = d >= 0.0 ? vec4(o + d * r, 1.0) : vec4(0.0);
+#else
     g_rng = lgv_pcg((u_first + id) * 9781u + u_frame * 6271u + 1u);
     highp vec3 x, r, flux;
     emit(x, r, flux);
@@ -285,10 +296,13 @@ void trace_invocation()
         // the sphere focuses the light of the room above; those photons landed on what the lattice
         // maps saw beside the sphere. Exact for convex glass, which the photon cannot meet again;
         // when another glass object lies on the way the segment is traced on the lattice maps.
+#if LGV_GLASS > 0
         int exit_map = left_glass >= 0 ? left_glass + u_n_refractors : -1;
         highp float d = inside ? trace_inside(in_glass, x, r, map) : lgv_trace_from(exit_map, x, r, map);
+#if LGV_GLASS > 1
         if (exit_map >= 0 && map == exit_map && d >= 0.0 && other_glass_before(left_glass, x, r, d))
             d = lgv_trace(x, r, map);
+#endif
         bool on_refractor = false; // the hit was found on its refractor map (glass_entry)
         if (u_refractor_entry == 1 && specular_only && !inside) {
             int glass;
@@ -296,6 +310,9 @@ void trace_invocation()
             if (dg >= 0.0)
                 d = dg, map = glass, on_refractor = true;
         }
+#else
+        highp float d = lgv_trace(x, r, map);
+#endif
         left_glass = -1;
         atomicAdd(st[0], 1u);
         if (d < 0.0) {
@@ -307,6 +324,7 @@ void trace_invocation()
         highp vec3 n = normalize(texelFetch(u_nrm, tx, 0).xyz * 2.0 - 1.0);
         highp vec4 alb = texelFetch(u_alb, tx, 0);
         int code = int(alb.a * 255.0 + 0.5);
+#if LGV_GLASS > 0
         int refractor = u_n_maps + (code - 128) / 32; // code 128 + 32 r + q: refractor map r, ior 1 + 0.05 q
         if (code >= 128 && refractor < u_n_maps + u_n_refractors) {
             // Glass is seen from afar by the lattice maps (a sphere of glass: a few texels each),
@@ -348,6 +366,9 @@ void trace_invocation()
             events++;
             continue;
         }
+#else
+        highp vec3 ns = dot(n, r) < 0.0 ? n : -n; // facing the incoming photon
+#endif
         if (code == 1) {
             r = reflect(r, ns);
             flux *= alb.rgb;
@@ -396,6 +417,7 @@ void trace_invocation()
         specular_only = false;
         events++;
     }
+#endif
 }
 
 void main()

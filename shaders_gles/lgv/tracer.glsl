@@ -15,7 +15,6 @@ uniform int u_secant_steps;
 uniform vec3 u_bmin;          // the scene's bounds (a little padded): a ray leaving them met nothing
 uniform vec3 u_bmax;
 uniform int u_itp_mode;       // 0 angle partition (the seed), 1 planar ITP (Fig. 4's comparison)
-uniform int u_seeing;         // 1: a ray's maps are the nearest that see its point (lgv_seeing_map)
 uniform int u_bounds_hit;     // 1: a ray reaching the bounds where the map sees a surface met it (lgv_secant)
 layout(std430, binding = 0) readonly buffer Maps { highp vec4 centre[]; };
 // TRACE_COUNT_FETCHES (the bench's counting variant, app/gi/lgv/lgv_work.c): every distance-map
@@ -84,12 +83,15 @@ int lgv_nearest_map(highp vec3 x, int first, int count)
 // surface that way, within a texel's footprint); the nearest of all when none does. The seed's
 // "nearest map" presumes it sees the photon: a centre pushed out of a thin wall lies beside it, and
 // the photons on the wall's other side, nearest to it, were traced on a map that sees only the wall
-// (light-leak, 27 maps: 55% of the LGV's flux landed in the unlit room). u_seeing = 0: the nearest.
+// (light-leak, 27 maps: 55% of the LGV's flux landed in the unlit room). Only with LGV_SEEING_MAPS
+// (gk_lgv_debug.seeing_maps, a define of trace.comp's variant: llvmpipe runs a branch a uniform
+// switch turns off too, this loop's first iteration included); without it the nearest.
 int lgv_seeing_map(highp vec3 x)
 {
     int nearest = lgv_nearest_map(x, 0, u_n_maps);
-    if (u_seeing == 0)
-        return nearest;
+#ifndef LGV_SEEING_MAPS
+    return nearest;
+#else
     int best = -1;
     highp float bd = 1e30;
     for (int m = 0; m < u_n_maps; m++) {
@@ -105,6 +107,7 @@ int lgv_seeing_map(highp vec3 x)
         }
     }
     return best >= 0 ? best : nearest;
+#endif
 }
 
 // Eq. (2)-(3): f = d^2 a for impostor p (relative to the centre), photon t (relative to the
@@ -277,9 +280,15 @@ highp float lgv_exit(highp vec3 x, highp vec3 r)
 // that sees the photon's point for the second march. One code path for both: with a second copy of
 // the search for the exit maps, which SIMD lanes taking either path run one after the other, the
 // trace pass took 1.19x this one's time (bench_compare, glass, lgv, 6 interleaved runs).
+// The photon's own map is chosen once for both marches (llvmpipe evaluates both sides of each `?:`).
+// LGV_GLASS 0 (trace.comp: no refractor maps, so no exit maps): never forced.
 highp float lgv_trace_from(int forced, highp vec3 x, highp vec3 r, out int map)
 {
-    int m1 = forced >= 0 ? forced : lgv_seeing_map(x);
+#if defined(LGV_GLASS) && LGV_GLASS == 0
+    forced = -1;
+#endif
+    int own = lgv_seeing_map(x);
+    int m1 = forced >= 0 ? forced : own;
     highp vec3 itp;
     bool ok = true;
     if (u_itp_mode == 1)
@@ -298,7 +307,7 @@ highp float lgv_trace_from(int forced, highp vec3 x, highp vec3 r, out int map)
         // hidden from that map, or too few of its texels cover it): march again on the photon's
         // own map, still at most two maps per ray. Without it 11.6% of glass's photon-like rays
         // that meet a surface left the scene (test_lgv: "no hit at all").
-        int m2 = forced >= 0 ? lgv_seeing_map(x) : m1;
+        int m2 = forced >= 0 ? own : m1;
         highp float start1 = 2.0 * length(x - centre[m2].xyz) * 2.0 / float(u_res) + 1e-4;
         d = lgv_secant(m2, x, r, 2.0 * start1, start1, exit_d);
         if (d >= 0.0)

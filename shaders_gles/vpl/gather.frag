@@ -23,6 +23,14 @@
 // @variant VIS_VSM=1 MULTIRES=1 GATHER_COUNT_FETCHES=1
 // @variant VIS_HARD=1 MULTIRES=1 GATHER_COUNT_FETCHES=1
 // @variant VIS_NONE=1 MULTIRES=1 GATHER_COUNT_FETCHES=1
+// VIS_PER_VAL=M (vpl_gather.c vpl_per_val_define; CSSM and VSM only): each VAL's visibility once per
+// receiver, up to M VALs, instead of once per VPL (see main).
+// @variant VIS_CSSM=1 VIS_PER_VAL=32
+// @variant VIS_VSM=1 VIS_PER_VAL=32
+// @variant VIS_CSSM=1 MULTIRES=1 VIS_PER_VAL=32
+// @variant VIS_VSM=1 MULTIRES=1 VIS_PER_VAL=32
+// @variant VIS_CSSM=1 VIS_PER_VAL=32 GATHER_COUNT_FETCHES=1
+// @variant VIS_VSM=1 MULTIRES=1 VIS_PER_VAL=32 GATHER_COUNT_FETCHES=1
 precision highp float;
 precision highp int;
 precision highp sampler2DArray;
@@ -35,6 +43,9 @@ uniform int u_block;
 uniform float u_dmin2;
 uniform vec3 u_origin;       // bounds centre: o_pos (and multires T3) store x − u_origin
 uniform float u_out_max;     // 65000 on RGBA16F targets (fp16 saturates at 65504), else no cap
+#ifdef VIS_PER_VAL
+uniform int u_n_val;         // VALs in u_val (at most VIS_PER_VAL)
+#endif
 #if defined(VIS_CSSM)
 uniform sampler2DArray u_bcos, u_bsin, u_bzcos, u_bzsin, u_bz;
 #elif defined(VIS_VSM)
@@ -371,6 +382,16 @@ void main()
     int bb = u_block * u_block;
     int s = (q.y % u_block) * u_block + (q.x % u_block);
 #endif
+#ifdef VIS_PER_VAL
+    // Ṽ_C(i)(x) depends on the VPL's VAL alone, so each VAL's is evaluated once here and looked up
+    // per VPL: the same function of the same arguments, the same values. llvmpipe runs every branch
+    // of a fragment's SIMD lanes on both sides, so the per-VPL call cost its whole lookup (and the
+    // deep-umbra test) for every VPL of the subset, skipped or not; vpl_gather.c picks this variant
+    // when the VALs are fewer than the VPLs a receiver takes (u_n / B², or all N with MULTIRES).
+    float val_vis[VIS_PER_VAL];
+    for (int k = 0; k < u_n_val; k++)
+        val_vis[k] = visibility(k, x, nx);
+#endif
     vec3 E = vec3(0.0);
     float removed = 0.0;
     for (int i = s; i < u_n; i += bb) {
@@ -387,7 +408,11 @@ void main()
         float g = max(dot(nx, w), 0.0) * max(-dot(ni, w), 0.0);
         if (g <= 0.0)
             continue;
+#ifdef VIS_PER_VAL
+        float V = val_vis[clamp(int(p.w), 0, VIS_PER_VAL - 1)];
+#else
         float V = visibility(int(p.w), x, nx);
+#endif
         vec3 e = flux * (g * V / PI);
         vec3 full = e / max(d2, 1e-8);
         vec3 clamped = e / max(d2, u_dmin2);

@@ -1,5 +1,5 @@
 /* lgv's tracer replayed on the CPU (lgv_replay.h): shaders_gles/lgv/tracer.glsl and common.glsl line
- * by line in float, with u_itp_mode 0 (angle partition) and u_seeing 0 (the nearest map), as the
+ * by line in float, with u_itp_mode 0 (angle partition) and without LGV_SEEING_MAPS (the nearest map), as the
  * kiosk runs it. */
 #include "lgv_replay.h"
 

@@ -282,10 +282,13 @@ PY
 # at 160x120: filtered counts equal, unfiltered 200106 -> 272882 (+4 x 18194; R16F-nearest since the
 # efficiency kinds split by format: 0 -> 72776). `plane` reads the 4 texels' planes
 # (RGBA32F here, unfiltered) instead of level 0 of the chain, and the chain only at the kernel's level:
-# at 80x60 off / on / plane R16F 0 / 18712 / 2620, RGBA32F 50832 / 50832 / 67000 (+4 x 4042).
+# at 80x60 off / on / plane R16F 0 / 18712 / 2620, RGBA32F 50832 / 50832 / 67000 (+4 x 4042) with
+# the visibility per VPL; per VAL (gather.frag VIS_PER_VAL, the default here: 8 VALs, 16 VPLs a
+# receiver, every VAL's lookups at every receiver) 0 / 22096 / 4196, 60144 / 60144 / 78380 (+4 x 4559).
 # `horizon` (the default since issue 11) reads what `plane` does plus the lookups of the receivers in
 # the band below each map's plane, which the others take as lit without one (80x60: RGBA8 16950 ->
-# 17130, 16-bit 12522 -> 12657, RGBA32F 67000 -> 67180, R16F 2620 -> 2624), so it is not in the
+# 17130, 16-bit 12522 -> 12657, RGBA32F 67000 -> 67180, R16F 2620 -> 2624, measured with the visibility
+# per VPL), so it is not in the
 # equalities below.
 expect_exit 0 "bench --roofline-csv: vpl with and without the deep-umbra test" sh -c "'$GIKIOSK' bench \
     --scenes cornell --methods vpl --size 80x60 --frames 1 --warmup 1 --sweep 'vpl_umbra=off,on,plane' \

@@ -2,6 +2,7 @@
  * resolution, and the joint bilateral upsampling that adds ρ_d/π · E_caustic to the HDR image
  * (shaders_gles/ispm/trace.comp, splat.*, upsample.frag). */
 #include <math.h>
+#include <stdio.h>
 
 #include "gl/gbuffer_bind.h"
 #include "ispm_internal.h"
@@ -139,11 +140,17 @@ int ispm_splat(ispm_state *s, const gk_gi_frame *f, gk_err *e)
     glClear(GL_COLOR_BUFFER_BIT);
     if (!s->light.ok)
         return 0;
-    GLuint prog = gk_program_get(s->ctx.programs, "ispm/splat.vert", "ispm/splat.frag", ispm_work_splat_begin(s), e);
+    const gk_ispm_debug *d = &s->dbg;
+    bool feet = s->radius == ISPM_RADIUS_FOOTPRINT;
+    int samples = feet && d->pixel_samples > 1 ? d->pixel_samples : 1;
+    /* one kernel sample a pixel: splat.frag's variant without the loop (the same values) */
+    const char *count = ispm_work_splat_begin(s);
+    char defines[96];
+    snprintf(defines, sizeof defines, "%s%s", samples == 1 ? "#define SPLAT_ONE_SAMPLE 1\n" : "", count ? count : "");
+    GLuint prog = gk_program_get(s->ctx.programs, "ispm/splat.vert", "ispm/splat.frag", defines, e);
     const splat_uniforms *u = prog ? gk_program_uniforms(s->ctx.programs, prog, GK_FIELDS(splat_fields), sizeof *u, e) : NULL;
     if (!u)
         return -1;
-    const gk_ispm_debug *d = &s->dbg;
     glUseProgram(prog);
     gk_gbuffer_view gv = gk_gi_gbuffer(f);
     gk_gbuffer_bind(&gv, &u->gb, 0, 0);
@@ -158,9 +165,8 @@ int ispm_splat(ispm_state *s, const gk_gi_frame *f, gk_err *e)
     glUniform1f(u->u_kernel_norm, d->faithful_kernel ? 1.0f / 3.14159265f : 1.0f / kernel_mass(d));
     glUniform1f(u->u_delta, d->delta);
     glUniform1i(u->u_cone, d->cone_kernel);
-    bool feet = s->radius == ISPM_RADIUS_FOOTPRINT;
     glUniform1i(u->u_footprint, feet);
-    glUniform1i(u->u_samples, feet && d->pixel_samples > 1 ? d->pixel_samples : 1);
+    glUniform1i(u->u_samples, samples);
     if (!s->splat_vao)
         glGenVertexArrays(1, &s->splat_vao);
     glBindVertexArray(s->splat_vao);

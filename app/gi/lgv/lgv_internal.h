@@ -3,6 +3,8 @@
 #ifndef GK_LGV_INTERNAL_H
 #define GK_LGV_INTERNAL_H
 
+#include <stddef.h>
+
 #include "gl/gl.h"
 #include "gl/gl_counters.h"
 #include "gl/gl_program.h"
@@ -108,6 +110,9 @@ int lgv_trace_photons(lgv_state *s, const gk_gi_frame *f, gk_err *e);
 int lgv_gather(lgv_state *s, const gk_gi_frame *f, gk_err *e);
 /* lgv_geometry.c: the geometry volume from the lattice maps (only when the maps or the grid changed). */
 int lgv_build_geometry(lgv_state *s, gk_err *e);
+/* trace.comp's defines into out: the counting variant's (lgv_work_begin), LGV_GLASS (the refractor
+   maps: 0, 1, 2 for several), LGV_SEEING_MAPS (dbg.seeing_maps) and, for gk_lgv_probe, LGV_PROBE. */
+void lgv_trace_defines(lgv_state *s, bool probe, char *out, size_t cap);
 /* Binds the maps and the tracer's uniforms for a program that includes lgv/tracer.glsl. */
 int lgv_bind_tracer(lgv_state *s, GLuint prog, gk_err *e);
 /* lgv_sslgv.c: caustic photons into the screen grid, its iterations; lookup into the HDR image. */

@@ -252,9 +252,9 @@ int gk_lgv_centres(const void *self, float *out, int cap)
 }
 
 typedef struct probe_uniforms {
-    GLint u_probe, u_photons;
+    GLint u_photons;
 } probe_uniforms;
-static const gk_uniform_field probe_fields[] = {GK_UNIFORM(probe_uniforms, u_probe), GK_UNIFORM(probe_uniforms, u_photons)};
+static const gk_uniform_field probe_fields[] = {GK_UNIFORM(probe_uniforms, u_photons)};
 
 int gk_lgv_probe(void *self, const float *rays, int n, float *hits, double *fetches, gk_err *e)
 {
@@ -262,7 +262,8 @@ int gk_lgv_probe(void *self, const float *rays, int n, float *hits, double *fetc
     if (!s->maps_valid)
         return gk_fail(e, GK_ERUNTIME, "lgv probe: no maps yet (render a frame first)");
     s->count_work = fetches != NULL;
-    const char *defines = lgv_work_begin(s, LGV_WORK_TRACE);
+    char defines[256];
+    lgv_trace_defines(s, true, defines, sizeof defines);
     if (fetches && !s->work[LGV_WORK_TRACE].counting)
         return gk_fail(e, GK_ERUNTIME, "lgv probe: cannot count fetches here (no storage buffers to count into)");
     GLuint prog = gk_program_get_compute(s->ctx.programs, "lgv/trace.comp", defines, e);
@@ -286,7 +287,6 @@ int gk_lgv_probe(void *self, const float *rays, int n, float *hits, double *fetc
         return -1;
     }
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, s->probe_ssbo);
-    glUniform1i(u->u_probe, 1);
     glUniform1i(u->u_photons, n);
     glDispatchCompute((GLuint)(n + 63) / 64, 1, 1);
     lgv_work_end(s, LGV_WORK_TRACE);

@@ -2,6 +2,7 @@
  * and the caustic list (lgv/trace.comp), then the LGV gathering iterations (eq. 6) and the volume
  * textures the lookup filters. */
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "core/tonemap.h"
@@ -38,7 +39,7 @@ static void zero_buffer(GLuint b, long bytes)
 /* lgv/tracer.glsl (in trace.comp) */
 typedef struct tracer_uniforms {
     GLint u_dist, u_nrm, u_alb, u_res, u_levels, u_n_maps, u_n_refractors, u_q, u_loops, u_itp_eps, u_secant_steps,
-        u_itp_mode, u_seeing, u_bounds_hit, u_bmin, u_bmax;
+        u_itp_mode, u_bounds_hit, u_bmin, u_bmax;
 } tracer_uniforms;
 static const gk_uniform_field tracer_fields[] = {
     GK_UNIFORM(tracer_uniforms, u_dist),      GK_UNIFORM(tracer_uniforms, u_nrm),
@@ -47,20 +48,19 @@ static const gk_uniform_field tracer_fields[] = {
     GK_UNIFORM(tracer_uniforms, u_n_refractors), GK_UNIFORM(tracer_uniforms, u_q),
     GK_UNIFORM(tracer_uniforms, u_loops),     GK_UNIFORM(tracer_uniforms, u_itp_eps),
     GK_UNIFORM(tracer_uniforms, u_secant_steps),
-    GK_UNIFORM(tracer_uniforms, u_itp_mode),  GK_UNIFORM(tracer_uniforms, u_seeing),
-    GK_UNIFORM(tracer_uniforms, u_bounds_hit),
+    GK_UNIFORM(tracer_uniforms, u_itp_mode),  GK_UNIFORM(tracer_uniforms, u_bounds_hit),
     GK_UNIFORM(tracer_uniforms, u_bmin),
     GK_UNIFORM(tracer_uniforms, u_bmax),
 };
 
 /* lgv/trace.comp's own */
 typedef struct trace_uniforms {
-    GLint u_probe, u_photons, u_first, u_frame, u_light_kind, u_light_pos, u_light_dir, u_light_u, u_light_v, u_cone,
+    GLint u_photons, u_first, u_frame, u_light_kind, u_light_pos, u_light_dir, u_light_u, u_light_v, u_cone,
         u_power, u_bounces, u_grid_min, u_cell, u_dims, u_inject_scale, u_inject_lobe, u_fixed, u_caustic_cap, u_snap,
         u_plane_hits, u_sphere_normals, u_refractor_surface, u_exit_maps, u_refractor_entry;
 } trace_uniforms;
 static const gk_uniform_field trace_fields[] = {
-    GK_UNIFORM(trace_uniforms, u_probe),       GK_UNIFORM(trace_uniforms, u_photons),
+    GK_UNIFORM(trace_uniforms, u_photons),
     GK_UNIFORM(trace_uniforms, u_first),       GK_UNIFORM(trace_uniforms, u_frame),
     GK_UNIFORM(trace_uniforms, u_light_kind),  GK_UNIFORM(trace_uniforms, u_light_pos),
     GK_UNIFORM(trace_uniforms, u_light_dir),   GK_UNIFORM(trace_uniforms, u_light_u),
@@ -75,6 +75,13 @@ static const gk_uniform_field trace_fields[] = {
     GK_UNIFORM(trace_uniforms, u_refractor_surface),
     GK_UNIFORM(trace_uniforms, u_exit_maps),   GK_UNIFORM(trace_uniforms, u_refractor_entry),
 };
+
+void lgv_trace_defines(lgv_state *s, bool probe, char *out, size_t cap)
+{
+    snprintf(out, cap, "%s#define LGV_GLASS %d\n%s%s", lgv_work_begin(s, LGV_WORK_TRACE),
+             s->n_refractors < 2 ? s->n_refractors : 2, s->dbg.seeing_maps ? "#define LGV_SEEING_MAPS 1\n" : "",
+             probe ? "#define LGV_PROBE 1\n" : "");
+}
 
 int lgv_bind_tracer(lgv_state *s, GLuint prog, gk_err *e)
 {
@@ -99,7 +106,6 @@ int lgv_bind_tracer(lgv_state *s, GLuint prog, gk_err *e)
     glUniform1f(u->u_itp_eps, LGV_ITP_EPS_REL * s->diag);
     glUniform1i(u->u_secant_steps, LGV_SECANT_STEPS);
     glUniform1i(u->u_itp_mode, s->dbg.itp_mode);
-    glUniform1i(u->u_seeing, s->dbg.seeing_maps ? 1 : 0);
     glUniform1i(u->u_bounds_hit, s->dbg.bounds_hits ? 1 : 0);
     glUniform3f(u->u_bmin, s->bmin.x, s->bmin.y, s->bmin.z);
     glUniform3f(u->u_bmax, s->bmax.x, s->bmax.y, s->bmax.z);
@@ -192,7 +198,9 @@ int lgv_trace_photons(lgv_state *s, const gk_gi_frame *f, gk_err *e)
         return 0;
     /* fixed point: 2^29 units for the whole scene's flux (a cell can hold several times all of it) */
     s->fixed_scale = 536870912.0f / total;
-    GLuint prog = gk_program_get_compute(s->ctx.programs, "lgv/trace.comp", lgv_work_begin(s, LGV_WORK_TRACE), e);
+    char defines[256];
+    lgv_trace_defines(s, false, defines, sizeof defines);
+    GLuint prog = gk_program_get_compute(s->ctx.programs, "lgv/trace.comp", defines, e);
     const trace_uniforms *u = prog ? gk_program_uniforms(s->ctx.programs, prog, GK_FIELDS(trace_fields), sizeof *u, e) : NULL;
     if (!u)
         return -1;
@@ -203,7 +211,6 @@ int lgv_trace_photons(lgv_state *s, const gk_gi_frame *f, gk_err *e)
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, s->caustic_ssbo);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, s->stats_ssbo);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, s->probe_ssbo ? s->probe_ssbo : s->stats_ssbo);
-    glUniform1i(u->u_probe, 0);
     glUniform1ui(u->u_frame, s->frame_index + s->dbg.seed);
     glUniform1i(u->u_bounces, s->dbg.max_events > 0 ? s->dbg.max_events : LGV_BOUNCES);
     glUniform3f(u->u_grid_min, s->grid_min.x, s->grid_min.y, s->grid_min.z);

@@ -27,6 +27,9 @@ typedef struct gk_vpl_debug {
     float adaptive_drop;     /* vpl_m=adaptive: stop doubling M below this relative error drop */
     bool centroid_origin;    /* faithful: render each VAL map from the cluster centroid (default:
                                 from the member VPL nearest to it, see gk_val.origin) */
+    bool vis_per_vpl;        /* tests: the VAL's visibility evaluated per VPL, as the sum is written,
+                                even where once per VAL per receiver is cheaper (the same values;
+                                default false: vpl_gather.c vpl_per_val_define) */
 } gk_vpl_debug;
 
 typedef struct gk_vpl_stats {
@@ -36,6 +39,8 @@ typedef struct gk_vpl_stats {
     float spacing, dmin;     /* mean VPL spacing and clamp distance (m) */
     double clamp_removed;    /* fraction of the gathered irradiance the clamp removed (measure) */
     int mr_regions;          /* multires: regions shaded over all levels (measure) */
+    bool vis_per_val;        /* the last gather evaluated each VAL's visibility once per receiver
+                                (gather.frag VIS_PER_VAL), not once per VPL */
     int fade_left;
     gk_vpl vpl[GK_VPL_MAX_N];
     int labels[GK_VPL_MAX_N];

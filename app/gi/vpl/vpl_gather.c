@@ -87,6 +87,7 @@ static const gk_uniform_field gather_fields[] = {
     GK_UNIFORM(vpl_gather_uniforms, u_bplane),
     GK_UNIFORM(vpl_gather_uniforms, u_umbra),
     GK_UNIFORM(vpl_gather_uniforms, u_lift),
+    GK_UNIFORM(vpl_gather_uniforms, u_n_val),
     GK_UNIFORM_AS(vpl_gather_uniforms, u_mr_t[0], "u_mr_t0"),
     GK_UNIFORM_AS(vpl_gather_uniforms, u_mr_t[1], "u_mr_t1"),
     GK_UNIFORM_AS(vpl_gather_uniforms, u_mr_t[2], "u_mr_t2"),
@@ -153,12 +154,23 @@ const char *vpl_vis_define(int vis)
     }
 }
 
+#define VPL_STR_(x) #x
+#define VPL_STR(x) VPL_STR_(x)
+const char *vpl_per_val_define(vpl_state *s, bool multires)
+{
+    int bb = s->block * s->block;
+    int per_receiver = multires ? s->n : (s->n + bb - 1) / bb;
+    s->st.vis_per_val = (s->vis == GK_VPL_VIS_CSSM || s->vis == GK_VPL_VIS_VSM) && !s->dbg.vis_per_vpl &&
+                        s->st.m > 0 && s->st.m <= GK_VPL_MAX_M && s->st.m < per_receiver;
+    return s->st.vis_per_val ? "#define VIS_PER_VAL " VPL_STR(GK_VPL_MAX_M) "\n" : "";
+}
+
 /* Interleaved gather at the indirect resolution into ind_tex (+ pos, nrm for the blur). */
 static int interleaved(vpl_state *s, const gk_gi_frame *f, gk_err *e)
 {
     int iw = s->iw, ih = s->ih;
     char defines[160];
-    snprintf(defines, sizeof defines, "%s%s", vpl_vis_define(s->vis), vpl_work_begin(s, f));
+    snprintf(defines, sizeof defines, "%s%s%s", vpl_vis_define(s->vis), vpl_per_val_define(s, false), vpl_work_begin(s, f));
     GLuint g = gk_program_get(s->ctx.programs, "common/fullscreen.vert", "vpl/gather.frag", defines, e);
     const vpl_gather_uniforms *u = g ? vpl_gather_uniforms_of(s, g, e) : NULL;
     if (!u)
@@ -205,6 +217,7 @@ void vpl_bind_visibility(vpl_state *s, const vpl_gather_uniforms *u)
     vpl_bind_tex(15, GL_TEXTURE_2D_ARRAY, s->zplane, u->u_bplane);
     glUniform1i(u->u_umbra, s->zmax != 0 && s->vis != GK_VPL_VIS_EXACT ? s->map_umbra : VPL_UMBRA_OFF);
     glUniform1f(u->u_lift, vpl_lift(s));
+    glUniform1i(u->u_n_val, s->st.m); /* VIS_PER_VAL's loop (absent from the other variants: -1, ignored) */
 }
 
 /* The gather (interleaved, or multires) at the indirect resolution into ind_tex, pos_tex, nrm_tex. */

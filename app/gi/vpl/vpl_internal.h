@@ -136,7 +136,7 @@ float vpl_target_max(const vpl_state *s);
 typedef struct vpl_gather_uniforms {
     gk_gbuffer_uniforms gb;
     GLint u_ind_size, u_vpl, u_val, u_n, u_block, u_dmin2, u_origin, u_out_max;
-    GLint u_bcos, u_bsin, u_bzcos, u_bzsin, u_bz, u_bmom, u_bzmax, u_bplane, u_umbra, u_lift;
+    GLint u_bcos, u_bsin, u_bzcos, u_bzsin, u_bz, u_bmom, u_bzmax, u_bplane, u_umbra, u_lift, u_n_val;
     GLint u_mr_t[4], u_mr_p[3], u_mr_level, u_mr_top, u_tau_z, u_tau_n;
 } vpl_gather_uniforms;
 const vpl_gather_uniforms *vpl_gather_uniforms_of(vpl_state *s, GLuint prog, gk_err *e);
@@ -144,6 +144,10 @@ const vpl_gather_uniforms *vpl_gather_uniforms_of(vpl_state *s, GLuint prog, gk_
 void vpl_bind_tex(int unit, GLenum target, GLuint tex, GLint loc);
 void vpl_bind_visibility(vpl_state *s, const vpl_gather_uniforms *u);
 const char *vpl_vis_define(int vis);
+/* gather.frag's VIS_PER_VAL define (each VAL's visibility once per receiver, looked up per VPL) where
+   that is cheaper: CSSM or VSM visibility with fewer VALs than the VPLs a receiver takes (n / B²
+   interleaved, all n with `multires`); "" otherwise (the per-VPL call) and with dbg.vis_per_vpl. */
+const char *vpl_per_val_define(vpl_state *s, bool multires);   /* also sets st.vis_per_val */
 
 /* Emitter geometry shared by the map pass and the gather (centre offset, near radius, far). */
 void vpl_emitter_params(const vpl_state *s, const gk_val *v, bool exact, float out_c[3], float *rnear,

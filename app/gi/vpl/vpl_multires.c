@@ -151,7 +151,8 @@ int vpl_gather_multires(vpl_state *s, const gk_gi_frame *f, gk_err *e)
     if (ensure_levels(s, e) || build_mips(s, f, e))
         return -1;
     char defs[160];
-    snprintf(defs, sizeof defs, "%s#define MULTIRES 1\n%s", vpl_vis_define(s->vis), vpl_work_begin(s, f));
+    snprintf(defs, sizeof defs, "%s#define MULTIRES 1\n%s%s", vpl_vis_define(s->vis), vpl_per_val_define(s, true),
+             vpl_work_begin(s, f));
     GLuint g = gk_program_get(s->ctx.programs, "common/fullscreen.vert", "vpl/gather.frag", defs, e);
     GLuint ip = gk_program_get(s->ctx.programs, "common/fullscreen.vert", "vpl/mr_interp.frag", NULL, e);
     const vpl_gather_uniforms *u = g && ip ? vpl_gather_uniforms_of(s, g, e) : NULL;
