@@ -288,8 +288,7 @@ PY
 # `horizon` (the default since issue 11) reads what `plane` does plus the lookups of the receivers in
 # the band below each map's plane, which the others take as lit without one (80x60: RGBA8 16950 ->
 # 17130, 16-bit 12522 -> 12657, RGBA32F 67000 -> 67180, R16F 2620 -> 2624, measured with the visibility
-# per VPL), so it is not in the
-# equalities below.
+# per VPL), so it is not in the equalities below.
 expect_exit 0 "bench --roofline-csv: vpl with and without the deep-umbra test" sh -c "'$GIKIOSK' bench \
     --scenes cornell --methods vpl --size 80x60 --frames 1 --warmup 1 --sweep 'vpl_umbra=off,on,plane' \
     --roofline-csv '$TMP/roofline.csv' --out '$TMP/u' 2>'$TMP/u.log'"
