@@ -371,6 +371,23 @@ static void thick_marks_solid_voxels_behind_without_diluting(void **state)
 }
 
 /* ---- vct_axis_clamp: the distances to the first occupied voxel along each axis ------------------ */
+/* One frame of a test scene at BUDGET: the method (the caller destroys it), its stats, and the voxel
+   scratch buffer read back (the caller frees it). */
+static unsigned *render_and_read_scratch(void **vct_out, gk_vct_stats *st, vt_frame *f, const vt_scene *sc,
+                                         const char *budget, const gk_gi_light *L)
+{
+    gk_budget b;
+    vt_budget(&b, budget);
+    void *vct = vt_create(&g);
+    assert_int_equal(vt_render(vct, f, sc, &b, L, 1, NULL, NULL), 0);
+    gk_vct_get_stats(vct, st);
+    long n;
+    unsigned *scratch = vt_read_scratch(vct, &n);
+    assert_non_null(scratch);
+    *vct_out = vct;
+    return scratch;
+}
+
 /* The scene of the test above with vct_thick=1.5 (fragments and solid marks: both count as occupied)
    and vct_axis_clamp=first / second at 32^3: axis_dist.comp's words must equal the distances to the
    first / second occupied voxel (the voxel itself counted) found on the CPU from the scratch buffer's
@@ -387,17 +404,11 @@ static void axis_clamp_distances(int nth)
     vt_frame f;
     vt_frame_create(&f, 16, 16, v3(0.5f, 1.5f, 0.51f), v3(0.5f, 0, 0.5f), v3(0, 0, -1), 0.5f);
     vt_gbuffer(&g, &f, &sc);
-    gk_budget b;
-    vt_budget(&b, nth == 1 ? "vct_res=32,vct_thick=1.5,vct_axis_clamp=first" : "vct_res=32,vct_thick=1.5,vct_axis_clamp=second");
-    void *vct = vt_create(&g);
-    assert_int_equal(vt_render(vct, &f, &sc, &b, &L, 1, NULL, NULL), 0);
     gk_vct_stats st;
-    gk_vct_get_stats(vct, &st);
+    void *vct;
+    unsigned *scratch = render_and_read_scratch(&vct, &st, &f, &sc, nth == 1 ? "vct_res=32,vct_thick=1.5,vct_axis_clamp=first" : "vct_res=32,vct_thick=1.5,vct_axis_clamp=second", &L);
     const int res = st.res;
     const long N = (long)res * res * res;
-    long n;
-    unsigned *scratch = vt_read_scratch(vct, &n);
-    assert_non_null(scratch);
     unsigned axis_buf = gk_vct_axis_buffer(vct);
     assert_true(axis_buf != 0);
     unsigned *dist = malloc((size_t)(3 * N) * sizeof *dist);
@@ -483,17 +494,11 @@ static void thin_flags_mark_thin_walls_only(void **state)
     vt_frame f;
     vt_frame_create(&f, 16, 16, v3(0.5f, 1.5f, 0.51f), v3(0.5f, 0, 0.5f), v3(0, 0, -1), 0.5f);
     vt_gbuffer(&g, &f, &sc);
-    gk_budget b;
-    vt_budget(&b, "vct_res=32,vct_axis_clamp=thin");
-    void *vct = vt_create(&g);
-    assert_int_equal(vt_render(vct, &f, &sc, &b, &L, 1, NULL, NULL), 0);
     gk_vct_stats st;
-    gk_vct_get_stats(vct, &st);
+    void *vct;
+    unsigned *scratch = render_and_read_scratch(&vct, &st, &f, &sc, "vct_res=32,vct_axis_clamp=thin", &L);
     const int res = st.res;
     const long N = (long)res * res * res;
-    long n;
-    unsigned *scratch = vt_read_scratch(vct, &n);
-    assert_non_null(scratch);
     unsigned buf = gk_vct_thin_buffer(vct);
     assert_true(buf != 0);
     unsigned *fl = malloc((size_t)N * sizeof *fl);
