@@ -365,7 +365,6 @@ int vct_update(gk_vct *v, const gk_gi_frame *f, vct_budget *bp, gk_err *e)
         }
     }
 
-    v->cur.axis_clamp = b.axis_clamp;
     if (vct_axis_clamp_in_use(v, b.axis_clamp) && (!v->axis_valid || v->axis_nth != b.axis_clamp)) {   /* part of the voxels: timed with them */
         gk_pass_begin(f->pass, "vct_voxelize");
         int rc = vct_pass_axis_dist(v, b.axis_clamp, e);

@@ -1,7 +1,6 @@
 /* The GL side of each vct pass: program variants, bindings, dispatches and barriers. */
 #include <math.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 
 #include "vct_internal.h"
@@ -195,6 +194,19 @@ static int voxelize_solid_pass(gk_vct *v, const char *defs, const int lo[3], con
     return 0;
 }
 
+/* vct/clear.comp over a region of the buffer bound at binding 1: `channels` uints per voxel zeroed. */
+static void clear_region(const gk_vct *v, GLuint clear, const clear_uniforms *uc, const int lo[3], const int size[3],
+                         int channels)
+{
+    glUseProgram(clear);
+    glUniform1i(uc->u_res, v->res);
+    glUniform3i(uc->u_region_lo, lo[0], lo[1], lo[2]);
+    glUniform3i(uc->u_region_size, size[0], size[1], size[2]);
+    glUniform1i(uc->u_channels, channels);
+    glDispatchCompute((GLuint)groups(size[0], 4), (GLuint)groups(size[1], 4), (GLuint)groups(size[2], 4));
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
 /* vct_axis_clamp=thin: the flag volume made anew over the whole grid (a dirty region's surfaces may make
    or unmake a thin wall with the static ones beside it): cleared, each fragment's facing ORed in by
    voxelize.comp FACE_PASS (a dispatch of its own, as the solid marks', see below), then
@@ -203,7 +215,7 @@ static int voxelize_solid_pass(gk_vct *v, const char *defs, const int lo[3], con
    vct_thick's marks not opaque, so a thin shell's other face stays visible). The voxel data (scratch,
    radiance) are not touched: a scene without thin walls is traced as without the clamp, and keeps
    no flag volume (it lives during the voxelization alone, 4 bytes per voxel). */
-static int thin_flag_pass(gk_vct *v, const char *defs, gk_err *e)
+static int thin_flag_pass(gk_vct *v, const char *defs, GLuint clear, const clear_uniforms *uc, gk_err *e)
 {
     char face_defs[320], mark_defs[320];
     snprintf(face_defs, sizeof face_defs, "%s#define FACE_PASS 1\n", defs);
@@ -216,21 +228,21 @@ static int thin_flag_pass(gk_vct *v, const char *defs, gk_err *e)
     const voxelize_uniforms *um = uf ? gk_program_uniforms(v->ctx.programs, mark, GK_FIELDS(voxelize_fields), sizeof *um, e) : NULL;
     if (!um)
         return -1;
-    size_t bytes = (size_t)gk_vct_thin_flag_memory(v->res);
-    void *zero = calloc(1, bytes);
-    if (!zero)
-        return gk_fail(e, GK_ERUNTIME, "vct: no memory to clear the thin-wall flags");
-    if (!v->thin_ssbo)
+    if (!v->thin_ssbo) {   /* allocated once per grid (vct_free_gpu), cleared on the GPU each time */
         glGenBuffers(1, &v->thin_ssbo);
-    glBindBuffer(GL_SHADER_STORAGE_BUFFER, v->thin_ssbo);
-    glBufferData(GL_SHADER_STORAGE_BUFFER, (GLsizeiptr)bytes, zero, GL_DYNAMIC_COPY);
-    glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
-    free(zero);
-    GLenum err = glGetError();
-    if (err != GL_NO_ERROR)
-        return gk_fail(e, GK_ERUNTIME, "vct: allocating the %d^3 thin-wall flags failed (GL error 0x%x)", v->res, err);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, v->thin_ssbo);
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, v->thin_ssbo);
+        glBufferData(GL_SHADER_STORAGE_BUFFER, (GLsizeiptr)gk_vct_thin_flag_memory(v->res), NULL, GL_DYNAMIC_COPY);
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+        GLenum err = glGetError();
+        if (err != GL_NO_ERROR)
+            return gk_fail(e, GK_ERUNTIME, "vct: allocating the %d^3 thin-wall flags failed (GL error 0x%x)", v->res, err);
+    }
     int all_lo[3] = {0, 0, 0}, all_hi[3] = {v->res - 1, v->res - 1, v->res - 1};
+    int all_size[3] = {v->res, v->res, v->res};
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, v->thin_ssbo);
+    clear_region(v, clear, uc, all_lo, all_size, 1);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, v->scratch_ssbo);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, v->thin_ssbo);
     glUseProgram(face);
     voxelize_set_uniforms(v, uv, all_lo, all_hi);
     voxelize_dispatch(v, uv);
@@ -282,20 +294,14 @@ int vct_pass_voxelize(gk_vct *v, const int lo[3], const int hi[3], gk_err *e)
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, v->tri_ssbo);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, v->scratch_ssbo);
 
-    glUseProgram(clear);
-    glUniform1i(uc->u_res, v->res);
-    glUniform3i(uc->u_region_lo, lo[0], lo[1], lo[2]);
-    glUniform3i(uc->u_region_size, size[0], size[1], size[2]);
-    glUniform1i(uc->u_channels, gk_vct_channels(v->emissive));
-    glDispatchCompute((GLuint)groups(size[0], 4), (GLuint)groups(size[1], 4), (GLuint)groups(size[2], 4));
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    clear_region(v, clear, uc, lo, size, gk_vct_channels(v->emissive));
 
     glUseProgram(vox);
     voxelize_set_uniforms(v, uv, lo, hi);
     voxelize_dispatch(v, uv);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     vct_work_voxelize_end(v);
-    if (v->cur.axis_clamp == VCT_AXIS_THIN && thin_flag_pass(v, defs, e) != 0)
+    if (v->cur.axis_clamp == VCT_AXIS_THIN && thin_flag_pass(v, defs, clear, uc, e) != 0)
         return -1;
     if (voxelize_solid_pass(v, defs, lo, hi, e) != 0)
         return -1;
